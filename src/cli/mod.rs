@@ -1,0 +1,56 @@
+//! Command-line interface: one file per subcommand; this file only dispatches.
+//!
+//! Every failure is printed as one line `error: …` on stderr with exit code 1 (2 for
+//! malformed flags, as clap does); nothing panics on user input.
+
+mod analytic;
+mod mesh;
+
+use clap::{Parser, Subcommand};
+
+/// twoball: finite-element verifier for the collision of two elastic-plastic balls.
+#[derive(Debug, Parser)]
+#[command(name = "twoball", version, about, long_about = None)]
+pub struct Cli {
+    /// What to do.
+    #[command(subcommand)]
+    pub command: Command,
+}
+
+/// The subcommands.
+#[derive(Debug, Subcommand)]
+pub enum Command {
+    /// Analytical three-phase collision model (Li, Yang & Shi 2019) for two balls.
+    Analytic(analytic::AnalyticArgs),
+    /// Table 1: particle damping index and energy dissipation factor of nine materials.
+    Materials(analytic::MaterialsArgs),
+    /// Parametric studies (paper Figures 11-14) as CSV and SVG.
+    Parametric(analytic::ParametricArgs),
+    /// Ball meshes: generate, check, run gmsh.
+    Mesh(mesh::MeshArgs),
+}
+
+/// Runs the command line and returns the process exit code.
+pub fn main() -> i32 {
+    let cli = match Cli::try_parse() {
+        Ok(c) => c,
+        Err(e) => {
+            // clap prints help/version to stdout with exit 0 and usage errors with exit 2.
+            let _ = e.print();
+            return e.exit_code();
+        }
+    };
+    let result = match cli.command {
+        Command::Analytic(a) => analytic::run_analytic(a),
+        Command::Materials(a) => analytic::run_materials(a),
+        Command::Parametric(a) => analytic::run_parametric(a),
+        Command::Mesh(a) => mesh::run(a),
+    };
+    match result {
+        Ok(()) => 0,
+        Err(e) => {
+            eprintln!("error: {e}");
+            1
+        }
+    }
+}

@@ -1,0 +1,77 @@
+//! One error type for the whole crate: every failure names what was wrong.
+
+use std::fmt;
+
+/// Result alias used throughout twoball.
+pub type Result<T> = std::result::Result<T, Error>;
+
+/// What can go wrong in twoball. Every variant carries a message that names the offending
+/// field, value or file, so the CLI can print it as one line and exit non-zero.
+#[derive(Debug)]
+pub enum Error {
+    /// A user-supplied value is outside its allowed range (`field`, `value`, `allowed`).
+    Invalid {
+        /// Dotted name of the field, e.g. `ball1.material.E`.
+        field: String,
+        /// The value as given, printed.
+        value: String,
+        /// The allowed range or set, in words.
+        allowed: String,
+    },
+    /// Input that could not be parsed (scene, mesh, CLI value); the message says where.
+    Parse(String),
+    /// A file could not be read or written.
+    Io {
+        /// The path involved.
+        path: String,
+        /// The operating-system error.
+        source: std::io::Error,
+    },
+    /// A computation went numerically wrong (instability, non-finite value); the message
+    /// names where, when and the likely cause.
+    Numerical(String),
+    /// An external program (gmsh, ccx) is missing or failed.
+    External(String),
+}
+
+impl Error {
+    /// Shorthand for [`Error::Invalid`].
+    pub fn invalid(field: impl Into<String>, value: impl fmt::Display, allowed: impl Into<String>) -> Self {
+        Error::Invalid {
+            field: field.into(),
+            value: value.to_string(),
+            allowed: allowed.into(),
+        }
+    }
+
+    /// Shorthand for [`Error::Io`].
+    pub fn io(path: impl AsRef<std::path::Path>, source: std::io::Error) -> Self {
+        Error::Io {
+            path: path.as_ref().display().to_string(),
+            source,
+        }
+    }
+}
+
+impl fmt::Display for Error {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Error::Invalid { field, value, allowed } => {
+                write!(f, "invalid {field} = {value}: allowed {allowed}")
+            }
+            Error::Parse(m) => write!(f, "{m}"),
+            Error::Io { path, source } => write!(f, "{path}: {source}"),
+            Error::Numerical(m) => write!(f, "numerical failure: {m}"),
+            Error::External(m) => write!(f, "{m}"),
+        }
+    }
+}
+
+impl std::error::Error for Error {
+    fn source(&self) -> Option<&(dyn std::error::Error + 'static)> {
+        match self {
+            Error::Io { source, .. } => Some(source),
+            _ => None,
+        }
+    }
+}

@@ -1,0 +1,1 @@
+//! The explicit finite-element solver: elements, materials, contact, time integration, energy.

@@ -1,0 +1,19 @@
+//! twoball: a finite-element verifier for the collision of two elastic-plastic balls.
+//!
+//! The crate has two halves that check each other:
+//! - [`analytic`]: the closed-form three-phase collision model of Li, Yang & Shi (2019)
+//!   (Hertz compression, elastoplastic compression, elastic recovery, friction revision);
+//! - [`fe`]: a small explicit 3D solid finite-element code (8-node hexahedra, bilinear J2
+//!   plasticity, penalty frictional contact) that simulates the same collision.
+//!
+//! All quantities are SI: metres, seconds, kilograms, newtons, pascals, joules.
+
+pub mod analytic;
+pub mod error;
+pub mod material;
+pub mod cli;
+pub mod fe;
+pub mod mesh;
+
+pub use error::{Error, Result};
+pub use material::Material;

@@ -1,0 +1,265 @@
+//! Ball materials: isotropic elasticity, bilinear isotropic hardening, Coulomb friction.
+//!
+//! The nine presets of Table 1 of Li, Yang & Shi (2019) and the copper of their ANSYS study
+//! (`copper-fe`). The paper never gives a hardening (tangent) modulus; every preset uses
+//! `tangent = E / 100`, a common bilinear choice for metals, and says so in docs/design.md.
+
+use crate::error::{Error, Result};
+use serde::{Deserialize, Serialize};
+
+/// An elastic-plastic ball material in SI units.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Material {
+    /// Young's modulus E, Pa (> 0).
+    #[serde(rename = "E")]
+    pub youngs: f64,
+    /// Poisson's ratio ν (in (-1, 0.5)).
+    pub nu: f64,
+    /// Mass density ρ, kg/m³ (> 0).
+    pub rho: f64,
+    /// Initial (uniaxial) yield strength σ_s, Pa (> 0).
+    #[serde(rename = "yield")]
+    pub yield_strength: f64,
+    /// Tangent modulus E_T of the bilinear stress-strain law, Pa (0 ≤ E_T < E; 0 = perfectly plastic).
+    pub tangent: f64,
+    /// Dynamic (sliding) friction coefficient μ_d (≥ 0).
+    pub mu: f64,
+    /// Static friction coefficient μ_s (≥ μ_d); the paper uses one coefficient, so presets set μ_s = μ_d.
+    pub mu_static: f64,
+}
+
+/// Field-by-field overrides of a material; `None` keeps the base value.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct MaterialOverrides {
+    /// Young's modulus, Pa.
+    #[serde(rename = "E")]
+    pub youngs: Option<f64>,
+    /// Poisson's ratio.
+    pub nu: Option<f64>,
+    /// Density, kg/m³.
+    pub rho: Option<f64>,
+    /// Yield strength, Pa.
+    #[serde(rename = "yield")]
+    pub yield_strength: Option<f64>,
+    /// Tangent modulus, Pa.
+    pub tangent: Option<f64>,
+    /// Dynamic friction coefficient.
+    pub mu: Option<f64>,
+    /// Static friction coefficient.
+    pub mu_static: Option<f64>,
+}
+
+/// Names of all presets, in Table 1 order followed by the FE study's copper.
+pub const PRESET_NAMES: [&str; 10] = [
+    "copper",
+    "steel",
+    "concrete",
+    "cast-iron",
+    "alumina",
+    "glass",
+    "wood",
+    "aluminum",
+    "rubber",
+    "copper-fe",
+];
+
+impl Material {
+    /// Builds a material from engineering units (E in GPa, yield in MPa) with `tangent = E/100`
+    /// and μ_s = μ_d; used for the presets.
+    const fn table(e_gpa: f64, yield_mpa: f64, rho: f64, mu: f64, nu: f64) -> Material {
+        Material {
+            youngs: e_gpa * 1e9,
+            nu,
+            rho,
+            yield_strength: yield_mpa * 1e6,
+            tangent: e_gpa * 1e9 / 100.0,
+            mu,
+            mu_static: mu,
+        }
+    }
+
+    /// The named preset (`copper`, `steel`, …, `copper-fe`), or an error listing the names.
+    pub fn preset(name: &str) -> Result<Material> {
+        // Table 1 of the paper: E (GPa), σ_s (MPa), ρ (kg/m³), μ_s, ν.
+        let m = match name {
+            "copper" => Self::table(120.0, 100.0, 8500.0, 0.20, 0.34),
+            "steel" => Self::table(210.0, 210.0, 7800.0, 0.10, 0.27),
+            "concrete" => Self::table(17.0, 25.0, 2400.0, 0.60, 0.20),
+            "cast-iron" => Self::table(160.0, 250.0, 7200.0, 0.15, 0.30),
+            "alumina" => Self::table(70.0, 100.0, 3100.0, 0.50, 0.25),
+            "glass" => Self::table(80.0, 70.0, 2700.0, 0.30, 0.20),
+            "wood" => Self::table(14.0, 40.0, 600.0, 0.40, 0.25),
+            "aluminum" => Self::table(75.0, 300.0, 2700.0, 0.32, 0.33),
+            "rubber" => Self::table(0.0061, 7.0, 1000.0, 0.45, 0.45),
+            // Section 3 of the paper: the ANSYS model's copper.
+            "copper-fe" => Self::table(120.0, 100.0, 7900.0, 0.20, 0.33),
+            _ => {
+                return Err(Error::invalid(
+                    "material",
+                    name,
+                    format!("one of {}", PRESET_NAMES.join(", ")),
+                ))
+            }
+        };
+        Ok(m)
+    }
+
+    /// This material with the given fields replaced, validated.
+    pub fn with_overrides(mut self, o: &MaterialOverrides) -> Result<Material> {
+        if let Some(v) = o.youngs {
+            self.youngs = v;
+        }
+        if let Some(v) = o.nu {
+            self.nu = v;
+        }
+        if let Some(v) = o.rho {
+            self.rho = v;
+        }
+        if let Some(v) = o.yield_strength {
+            self.yield_strength = v;
+        }
+        if let Some(v) = o.tangent {
+            self.tangent = v;
+        }
+        if let Some(v) = o.mu {
+            self.mu = v;
+            // One coefficient given: keep the paper's single-coefficient convention unless
+            // the static one is given too.
+            if o.mu_static.is_none() {
+                self.mu_static = self.mu_static.max(v);
+            }
+        }
+        if let Some(v) = o.mu_static {
+            self.mu_static = v;
+        }
+        self.validated("material")
+    }
+
+    /// Checks every field; `prefix` names the material in messages (e.g. `ball1.material`).
+    pub fn validated(self, prefix: &str) -> Result<Material> {
+        let check = |name: &str, v: f64, ok: bool, allowed: &str| -> Result<()> {
+            if v.is_finite() && ok {
+                Ok(())
+            } else {
+                Err(Error::invalid(format!("{prefix}.{name}"), v, allowed))
+            }
+        };
+        check("E", self.youngs, self.youngs > 0.0, "E > 0 Pa, finite")?;
+        check("nu", self.nu, self.nu > -1.0 && self.nu < 0.5, "-1 < nu < 0.5")?;
+        check("rho", self.rho, self.rho > 0.0, "rho > 0 kg/m^3, finite")?;
+        check("yield", self.yield_strength, self.yield_strength > 0.0, "yield > 0 Pa, finite")?;
+        check(
+            "tangent",
+            self.tangent,
+            self.tangent >= 0.0 && self.tangent < self.youngs,
+            "0 <= tangent < E (Pa)",
+        )?;
+        check("mu", self.mu, self.mu >= 0.0, "mu >= 0, finite")?;
+        check(
+            "mu_static",
+            self.mu_static,
+            self.mu_static >= self.mu,
+            "mu_static >= mu, finite",
+        )?;
+        Ok(self)
+    }
+
+    /// Plane-strain modulus E / (1 − ν²), Pa (the paper's E_ti).
+    pub fn plane_strain_modulus(&self) -> f64 {
+        self.youngs / (1.0 - self.nu * self.nu)
+    }
+
+    /// Shear modulus G = E / (2(1 + ν)), Pa.
+    pub fn shear_modulus(&self) -> f64 {
+        self.youngs / (2.0 * (1.0 + self.nu))
+    }
+
+    /// Bulk modulus K = E / (3(1 − 2ν)), Pa.
+    pub fn bulk_modulus(&self) -> f64 {
+        self.youngs / (3.0 * (1.0 - 2.0 * self.nu))
+    }
+
+    /// Lamé's first parameter λ = E ν / ((1 + ν)(1 − 2ν)), Pa.
+    pub fn lame_lambda(&self) -> f64 {
+        self.youngs * self.nu / ((1.0 + self.nu) * (1.0 - 2.0 * self.nu))
+    }
+
+    /// Dilatational (P-) wave speed c = sqrt((λ + 2G)/ρ), m/s; sets the explicit stable step.
+    pub fn dilatational_wave_speed(&self) -> f64 {
+        ((self.lame_lambda() + 2.0 * self.shear_modulus()) / self.rho).sqrt()
+    }
+
+    /// Plastic hardening modulus H = E E_T / (E − E_T), Pa: slope of stress against plastic strain.
+    pub fn hardening_modulus(&self) -> f64 {
+        self.youngs * self.tangent / (self.youngs - self.tangent)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_preset_is_valid() {
+        for name in PRESET_NAMES {
+            Material::preset(name).unwrap().validated(name).unwrap();
+        }
+    }
+
+    #[test]
+    fn copper_fe_matches_the_papers_fe_study() {
+        let m = Material::preset("copper-fe").unwrap();
+        assert_eq!(m.youngs, 120e9);
+        assert_eq!(m.nu, 0.33);
+        assert_eq!(m.yield_strength, 100e6);
+        assert_eq!(m.rho, 7900.0);
+        assert_eq!(m.mu, 0.2);
+    }
+
+    #[test]
+    fn unknown_preset_names_the_choices() {
+        let e = Material::preset("unobtainium").unwrap_err().to_string();
+        assert!(e.contains("unobtainium") && e.contains("copper-fe"), "{e}");
+    }
+
+    #[test]
+    fn bad_values_name_field_value_and_range() {
+        let base = Material::preset("copper").unwrap();
+        let cases: [(MaterialOverrides, &str); 7] = [
+            (MaterialOverrides { youngs: Some(-1.0), ..Default::default() }, "E"),
+            (MaterialOverrides { nu: Some(0.5), ..Default::default() }, "nu"),
+            (MaterialOverrides { nu: Some(-1.0), ..Default::default() }, "nu"),
+            (MaterialOverrides { rho: Some(0.0), ..Default::default() }, "rho"),
+            (MaterialOverrides { yield_strength: Some(f64::NAN), ..Default::default() }, "yield"),
+            (MaterialOverrides { mu: Some(-0.1), ..Default::default() }, "mu"),
+            (MaterialOverrides { youngs: Some(f64::INFINITY), ..Default::default() }, "E"),
+        ];
+        for (o, field) in cases {
+            let e = base.with_overrides(&o).unwrap_err().to_string();
+            assert!(e.contains(&format!("material.{field} =")), "{e}");
+            assert!(e.contains("allowed"), "{e}");
+        }
+    }
+
+    #[test]
+    fn overrides_replace_only_named_fields() {
+        let base = Material::preset("copper-fe").unwrap();
+        let m = base
+            .with_overrides(&MaterialOverrides { yield_strength: Some(1e11), ..Default::default() })
+            .unwrap();
+        assert_eq!(m.yield_strength, 1e11);
+        assert_eq!(m.youngs, base.youngs);
+        assert_eq!(m.rho, base.rho);
+    }
+
+    #[test]
+    fn elastic_constants_are_consistent() {
+        let m = Material::preset("steel").unwrap();
+        // λ + 2G = K + 4G/3 for any isotropic material.
+        let lhs = m.lame_lambda() + 2.0 * m.shear_modulus();
+        let rhs = m.bulk_modulus() + 4.0 / 3.0 * m.shear_modulus();
+        assert!((lhs - rhs).abs() < 1e-6 * lhs);
+    }
+}
