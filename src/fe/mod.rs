@@ -1,1 +1,2 @@
 //! The explicit finite-element solver: elements, materials, contact, time integration, energy.
+pub mod interaction;
