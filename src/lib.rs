@@ -9,11 +9,12 @@
 //! All quantities are SI: metres, seconds, kilograms, newtons, pascals, joules.
 
 pub mod analytic;
-pub mod error;
-pub mod material;
 pub mod cli;
+pub mod error;
 pub mod fe;
+pub mod material;
 pub mod mesh;
+pub mod scene;
 
 pub use error::{Error, Result};
 pub use material::Material;
