@@ -17,7 +17,7 @@
 
 mod approach;
 mod overrides;
-mod reader;
+pub(crate) mod reader;
 
 pub use approach::{approach, Approach, Frame, Touch};
 pub use overrides::Override;
@@ -84,7 +84,8 @@ pub struct BallScene {
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 #[serde(rename_all = "snake_case")]
 pub enum Friction {
-    /// Coulomb friction with the balls' coefficients (the smaller of the two balls' μ_d, μ_s).
+    /// Coulomb friction with the balls' coefficients (the mean of the two balls' μ_d and of
+    /// their μ_s, as the analytical model's pair friction).
     On,
     /// Frictionless contact.
     Off,
@@ -101,14 +102,14 @@ pub struct ContactSettings {
     pub friction: Friction,
 }
 
-/// Hexahedron formulation.
+/// Hexahedron formulation (see the FE core, docs/design.md §4).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
-#[serde(rename_all = "snake_case")]
+#[serde(rename_all = "kebab-case")]
 pub enum Formulation {
-    /// Full 2×2×2 Gauss integration (with volumetric treatment chosen by the FE core).
-    Full,
-    /// One-point reduced integration with hourglass control.
-    Reduced,
+    /// One-point integration with hourglass control (`one-point`, the default).
+    OnePoint,
+    /// 2×2×2 integration with B-bar (mean dilatation) volumetric strain (`b-bar`).
+    BBar,
 }
 
 /// Explicit solver settings.
@@ -301,7 +302,7 @@ impl Scene {
             Friction::Coefficient(mu) => (mu, mu),
             Friction::On => {
                 let (a, b) = (&self.ball1.material, &self.ball2.material);
-                (a.mu.min(b.mu), a.mu_static.min(b.mu_static))
+                (0.5 * (a.mu + b.mu), 0.5 * (a.mu_static + b.mu_static))
             }
         }
     }
@@ -443,7 +444,7 @@ fn read_mesh(m: Option<Reader<'_>>, d: f64, dir: &Path) -> Result<MeshSettings> 
     let Some(m) = m else { return Ok(default) };
     m.only(&MESH_KEYS)?;
     let file = m.string("file")?;
-    let size = m.f64("size", |s| s > 0.0 && s <= d, "0 < size <= diameter (m)")?;
+    let size = m.f64("size", |s| s > 0.0 && s <= d / 2.0, "0 < size <= radius (m)")?;
     let lo = d / 2000.0;
     let pole_allowed = format!("{lo:.3e} m (diameter/2000) <= pole_size <= size");
     let pole = m.f64("pole_size", |s| s >= lo, &pole_allowed)?;
@@ -528,7 +529,7 @@ fn read_contact(c: Option<Reader<'_>>) -> Result<ContactSettings> {
 
 fn read_solver(s: Option<Reader<'_>>) -> Result<SolverSettings> {
     let mut out = SolverSettings {
-        element: Formulation::Full,
+        element: Formulation::OnePoint,
         time_step_factor: 0.9,
         end_time: None,
         hold_time: None,

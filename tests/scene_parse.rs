@@ -80,7 +80,7 @@ pole_size = 0.0005
 friction = 0.35
 penalty_factor = 2
 [solver]
-element = "reduced"
+element = "b-bar"
 time_step_factor = 0.5
 "#;
     let s = parse(text, &[]).unwrap();
