@@ -105,8 +105,8 @@ fn stop_state(n: &NormalImpact, rate: f64) -> (Phase, f64, f64) {
     (Phase::ElasticRecovery, t, n.delta_p + s)
 }
 
-/// Zhang's kinetic-energy loss (eq. 42), J: ½ m* {[(1 − e²) − (1 + e)² 7μ²/2] v_rn²
-/// + 2 (1 + e) μ v_rn |v_rt|}. It is exactly the loss of a Coulomb impact that slides for the
+/// Zhang's kinetic-energy loss (eq. 42), J:
+/// ½ m* {[(1 − e²) − (1 + e)² 7μ²/2] v_rn² + 2 (1 + e) μ v_rn |v_rt|}. It is exactly the loss of a Coulomb impact that slides for the
 /// whole contact (impulse μ(1 + e) m* v_rn); it overstates the loss when the slip stops.
 pub fn zhang_energy_loss(m_eff: f64, e: f64, mu: f64, v_rn: f64, v_rt: f64) -> f64 {
     0.5 * m_eff

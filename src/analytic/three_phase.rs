@@ -89,7 +89,7 @@ impl NormalImpact {
         }
         let d1 = yield_approach(&pair, yield_pressure);
         let dmax_elastic = pair.max_approach(v);
-        if !(d1 < dmax_elastic) {
+        if d1.is_nan() || d1 >= dmax_elastic {
             // Never yields: the whole impact is Hertz's.
             let tc = pair.contact_duration(v);
             return Some(NormalImpact {
