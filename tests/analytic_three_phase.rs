@@ -159,6 +159,17 @@ fn ball_on_walls() {
     assert!(collide(&b, &Body::RigidWall, [1.0, 0.0], [0.1, 0.0]).is_err());
 }
 
+/// Phase ends (s), extreme approaches (m), rebound speed (m/s) and samples (t, δ) of the ODE.
+struct OdeResult {
+    t1: f64,
+    t2: f64,
+    t3: f64,
+    d2: f64,
+    dp: f64,
+    vplus: f64,
+    samples: Vec<(f64, f64)>,
+}
+
 /// m δ̈ = −p(δ) with the phase-switching force law, integrated by RK4 with no use of the
 /// closed forms: loading is Hertz up to δ₁ then eq. 16; once δ̇ < 0 the recovery law is the
 /// Hertz law shifted so that it is continuous with the force reached at the turning point.
@@ -178,8 +189,8 @@ impl Ode {
             self.slope * d - self.off
         }
     }
-    /// Returns (t1, t2, t3, δ2, δp, rebound speed, samples (t, δ)).
-    fn run(&self, v: f64, dt: f64) -> (f64, f64, f64, f64, f64, f64, Vec<(f64, f64)>) {
+    /// Integrates from first touch at speed v to separation with step dt.
+    fn run(&self, v: f64, dt: f64) -> OdeResult {
         let (mut t, mut d, mut u) = (0.0_f64, 0.0_f64, v);
         let mut t1 = f64::NAN;
         let mut unload: Option<(f64, f64)> = None; // (δp, δ2)
@@ -215,7 +226,15 @@ impl Ode {
                 if dn <= dp {
                     let t3 = t + dt * (d - dp) / (d - dn);
                     let (dp, d2) = unload.unwrap();
-                    return (t1, t2, t3, d2, dp, -un, samples);
+                    return OdeResult {
+                        t1,
+                        t2,
+                        t3,
+                        d2,
+                        dp,
+                        vplus: -un,
+                        samples,
+                    };
                 }
             }
             t += dt;
@@ -248,7 +267,15 @@ fn closed_forms_agree_with_ode_integration() {
             off: sp.powi(3) * pi.powi(3) * p.radius.powi(2) / (12.0 * p.modulus.powi(2)),
         };
         let dt = n.t3 / 40_000.0;
-        let (t1, t2, t3, d2, dp, vplus, samples) = ode.run(v, dt);
+        let OdeResult {
+            t1,
+            t2,
+            t3,
+            d2,
+            dp,
+            vplus,
+            samples,
+        } = ode.run(v, dt);
         assert!(rel(n.t1, t1) < 1e-3, "t1 {} {}", n.t1, t1);
         assert!(rel(n.t2, t2) < 1e-4, "t2 {} {}", n.t2, t2);
         assert!(rel(n.t3, t3) < 1e-4, "t3 {} {}", n.t3, t3);
