@@ -136,7 +136,8 @@ pub fn collide_with_mu(
         if b.is_wall() {
             0.0
         } else {
-            -b.radius() * jt / b.moment_of_inertia()
+            // + 0.0 turns −0 into 0 for printing.
+            -b.radius() * jt / b.moment_of_inertia() + 0.0
         }
     };
     let spin_after = [spin(b1), spin(b2)];

@@ -5,9 +5,11 @@
 
 pub mod body;
 pub mod collision;
+pub mod damping_index;
 pub mod friction;
 pub mod hertz;
 pub mod history;
+pub mod parametric;
 mod quadrature;
 pub mod three_phase;
 
