@@ -444,7 +444,11 @@ fn read_mesh(m: Option<Reader<'_>>, d: f64, dir: &Path) -> Result<MeshSettings> 
     let Some(m) = m else { return Ok(default) };
     m.only(&MESH_KEYS)?;
     let file = m.string("file")?;
-    let size = m.f64("size", |s| s > 0.0 && s <= d / 2.0, "0 < size <= radius (m)")?;
+    let size = m.f64(
+        "size",
+        |s| s > 0.0 && s <= d / 2.0,
+        "0 < size <= radius (m)",
+    )?;
     let lo = d / 2000.0;
     let pole_allowed = format!("{lo:.3e} m (diameter/2000) <= pole_size <= size");
     let pole = m.f64("pole_size", |s| s >= lo, &pole_allowed)?;
@@ -537,11 +541,11 @@ fn read_solver(s: Option<Reader<'_>>) -> Result<SolverSettings> {
     };
     let Some(s) = s else { return Ok(out) };
     s.only(&SOLVER_KEYS)?;
-    if let Some(e) = s.choice("element", &["full", "reduced"])? {
-        out.element = if e == "full" {
-            Formulation::Full
+    if let Some(e) = s.choice("element", &["one-point", "b-bar"])? {
+        out.element = if e == "one-point" {
+            Formulation::OnePoint
         } else {
-            Formulation::Reduced
+            Formulation::BBar
         };
     }
     if let Some(f) = s.f64(

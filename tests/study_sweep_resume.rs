@@ -34,10 +34,20 @@ fn scratch(name: &str) -> PathBuf {
 }
 
 fn case_files(out: &Path) -> BTreeMap<String, SystemTime> {
-    let Ok(rd) = std::fs::read_dir(out.join("cases")) else { return BTreeMap::new() };
+    let Ok(rd) = std::fs::read_dir(out.join("cases")) else {
+        return BTreeMap::new();
+    };
     rd.flatten()
-        .filter(|e| e.file_name().to_string_lossy().ends_with(".json") && !e.file_name().to_string_lossy().starts_with('.'))
-        .map(|e| (e.file_name().to_string_lossy().into_owned(), e.metadata().unwrap().modified().unwrap()))
+        .filter(|e| {
+            e.file_name().to_string_lossy().ends_with(".json")
+                && !e.file_name().to_string_lossy().starts_with('.')
+        })
+        .map(|e| {
+            (
+                e.file_name().to_string_lossy().into_owned(),
+                e.metadata().unwrap().modified().unwrap(),
+            )
+        })
         .collect()
 }
 
@@ -53,9 +63,17 @@ fn all_files(dir: &Path, out: &mut Vec<PathBuf>) {
 
 fn sweep_cmd(file: &Path, out: &Path, pace_ms: u64) -> Command {
     let mut c = Command::new(env!("CARGO_BIN_EXE_twoball"));
-    c.args(["sweep", file.to_str().unwrap(), "--out", out.to_str().unwrap(), "--jobs", "2"]);
+    c.args([
+        "sweep",
+        file.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+        "--jobs",
+        "2",
+    ]);
     c.args(["--pace-ms", &pace_ms.to_string()]);
-    c.stdout(std::process::Stdio::null()).stderr(std::process::Stdio::piped());
+    c.stdout(std::process::Stdio::null())
+        .stderr(std::process::Stdio::piped());
     c
 }
 
@@ -72,8 +90,14 @@ fn killed_sweep_resumes_and_finishes_every_case_exactly_once() {
         let mut child = sweep_cmd(&file, &out, 40).spawn().unwrap();
         let t0 = Instant::now();
         while case_files(&out).len() < kill_after {
-            assert!(t0.elapsed() < Duration::from_secs(60), "sweep made no progress");
-            assert!(child.try_wait().unwrap().is_none(), "sweep ended before it could be killed");
+            assert!(
+                t0.elapsed() < Duration::from_secs(60),
+                "sweep made no progress"
+            );
+            assert!(
+                child.try_wait().unwrap().is_none(),
+                "sweep ended before it could be killed"
+            );
             std::thread::sleep(Duration::from_millis(5));
         }
         child.kill().unwrap(); // SIGKILL: no cleanup possible
@@ -91,29 +115,49 @@ fn killed_sweep_resumes_and_finishes_every_case_exactly_once() {
     let done = case_files(&out);
     assert_eq!(done.len(), N_CASES);
     for (name, mtime) in &survivors {
-        assert_eq!(done.get(name), Some(mtime), "{name} was redone after restart");
+        assert_eq!(
+            done.get(name),
+            Some(mtime),
+            "{name} was redone after restart"
+        );
     }
 
     // The CSV: header + every case exactly once, every case file complete JSON.
     let csv = std::fs::read_to_string(out.join("sweep.csv")).unwrap();
     let mut lines = csv.lines();
     let header = lines.next().unwrap();
-    assert!(header.contains("[m/s]") && header.contains("[m]") && header.contains("[s]"), "units in header");
+    assert!(
+        header.contains("[m/s]") && header.contains("[m]") && header.contains("[s]"),
+        "units in header"
+    );
     let ids: Vec<&str> = lines.map(|l| l.split(',').next().unwrap()).collect();
     assert_eq!(ids.len(), N_CASES);
-    assert_eq!(ids.iter().collect::<BTreeSet<_>>().len(), N_CASES, "a case appears twice");
+    assert_eq!(
+        ids.iter().collect::<BTreeSet<_>>().len(),
+        N_CASES,
+        "a case appears twice"
+    );
     assert!(!csv.contains("NaN") && !csv.contains("inf"));
     let no_impact = csv.lines().filter(|l| l.contains(",no_impact,")).count();
-    assert_eq!(no_impact, 2 * 3, "the +1.0 m/s right-ball cases are no impact");
+    assert_eq!(
+        no_impact,
+        2 * 3,
+        "the +1.0 m/s right-ball cases are no impact"
+    );
 
     let mut files = Vec::new();
     all_files(&out, &mut files);
     for f in &files {
         let name = f.file_name().unwrap().to_string_lossy();
-        assert!(!name.contains(".tmp-"), "temporary file left: {}", f.display());
+        assert!(
+            !name.contains(".tmp-"),
+            "temporary file left: {}",
+            f.display()
+        );
         if name.ends_with(".json") {
             let text = std::fs::read_to_string(f).unwrap();
-            serde_json::from_str::<serde_json::Value>(&text).unwrap_or_else(|e| panic!("{}: {e}", f.display()));
+            serde_json::from_str::<serde_json::Value>(&text)
+                .unwrap_or_else(|e| panic!("{}: {e}", f.display()));
         }
     }
     std::fs::remove_dir_all(&dir).unwrap();
@@ -136,7 +180,11 @@ fn shards_partition_the_sweep() {
         let s = run_sweep(&spec, &opts, None).unwrap();
         assert_eq!(s.in_shard, N_CASES / 3);
         assert_eq!(s.skipped, 0);
-        let new: BTreeSet<String> = case_files(&dir).keys().filter(|k| !before.contains_key(*k)).cloned().collect();
+        let new: BTreeSet<String> = case_files(&dir)
+            .keys()
+            .filter(|k| !before.contains_key(*k))
+            .cloned()
+            .collect();
         assert_eq!(new.len(), N_CASES / 3);
         assert!(seen.is_disjoint(&new));
         seen.extend(new);
@@ -144,7 +192,13 @@ fn shards_partition_the_sweep() {
     }
     assert_eq!(seen.len(), N_CASES);
     // A rerun of the whole sweep finds everything done.
-    let opts = SweepOptions { out: dir.clone(), jobs: 2, shard: Shard::ALL, pace: Duration::ZERO, verbose: false };
+    let opts = SweepOptions {
+        out: dir.clone(),
+        jobs: 2,
+        shard: Shard::ALL,
+        pace: Duration::ZERO,
+        verbose: false,
+    };
     let s = run_sweep(&spec, &opts, None).unwrap();
     assert_eq!((s.skipped, s.ran, s.in_csv), (N_CASES, 0, N_CASES));
     std::fs::remove_dir_all(&dir).unwrap();
@@ -157,11 +211,32 @@ fn bad_sweep_flags_and_files_are_one_line_errors() {
         assert!(e.contains("--shard") && !e.contains('\n'), "{e}");
     }
     for (text, key) in [
-        (SWEEP.replace("diameters = [0.005, 0.02]", "diameters = [-1]"), "study.diameters[0]"),
-        (SWEEP.replace("model = \"analytic\"", "model = \"guess\""), "study.model"),
-        (SWEEP.replace("left_velocity", "left_speed"), "study.left_speed"),
-        (SWEEP.replace("ball1.material = \"copper-fe\"", "ball1.material = \"cheese\""), "ball1.material"),
-        (SWEEP.replace("size_per_diameter = 0.2", "size_per_diameter = 0.2\nsize = 0.001"), "size"),
+        (
+            SWEEP.replace("diameters = [0.005, 0.02]", "diameters = [-1]"),
+            "study.diameters[0]",
+        ),
+        (
+            SWEEP.replace("model = \"analytic\"", "model = \"guess\""),
+            "study.model",
+        ),
+        (
+            SWEEP.replace("left_velocity", "left_speed"),
+            "study.left_speed",
+        ),
+        (
+            SWEEP.replace(
+                "ball1.material = \"copper-fe\"",
+                "ball1.material = \"cheese\"",
+            ),
+            "ball1.material",
+        ),
+        (
+            SWEEP.replace(
+                "size_per_diameter = 0.2",
+                "size_per_diameter = 0.2\nsize = 0.001",
+            ),
+            "size",
+        ),
         (format!("{SWEEP}\n[extra]\n"), "extra"),
     ] {
         let e = SweepSpec::from_toml(&text, "test").unwrap_err().to_string();
@@ -174,5 +249,8 @@ fn bad_sweep_flags_and_files_are_one_line_errors() {
         .unwrap();
     assert_eq!(o.status.code(), Some(1));
     let err = String::from_utf8_lossy(&o.stderr);
-    assert!(err.starts_with("error: ") && err.trim_end().lines().count() == 1, "{err}");
+    assert!(
+        err.starts_with("error: ") && err.trim_end().lines().count() == 1,
+        "{err}"
+    );
 }

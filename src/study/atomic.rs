@@ -16,8 +16,13 @@ static COUNTER: AtomicU64 = AtomicU64::new(0);
 ///
 /// Errors: the folder does not exist or is not writable ([`Error::Io`] naming the path).
 pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<()> {
-    let dir = path.parent().filter(|p| !p.as_os_str().is_empty()).unwrap_or(Path::new("."));
-    let name = path.file_name().ok_or_else(|| Error::Parse(format!("{}: not a file name", path.display())))?;
+    let dir = path
+        .parent()
+        .filter(|p| !p.as_os_str().is_empty())
+        .unwrap_or(Path::new("."));
+    let name = path
+        .file_name()
+        .ok_or_else(|| Error::Parse(format!("{}: not a file name", path.display())))?;
     let tmp = dir.join(format!(
         ".{}{TMP_MARKER}{}-{}",
         name.to_string_lossy(),
@@ -76,7 +81,10 @@ mod tests {
         assert_eq!(std::fs::read(&p).unwrap(), b"second");
         std::fs::write(dir.join(format!(".b.json{TMP_MARKER}1-0")), b"trunc").unwrap();
         assert_eq!(remove_stale_temporaries(&dir).unwrap(), 1);
-        let names: Vec<_> = std::fs::read_dir(&dir).unwrap().map(|e| e.unwrap().file_name()).collect();
+        let names: Vec<_> = std::fs::read_dir(&dir)
+            .unwrap()
+            .map(|e| e.unwrap().file_name())
+            .collect();
         assert_eq!(names, vec![std::ffi::OsString::from("a.json")]);
         std::fs::remove_dir_all(&dir).unwrap();
     }

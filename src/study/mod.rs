@@ -2,8 +2,12 @@
 //!
 //! - [`outcome`]: the quantities both models produce, and the analytical answer for a scene;
 //! - [`sweep`]: resumable, shardable parameter sweeps (the paper's ANSYS study);
-//! - [`atomic`]: crash-safe file output.
+//! - [`plots`]: SVG charts for the report;
+//! - [`atomic`]: crash-safe file output;
+//! - [`progress`]: the terminal progress bar.
 
 pub mod atomic;
 pub mod outcome;
+pub mod plots;
+pub mod progress;
 pub mod sweep;

@@ -46,7 +46,9 @@ impl Outcome {
         if self.is_finite() {
             Ok(())
         } else {
-            Err(Error::Numerical(format!("{what}: non-finite result {self:?}")))
+            Err(Error::Numerical(format!(
+                "{what}: non-finite result {self:?}"
+            )))
         }
     }
 }

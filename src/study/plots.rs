@@ -37,11 +37,17 @@ pub struct Chart {
 }
 
 fn range(v: impl Iterator<Item = f64>) -> (f64, f64) {
-    let (lo, hi) = v.fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), x| (a.min(x), b.max(x)));
+    let (lo, hi) = v.fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), x| {
+        (a.min(x), b.max(x))
+    });
     if !lo.is_finite() || !hi.is_finite() {
         return (0.0, 1.0);
     }
-    let pad = if hi > lo { 0.05 * (hi - lo) } else { 0.5 * lo.abs().max(1e-12) };
+    let pad = if hi > lo {
+        0.05 * (hi - lo)
+    } else {
+        0.5 * lo.abs().max(1e-12)
+    };
     (lo - pad, hi + pad)
 }
 
@@ -50,11 +56,18 @@ impl Chart {
     ///
     /// Errors: plotters drawing failures ([`Error::External`]).
     pub fn svg(&self) -> Result<String> {
-        let pts = |s: &Series| s.points.iter().copied().filter(|(x, y)| x.is_finite() && y.is_finite()).collect::<Vec<_>>();
+        let pts = |s: &Series| {
+            s.points
+                .iter()
+                .copied()
+                .filter(|(x, y)| x.is_finite() && y.is_finite())
+                .collect::<Vec<_>>()
+        };
         let all: Vec<(f64, f64)> = self.series.iter().flat_map(pts).collect();
         let (x0, x1) = range(all.iter().map(|p| p.0));
         let (y0, y1) = range(all.iter().map(|p| p.1));
-        let err = |e: &dyn std::fmt::Display| Error::External(format!("plotting '{}': {e}", self.title));
+        let err =
+            |e: &dyn std::fmt::Display| Error::External(format!("plotting '{}': {e}", self.title));
         let mut out = String::new();
         {
             let root = SVGBackend::with_string(&mut out, (820, 560)).into_drawing_area();
@@ -81,7 +94,9 @@ impl Chart {
                             .draw_series(LineSeries::new(p, color.stroke_width(2)))
                             .map_err(|e| err(&e))?
                             .label(s.label.as_str())
-                            .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], color.stroke_width(2)));
+                            .legend(move |(x, y)| {
+                                PathElement::new(vec![(x, y), (x + 20, y)], color.stroke_width(2))
+                            });
                     }
                     Style::Points => {
                         chart
@@ -116,8 +131,16 @@ mod tests {
             x_label: "time (s)".into(),
             y_label: "delta (m)".into(),
             series: vec![
-                Series { label: "analytical".into(), points: vec![(0.0, 0.0), (1.0, 2.0), (2.0, 0.5)], style: Style::Line },
-                Series { label: "FE".into(), points: vec![(0.5, 1.0), (f64::NAN, 1.0)], style: Style::Points },
+                Series {
+                    label: "analytical".into(),
+                    points: vec![(0.0, 0.0), (1.0, 2.0), (2.0, 0.5)],
+                    style: Style::Line,
+                },
+                Series {
+                    label: "FE".into(),
+                    points: vec![(0.5, 1.0), (f64::NAN, 1.0)],
+                    style: Style::Points,
+                },
             ],
         };
         let svg = c.svg().unwrap();

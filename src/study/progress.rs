@@ -15,16 +15,29 @@ pub struct Bar {
 impl Bar {
     /// A bar for simulated times 0..`end` (s); draws nothing unless `on`.
     pub fn new(on: bool, end: f64) -> Self {
-        Bar { on, end, last: None, started: Instant::now() }
+        Bar {
+            on,
+            end,
+            last: None,
+            started: Instant::now(),
+        }
     }
 
     /// Shows simulated time `t` (s); redraws at most ten times a second.
     pub fn update(&mut self, t: f64) {
-        if !self.on || self.last.is_some_and(|l| l.elapsed() < Duration::from_millis(100)) {
+        if !self.on
+            || self
+                .last
+                .is_some_and(|l| l.elapsed() < Duration::from_millis(100))
+        {
             return;
         }
         self.last = Some(Instant::now());
-        let frac = if self.end > 0.0 { (t / self.end).clamp(0.0, 1.0) } else { 1.0 };
+        let frac = if self.end > 0.0 {
+            (t / self.end).clamp(0.0, 1.0)
+        } else {
+            1.0
+        };
         let width = 40;
         let filled = (frac * width as f64).round() as usize;
         let mut err = std::io::stderr().lock();

@@ -22,8 +22,8 @@
 use super::atomic::{ensure_dir, remove_stale_temporaries, write_atomic};
 use super::outcome::{analytic_outcome, Outcome};
 use crate::error::{Error, Result};
-use crate::scene::{approach, Approach, Override, Scene, DEFAULT_SCENE};
 use crate::scene::reader::{parse_table, Reader};
+use crate::scene::{approach, Approach, Override, Scene, DEFAULT_SCENE};
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
@@ -204,7 +204,10 @@ impl Shard {
     pub fn parse(s: &str) -> Result<Shard> {
         let bad = || Error::invalid("--shard", s, "I/N with integers 1 <= I <= N, e.g. 2/8");
         let (i, n) = s.split_once('/').ok_or_else(bad)?;
-        let (i, n): (usize, usize) = (i.trim().parse().map_err(|_| bad())?, n.trim().parse().map_err(|_| bad())?);
+        let (i, n): (usize, usize) = (
+            i.trim().parse().map_err(|_| bad())?,
+            n.trim().parse().map_err(|_| bad())?,
+        );
         if n == 0 || i == 0 || i > n {
             return Err(bad());
         }
@@ -217,14 +220,37 @@ impl Shard {
     }
 }
 
-const STUDY_KEYS: [&str; 7] =
-    ["model", "diameters", "left_velocity", "right_velocities", "tangential", "history_points", "name"];
-const MESH_KEYS: [&str; 5] = ["name", "size", "pole_size", "size_per_diameter", "pole_size_per_diameter"];
+const STUDY_KEYS: [&str; 7] = [
+    "model",
+    "diameters",
+    "left_velocity",
+    "right_velocities",
+    "tangential",
+    "history_points",
+    "name",
+];
+const MESH_KEYS: [&str; 5] = [
+    "name",
+    "size",
+    "pole_size",
+    "size_per_diameter",
+    "pole_size_per_diameter",
+];
 
-fn list_f64(r: &Reader<'_>, key: &str, ok: impl Fn(f64) -> bool, allowed: &str) -> Result<Vec<f64>> {
-    let v = r.raw(key).ok_or_else(|| r.missing(key, "a list of numbers"))?;
+fn list_f64(
+    r: &Reader<'_>,
+    key: &str,
+    ok: impl Fn(f64) -> bool,
+    allowed: &str,
+) -> Result<Vec<f64>> {
+    let v = r
+        .raw(key)
+        .ok_or_else(|| r.missing(key, "a list of numbers"))?;
     let Value::Array(a) = v else {
-        return Err(Error::Parse(format!("{} must be a list of numbers", r.key_path(key))));
+        return Err(Error::Parse(format!(
+            "{} must be a list of numbers",
+            r.key_path(key)
+        )));
     };
     if a.is_empty() {
         return Err(Error::invalid(r.key_path(key), "[]", "a non-empty list"));
@@ -235,12 +261,21 @@ fn list_f64(r: &Reader<'_>, key: &str, ok: impl Fn(f64) -> bool, allowed: &str) 
             let x = match x {
                 Value::Float(f) => *f,
                 Value::Integer(n) => *n as f64,
-                _ => return Err(Error::Parse(format!("{}[{i}] must be a number", r.key_path(key)))),
+                _ => {
+                    return Err(Error::Parse(format!(
+                        "{}[{i}] must be a number",
+                        r.key_path(key)
+                    )))
+                }
             };
             if x.is_finite() && ok(x) {
                 Ok(x)
             } else {
-                Err(Error::invalid(format!("{}[{i}]", r.key_path(key)), x, allowed))
+                Err(Error::invalid(
+                    format!("{}[{i}]", r.key_path(key)),
+                    x,
+                    allowed,
+                ))
             }
         })
         .collect()
@@ -253,7 +288,10 @@ fn flatten(prefix: &[String], t: &Table, out: &mut Vec<Override>) {
         path.push(k.clone());
         match v {
             Value::Table(sub) => flatten(&path, sub, out),
-            other => out.push(Override { path, value: other.clone() }),
+            other => out.push(Override {
+                path,
+                value: other.clone(),
+            }),
         }
     }
 }
@@ -270,25 +308,45 @@ impl SweepSpec {
         let root = parse_table(text, origin)?;
         let r = Reader::new("", &root);
         r.only(&["study", "base", "mesh"])?;
-        let s = r.table("study")?.ok_or_else(|| r.missing("study", "the sweep's axes"))?;
+        let s = r
+            .table("study")?
+            .ok_or_else(|| r.missing("study", "the sweep's axes"))?;
         s.only(&STUDY_KEYS)?;
         let model = match s.choice("model", &["fe", "analytic"])? {
             Some("analytic") => SweepModel::Analytic,
             _ => SweepModel::Fe,
         };
-        let diameters = list_f64(&s, "diameters", |d| (1e-4..=1.0).contains(&d), "1e-4 <= diameter <= 1 m")?;
+        let diameters = list_f64(
+            &s,
+            "diameters",
+            |d| (1e-4..=1.0).contains(&d),
+            "1e-4 <= diameter <= 1 m",
+        )?;
         let left_velocity = s
             .f64("left_velocity", |v| v.abs() <= 1000.0, "|v| <= 1000 m/s")?
             .ok_or_else(|| s.missing("left_velocity", "m/s"))?;
-        let right_velocities = list_f64(&s, "right_velocities", |v| v.abs() <= 1000.0, "|v| <= 1000 m/s")?;
+        let right_velocities = list_f64(
+            &s,
+            "right_velocities",
+            |v| v.abs() <= 1000.0,
+            "|v| <= 1000 m/s",
+        )?;
         let tangential = match s.raw("tangential") {
             None => vec![[0.0, 0.0]],
             Some(Value::Array(pairs)) => pairs
                 .iter()
                 .enumerate()
                 .map(|(i, p)| {
-                    let bad = || Error::invalid(format!("study.tangential[{i}]"), p, "a pair [v1t, v2t] of numbers, |v| <= 1000 m/s");
-                    let Value::Array(a) = p else { return Err(bad()) };
+                    let bad = || {
+                        Error::invalid(
+                            format!("study.tangential[{i}]"),
+                            p,
+                            "a pair [v1t, v2t] of numbers, |v| <= 1000 m/s",
+                        )
+                    };
+                    let Value::Array(a) = p else {
+                        return Err(bad());
+                    };
                     let num = |v: &Value| match v {
                         Value::Float(f) if f.is_finite() && f.abs() <= 1000.0 => Ok(*f),
                         Value::Integer(n) if n.abs() <= 1000 => Ok(*n as f64),
@@ -300,10 +358,21 @@ impl SweepSpec {
                     }
                 })
                 .collect::<Result<Vec<_>>>()?,
-            Some(other) => return Err(Error::invalid("study.tangential", other, "a list of pairs [v1t, v2t]")),
+            Some(other) => {
+                return Err(Error::invalid(
+                    "study.tangential",
+                    other,
+                    "a list of pairs [v1t, v2t]",
+                ))
+            }
         };
-        let history_points =
-            s.u64("history_points", |n| (2..=100_000).contains(&n), "2 <= history_points <= 100000")?.unwrap_or(200) as usize;
+        let history_points = s
+            .u64(
+                "history_points",
+                |n| (2..=100_000).contains(&n),
+                "2 <= history_points <= 100000",
+            )?
+            .unwrap_or(200) as usize;
         let _ = s.string("name")?;
         let mut base = Vec::new();
         if let Some(b) = r.raw("base") {
@@ -322,13 +391,23 @@ impl SweepSpec {
                 let mut out = Vec::new();
                 for (i, it) in items.iter().enumerate() {
                     let Value::Table(t) = it else {
-                        return Err(Error::Parse(format!("mesh[{i}] must be a table ([[mesh]])")));
+                        return Err(Error::Parse(format!(
+                            "mesh[{i}] must be a table ([[mesh]])"
+                        )));
                     };
                     let m = Reader::new(&format!("mesh[{i}]"), t);
                     m.only(&MESH_KEYS)?;
-                    let name = m.string("name")?.ok_or_else(|| m.missing("name", "a short mesh name"))?;
-                    if name.is_empty() || !name.chars().all(|c| c.is_ascii_alphanumeric() || c == '-') {
-                        return Err(Error::invalid(m.key_path("name"), name, "letters, digits and '-'"));
+                    let name = m
+                        .string("name")?
+                        .ok_or_else(|| m.missing("name", "a short mesh name"))?;
+                    if name.is_empty()
+                        || !name.chars().all(|c| c.is_ascii_alphanumeric() || c == '-')
+                    {
+                        return Err(Error::invalid(
+                            m.key_path("name"),
+                            name,
+                            "letters, digits and '-'",
+                        ));
                     }
                     let size_of = |abs: &str, rel: &str| -> Result<Size> {
                         let a = m.f64(abs, |x| x > 0.0 && x <= 1.0, "0 < size <= 1 m")?;
@@ -353,9 +432,22 @@ impl SweepSpec {
                 }
                 out
             }
-            Some(_) => return Err(Error::Parse("mesh must be an array of tables ([[mesh]])".into())),
+            Some(_) => {
+                return Err(Error::Parse(
+                    "mesh must be an array of tables ([[mesh]])".into(),
+                ))
+            }
         };
-        let spec = SweepSpec { model, diameters, left_velocity, right_velocities, tangential, meshes, base, history_points };
+        let spec = SweepSpec {
+            model,
+            diameters,
+            left_velocity,
+            right_velocities,
+            tangential,
+            meshes,
+            base,
+            history_points,
+        };
         spec.cases()?; // every case must be a valid scene
         Ok(spec)
     }
@@ -374,7 +466,10 @@ impl SweepSpec {
                         for o in &self.base {
                             o.apply(&mut table)?;
                         }
-                        let (size, pole) = (mesh.size.metres(d), mesh.pole_size.metres(d).min(mesh.size.metres(d)));
+                        let (size, pole) = (
+                            mesh.size.metres(d),
+                            mesh.pole_size.metres(d).min(mesh.size.metres(d)),
+                        );
                         let sets = [
                             format!("ball1.diameter={d}"),
                             format!("ball2.diameter={d}"),
@@ -390,8 +485,20 @@ impl SweepSpec {
                         }
                         let scene = Scene::from_table(&table, Path::new("."))
                             .map_err(|e| Error::Parse(format!("sweep case {id}: {e}")))?;
-                        let params = CaseParams { diameter: d, v1n, v2n, v1t, v2t, mesh: mesh.name.clone() };
-                        out.push(Case { index: out.len(), id, params, scene });
+                        let params = CaseParams {
+                            diameter: d,
+                            v1n,
+                            v2n,
+                            v1t,
+                            v2t,
+                            mesh: mesh.name.clone(),
+                        };
+                        out.push(Case {
+                            index: out.len(),
+                            id,
+                            params,
+                            scene,
+                        });
                     }
                 }
             }
@@ -437,8 +544,10 @@ pub fn run_case(case: &Case, fe: Option<FeRunner<'_>>, history_points: usize) ->
         let (outcome, collision) = analytic_outcome(&case.scene, &touch)?;
         rec.analytic = Some(outcome);
         if let Some(n) = &collision.normal {
-            rec.analytic_history =
-                crate::analytic::history::history(n, history_points).iter().map(|s| [s.t, s.delta]).collect();
+            rec.analytic_history = crate::analytic::history::history(n, history_points)
+                .iter()
+                .map(|s| [s.t, s.delta])
+                .collect();
         }
         if let Some(fe) = fe {
             let r = fe(&case.scene)?;
@@ -452,7 +561,8 @@ pub fn run_case(case: &Case, fe: Option<FeRunner<'_>>, history_points: usize) ->
         rec.status = Status::Failed;
         rec.message = e.to_string();
     }
-    rec.analytic_history.retain(|p| p.iter().all(|x| x.is_finite()));
+    rec.analytic_history
+        .retain(|p| p.iter().all(|x| x.is_finite()));
     rec.fe_history.retain(|p| p.iter().all(|x| x.is_finite()));
     rec.wall_time_s = start.elapsed().as_secs_f64();
     rec
@@ -506,12 +616,18 @@ pub fn case_path(out: &Path, id: &str) -> PathBuf {
 /// Reads a finished case file; `None` if absent or unreadable (then the case is rerun).
 pub fn read_case(out: &Path, id: &str) -> Option<CaseRecord> {
     let text = std::fs::read_to_string(case_path(out, id)).ok()?;
-    serde_json::from_str::<CaseRecord>(&text).ok().filter(|r| r.id == id)
+    serde_json::from_str::<CaseRecord>(&text)
+        .ok()
+        .filter(|r| r.id == id)
 }
 
 /// Runs (the shard of) a sweep, skipping finished cases, then rewrites `DIR/sweep.csv` from
 /// every finished case of the whole sweep.
-pub fn run_sweep(spec: &SweepSpec, opts: &SweepOptions, fe: Option<FeRunner<'_>>) -> Result<SweepSummary> {
+pub fn run_sweep(
+    spec: &SweepSpec,
+    opts: &SweepOptions,
+    fe: Option<FeRunner<'_>>,
+) -> Result<SweepSummary> {
     if opts.jobs == 0 {
         return Err(Error::invalid("--jobs", 0, "jobs >= 1"));
     }
@@ -521,11 +637,21 @@ pub fn run_sweep(spec: &SweepSpec, opts: &SweepOptions, fe: Option<FeRunner<'_>>
     remove_stale_temporaries(&dir)?;
     remove_stale_temporaries(&opts.out)?;
     let mine: Vec<&Case> = cases.iter().filter(|c| opts.shard.owns(c.index)).collect();
-    let pending: Vec<&Case> = mine.iter().copied().filter(|c| read_case(&opts.out, &c.id).is_none()).collect();
+    let pending: Vec<&Case> = mine
+        .iter()
+        .copied()
+        .filter(|c| read_case(&opts.out, &c.id).is_none())
+        .collect();
     let skipped = mine.len() - pending.len();
-    let fe = if spec.model == SweepModel::Fe { fe } else { None };
+    let fe = if spec.model == SweepModel::Fe {
+        fe
+    } else {
+        None
+    };
     if spec.model == SweepModel::Fe && fe.is_none() {
-        return Err(Error::External("this sweep asks for the FE model, which is not available here".into()));
+        return Err(Error::External(
+            "this sweep asks for the FE model, which is not available here".into(),
+        ));
     }
     let done = std::sync::atomic::AtomicUsize::new(0);
     let n_pending = pending.len();
@@ -535,11 +661,15 @@ pub fn run_sweep(spec: &SweepSpec, opts: &SweepOptions, fe: Option<FeRunner<'_>>
         if let Some(rest) = opts.pace.checked_sub(t0.elapsed()) {
             std::thread::sleep(rest);
         }
-        let json = serde_json::to_string_pretty(&rec).map_err(|e| Error::Parse(format!("case {}: {e}", c.id)))?;
+        let json = serde_json::to_string_pretty(&rec)
+            .map_err(|e| Error::Parse(format!("case {}: {e}", c.id)))?;
         write_atomic(&case_path(&opts.out, &c.id), json.as_bytes())?;
         let k = done.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1;
         if opts.verbose {
-            eprintln!("[{k}/{n_pending}] {} {:?} ({:.2} s)", c.id, rec.status, rec.wall_time_s);
+            eprintln!(
+                "[{k}/{n_pending}] {} {:?} ({:.2} s)",
+                c.id, rec.status, rec.wall_time_s
+            );
         }
         Ok(())
     };
@@ -555,7 +685,14 @@ pub fn run_sweep(spec: &SweepSpec, opts: &SweepOptions, fe: Option<FeRunner<'_>>
         pending.iter().try_for_each(work)?;
     }
     let (in_csv, failed) = write_csv(&opts.out, &cases)?;
-    Ok(SweepSummary { total: cases.len(), in_shard: mine.len(), skipped, ran: n_pending, in_csv, failed })
+    Ok(SweepSummary {
+        total: cases.len(),
+        in_shard: mine.len(),
+        skipped,
+        ran: n_pending,
+        in_csv,
+        failed,
+    })
 }
 
 /// The CSV header (units in brackets).
