@@ -31,6 +31,8 @@ pub enum Command {
     Mesh(mesh::MeshArgs),
     /// A parameter sweep (e.g. the paper's ANSYS study): resumable, shardable, one CSV.
     Sweep(sweep::SweepArgs),
+    /// The verification report (REPORT.md, CSV, Figures 6-10) from a finished sweep.
+    Report(sweep::ReportArgs),
 }
 
 /// Runs the command line and returns the process exit code.
@@ -49,6 +51,7 @@ pub fn main() -> i32 {
         Command::Parametric(a) => analytic::run_parametric(a),
         Command::Mesh(a) => mesh::run(a),
         Command::Sweep(a) => sweep::run(a),
+        Command::Report(a) => sweep::report(a),
     };
     match result {
         Ok(()) => 0,

@@ -10,4 +10,5 @@ pub mod atomic;
 pub mod outcome;
 pub mod plots;
 pub mod progress;
+pub mod report;
 pub mod sweep;
