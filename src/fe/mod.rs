@@ -1,2 +1,3 @@
 //! The explicit finite-element solver: elements, materials, contact, time integration, energy.
+pub mod contact;
 pub mod interaction;
