@@ -25,6 +25,8 @@ pub struct NodeResponse {
     pub tangential: [f64; 3],
     /// Energy dissipated this step by friction and the dashpot, J.
     pub dissipated: f64,
+    /// The friction part of `dissipated`, J.
+    pub friction: f64,
 }
 
 impl NodeResponse {
@@ -65,6 +67,7 @@ pub fn respond(
     // Dashpot power −F_d ġ (F_d = fnormal − fe acts against the gap rate).
     let mut dissipated = ((fnormal - fe) * -gap_rate * dt).max(0.0);
     let mut ft = [0.0; 3];
+    let mut fric = 0.0;
     if let Some(c) = friction {
         let old = norm(stick.force);
         let mut rot = tangential(stick.force, n);
@@ -75,13 +78,15 @@ pub fn respond(
             [0.0; 3]
         };
         stick.force = rot;
-        dissipated += return_map(stick, tangential(slip, n), law.kt, fnormal, c);
+        fric = return_map(stick, tangential(slip, n), law.kt, fnormal, c);
+        dissipated += fric;
         ft = stick.force;
     }
     NodeResponse {
         normal: fnormal,
         tangential: ft,
         dissipated,
+        friction: fric,
     }
 }
 

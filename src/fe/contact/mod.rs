@@ -17,6 +17,7 @@ pub mod node_to_segment;
 pub mod output;
 pub mod penalty;
 pub mod projection;
+pub mod relaxation;
 pub mod rigid_plane;
 pub mod search;
 pub mod surface;
@@ -24,7 +25,7 @@ pub mod vec3;
 
 pub use friction::Coulomb;
 pub use node_to_segment::SurfacePair;
-pub use output::{ContactOutput, PressureSample};
+pub use output::{ContactOutput, ContactProbe, PressureSample};
 pub use penalty::PenaltyRule;
 pub use rigid_plane::RigidPlane;
 pub use surface::ContactSurface;

@@ -9,7 +9,7 @@
 
 use super::friction::StickState;
 use super::law::{respond, stored_energy, Kinematics, NodeLaw};
-use super::output::{ContactOutput, OutputBuilder, PressureSample};
+use super::output::{ContactOutput, ContactProbe, NodeContact, OutputBuilder, PressureSample};
 use super::penalty::{damping_constant, effective_mass, stable_step};
 use super::projection::{project, shape, Projection};
 use super::search::{bounding_box, BucketSearch};
@@ -19,7 +19,6 @@ use super::ContactParams;
 use crate::error::{Error, Result};
 use crate::fe::interaction::{Interaction, InteractionEnergy, StepContext};
 use crate::material::Material;
-use crate::mesh::Mesh;
 use std::collections::HashMap;
 
 /// One slave→master pass.
@@ -51,19 +50,23 @@ pub struct SurfacePair {
     energy: InteractionEnergy,
     output: ContactOutput,
     samples: Vec<PressureSample>,
+    probe: ContactProbe,
+    friction_energy: f64,
     /// Steps on which the global bounding-box test found the surfaces apart.
     pub free_steps: usize,
 }
 
 impl SurfacePair {
     /// Contact between the quads `faces_a` (body A, `mat_a`) and `faces_b` (body B, `mat_b`) of
-    /// `mesh` (both bodies in one mesh, global node numbers), symmetric two-pass.
+    /// the hexahedra `hexes` over reference coordinates `nodes` (m; both bodies in one global
+    /// numbering), symmetric two-pass.
     ///
     /// The penalty uses the smaller Young's and bulk moduli of the two bodies and the slave
     /// node's tributary area and element thickness. Fails with [`Error::Invalid`] for bad face
     /// sets, surfaces sharing nodes, or invalid `params`.
     pub fn new(
-        mesh: &Mesh,
+        nodes: &[[f64; 3]],
+        hexes: &[[u32; 8]],
         faces_a: &[[u32; 4]],
         mat_a: &Material,
         faces_b: &[[u32; 4]],
@@ -71,8 +74,8 @@ impl SurfacePair {
         params: ContactParams,
     ) -> Result<SurfacePair> {
         let params = params.validated("contact")?;
-        let a = ContactSurface::new(mesh, faces_a, "contact.surface_a")?;
-        let b = ContactSurface::new(mesh, faces_b, "contact.surface_b")?;
+        let a = ContactSurface::new(nodes, hexes, faces_a, "contact.surface_a")?;
+        let b = ContactSurface::new(nodes, hexes, faces_b, "contact.surface_b")?;
         if let Some(g) = a.nodes.iter().find(|g| b.nodes.binary_search(g).is_ok()) {
             return Err(Error::invalid(
                 "contact.surface_b",
@@ -147,8 +150,16 @@ impl SurfacePair {
             energy: InteractionEnergy::default(),
             output: ContactOutput::default(),
             samples: Vec::new(),
+            probe: ContactProbe::default(),
+            friction_energy: 0.0,
             free_steps: 0,
         })
+    }
+
+    /// A shared handle on this pair's output that stays readable after the pair is boxed
+    /// and handed to the solver.
+    pub fn probe(&self) -> ContactProbe {
+        self.probe.clone()
     }
 
     /// Output of the last evaluated step (forces on body A).
@@ -279,6 +290,7 @@ impl Interaction for SurfacePair {
                     };
                     let r = respond(&p.laws[i], &mut p.stick[i], &kin, self.params.friction);
                     self.energy.dissipated += r.dissipated;
+                    self.friction_energy += r.friction;
                     stored += stored_energy(&p.laws[i], &p.stick[i], pr.gap);
                     let fs = r.force(n);
                     let li = self.local[&g];
@@ -298,7 +310,16 @@ impl Interaction for SurfacePair {
                     // Forces on body A: the slave's own force in pass A→B, the reaction on
                     // master A in pass B→A.
                     let sign = if p.slave == 0 { 1.0 } else { -1.0 };
-                    out.add(sign, sample, r.normal, r.tangential, -pr.gap);
+                    out.add(
+                        sign,
+                        sample,
+                        NodeContact {
+                            normal: r.normal,
+                            tangential: r.tangential,
+                            penetration: -pr.gap,
+                            sliding: p.stick[i].sliding,
+                        },
+                    );
                 }
             }
         }
@@ -317,7 +338,8 @@ impl Interaction for SurfacePair {
         }
         std::mem::swap(&mut self.prev_force, &mut self.force);
         self.energy.stored = stored;
-        let (o, s) = out.finish(stored, self.energy.dissipated);
+        let (o, s) = out.finish(stored, self.energy.dissipated, self.friction_energy);
+        self.probe.update(&o, &s);
         self.output = o;
         self.samples = s;
         self.dt_prev = Some(ctx.dt);

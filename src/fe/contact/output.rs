@@ -25,10 +25,14 @@ pub struct ContactOutput {
     pub max_penetration: f64,
     /// Number of node–segment contacts this step.
     pub active_nodes: usize,
+    /// How many of them slid (friction on the cone) this step.
+    pub sliding_nodes: usize,
     /// Energy stored in penalty and stick springs now, J.
     pub stored_energy: f64,
     /// Energy dissipated so far by friction and contact damping, J.
     pub dissipated_energy: f64,
+    /// The friction part of `dissipated_energy`, J.
+    pub friction_energy: f64,
 }
 
 /// The contact pressure at one node in contact.
@@ -44,6 +48,19 @@ pub struct PressureSample {
     pub pressure: f64,
     /// Weighted tributary area of the node, m².
     pub area: f64,
+}
+
+/// One node in contact, as the output sees it.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct NodeContact {
+    /// Normal force magnitude, N.
+    pub normal: f64,
+    /// Tangential force on the node, N.
+    pub tangential: [f64; 3],
+    /// Penetration, m (≥ 0).
+    pub penetration: f64,
+    /// Whether the node slid this step.
+    pub sliding: bool,
 }
 
 /// Accumulates a step's output from node contacts.
@@ -68,14 +85,14 @@ impl OutputBuilder {
 
     /// Adds one node contact: `sign` = +1 when the node is on the first body, −1 when it is on
     /// the second (its reaction acts on the first body).
-    pub fn add(
-        &mut self,
-        sign: f64,
-        s: PressureSample,
-        normal: f64,
-        tangential_force: [f64; 3],
-        penetration: f64,
-    ) {
+    pub fn add(&mut self, sign: f64, s: PressureSample, c: NodeContact) {
+        let NodeContact {
+            normal,
+            tangential: tangential_force,
+            penetration,
+            sliding,
+        } = c;
+        self.out.sliding_nodes += usize::from(sliding);
         self.out.normal_resultant = add(self.out.normal_resultant, scale(sign * normal, s.normal));
         self.out.tangential_resultant =
             add(self.out.tangential_resultant, scale(sign, tangential_force));
@@ -88,8 +105,14 @@ impl OutputBuilder {
     }
 
     /// Finishes the step with the pair's energies (J).
-    pub fn finish(mut self, stored: f64, dissipated: f64) -> (ContactOutput, Vec<PressureSample>) {
+    pub fn finish(
+        mut self,
+        stored: f64,
+        dissipated: f64,
+        friction: f64,
+    ) -> (ContactOutput, Vec<PressureSample>) {
         let o = &mut self.out;
+        o.friction_energy = friction;
         o.tangential_force = norm(o.tangential_resultant);
         o.stored_energy = stored;
         o.dissipated_energy = dissipated;
@@ -140,9 +163,18 @@ mod tests {
                 pressure: 1.0,
                 area: 1e-6,
             };
-            b.add(1.0, s, 2.0, [0.1, 0.0, 0.0], 1e-7);
+            b.add(
+                1.0,
+                s,
+                NodeContact {
+                    normal: 2.0,
+                    tangential: [0.1, 0.0, 0.0],
+                    penetration: 1e-7,
+                    sliding: x > 0.0,
+                },
+            );
         }
-        let (o, samples) = b.finish(3.0, 4.0);
+        let (o, samples) = b.finish(3.0, 4.0, 1.0);
         assert_eq!(samples.len(), 5);
         assert!((o.normal_resultant[2] - 10.0).abs() < 1e-12);
         assert!((o.tangential_force - 0.5).abs() < 1e-12);
@@ -152,5 +184,64 @@ mod tests {
             (o.stored_energy, o.dissipated_energy, o.active_nodes),
             (3.0, 4.0, 5)
         );
+    }
+}
+
+/// What a [`ContactProbe`] holds: the last step's output and, when asked for, its pressures.
+#[derive(Debug, Clone, Default)]
+pub struct ProbeData {
+    /// Output of the last evaluated step.
+    pub last: ContactOutput,
+    /// Pressure samples of the last step (filled only when the probe records pressures).
+    pub pressures: Vec<PressureSample>,
+    /// Largest normal force (sum of magnitudes) seen so far, N.
+    pub peak_normal_force: f64,
+    /// Largest penetration seen so far, m.
+    pub peak_penetration: f64,
+    /// Time of the first step with contact, s (`None` before contact).
+    pub first_contact: Option<f64>,
+    /// Time of the last step with contact, s.
+    pub last_contact: Option<f64>,
+    /// Whether pressure samples are copied each step.
+    pub record_pressures: bool,
+}
+
+/// A shared read handle on a contact pair's output, for callers that hand the pair to the
+/// solver as a `Box<dyn Interaction>` and still want its forces, area and pressures.
+#[derive(Debug, Clone, Default)]
+pub struct ContactProbe(std::sync::Arc<std::sync::Mutex<ProbeData>>);
+
+impl ContactProbe {
+    /// A copy of the current data.
+    pub fn get(&self) -> ProbeData {
+        self.0.lock().map(|d| d.clone()).unwrap_or_default()
+    }
+
+    /// The last step's output.
+    pub fn last(&self) -> ContactOutput {
+        self.0.lock().map(|d| d.last).unwrap_or_default()
+    }
+
+    /// Asks for the pressure samples to be copied every step (off by default: it allocates).
+    pub fn record_pressures(&self, on: bool) {
+        if let Ok(mut d) = self.0.lock() {
+            d.record_pressures = on;
+        }
+    }
+
+    /// Records one step (called by the contact pairs).
+    pub fn update(&self, out: &ContactOutput, samples: &[PressureSample]) {
+        if let Ok(mut d) = self.0.lock() {
+            d.last = *out;
+            if d.record_pressures {
+                d.pressures = samples.to_vec();
+            }
+            d.peak_normal_force = d.peak_normal_force.max(out.normal_force);
+            d.peak_penetration = d.peak_penetration.max(out.max_penetration);
+            if out.active_nodes > 0 {
+                d.first_contact.get_or_insert(out.time);
+                d.last_contact = Some(out.time);
+            }
+        }
     }
 }

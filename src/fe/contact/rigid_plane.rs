@@ -3,7 +3,7 @@
 
 use super::friction::StickState;
 use super::law::{respond, stored_energy, Kinematics, NodeLaw};
-use super::output::{ContactOutput, OutputBuilder, PressureSample};
+use super::output::{ContactOutput, ContactProbe, NodeContact, OutputBuilder, PressureSample};
 use super::penalty::{damping_constant, stable_step};
 use super::surface::ContactSurface;
 use super::vec3::{add_into, axpy, dot, norm, scale, sub, tangential};
@@ -11,7 +11,6 @@ use super::ContactParams;
 use crate::error::{Error, Result};
 use crate::fe::interaction::{Interaction, InteractionEnergy, StepContext};
 use crate::material::Material;
-use crate::mesh::Mesh;
 
 /// Penalty contact of one surface against the half-space behind a rigid plane.
 #[derive(Debug, Clone)]
@@ -24,6 +23,8 @@ pub struct RigidPlane {
     normal: [f64; 3],
     /// Plane velocity (rigid translation), m/s.
     velocity: [f64; 3],
+    /// The plane moves until this time, then stays (s; infinite = always).
+    stop: f64,
     params: ContactParams,
     youngs: f64,
     bulk: f64,
@@ -35,16 +36,20 @@ pub struct RigidPlane {
     energy: InteractionEnergy,
     output: ContactOutput,
     samples: Vec<PressureSample>,
+    probe: ContactProbe,
+    friction_energy: f64,
 }
 
 impl RigidPlane {
-    /// Contact of the quads `faces` of `mesh` (material `material`) against the plane through
+    /// Contact of the outward quads `faces` of the hexahedra `hexes` over reference
+    /// coordinates `nodes` (m), body material `material`, against the plane through
     /// `point` (m) with unit normal `normal` pointing towards the body.
     ///
     /// Fails with [`Error::Invalid`] for a bad face set, a zero or non-finite normal or point,
     /// or invalid `params`.
     pub fn new(
-        mesh: &Mesh,
+        nodes: &[[f64; 3]],
+        hexes: &[[u32; 8]],
         faces: &[[u32; 4]],
         material: &Material,
         point: [f64; 3],
@@ -52,7 +57,7 @@ impl RigidPlane {
         params: ContactParams,
     ) -> Result<RigidPlane> {
         let params = params.validated("wall")?;
-        let surface = ContactSurface::new(mesh, faces, "wall.faces")?;
+        let surface = ContactSurface::new(nodes, hexes, faces, "wall.faces")?;
         let l = norm(normal);
         if !(l.is_finite() && l > 0.0) {
             return Err(Error::invalid(
@@ -91,6 +96,7 @@ impl RigidPlane {
             point,
             normal: scale(1.0 / l, normal),
             velocity: [0.0; 3],
+            stop: f64::INFINITY,
             params,
             youngs: material.youngs,
             bulk: material.bulk_modulus(),
@@ -102,6 +108,8 @@ impl RigidPlane {
             energy: InteractionEnergy::default(),
             output: ContactOutput::default(),
             samples: Vec::new(),
+            probe: ContactProbe::default(),
+            friction_energy: 0.0,
         })
     }
 
@@ -111,9 +119,23 @@ impl RigidPlane {
         self
     }
 
+    /// The same plane translating at `velocity` (m/s) until time `duration` (s), then at rest:
+    /// a ramp of depth |velocity| × duration for quasi-static compression.
+    pub fn with_ramp(mut self, velocity: [f64; 3], duration: f64) -> Self {
+        self.velocity = velocity;
+        self.stop = duration;
+        self
+    }
+
     /// The contact surface (nodes, tributary areas).
     pub fn surface(&self) -> &ContactSurface {
         &self.surface
+    }
+
+    /// A shared handle on this pair's output that stays readable after the pair is boxed
+    /// and handed to the solver.
+    pub fn probe(&self) -> ContactProbe {
+        self.probe.clone()
     }
 
     /// Output of the last evaluated step.
@@ -159,7 +181,12 @@ impl Interaction for RigidPlane {
         if !self.ready {
             self.prepare(ctx);
         }
-        let origin = axpy(self.point, ctx.t, self.velocity);
+        let origin = axpy(self.point, ctx.t.min(self.stop), self.velocity);
+        let wall_v = if ctx.t < self.stop {
+            self.velocity
+        } else {
+            [0.0; 3]
+        };
         let n = self.normal;
         let dt_prev = self.dt_prev.unwrap_or(0.0);
         let mut out = OutputBuilder::new(ctx.t);
@@ -176,7 +203,7 @@ impl Interaction for RigidPlane {
                         self.name, -gap, ctx.t, self.params.max_penetration, self.surface.thickness[i]
                     )));
                 }
-                let rel = sub(ctx.v[gi], self.velocity);
+                let rel = sub(ctx.v[gi], wall_v);
                 let kin = Kinematics {
                     gap,
                     gap_rate: dot(rel, n),
@@ -191,6 +218,7 @@ impl Interaction for RigidPlane {
                     self.params.friction,
                 );
                 self.energy.dissipated += r.dissipated;
+                self.friction_energy += r.friction;
                 stored += stored_energy(&self.laws[i], &self.stick[i], gap);
                 force = r.force(n);
                 let s = PressureSample {
@@ -200,7 +228,16 @@ impl Interaction for RigidPlane {
                     pressure: r.normal / self.surface.area[i],
                     area: self.surface.area[i],
                 };
-                out.add(1.0, s, r.normal, r.tangential, -gap);
+                out.add(
+                    1.0,
+                    s,
+                    NodeContact {
+                        normal: r.normal,
+                        tangential: r.tangential,
+                        penetration: -gap,
+                        sliding: self.stick[i].sliding,
+                    },
+                );
             } else {
                 self.stick[i] = StickState::default();
             }
@@ -216,7 +253,8 @@ impl Interaction for RigidPlane {
             self.prev_force[i] = force;
         }
         self.energy.stored = stored;
-        let (o, s) = out.finish(stored, self.energy.dissipated);
+        let (o, s) = out.finish(stored, self.energy.dissipated, self.friction_energy);
+        self.probe.update(&o, &s);
         self.output = o;
         self.samples = s;
         self.dt_prev = Some(ctx.dt);

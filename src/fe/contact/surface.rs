@@ -4,7 +4,6 @@
 use super::vec3::{quad_area, sub};
 use crate::error::{Error, Result};
 use crate::mesh::topology::HEX_FACES;
-use crate::mesh::Mesh;
 use std::collections::HashMap;
 
 /// The candidate contact patch of one body, with per-node geometric weights in the reference
@@ -42,11 +41,17 @@ fn hex_volume(x: &[[f64; 3]], h: &[u32; 8]) -> f64 {
 }
 
 impl ContactSurface {
-    /// Builds the surface of `faces` (outward quads of `mesh`, global node numbers).
+    /// Builds the surface of `faces`: outward quads of the hexahedra `hexes` over the reference
+    /// coordinates `nodes` (m), global node numbers.
     ///
-    /// Fails with [`Error::Invalid`] when `faces` is empty, names a node outside the mesh, or
-    /// holds a quad that is not the face of exactly one hexahedron of `mesh`.
-    pub fn new(mesh: &Mesh, faces: &[[u32; 4]], field: &str) -> Result<ContactSurface> {
+    /// Fails with [`Error::Invalid`] when `faces` is empty, names a node outside `nodes`, or
+    /// holds a quad that is not the face of a hexahedron of `hexes`.
+    pub fn new(
+        nodes: &[[f64; 3]],
+        hexes: &[[u32; 8]],
+        faces: &[[u32; 4]],
+        field: &str,
+    ) -> Result<ContactSurface> {
         if faces.is_empty() {
             return Err(Error::invalid(
                 field,
@@ -54,7 +59,7 @@ impl ContactSurface {
                 "at least one boundary quad",
             ));
         }
-        let n = mesh.nodes.len() as u32;
+        let n = nodes.len() as u32;
         if let Some(q) = faces.iter().find(|q| q.iter().any(|&i| i >= n)) {
             return Err(Error::invalid(
                 field,
@@ -73,7 +78,7 @@ impl ContactSurface {
             .map(|(i, &q)| (key(q), i))
             .collect();
         let mut owner = vec![usize::MAX; faces.len()];
-        for (e, h) in mesh.hexes.iter().enumerate() {
+        for (e, h) in hexes.iter().enumerate() {
             for f in HEX_FACES {
                 if let Some(&i) = wanted.get(&key(f.map(|a| h[a]))) {
                     owner[i] = e;
@@ -87,18 +92,18 @@ impl ContactSurface {
                 "quads that are faces of the mesh's hexahedra",
             ));
         }
-        let mut nodes: Vec<u32> = faces.iter().flatten().copied().collect();
-        nodes.sort_unstable();
-        nodes.dedup();
-        let index: HashMap<u32, usize> = nodes.iter().enumerate().map(|(i, &g)| (g, i)).collect();
-        let mut area = vec![0.0; nodes.len()];
-        let mut th = vec![0.0; nodes.len()];
-        let mut vol = vec![0.0; nodes.len()];
+        let mut list: Vec<u32> = faces.iter().flatten().copied().collect();
+        list.sort_unstable();
+        list.dedup();
+        let index: HashMap<u32, usize> = list.iter().enumerate().map(|(i, &g)| (g, i)).collect();
+        let mut area = vec![0.0; list.len()];
+        let mut th = vec![0.0; list.len()];
+        let mut vol = vec![0.0; list.len()];
         let mut min_edge = f64::INFINITY;
         for (q, &e) in faces.iter().zip(&owner) {
-            let p = q.map(|i| mesh.nodes[i as usize]);
+            let p = q.map(|i| nodes[i as usize]);
             let a = quad_area(&p);
-            let v = hex_volume(&mesh.nodes, &mesh.hexes[e]);
+            let v = hex_volume(nodes, &hexes[e]);
             for k in 0..4 {
                 min_edge = min_edge.min(super::vec3::norm(sub(p[(k + 1) % 4], p[k])));
             }
@@ -109,7 +114,7 @@ impl ContactSurface {
                 vol[i] += 0.25 * a * v;
             }
         }
-        for i in 0..nodes.len() {
+        for i in 0..list.len() {
             th[i] /= area[i];
             vol[i] /= area[i];
         }
@@ -126,7 +131,7 @@ impl ContactSurface {
         }
         Ok(ContactSurface {
             faces: faces.to_vec(),
-            nodes,
+            nodes: list,
             area,
             thickness: th,
             volume: vol,
@@ -158,7 +163,7 @@ mod tests {
                     .all(|&i| (m.nodes[i as usize][2] - 0.3).abs() < 1e-12)
             })
             .collect();
-        let s = ContactSurface::new(&m, &top, "top").unwrap();
+        let s = ContactSurface::new(&m.nodes, &m.hexes, &top, "top").unwrap();
         assert_eq!(s.nodes.len(), 15);
         assert!((s.total_area() - 2.0).abs() < 1e-12);
         assert!(s.thickness.iter().all(|&t| (t - 0.1).abs() < 1e-12));
@@ -176,11 +181,11 @@ mod tests {
     #[test]
     fn foreign_quads_are_rejected() {
         let m = block([1.0; 3], [1, 1, 1]);
-        assert!(ContactSurface::new(&m, &[], "s").is_err());
-        let e = ContactSurface::new(&m, &[[0, 1, 2, 7]], "ball1.contact")
+        assert!(ContactSurface::new(&m.nodes, &m.hexes, &[], "s").is_err());
+        let e = ContactSurface::new(&m.nodes, &m.hexes, &[[0, 1, 2, 7]], "ball1.contact")
             .unwrap_err()
             .to_string();
         assert!(e.contains("ball1.contact"), "{e}");
-        assert!(ContactSurface::new(&m, &[[0, 1, 2, 99]], "s").is_err());
+        assert!(ContactSurface::new(&m.nodes, &m.hexes, &[[0, 1, 2, 99]], "s").is_err());
     }
 }
