@@ -36,7 +36,11 @@ pub enum Error {
 
 impl Error {
     /// Shorthand for [`Error::Invalid`].
-    pub fn invalid(field: impl Into<String>, value: impl fmt::Display, allowed: impl Into<String>) -> Self {
+    pub fn invalid(
+        field: impl Into<String>,
+        value: impl fmt::Display,
+        allowed: impl Into<String>,
+    ) -> Self {
         Error::Invalid {
             field: field.into(),
             value: value.to_string(),
@@ -56,7 +60,11 @@ impl Error {
 impl fmt::Display for Error {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
-            Error::Invalid { field, value, allowed } => {
+            Error::Invalid {
+                field,
+                value,
+                allowed,
+            } => {
                 write!(f, "invalid {field} = {value}: allowed {allowed}")
             }
             Error::Parse(m) => write!(f, "{m}"),

@@ -9,10 +9,10 @@
 //! All quantities are SI: metres, seconds, kilograms, newtons, pascals, joules.
 
 pub mod analytic;
-pub mod error;
-pub mod material;
 pub mod cli;
+pub mod error;
 pub mod fe;
+pub mod material;
 pub mod mesh;
 
 pub use error::{Error, Result};

@@ -147,9 +147,19 @@ impl Material {
             }
         };
         check("E", self.youngs, self.youngs > 0.0, "E > 0 Pa, finite")?;
-        check("nu", self.nu, self.nu > -1.0 && self.nu < 0.5, "-1 < nu < 0.5")?;
+        check(
+            "nu",
+            self.nu,
+            self.nu > -1.0 && self.nu < 0.5,
+            "-1 < nu < 0.5",
+        )?;
         check("rho", self.rho, self.rho > 0.0, "rho > 0 kg/m^3, finite")?;
-        check("yield", self.yield_strength, self.yield_strength > 0.0, "yield > 0 Pa, finite")?;
+        check(
+            "yield",
+            self.yield_strength,
+            self.yield_strength > 0.0,
+            "yield > 0 Pa, finite",
+        )?;
         check(
             "tangent",
             self.tangent,
@@ -228,13 +238,55 @@ mod tests {
     fn bad_values_name_field_value_and_range() {
         let base = Material::preset("copper").unwrap();
         let cases: [(MaterialOverrides, &str); 7] = [
-            (MaterialOverrides { youngs: Some(-1.0), ..Default::default() }, "E"),
-            (MaterialOverrides { nu: Some(0.5), ..Default::default() }, "nu"),
-            (MaterialOverrides { nu: Some(-1.0), ..Default::default() }, "nu"),
-            (MaterialOverrides { rho: Some(0.0), ..Default::default() }, "rho"),
-            (MaterialOverrides { yield_strength: Some(f64::NAN), ..Default::default() }, "yield"),
-            (MaterialOverrides { mu: Some(-0.1), ..Default::default() }, "mu"),
-            (MaterialOverrides { youngs: Some(f64::INFINITY), ..Default::default() }, "E"),
+            (
+                MaterialOverrides {
+                    youngs: Some(-1.0),
+                    ..Default::default()
+                },
+                "E",
+            ),
+            (
+                MaterialOverrides {
+                    nu: Some(0.5),
+                    ..Default::default()
+                },
+                "nu",
+            ),
+            (
+                MaterialOverrides {
+                    nu: Some(-1.0),
+                    ..Default::default()
+                },
+                "nu",
+            ),
+            (
+                MaterialOverrides {
+                    rho: Some(0.0),
+                    ..Default::default()
+                },
+                "rho",
+            ),
+            (
+                MaterialOverrides {
+                    yield_strength: Some(f64::NAN),
+                    ..Default::default()
+                },
+                "yield",
+            ),
+            (
+                MaterialOverrides {
+                    mu: Some(-0.1),
+                    ..Default::default()
+                },
+                "mu",
+            ),
+            (
+                MaterialOverrides {
+                    youngs: Some(f64::INFINITY),
+                    ..Default::default()
+                },
+                "E",
+            ),
         ];
         for (o, field) in cases {
             let e = base.with_overrides(&o).unwrap_err().to_string();
@@ -247,7 +299,10 @@ mod tests {
     fn overrides_replace_only_named_fields() {
         let base = Material::preset("copper-fe").unwrap();
         let m = base
-            .with_overrides(&MaterialOverrides { yield_strength: Some(1e11), ..Default::default() })
+            .with_overrides(&MaterialOverrides {
+                yield_strength: Some(1e11),
+                ..Default::default()
+            })
             .unwrap();
         assert_eq!(m.yield_strength, 1e11);
         assert_eq!(m.youngs, base.youngs);

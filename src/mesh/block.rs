@@ -8,7 +8,10 @@ use super::{topology::boundary_faces, Mesh};
 /// Panics only if a count is zero (a programming error, not user input).
 pub fn block(lengths: [f64; 3], counts: [usize; 3]) -> Mesh {
     let [nx, ny, nz] = counts;
-    assert!(nx > 0 && ny > 0 && nz > 0, "block needs at least one element per direction");
+    assert!(
+        nx > 0 && ny > 0 && nz > 0,
+        "block needs at least one element per direction"
+    );
     let id = |i: usize, j: usize, k: usize| (i + (nx + 1) * (j + (ny + 1) * k)) as u32;
     let mut nodes = Vec::with_capacity((nx + 1) * (ny + 1) * (nz + 1));
     for k in 0..=nz {
@@ -40,7 +43,12 @@ pub fn block(lengths: [f64; 3], counts: [usize; 3]) -> Mesh {
         }
     }
     let boundary = boundary_faces(&hexes);
-    let mut mesh = Mesh { nodes, hexes, boundary, ..Default::default() };
+    let mut mesh = Mesh {
+        nodes,
+        hexes,
+        boundary,
+        ..Default::default()
+    };
     let tol = 1e-12 * lengths.iter().cloned().fold(0.0, f64::max);
     for (axis, name) in ["x", "y", "z"].iter().enumerate() {
         for (end, suffix) in [(0.0, "0"), (lengths[axis], "1")] {
