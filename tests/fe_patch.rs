@@ -1,3 +1,4 @@
+#![allow(clippy::needless_range_loop)]
 //! Acceptance 1: the patch test. A linear velocity field on a distorted mesh must give the
 //! same (constant) strain increment in every element and zero internal-force residual at the
 //! interior node, for both formulations, with hourglass control switched on.
@@ -22,7 +23,8 @@ fn distorted_block() -> twoball::mesh::Mesh {
 
 fn lin_solve(a: [[f64; 3]; 3], b: [f64; 3]) -> [f64; 3] {
     let det = |m: [[f64; 3]; 3]| {
-        m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1]) - m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0])
+        m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1])
+            - m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0])
             + m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0])
     };
     let d = det(a);
@@ -44,13 +46,23 @@ fn patch(formulation: Formulation) {
     let g = [[3.0, 1.0, -2.0], [0.5, -1.0, 2.5], [1.5, -0.7, 2.0]];
     let dt = 1e-7;
     // Nodes move from x0 with v = G x0: x1 = x0 + dt v.
-    let v: Vec<[f64; 3]> = mesh.nodes.iter().map(|p| [0, 1, 2].map(|r| (0..3).map(|c| g[r][c] * p[c]).sum())).collect();
-    let x1: Vec<[f64; 3]> = mesh.nodes.iter().zip(&v).map(|(p, w)| [0, 1, 2].map(|k| p[k] + dt * w[k])).collect();
+    let v: Vec<[f64; 3]> = mesh
+        .nodes
+        .iter()
+        .map(|p| [0, 1, 2].map(|r| (0..3).map(|c| g[r][c] * p[c]).sum()))
+        .collect();
+    let x1: Vec<[f64; 3]> = mesh
+        .nodes
+        .iter()
+        .zip(&v)
+        .map(|(p, w)| [0, 1, 2].map(|k| p[k] + dt * w[k]))
+        .collect();
     let mut forces = vec![[[0.0; 3]; 8]; mesh.hexes.len()];
     blk.update(&x1, &v, dt, &mut forces).unwrap();
     // Independent expectation: on the mid-step configuration x_m = (I + dt/2 G) x0 the field is
     // v = G (I + dt/2 G)⁻¹ x_m, so L = G (I + dt/2 G)⁻¹; Δε = sym(L) dt; σ = λ tr Δε I + 2G Δε.
-    let a = [0, 1, 2].map(|r| [0, 1, 2].map(|c| if r == c { 1.0 } else { 0.0 } + 0.5 * dt * g[r][c]));
+    let a =
+        [0, 1, 2].map(|r| [0, 1, 2].map(|c| if r == c { 1.0 } else { 0.0 } + 0.5 * dt * g[r][c]));
     // L = G A⁻¹ ⇔ Lᵀ = A⁻ᵀ Gᵀ: solve Aᵀ (column of Lᵀ) = column of Gᵀ.
     let at = [0, 1, 2].map(|r| [0, 1, 2].map(|c| a[c][r]));
     let mut l = [[0.0; 3]; 3];
@@ -58,15 +70,27 @@ fn patch(formulation: Formulation) {
         let x = lin_solve(at, g[row]);
         l[row] = x;
     }
-    let eps = [l[0][0], l[1][1], l[2][2], 0.5 * (l[0][1] + l[1][0]), 0.5 * (l[1][2] + l[2][1]), 0.5 * (l[2][0] + l[0][2])]
-        .map(|e| e * dt);
+    let eps = [
+        l[0][0],
+        l[1][1],
+        l[2][2],
+        0.5 * (l[0][1] + l[1][0]),
+        0.5 * (l[1][2] + l[2][1]),
+        0.5 * (l[2][0] + l[0][2]),
+    ]
+    .map(|e| e * dt);
     let (lam, mu) = (mat.lame_lambda(), mat.shear_modulus());
     let tr = eps[0] + eps[1] + eps[2];
-    let expect: [f64; 6] = std::array::from_fn(|k| if k < 3 { lam * tr } else { 0.0 } + 2.0 * mu * eps[k]);
+    let expect: [f64; 6] =
+        std::array::from_fn(|k| if k < 3 { lam * tr } else { 0.0 } + 2.0 * mu * eps[k]);
     let scale = expect.iter().fold(0.0f64, |m, s| m.max(s.abs()));
     for p in &blk.points {
         for k in 0..6 {
-            assert!((p.stress[k] - expect[k]).abs() < 1e-9 * scale, "{formulation:?}: {:?} vs {expect:?}", p.stress);
+            assert!(
+                (p.stress[k] - expect[k]).abs() < 1e-9 * scale,
+                "{formulation:?}: {:?} vs {expect:?}",
+                p.stress
+            );
         }
     }
     // Residual at the interior node (the only node not on the boundary) vanishes.
@@ -86,10 +110,18 @@ fn patch(formulation: Formulation) {
         }
     }
     for c in r {
-        assert!(c.abs() < 1e-10 * fmax, "{formulation:?}: interior residual {r:?} (force scale {fmax:e})");
+        assert!(
+            c.abs() < 1e-10 * fmax,
+            "{formulation:?}: interior residual {r:?} (force scale {fmax:e})"
+        );
     }
     // Hourglass forces were not excited by the linear field.
-    assert!(blk.hourglass.iter().flatten().flatten().all(|q| q.abs() < 1e-12 * fmax));
+    assert!(blk
+        .hourglass
+        .iter()
+        .flatten()
+        .flatten()
+        .all(|q| q.abs() < 1e-12 * fmax));
 }
 
 #[test]

@@ -1,3 +1,4 @@
+#![allow(clippy::needless_range_loop)]
 //! Acceptance 5: one element under uniaxial strain and under the strain path of simple shear
 //! matches the closed-form bilinear J2 response; the B-bar hex does not lock in fully plastic
 //! isochoric flow.
@@ -23,10 +24,22 @@ fn material() -> Material {
 /// Drives one element (unit-ish cube, side 1 mm) with v = (I − Δt/2 D)⁻¹ D x^n for `steps`
 /// steps of strain rate `rate(n)` (sign of loading), returns nothing; calls `check` each step
 /// with the accumulated total strain tensor.
-fn drive(formulation: Formulation, d0: [[f64; 3]; 3], schedule: &[f64], check: impl Fn(&ElementBlock, [f64; 6])) {
+fn drive(
+    formulation: Formulation,
+    d0: [[f64; 3]; 3],
+    schedule: &[f64],
+    check: impl Fn(&ElementBlock, [f64; 6]),
+) {
     let mesh = block([1e-3; 3], [1, 1, 1]);
     let mat = material();
-    let mut blk = ElementBlock::new(0, 0, mesh.hexes.clone(), formulation, J2Material::new(&mat, false), 0.05);
+    let mut blk = ElementBlock::new(
+        0,
+        0,
+        mesh.hexes.clone(),
+        formulation,
+        J2Material::new(&mat, false),
+        0.05,
+    );
     let mut forces = vec![[[0.0; 3]; 8]; 1];
     let mut x = mesh.nodes.clone();
     let dt = 1e-7;
@@ -34,7 +47,8 @@ fn drive(formulation: Formulation, d0: [[f64; 3]; 3], schedule: &[f64], check: i
     for &s in schedule {
         let d = d0.map(|r| r.map(|c| c * s));
         // Solve (I − Δt/2 D) v = D x for each node (D is small: 3x3 by Cramer's rule).
-        let a = [0, 1, 2].map(|r| [0, 1, 2].map(|c| if r == c { 1.0 } else { 0.0 } - 0.5 * dt * d[r][c]));
+        let a = [0, 1, 2]
+            .map(|r| [0, 1, 2].map(|c| if r == c { 1.0 } else { 0.0 } - 0.5 * dt * d[r][c]));
         let v: Vec<[f64; 3]> = x
             .iter()
             .map(|p| {
@@ -58,7 +72,8 @@ fn drive(formulation: Formulation, d0: [[f64; 3]; 3], schedule: &[f64], check: i
 
 fn cramer(a: [[f64; 3]; 3], b: [f64; 3]) -> [f64; 3] {
     let det = |m: [[f64; 3]; 3]| {
-        m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1]) - m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0])
+        m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1])
+            - m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0])
             + m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0])
     };
     let d = det(a);
@@ -74,8 +89,8 @@ fn cramer(a: [[f64; 3]; 3], b: [f64; 3]) -> [f64; 3] {
 /// Loading to `n_up` steps, unloading for `n_down`, reloading past the previous maximum.
 fn schedule(n_up: usize, n_down: usize) -> Vec<f64> {
     let mut s = vec![1.0; n_up];
-    s.extend(std::iter::repeat(-1.0).take(n_down));
-    s.extend(std::iter::repeat(1.0).take(n_down + n_up / 2));
+    s.extend(std::iter::repeat_n(-1.0, n_down));
+    s.extend(std::iter::repeat_n(1.0, n_down + n_up / 2));
     s
 }
 
@@ -87,7 +102,12 @@ fn close(a: f64, b: f64, scale: f64) -> bool {
 fn uniaxial_strain_matches_closed_form_bilinear_j2() {
     for formulation in [Formulation::OnePoint, Formulation::BBar] {
         let m = material();
-        let (g, k, h, sy) = (m.shear_modulus(), m.bulk_modulus(), m.hardening_modulus(), m.yield_strength);
+        let (g, k, h, sy) = (
+            m.shear_modulus(),
+            m.bulk_modulus(),
+            m.hardening_modulus(),
+            m.yield_strength,
+        );
         // ε̇ = 1000/s: 1e-4 strain per step; 100 steps up to 1 % (yield at ≈ 0.11 %).
         let d0 = [[1000.0, 0.0, 0.0], [0.0; 3], [0.0; 3]];
         let peak = std::cell::Cell::new(0.0f64);
@@ -111,13 +131,25 @@ fn uniaxial_strain_matches_closed_form_bilinear_j2() {
             let sxx = k * eps + 2.0 * g * (2.0 / 3.0 * eps - pax);
             let syy = k * eps + 2.0 * g * (-1.0 / 3.0 * eps + 0.5 * pax);
             for p in &blk.points {
-                assert!(close(p.stress[0], sxx, sy) && close(p.stress[1], syy, sy) && close(p.stress[2], syy, sy),
-                    "{formulation:?} ε = {eps}: {:?} vs ({sxx}, {syy})", p.stress);
-                assert!(close(p.eps_p, ep, ep.max(1e-3)), "{formulation:?} ε_p {} vs {ep}", p.eps_p);
+                assert!(
+                    close(p.stress[0], sxx, sy)
+                        && close(p.stress[1], syy, sy)
+                        && close(p.stress[2], syy, sy),
+                    "{formulation:?} ε = {eps}: {:?} vs ({sxx}, {syy})",
+                    p.stress
+                );
+                assert!(
+                    close(p.eps_p, ep, ep.max(1e-3)),
+                    "{formulation:?} ε_p {} vs {ep}",
+                    p.eps_p
+                );
                 assert!(p.stress[3].abs() < 1e-9 * sy && p.stress[4].abs() < 1e-9 * sy);
             }
         });
-        assert!(peak.get() > 5e-3, "loading must reach well into plastic flow");
+        assert!(
+            peak.get() > 5e-3,
+            "loading must reach well into plastic flow"
+        );
     }
 }
 
@@ -146,14 +178,31 @@ fn simple_shear_strain_path_matches_closed_form_bilinear_j2() {
             state.set((ep, pxy));
             let txy = 2.0 * g * (exy - pxy);
             for p in &blk.points {
-                assert!(close(p.stress[3], txy, sy), "{formulation:?} ε_xy = {exy}: τ {} vs {txy}", p.stress[3]);
-                assert!(p.stress[0].abs() < 1e-6 * sy && p.stress[2].abs() < 1e-6 * sy && p.stress[5].abs() < 1e-6 * sy);
-                assert!(close(p.eps_p, ep, ep.max(1e-3)), "{formulation:?} ε_p {} vs {ep}", p.eps_p);
+                assert!(
+                    close(p.stress[3], txy, sy),
+                    "{formulation:?} ε_xy = {exy}: τ {} vs {txy}",
+                    p.stress[3]
+                );
+                assert!(
+                    p.stress[0].abs() < 1e-6 * sy
+                        && p.stress[2].abs() < 1e-6 * sy
+                        && p.stress[5].abs() < 1e-6 * sy
+                );
+                assert!(
+                    close(p.eps_p, ep, ep.max(1e-3)),
+                    "{formulation:?} ε_p {} vs {ep}",
+                    p.eps_p
+                );
             }
             // Plastic work per element = volume × closed-form plastic work density.
             let wp = blk.plastic_work[0];
             let v = 1e-9;
-            assert!((wp - v * plastic_work.get()).abs() <= 1e-4 * (v * plastic_work.get()).max(1e-6 * v * sy), "{wp} vs {}", v * plastic_work.get());
+            assert!(
+                (wp - v * plastic_work.get()).abs()
+                    <= 1e-4 * (v * plastic_work.get()).max(1e-6 * v * sy),
+                "{wp} vs {}",
+                v * plastic_work.get()
+            );
         });
         assert!(state.get().0 > 5e-3);
     }
@@ -170,7 +219,14 @@ fn bbar_does_not_lock_in_fully_plastic_bending_flow() {
     m.tangent = 0.0; // perfectly plastic
     let mesh = block([1e-3; 3], [1, 1, 1]);
     let centre = [0.5e-3; 3];
-    let mut blk = ElementBlock::new(0, 0, mesh.hexes.clone(), Formulation::BBar, J2Material::new(&m, false), 0.0);
+    let mut blk = ElementBlock::new(
+        0,
+        0,
+        mesh.hexes.clone(),
+        Formulation::BBar,
+        J2Material::new(&m, false),
+        0.0,
+    );
     let mut forces = vec![[[0.0; 3]; 8]; 1];
     let dt = 1e-7;
     let c = 1000.0 / 1e-3; // shear strain rate amplitude ~ 1000/s across the element
@@ -178,7 +234,10 @@ fn bbar_does_not_lock_in_fully_plastic_bending_flow() {
     let x0 = mesh.nodes.clone();
     let mut x = x0.clone();
     for _ in 0..steps {
-        let v: Vec<[f64; 3]> = x0.iter().map(|p| [c * (p[0] - centre[0]) * (p[1] - centre[1]), 0.0, 0.0]).collect();
+        let v: Vec<[f64; 3]> = x0
+            .iter()
+            .map(|p| [c * (p[0] - centre[0]) * (p[1] - centre[1]), 0.0, 0.0])
+            .collect();
         for (p, w) in x.iter_mut().zip(&v) {
             p[0] += dt * w[0];
         }
@@ -186,11 +245,21 @@ fn bbar_does_not_lock_in_fully_plastic_bending_flow() {
     }
     let k = m.bulk_modulus();
     let locked_pressure = k * c * 0.5e-3 * dt * steps as f64 / 3f64.sqrt();
-    assert!(locked_pressure > 10.0 * m.yield_strength, "the test must be able to detect locking");
+    assert!(
+        locked_pressure > 10.0 * m.yield_strength,
+        "the test must be able to detect locking"
+    );
     for p in &blk.points {
         let pr = (p.stress[0] + p.stress[1] + p.stress[2]) / 3.0;
-        assert!(pr.abs() < 1e-3 * m.yield_strength, "pressure {pr:e} Pa: locking");
+        assert!(
+            pr.abs() < 1e-3 * m.yield_strength,
+            "pressure {pr:e} Pa: locking"
+        );
         assert!(twoball::fe::tensor::von_mises(&p.stress) <= m.yield_strength * (1.0 + 1e-9));
-        assert!(p.eps_p > 0.005, "point must be in plastic flow: ε_p = {}", p.eps_p);
+        assert!(
+            p.eps_p > 0.005,
+            "point must be in plastic flow: ε_p = {}",
+            p.eps_p
+        );
     }
 }

@@ -1,3 +1,4 @@
+#![allow(clippy::needless_range_loop)]
 //! Acceptance 2: rigid motion leaves an element stress-free. Translation through the full
 //! solver; rotation by 360° at 1000 rad/s with the element loop driven by the exact rigid
 //! motion (a freely spinning body would carry real centrifugal stress ρω²r², so the rotation
@@ -42,7 +43,10 @@ fn rotate_full_turn(formulation: Formulation) {
         mesh.nodes
             .iter()
             .map(|p| {
-                let r = rot_z(theta, [p[0] - centre[0], p[1] - centre[1], p[2] - centre[2]]);
+                let r = rot_z(
+                    theta,
+                    [p[0] - centre[0], p[1] - centre[1], p[2] - centre[2]],
+                );
                 [r[0] + centre[0], r[1] + centre[1], r[2] + centre[2]]
             })
             .collect()
@@ -51,14 +55,21 @@ fn rotate_full_turn(formulation: Formulation) {
     let mut worst: f64 = 0.0;
     for n in 0..steps {
         let x1 = place(omega * dt * (n + 1) as f64);
-        let v: Vec<[f64; 3]> = x1.iter().zip(&x0).map(|(a, b)| [0, 1, 2].map(|k| (a[k] - b[k]) / dt)).collect();
+        let v: Vec<[f64; 3]> = x1
+            .iter()
+            .zip(&x0)
+            .map(|(a, b)| [0, 1, 2].map(|k| (a[k] - b[k]) / dt))
+            .collect();
         blk.update(&x1, &v, dt, &mut forces).unwrap();
         for p in &blk.points {
             worst = p.stress.iter().fold(worst, |m, s| m.max(s.abs()));
         }
         x0 = x1;
     }
-    assert!(worst < 1e-6 * mat.yield_strength, "{formulation:?}: max |σ| = {worst:e} Pa over {steps} steps");
+    assert!(
+        worst < 1e-6 * mat.yield_strength,
+        "{formulation:?}: max |σ| = {worst:e} Pa over {steps} steps"
+    );
 }
 
 #[test]
@@ -77,7 +88,14 @@ fn prestress_rotates_with_the_body() {
     // quarter turn about z becomes R σ Rᵀ (σ_xx ↔ σ_yy, σ_xy → −σ_xy).
     let mesh = distorted(1, 1e-3);
     let mat = Material::preset("copper-fe").unwrap();
-    let mut blk = ElementBlock::new(0, 0, mesh.hexes.clone(), Formulation::OnePoint, J2Material::new(&mat, true), 0.05);
+    let mut blk = ElementBlock::new(
+        0,
+        0,
+        mesh.hexes.clone(),
+        Formulation::OnePoint,
+        J2Material::new(&mat, true),
+        0.05,
+    );
     let s0 = [30e6, -10e6, 5e6, 12e6, -4e6, 7e6];
     blk.points[0].stress = s0;
     let mut forces = vec![[[0.0; 3]; 8]; 1];
@@ -85,8 +103,16 @@ fn prestress_rotates_with_the_body() {
     let dt = std::f64::consts::FRAC_PI_2 / steps as f64; // ω = 1 rad/s
     let mut x0 = mesh.nodes.clone();
     for n in 0..steps {
-        let x1: Vec<[f64; 3]> = mesh.nodes.iter().map(|p| rot_z(dt * (n + 1) as f64, *p)).collect();
-        let v: Vec<[f64; 3]> = x1.iter().zip(&x0).map(|(a, b)| [0, 1, 2].map(|k| (a[k] - b[k]) / dt)).collect();
+        let x1: Vec<[f64; 3]> = mesh
+            .nodes
+            .iter()
+            .map(|p| rot_z(dt * (n + 1) as f64, *p))
+            .collect();
+        let v: Vec<[f64; 3]> = x1
+            .iter()
+            .zip(&x0)
+            .map(|(a, b)| [0, 1, 2].map(|k| (a[k] - b[k]) / dt))
+            .collect();
         blk.update(&x1, &v, dt, &mut forces).unwrap();
         x0 = x1;
     }
@@ -95,7 +121,10 @@ fn prestress_rotates_with_the_body() {
     let expect = [s0[1], s0[0], s0[2], -s0[3], s0[5], -s0[4]];
     let s = blk.points[0].stress;
     for k in 0..6 {
-        assert!((s[k] - expect[k]).abs() < 1e-6 * 30e6, "{s:?} vs {expect:?}");
+        assert!(
+            (s[k] - expect[k]).abs() < 1e-6 * 30e6,
+            "{s:?} vs {expect:?}"
+        );
     }
 }
 
@@ -106,14 +135,23 @@ fn translation_through_the_solver_stays_stress_free() {
         let mat = Material::preset("copper-fe").unwrap();
         let mut model = Model::new();
         let p = model.add_part("block", &mesh, mat, formulation).unwrap();
-        model.set_rigid_velocity(p, [120.0, -40.0, 75.0], [0.0; 3], [0.0; 3]).unwrap();
+        model
+            .set_rigid_velocity(p, [120.0, -40.0, 75.0], [0.0; 3], [0.0; 3])
+            .unwrap();
         let mut s = Solver::new(model, vec![], Settings::default()).unwrap();
         s.run_until(|s| s.step_count() >= 2000).unwrap();
         for e in 0..27 {
             let st = s.element_stress(e);
-            assert!(st.iter().all(|c| c.abs() < 1e-6 * mat.yield_strength), "{formulation:?} {st:?}");
+            assert!(
+                st.iter().all(|c| c.abs() < 1e-6 * mat.yield_strength),
+                "{formulation:?} {st:?}"
+            );
         }
         let (vc, w) = s.part_motion(0).unwrap();
-        assert!((vc[0] - 120.0).abs() < 1e-9 && (vc[1] + 40.0).abs() < 1e-9 && w.iter().all(|c| c.abs() < 1e-6));
+        assert!(
+            (vc[0] - 120.0).abs() < 1e-9
+                && (vc[1] + 40.0).abs() < 1e-9
+                && w.iter().all(|c| c.abs() < 1e-6)
+        );
     }
 }

@@ -4,7 +4,10 @@
 //! of elements in parallel (rayon) and writes one force block per element, so the result does
 //! not depend on the number of threads.
 
-use super::{hex_bbar, hex_one_point, hex_one_point::ElementOutput, model::Formulation, plasticity::J2Material, tensor::Sym};
+use super::{
+    hex_bbar, hex_one_point, hex_one_point::ElementOutput, model::Formulation,
+    plasticity::J2Material, tensor::Sym,
+};
 use rayon::prelude::*;
 
 /// Elements per parallel batch (fixed: results never depend on it, only scheduling does).
@@ -78,7 +81,14 @@ pub struct ElementBlock {
 
 impl ElementBlock {
     /// A stress-free block for the elements `conn` starting at global element `first`.
-    pub fn new(part: usize, first: usize, conn: Vec<[u32; 8]>, formulation: Formulation, material: J2Material, hourglass_coeff: f64) -> Self {
+    pub fn new(
+        part: usize,
+        first: usize,
+        conn: Vec<[u32; 8]>,
+        formulation: Formulation,
+        material: J2Material,
+        hourglass_coeff: f64,
+    ) -> Self {
         let n = conn.len();
         let npe = Self::points_for(formulation);
         ElementBlock {
@@ -158,7 +168,7 @@ impl ElementBlock {
                         Formulation::OnePoint => hex_one_point::update(&xe, &ve, dt, &mat, hg, st),
                         Formulation::BBar => hex_bbar::update(&xe, &ve, dt, &mat, st),
                     };
-                    if !(out.min_jacobian > 0.0) {
+                    if out.min_jacobian.is_nan() || out.min_jacobian <= 0.0 {
                         return Err((base + k, ElementFailure::Inverted(out.min_jacobian)));
                     }
                     if !out.force.iter().flatten().all(|c| c.is_finite()) {
@@ -178,7 +188,11 @@ impl ElementBlock {
                 |a, b| match (a, b) {
                     (Err(x), Err(y)) => Err(if x.0 <= y.0 { x } else { y }),
                     (Err(x), _) | (_, Err(x)) => Err(x),
-                    (Ok(x), Ok(y)) => Ok(if x.0 < y.0 || (x.0 == y.0 && x.1 <= y.1) { x } else { y }),
+                    (Ok(x), Ok(y)) => Ok(if x.0 < y.0 || (x.0 == y.0 && x.1 <= y.1) {
+                        x
+                    } else {
+                        y
+                    }),
                 },
             );
         res
@@ -199,7 +213,11 @@ impl ElementBlock {
     /// Mean equivalent plastic strain of local element `k`.
     pub fn element_eps_p(&self, k: usize) -> f64 {
         let npe = self.points_per_element();
-        self.points[k * npe..(k + 1) * npe].iter().map(|p| p.eps_p).sum::<f64>() / npe as f64
+        self.points[k * npe..(k + 1) * npe]
+            .iter()
+            .map(|p| p.eps_p)
+            .sum::<f64>()
+            / npe as f64
     }
 
     /// Elastic strain energy of the current stresses in local element `k`, p²/2K + s:s/4G

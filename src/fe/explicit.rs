@@ -44,7 +44,14 @@ pub struct Settings {
 
 impl Default for Settings {
     fn default() -> Self {
-        Settings { safety: 0.9, hourglass: 0.05, fixed_dt: None, dt_collapse: 1e-3, energy_interval: 100, dt_hysteresis: 0.05 }
+        Settings {
+            safety: 0.9,
+            hourglass: 0.05,
+            fixed_dt: None,
+            dt_collapse: 1e-3,
+            energy_interval: 100,
+            dt_hysteresis: 0.05,
+        }
     }
 }
 
@@ -52,10 +59,18 @@ impl Settings {
     /// Checks every field, naming the bad one.
     pub fn validated(self) -> Result<Self> {
         if !(self.safety > 0.0 && self.safety <= 1.0) {
-            return Err(Error::invalid("solver.safety", self.safety, "0 < safety <= 1"));
+            return Err(Error::invalid(
+                "solver.safety",
+                self.safety,
+                "0 < safety <= 1",
+            ));
         }
         if !(self.hourglass >= 0.0 && self.hourglass <= 0.5) {
-            return Err(Error::invalid("solver.hourglass", self.hourglass, "0 <= hourglass <= 0.5"));
+            return Err(Error::invalid(
+                "solver.hourglass",
+                self.hourglass,
+                "0 <= hourglass <= 0.5",
+            ));
         }
         if let Some(dt) = self.fixed_dt {
             if !(dt > 0.0 && dt.is_finite()) {
@@ -63,13 +78,25 @@ impl Settings {
             }
         }
         if !(self.dt_collapse >= 0.0 && self.dt_collapse < 1.0) {
-            return Err(Error::invalid("solver.dt_collapse", self.dt_collapse, "0 <= dt_collapse < 1"));
+            return Err(Error::invalid(
+                "solver.dt_collapse",
+                self.dt_collapse,
+                "0 <= dt_collapse < 1",
+            ));
         }
         if !(self.dt_hysteresis >= 0.0 && self.dt_hysteresis < 1.0) {
-            return Err(Error::invalid("solver.dt_hysteresis", self.dt_hysteresis, "0 <= dt_hysteresis < 1"));
+            return Err(Error::invalid(
+                "solver.dt_hysteresis",
+                self.dt_hysteresis,
+                "0 <= dt_hysteresis < 1",
+            ));
         }
         if self.energy_interval == 0 {
-            return Err(Error::invalid("solver.energy_interval", 0, "at least 1 step"));
+            return Err(Error::invalid(
+                "solver.energy_interval",
+                0,
+                "at least 1 step",
+            ));
         }
         Ok(self)
     }
@@ -113,10 +140,18 @@ impl Solver {
     ///
     /// Fails if settings are invalid, the model is empty, an element is inverted, or the
     /// initial forces are not finite.
-    pub fn new(model: Model, interactions: Vec<Box<dyn Interaction>>, settings: Settings) -> Result<Self> {
+    pub fn new(
+        model: Model,
+        interactions: Vec<Box<dyn Interaction>>,
+        settings: Settings,
+    ) -> Result<Self> {
         let settings = settings.validated()?;
         if model.hexes.is_empty() {
-            return Err(Error::invalid("model", "0 elements", "at least one part with elements"));
+            return Err(Error::invalid(
+                "model",
+                "0 elements",
+                "at least one part with elements",
+            ));
         }
         let n = model.nodes.len();
         // 1. Initial conditions and lumped mass.
@@ -127,17 +162,32 @@ impl Solver {
             for (k, h) in conn.iter().enumerate() {
                 let xe = h.map(|i| model.nodes[i as usize]);
                 let me = element_lumped_mass(&xe, part.material.rho).map_err(|e| {
-                    Error::Numerical(format!("part {} element {}: {e}", part.name, part.elements.start + k))
+                    Error::Numerical(format!(
+                        "part {} element {}: {e}",
+                        part.name,
+                        part.elements.start + k
+                    ))
                 })?;
                 for (i, m) in h.iter().zip(me) {
                     mass[*i as usize] += m;
                 }
             }
             let mat = J2Material::new(&part.material, part.elastic_only);
-            blocks.push(ElementBlock::new(p, part.elements.start, conn, part.formulation, mat, settings.hourglass));
+            blocks.push(ElementBlock::new(
+                p,
+                part.elements.start,
+                conn,
+                part.formulation,
+                mat,
+                settings.hourglass,
+            ));
         }
-        if let Some(i) = mass.iter().position(|m| !(*m > 0.0)) {
-            return Err(Error::invalid("model.nodes", format!("node {i} belongs to no element"), "every node in an element"));
+        if let Some(i) = mass.iter().position(|m| m.is_nan() || *m <= 0.0) {
+            return Err(Error::invalid(
+                "model.nodes",
+                format!("node {i} belongs to no element"),
+                "every node in an element",
+            ));
         }
         let mut fixed = vec![0u8; n];
         for &(node, axis) in &model.fixed {
@@ -174,7 +224,11 @@ impl Solver {
             dt_next: 0.0,
             dt_initial: 0.0,
             dt_prev: 0.0,
-            stable: StableStep { dt: 0.0, element: None, interaction: None },
+            stable: StableStep {
+                dt: 0.0,
+                element: None,
+                interaction: None,
+            },
             a: vec![[0.0; 3]; n],
             f_int: vec![[0.0; 3]; n],
             f_ext: vec![[0.0; 3]; n],
@@ -228,7 +282,7 @@ impl Solver {
         self.step += 1;
         self.dt_prev = dt;
         // 11. Energy balance check.
-        if self.step % self.settings.energy_interval == 0 {
+        if self.step.is_multiple_of(self.settings.energy_interval) {
             let e = self.energy();
             self.max_balance_error = self.max_balance_error.max(e.balance_error);
         }
@@ -274,12 +328,20 @@ impl Solver {
         }
         self.gather_internal_forces();
         // Critical time step: elements (Courant) and interactions.
-        let mut stable = StableStep { dt: self.settings.safety * best.0, element: Some(best.1), interaction: None };
+        let mut stable = StableStep {
+            dt: self.settings.safety * best.0,
+            element: Some(best.1),
+            interaction: None,
+        };
         for (k, it) in self.interactions.iter().enumerate() {
             if let Some(d) = it.stable_time_step(&self.mass) {
                 let d = self.settings.safety * d;
                 if d < stable.dt {
-                    stable = StableStep { dt: d, element: None, interaction: Some(k) };
+                    stable = StableStep {
+                        dt: d,
+                        element: None,
+                        interaction: Some(k),
+                    };
                 }
             }
         }
@@ -310,7 +372,13 @@ impl Solver {
         for f in &mut self.f_ext {
             *f = [0.0; 3];
         }
-        let ctx = StepContext { t: self.t, dt: self.dt_next, x: &self.x, v: &self.v, mass: &self.mass };
+        let ctx = StepContext {
+            t: self.t,
+            dt: self.dt_next,
+            x: &self.x,
+            v: &self.v,
+            mass: &self.mass,
+        };
         for it in &mut self.interactions {
             it.add_forces(&ctx, &mut self.f_ext)?;
         }
@@ -322,19 +390,22 @@ impl Solver {
         let ef = &self.elem_force;
         let ptr = &self.inc_ptr;
         let inc = &self.inc;
-        self.f_int.par_chunks_mut(NODE_CHUNK).enumerate().for_each(|(c, fs)| {
-            for (k, f) in fs.iter_mut().enumerate() {
-                let n = c * NODE_CHUNK + k;
-                let mut s = [0.0; 3];
-                for &slot in &inc[ptr[n]..ptr[n + 1]] {
-                    let g = ef[slot as usize / 8][slot as usize % 8];
-                    s[0] += g[0];
-                    s[1] += g[1];
-                    s[2] += g[2];
+        self.f_int
+            .par_chunks_mut(NODE_CHUNK)
+            .enumerate()
+            .for_each(|(c, fs)| {
+                for (k, f) in fs.iter_mut().enumerate() {
+                    let n = c * NODE_CHUNK + k;
+                    let mut s = [0.0; 3];
+                    for &slot in &inc[ptr[n]..ptr[n + 1]] {
+                        let g = ef[slot as usize / 8][slot as usize % 8];
+                        s[0] += g[0];
+                        s[1] += g[1];
+                        s[2] += g[2];
+                    }
+                    *f = s;
                 }
-                *f = s;
-            }
-        });
+            });
     }
 
     /// a = M⁻¹ (f_ext − f_int), zero on constrained components; fails on non-finite values.
@@ -349,7 +420,11 @@ impl Solver {
                     let n = c * NODE_CHUNK + k;
                     let r = 1.0 / m[n];
                     for d in 0..3 {
-                        ak[d] = if fx[n] & (1 << d) != 0 { 0.0 } else { (fe[n][d] - fi[n][d]) * r };
+                        ak[d] = if fx[n] & (1 << d) != 0 {
+                            0.0
+                        } else {
+                            (fe[n][d] - fi[n][d]) * r
+                        };
                     }
                     if !ak.iter().all(|v| v.is_finite()) {
                         return Some(n);
@@ -357,11 +432,14 @@ impl Solver {
                 }
                 None
             })
-            .reduce(|| None, |a, b| match (a, b) {
-                (Some(x), Some(y)) => Some(x.min(y)),
-                (x, None) => x,
-                (None, y) => y,
-            });
+            .reduce(
+                || None,
+                |a, b| match (a, b) {
+                    (Some(x), Some(y)) => Some(x.min(y)),
+                    (x, None) => x,
+                    (None, y) => y,
+                },
+            );
         if let Some(n) = bad {
             return Err(Error::Numerical(format!(
                 "node {n} has a non-finite acceleration at t = {:.6e} s, step {}: force blew up \
@@ -373,19 +451,25 @@ impl Solver {
     }
 
     fn partial_velocity_update(&mut self, h: f64) {
-        self.v.par_iter_mut().zip(self.a.par_iter()).for_each(|(v, a)| {
-            v[0] += h * a[0];
-            v[1] += h * a[1];
-            v[2] += h * a[2];
-        });
+        self.v
+            .par_iter_mut()
+            .zip(self.a.par_iter())
+            .for_each(|(v, a)| {
+                v[0] += h * a[0];
+                v[1] += h * a[1];
+                v[2] += h * a[2];
+            });
     }
 
     fn update_positions(&mut self, dt: f64) {
-        self.x.par_iter_mut().zip(self.v.par_iter()).for_each(|(x, v)| {
-            x[0] += dt * v[0];
-            x[1] += dt * v[1];
-            x[2] += dt * v[2];
-        });
+        self.x
+            .par_iter_mut()
+            .zip(self.v.par_iter())
+            .for_each(|(x, v)| {
+                x[0] += dt * v[0];
+                x[1] += dt * v[1];
+                x[2] += dt * v[2];
+            });
     }
 
     /// Power of the internal and external forces with the current velocities, W:
@@ -423,7 +507,10 @@ impl Solver {
     pub fn energy(&self) -> EnergyReport {
         let mut parts: Vec<PartEnergy> = Vec::with_capacity(self.model.parts.len());
         for (p, part) in self.model.parts.iter().enumerate() {
-            let mut pe = PartEnergy { name: part.name.clone(), ..Default::default() };
+            let mut pe = PartEnergy {
+                name: part.name.clone(),
+                ..Default::default()
+            };
             // Central-difference kinetic energy ½ v^{n−1/2}·M v^{n+1/2}
             // = ½ M (|v^n|² − Δt^{n−1/2} Δt^{n+1/2}/4 |a^n|²): with it the discrete energy of
             // a linear elastic system is conserved exactly by the central-difference scheme;
@@ -446,7 +533,11 @@ impl Solver {
             pe.elastic = pe.internal - pe.plastic;
             parts.push(pe);
         }
-        let mut r = EnergyReport { time: self.t, step: self.step, ..Default::default() };
+        let mut r = EnergyReport {
+            time: self.t,
+            step: self.step,
+            ..Default::default()
+        };
         for pe in &parts {
             r.kinetic += pe.kinetic;
             r.kinetic_central += pe.kinetic_central;
@@ -464,12 +555,32 @@ impl Solver {
         }
         r.internal_work = self.w_int;
         r.external_work = self.w_ext;
-        r.total = r.kinetic_central + r.internal + r.hourglass + r.interaction_stored + r.interaction_dissipated;
-        r.initial_total = if self.step == 0 && self.e0 == 0.0 { r.total } else { self.e0 };
-        r.energy_ratio = if r.initial_total > 0.0 { r.total / r.initial_total } else { 1.0 };
+        r.total = r.kinetic_central
+            + r.internal
+            + r.hourglass
+            + r.interaction_stored
+            + r.interaction_dissipated;
+        r.initial_total = if self.step == 0 && self.e0 == 0.0 {
+            r.total
+        } else {
+            self.e0
+        };
+        r.energy_ratio = if r.initial_total > 0.0 {
+            r.total / r.initial_total
+        } else {
+            1.0
+        };
         let e0 = r.initial_total;
-        let scale = r.kinetic.max(self.w_int.abs()).max(self.w_ext.abs()).max(e0);
-        r.balance_error = if scale > 0.0 { (r.kinetic_central + self.w_int - self.w_ext - e0).abs() / scale } else { 0.0 };
+        let scale = r
+            .kinetic
+            .max(self.w_int.abs())
+            .max(self.w_ext.abs())
+            .max(e0);
+        r.balance_error = if scale > 0.0 {
+            (r.kinetic_central + self.w_int - self.w_ext - e0).abs() / scale
+        } else {
+            0.0
+        };
         r.max_balance_error = self.max_balance_error.max(r.balance_error);
         r.parts = parts;
         r
@@ -504,7 +615,11 @@ impl Solver {
             }
         }
         let (inv, det) = inverse(&inertia);
-        let omega = if det > 0.0 { super::tensor::mat_vec(&inv, l) } else { [0.0; 3] };
+        let omega = if det > 0.0 {
+            super::tensor::mat_vec(&inv, l)
+        } else {
+            [0.0; 3]
+        };
         Ok((vc, omega))
     }
 
@@ -574,7 +689,11 @@ impl Solver {
     }
 
     fn locate(&self, e: usize) -> (usize, usize) {
-        let b = self.blocks.iter().position(|b| e >= b.first && e < b.first + b.conn.len()).expect("element index in range");
+        let b = self
+            .blocks
+            .iter()
+            .position(|b| e >= b.first && e < b.first + b.conn.len())
+            .expect("element index in range");
         (b, e - self.blocks[b].first)
     }
 }

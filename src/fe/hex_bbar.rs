@@ -48,10 +48,20 @@ pub fn update(
     mat: &J2Material,
     st: ElementStateMut<'_>,
 ) -> ElementOutput {
-    let ElementStateMut { points, plastic_work, internal_energy, .. } = st;
+    let ElementStateMut {
+        points,
+        plastic_work,
+        internal_energy,
+        ..
+    } = st;
     let half = 0.5 * dt;
-    let xm: [[f64; 3]; 8] =
-        std::array::from_fn(|i| [x1[i][0] - half * v[i][0], x1[i][1] - half * v[i][1], x1[i][2] - half * v[i][2]]);
+    let xm: [[f64; 3]; 8] = std::array::from_fn(|i| {
+        [
+            x1[i][0] - half * v[i][0],
+            x1[i][1] - half * v[i][1],
+            x1[i][2] - half * v[i][2],
+        ]
+    });
     let (gm, jm) = gauss_gradients(&xm);
     let mut ls = [[[0.0; 3]; 3]; 8];
     let mut div_sum = 0.0;
@@ -115,5 +125,10 @@ pub fn update(
         }
     }
     let dt_crit = characteristic_length(x1, vol) / mat.wave_speed;
-    ElementOutput { force, volume: vol, min_jacobian: jmin, dt_crit }
+    ElementOutput {
+        force,
+        volume: vol,
+        min_jacobian: jmin,
+        dt_crit,
+    }
 }

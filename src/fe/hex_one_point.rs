@@ -71,7 +71,11 @@ pub fn mean_gradient(x: &[[f64; 3]; 8]) -> (f64, [[f64; 3]; 8]) {
     let zs: [f64; 8] = std::array::from_fn(|i| x[i][2]);
     let mut b = [[0.0; 3]; 8];
     for (i, p) in FB_PERM.iter().enumerate() {
-        b[i] = [fb_term(&ys, &zs, p), fb_term(&zs, &xs, p), fb_term(&xs, &ys, p)];
+        b[i] = [
+            fb_term(&ys, &zs, p),
+            fb_term(&zs, &xs, p),
+            fb_term(&xs, &ys, p),
+        ];
     }
     let v: f64 = (0..8).map(|i| xs[i] * b[i][0]).sum();
     let r = 1.0 / v;
@@ -104,7 +108,10 @@ pub fn hourglass_gammas(x: &[[f64; 3]; 8], b: &[[f64; 3]; 8]) -> [[f64; 8]; 4] {
 /// Hourglass stiffness k = ε_hg (λ + 2G) V Σ_I |B_I|²/3, N/m.
 #[inline]
 pub fn hourglass_stiffness(coeff: f64, p_modulus: f64, volume: f64, b: &[[f64; 3]; 8]) -> f64 {
-    let bb: f64 = b.iter().map(|v| v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sum();
+    let bb: f64 = b
+        .iter()
+        .map(|v| v[0] * v[0] + v[1] * v[1] + v[2] * v[2])
+        .sum();
     coeff * p_modulus * volume * bb / 3.0
 }
 
@@ -137,11 +144,22 @@ pub fn update(
     hg_coeff: f64,
     st: ElementStateMut<'_>,
 ) -> ElementOutput {
-    let ElementStateMut { points, plastic_work, internal_energy, hourglass, hourglass_energy } = st;
+    let ElementStateMut {
+        points,
+        plastic_work,
+        internal_energy,
+        hourglass,
+        hourglass_energy,
+    } = st;
     let ip = &mut points[0];
     let half = 0.5 * dt;
-    let xm: [[f64; 3]; 8] =
-        std::array::from_fn(|i| [x1[i][0] - half * v[i][0], x1[i][1] - half * v[i][1], x1[i][2] - half * v[i][2]]);
+    let xm: [[f64; 3]; 8] = std::array::from_fn(|i| {
+        [
+            x1[i][0] - half * v[i][0],
+            x1[i][1] - half * v[i][1],
+            x1[i][2] - half * v[i][2],
+        ]
+    });
     let (vm, bm) = mean_gradient(&xm);
     // Velocity gradient L_ij = Σ_I v_Ii B_Ij on the mid-step configuration.
     let mut l = [[0.0; 3]; 3];
@@ -197,7 +215,12 @@ pub fn update(
         *hourglass_energy += e;
     }
     let dt_crit = characteristic_length(x1, v1) / mat.wave_speed;
-    ElementOutput { force, volume: v1, min_jacobian: v1, dt_crit }
+    ElementOutput {
+        force,
+        volume: v1,
+        min_jacobian: v1,
+        dt_crit,
+    }
 }
 
 #[cfg(test)]
@@ -207,7 +230,12 @@ mod tests {
 
     fn distorted() -> [[f64; 3]; 8] {
         let mut x = NODE_XI.map(|p| p.map(|c| 0.5 * (c + 1.0)));
-        let bumps = [[0.05, -0.02, 0.03], [0.1, 0.04, -0.05], [-0.03, 0.12, 0.02], [0.02, -0.06, 0.08]];
+        let bumps = [
+            [0.05, -0.02, 0.03],
+            [0.1, 0.04, -0.05],
+            [-0.03, 0.12, 0.02],
+            [0.02, -0.06, 0.08],
+        ];
         for (i, b) in bumps.iter().enumerate() {
             for k in 0..3 {
                 x[2 * i + 1][k] += b[k];

@@ -3,6 +3,8 @@
 //! Reading order: [`explicit`] (the Box 6.1 loop) calls [`elements`] (the element loop) which
 //! calls the kernels [`hex_one_point`] and [`hex_bbar`]; those use [`shape`], [`objective`]
 //! and [`plasticity`]. [`model`] builds the input, [`energy`] reports the balance.
+// Index loops mirror the index notation of the formulas (σ_ij B_Ij, ...): keep them.
+#![allow(clippy::needless_range_loop)]
 pub mod elements;
 pub mod energy;
 pub mod explicit;

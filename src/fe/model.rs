@@ -77,7 +77,11 @@ impl Model {
     ) -> Result<usize> {
         let material = material.validated(&format!("{name}.material"))?;
         if mesh.hexes.is_empty() {
-            return Err(Error::invalid(format!("{name}.mesh"), "0 elements", "at least one hexahedron"));
+            return Err(Error::invalid(
+                format!("{name}.mesh"),
+                "0 elements",
+                "at least one hexahedron",
+            ));
         }
         let n0 = self.nodes.len();
         let e0 = self.hexes.len();
@@ -92,8 +96,10 @@ impl Model {
             }
         }
         self.nodes.extend_from_slice(&mesh.nodes);
-        self.velocity.extend(std::iter::repeat([0.0; 3]).take(mesh.nodes.len()));
-        self.hexes.extend(mesh.hexes.iter().map(|h| h.map(|i| i + off)));
+        self.velocity
+            .extend(std::iter::repeat_n([0.0; 3], mesh.nodes.len()));
+        self.hexes
+            .extend(mesh.hexes.iter().map(|h| h.map(|i| i + off)));
         let shift4 = |q: &[u32; 4]| q.map(|i| i + off);
         self.parts.push(Part {
             name: name.to_string(),
@@ -107,7 +113,11 @@ impl Model {
                 .iter()
                 .map(|(k, v)| (k.clone(), v.iter().map(|i| i + off).collect()))
                 .collect(),
-            face_sets: mesh.face_sets.iter().map(|(k, v)| (k.clone(), v.iter().map(shift4).collect())).collect(),
+            face_sets: mesh
+                .face_sets
+                .iter()
+                .map(|(k, v)| (k.clone(), v.iter().map(shift4).collect()))
+                .collect(),
             boundary: mesh.boundary.iter().map(shift4).collect(),
         });
         Ok(self.parts.len() - 1)
@@ -134,7 +144,13 @@ impl Model {
 
     /// Sets the initial velocity of every node of `part` to the rigid field
     /// v = v0 + ω × (x − centre) (m/s, rad/s, m).
-    pub fn set_rigid_velocity(&mut self, part: usize, v0: [f64; 3], omega: [f64; 3], centre: [f64; 3]) -> Result<()> {
+    pub fn set_rigid_velocity(
+        &mut self,
+        part: usize,
+        v0: [f64; 3],
+        omega: [f64; 3],
+        centre: [f64; 3],
+    ) -> Result<()> {
         let range = self.part(part)?.nodes.clone();
         for n in range {
             let r = [0, 1, 2].map(|k| self.nodes[n][k] - centre[k]);
@@ -145,7 +161,11 @@ impl Model {
     }
 
     /// Sets the initial velocity of every node of `part` from a field `f(x)` (m/s).
-    pub fn set_velocity_field(&mut self, part: usize, f: impl Fn([f64; 3]) -> [f64; 3]) -> Result<()> {
+    pub fn set_velocity_field(
+        &mut self,
+        part: usize,
+        f: impl Fn([f64; 3]) -> [f64; 3],
+    ) -> Result<()> {
         let range = self.part(part)?.nodes.clone();
         for n in range {
             self.velocity[n] = f(self.nodes[n]);
@@ -163,6 +183,8 @@ impl Model {
     /// Mutable access to part `p` (e.g. to set `elastic_only`).
     pub fn part_mut(&mut self, p: usize) -> Result<&mut Part> {
         let n = self.parts.len();
-        self.parts.get_mut(p).ok_or_else(|| Error::invalid("part", p, format!("0..{n}")))
+        self.parts
+            .get_mut(p)
+            .ok_or_else(|| Error::invalid("part", p, format!("0..{n}")))
     }
 }
