@@ -1,0 +1,514 @@
+//! Conforming all-hex meshes of a ball, graded toward the contact pole (+R, 0, 0).
+//!
+//! Construction (see docs/design.md, section 3). The sphere inversion
+//! `X = Q + 4R^2 (Y - Q) / |Y - Q|^2` about the antipode Q = (-R, 0, 0) fixes the pole
+//! P = (R, 0, 0) and maps the half-ball `|Y - P| <= 2R, Y_x >= R` exactly onto the front half
+//! `x >= 0` of the ball: the flat face onto the front hemisphere of the surface, the dome onto
+//! the equatorial disk x = 0, and spheres centred on P onto spheres that meet the ball surface
+//! at right angles. The half-ball is meshed as an O-grid centred on P: a half-cube core of
+//! cells of the pole size, wrapped by spherical layers that grow geometrically (ratio about
+//! 1 + pi/(2n) for n cells along a cube edge), so every layer has the same number of cells.
+//! The refinement therefore stays local to the pole in all three directions instead of
+//! spreading along grid lines, and the element count grows only with log(R / h_pole). The
+//! inversion is conformal, so cube-like cells stay cube-like. The back half is the mirror image
+//! of the same construction without pole refinement; both halves put identical nodes on the
+//! disk x = 0, so the mesh is conforming with no hanging nodes.
+
+use super::{topology::boundary_faces, Mesh};
+use crate::error::{Error, Result};
+use std::collections::BTreeMap;
+use std::f64::consts::PI;
+
+/// Polar half-angle (degrees, measured from +x at the ball centre) of the contact-candidate
+/// patch. A 2 m/s copper impact of 20 mm balls has a contact radius under 1 mm (about 6
+/// degrees); 30 degrees leaves ample room for larger, softer or faster impacts.
+pub const CONTACT_HALF_ANGLE_DEG: f64 = 30.0;
+
+/// Largest element count the mesher will build (a guard against typing 1e-6 for the size).
+pub const MAX_ELEMENTS: usize = 4_000_000;
+
+/// Which part of the ball to mesh, for solvers that exploit symmetry of a collision along x.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Cut {
+    /// The whole ball.
+    Full,
+    /// z >= 0: the plane z = 0 contains the impact axis x and the tangential direction y.
+    Half,
+    /// y >= 0 and z >= 0: two orthogonal planes through the impact axis.
+    Quarter,
+}
+
+impl std::str::FromStr for Cut {
+    type Err = Error;
+    fn from_str(s: &str) -> Result<Cut> {
+        match s {
+            "full" => Ok(Cut::Full),
+            "half" => Ok(Cut::Half),
+            "quarter" => Ok(Cut::Quarter),
+            _ => Err(Error::invalid("cut", s, "one of full, half, quarter")),
+        }
+    }
+}
+
+/// What to mesh. Lengths in metres.
+#[derive(Debug, Clone, PartialEq)]
+pub struct BallSpec {
+    /// Ball diameter D, m.
+    pub diameter: f64,
+    /// Far-field element size h, m (element edges lie between about h/2 and 1.6 h away from
+    /// the pole).
+    pub size: f64,
+    /// Element size at the contact pole, m; `None` meshes the ball uniformly (pole size = h).
+    pub pole_size: Option<f64>,
+    /// Full ball or a symmetric part.
+    pub cut: Cut,
+}
+
+/// Meshes a ball of diameter `spec.diameter` centred at the origin with 8-node hexahedra,
+/// refined toward the pole (+R, 0, 0).
+///
+/// Node sets: `surface` (nodes on the sphere), `contact` (surface nodes within
+/// [`CONTACT_HALF_ANGLE_DEG`] of +x), `sym_y` / `sym_z` (nodes on the cut planes y = 0 /
+/// z = 0, empty when that plane is not a cut). Face sets with the same names hold outward
+/// quads: `surface` is the spherical boundary only, `contact` the surface quads whose four
+/// nodes are all in the contact set. `Mesh::boundary` holds every boundary quad, cut planes
+/// included. Output is deterministic.
+///
+/// Errors: non-finite or non-positive sizes, `size` above the radius, `pole_size` above
+/// `size` or below `size / 10^4`, or more than [`MAX_ELEMENTS`] elements.
+pub fn ball(spec: &BallSpec) -> Result<Mesh> {
+    let d = spec.diameter;
+    if !(d.is_finite() && d > 0.0) {
+        return Err(Error::invalid("diameter", d, "a finite length > 0 m"));
+    }
+    let r = 0.5 * d;
+    let h = spec.size;
+    if !(h.is_finite() && h > 0.0 && h <= r) {
+        return Err(Error::invalid(
+            "size",
+            h,
+            format!("0 < size <= radius = {r} m"),
+        ));
+    }
+    let h0 = spec.pole_size.unwrap_or(h);
+    if !(h0.is_finite() && h0 <= h && h0 >= h * 1e-4) {
+        return Err(Error::invalid(
+            "pole_size",
+            h0,
+            format!("size/1e4 <= pole_size <= size = {h} m"),
+        ));
+    }
+    // Cells along a core edge: the disk x = 0 gets 4n cells of about pi R / (2n) <= h/2
+    // around its rim, and no element edge away from the pole exceeds about 0.6 h. Even, so
+    // that grid planes lie on y = 0 and z = 0.
+    let n_raw = (PI * r / h * (1.0 - 1e-9)).ceil().max(4.0);
+    if n_raw > 2000.0 {
+        return Err(Error::invalid(
+            "size",
+            h,
+            format!("size >= radius / 600 = {} m", r / 600.0),
+        ));
+    }
+    let n = (n_raw as usize).div_ceil(2) * 2;
+    // Surface facet size at the rim of the disk x = 0; the unrefined parts use it everywhere.
+    let facet = PI * r / (2.0 * n as f64);
+    let front = match spec.pole_size {
+        Some(p) if p < facet => Plan::refined(r, n, p),
+        _ => Plan::uniform(r, n, facet),
+    };
+    let back = Plan::uniform(r, n, facet);
+    let estimate = front.elements() + back.elements();
+    if estimate > MAX_ELEMENTS {
+        return Err(Error::invalid(
+            "size",
+            h,
+            format!("a size giving at most {MAX_ELEMENTS} elements (this one gives {estimate})"),
+        ));
+    }
+    let mut mesh = Mesh::default();
+    let dome = front.build(&mut mesh, false, None);
+    back.build(&mut mesh, true, Some(&dome));
+    let mesh = cut(mesh, spec.cut, r);
+    Ok(with_sets(mesh, spec.cut, r))
+}
+
+/// Spacing function of the core grid on [-1, 1]: a blend of uniform (gnomonic) and tangent
+/// (equiangular) spacing. Pure tangent spacing makes the outer core cells twice as deep as the
+/// first spherical layer; the blend keeps that jump near the 1.3 target while keeping the
+/// angular cell size on the sphere within a factor of about 1.5.
+fn spacing(s: f64) -> f64 {
+    (1.0 - SPACING_BLEND) * s + SPACING_BLEND * (0.25 * PI * s).tan()
+}
+
+/// Weight of tangent spacing in [`spacing`].
+const SPACING_BLEND: f64 = 0.25;
+
+/// Slope of [`spacing`] at 0: the angular cell size at a core face centre is `spacing'(0) 2/n`.
+fn spacing_slope0() -> f64 {
+    1.0 - SPACING_BLEND + SPACING_BLEND * 0.25 * PI
+}
+
+/// How far the core surface is rounded toward a sphere (0 = flat cube faces, 1 = sphere);
+/// the remaining rounding is spread over the spherical layers.
+const CORE_ROUNDING: f64 = 0.5;
+
+/// Geometry of one O-grid half-ball in local coordinates (u inward from the pole, v, w).
+struct Plan {
+    /// Ball radius, m.
+    r: f64,
+    /// Cells along a core edge (even); the core has n/2 cells in depth.
+    n: usize,
+    /// Core half-width, m.
+    a: f64,
+    /// Number of spherical layers.
+    layers: usize,
+}
+
+impl Plan {
+    /// Unrefined half-ball: core cells at the face centres of size `cell` (m).
+    fn uniform(r: f64, n: usize, cell: f64) -> Plan {
+        Plan::with_core(r, n, cell * n as f64 / (2.0 * spacing_slope0()))
+    }
+
+    /// Half-ball refined at the pole: the shortest core edge is `h_pole` (m).
+    fn refined(r: f64, n: usize, h_pole: f64) -> Plan {
+        let m = n / 2;
+        let mut shortest = f64::INFINITY;
+        for k in 0..=n {
+            for j in 0..=n {
+                for i in 0..=m {
+                    let p = core_point(i, j, k, n, 1.0);
+                    for (di, dj, dk) in [(1, 0, 0), (0, 1, 0), (0, 0, 1)] {
+                        if i + di <= m && j + dj <= n && k + dk <= n {
+                            let q = core_point(i + di, j + dj, k + dk, n, 1.0);
+                            let e = [0, 1, 2].map(|c| q[c] - p[c]);
+                            shortest =
+                                shortest.min((e[0] * e[0] + e[1] * e[1] + e[2] * e[2]).sqrt());
+                        }
+                    }
+                }
+            }
+        }
+        Plan::with_core(r, n, h_pole / shortest)
+    }
+
+    fn with_core(r: f64, n: usize, a: f64) -> Plan {
+        // Never bigger than fits comfortably inside the dome radius 2R.
+        let a = a.min(1.25 * r);
+        // Layers grow like the angular cell size so that cells stay cube-like; the ratio
+        // never exceeds 1.3.
+        let q_ideal = 1.0 + spacing_slope0() * 2.0 / n as f64;
+        let span = (2.0 * r / a).ln();
+        let layers = ((span / q_ideal.ln()).round() as usize)
+            .max((span / 1.3f64.ln()).ceil() as usize)
+            .max(1);
+        Plan { r, n, a, layers }
+    }
+
+    fn elements(&self) -> usize {
+        let n = self.n;
+        let m = n / 2;
+        m * n * n + self.layers * (n * n + 4 * n * m)
+    }
+
+    /// Appends this half-ball's nodes and hexes to `mesh`. The front half (`mirror` false)
+    /// is refined at P; the back half is its reflection in x = 0. `dome` (the front's dome
+    /// node ids, by pattern index) makes the back reuse the front's nodes on x = 0. Returns
+    /// this half's dome node ids.
+    fn build(&self, mesh: &mut Mesh, mirror: bool, dome: Option<&[u32]>) -> Vec<u32> {
+        let (n, m, a, r) = (self.n, self.n / 2, self.a, self.r);
+        let id = |i: usize, j: usize, k: usize| i + (m + 1) * (j + (n + 1) * k);
+        let cube = |i: usize, j: usize, k: usize| cube_point(i, j, k, n);
+        let mut local = vec![[0.0; 3]; (m + 1) * (n + 1) * (n + 1)];
+        for k in 0..=n {
+            for j in 0..=n {
+                for i in 0..=m {
+                    local[id(i, j, k)] = core_point(i, j, k, n, a);
+                }
+            }
+        }
+        let mut core = Vec::with_capacity(m * n * n);
+        for k in 0..n {
+            for j in 0..n {
+                for i in 0..m {
+                    core.push(
+                        [
+                            id(i, j, k),
+                            id(i + 1, j, k),
+                            id(i + 1, j + 1, k),
+                            id(i, j + 1, k),
+                            id(i, j, k + 1),
+                            id(i + 1, j, k + 1),
+                            id(i + 1, j + 1, k + 1),
+                            id(i, j + 1, k + 1),
+                        ]
+                        .map(|x| x as u32),
+                    );
+                }
+            }
+        }
+        // Outer core faces (all but the flat face u = 0 on the ball surface), outward.
+        let on_flat = |c: u32| (c as usize).is_multiple_of(m + 1);
+        let outer: Vec<[u32; 4]> = boundary_faces(&core)
+            .into_iter()
+            .filter(|q| !q.iter().all(|&c| on_flat(c)))
+            .collect();
+        // Pattern nodes: the core surface nodes the layers grow from, in first-seen order.
+        let mut pattern_of = vec![usize::MAX; local.len()];
+        let mut pattern = Vec::new();
+        for q in &outer {
+            for &c in q {
+                if pattern_of[c as usize] == usize::MAX {
+                    pattern_of[c as usize] = pattern.len();
+                    pattern.push(c as usize);
+                }
+            }
+        }
+        // Layer l node on pattern ray p: radius s_l |t_p|^(beta_l), s_l geometric from a to
+        // 2R, beta_l from (1 - rounding) to 0 (sphere of radius 2R at the dome).
+        let big_l = self.layers;
+        let beta0 = 1.0 - CORE_ROUNDING;
+        let n_core = local.len();
+        let mut shell = Vec::with_capacity(pattern.len() * big_l);
+        for l in 1..=big_l {
+            let frac = l as f64 / big_l as f64;
+            let s = a * (2.0 * r / a).powf(frac);
+            let beta = beta0 * (1.0 - frac);
+            for &c in &pattern {
+                let (i, j, k) = (
+                    c % (m + 1),
+                    (c / (m + 1)) % (n + 1),
+                    c / ((m + 1) * (n + 1)),
+                );
+                let t = cube(i, j, k);
+                let len = (t[0] * t[0] + t[1] * t[1] + t[2] * t[2]).sqrt();
+                let rad = if l == big_l {
+                    2.0 * r
+                } else {
+                    s * len.powf(beta)
+                };
+                shell.push(t.map(|x| x / len * rad));
+            }
+        }
+        // Map to the ball. Node ids: core, then layers; dome nodes may be shared.
+        let base = mesh.nodes.len() as u32;
+        let np = pattern.len();
+        let dome_start = n_core + (big_l - 1) * np;
+        let mut global = Vec::with_capacity(n_core + shell.len());
+        let mut next = base;
+        for (loc_id, y) in local.iter().chain(shell.iter()).enumerate() {
+            if loc_id >= dome_start {
+                if let Some(shared) = dome {
+                    global.push(shared[loc_id - dome_start]);
+                    continue;
+                }
+            }
+            let mut x = invert(*y, r);
+            if loc_id < n_core && on_flat(loc_id as u32) {
+                // Exactly on the sphere (the flat face maps onto it).
+                let len = (x[0] * x[0] + x[1] * x[1] + x[2] * x[2]).sqrt();
+                x = x.map(|c| c * r / len);
+            }
+            if loc_id >= dome_start {
+                x[0] = 0.0; // the dome maps onto the plane x = 0
+            }
+            if mirror {
+                x[0] = -x[0];
+            }
+            mesh.nodes.push(x);
+            global.push(next);
+            next += 1;
+        }
+        let layer_node = |l: usize, c: u32| -> u32 {
+            if l == 0 {
+                global[c as usize]
+            } else {
+                global[n_core + (l - 1) * np + pattern_of[c as usize]]
+            }
+        };
+        let start = mesh.hexes.len();
+        for h in &core {
+            mesh.hexes.push(h.map(|c| global[c as usize]));
+        }
+        for q in &outer {
+            for l in 1..=big_l {
+                let b = q.map(|c| layer_node(l - 1, c));
+                let t = q.map(|c| layer_node(l, c));
+                mesh.hexes
+                    .push([b[0], b[1], b[2], b[3], t[0], t[1], t[2], t[3]]);
+            }
+        }
+        // The inversion reverses orientation (and the mirror reverses it back): restore
+        // positive Jacobians by reversing the node order where needed.
+        let p0 = super::quality::hex_points(mesh, &mesh.hexes[start]);
+        if super::quality::hex_volume(&p0) < 0.0 {
+            for h in &mut mesh.hexes[start..] {
+                *h = [h[0], h[3], h[2], h[1], h[4], h[7], h[6], h[5]];
+            }
+        }
+        (0..np).map(|p| global[dome_start + p]).collect()
+    }
+}
+
+/// Grid point (i, j, k) of the unit half-cube [0, 1] x [-1, 1]^2 with n/2 x n x n cells,
+/// spaced by [`spacing`].
+fn cube_point(i: usize, j: usize, k: usize, n: usize) -> [f64; 3] {
+    [
+        spacing(2.0 * i as f64 / n as f64),
+        spacing(-1.0 + 2.0 * j as f64 / n as f64),
+        spacing(-1.0 + 2.0 * k as f64 / n as f64),
+    ]
+}
+
+/// Core node (local coordinates, m) of a half-cube of half-width `a`, rounded toward a
+/// sphere: each grid point is pulled in along its ray by (|t| / max|t_i|)^(-rounding max|t_i|),
+/// which leaves the centre alone and turns the cube surface into r = a |t|^(1 - rounding).
+fn core_point(i: usize, j: usize, k: usize, n: usize, a: f64) -> [f64; 3] {
+    let t = cube_point(i, j, k, n);
+    let mx = t.iter().fold(0.0f64, |s, x| s.max(x.abs()));
+    let f = if mx > 0.0 {
+        let c = (t[0] * t[0] + t[1] * t[1] + t[2] * t[2]).sqrt() / mx;
+        a * c.powf(-CORE_ROUNDING * mx)
+    } else {
+        a
+    };
+    t.map(|x| x * f)
+}
+
+/// Sphere inversion about the antipode Q = (-R, 0, 0) with radius 2R, applied to the local
+/// point (u, v, w) = Y - P: maps the half-ball around P onto the front half of the ball.
+fn invert(y: [f64; 3], r: f64) -> [f64; 3] {
+    let d = [2.0 * r + y[0], y[1], y[2]];
+    let f = 4.0 * r * r / (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+    [-r + f * d[0], f * d[1], f * d[2]]
+}
+
+/// Keeps the elements on the kept side of the cut planes and renumbers the nodes in their
+/// original order. Nodes within 1e-12 R of a cut plane are put exactly on it.
+fn cut(mesh: Mesh, cut: Cut, r: f64) -> Mesh {
+    let (keep_y, keep_z) = match cut {
+        Cut::Full => return finish(mesh),
+        Cut::Half => (false, true),
+        Cut::Quarter => (true, true),
+    };
+    let centroid =
+        |h: &[u32; 8], a: usize| h.iter().map(|&i| mesh.nodes[i as usize][a]).sum::<f64>();
+    let hexes: Vec<[u32; 8]> = mesh
+        .hexes
+        .iter()
+        .filter(|h| (!keep_y || centroid(h, 1) > 0.0) && (!keep_z || centroid(h, 2) > 0.0))
+        .copied()
+        .collect();
+    let mut used = vec![u32::MAX; mesh.nodes.len()];
+    let mut nodes = Vec::new();
+    let tol = 1e-12 * r;
+    let mut hexes_out = Vec::with_capacity(hexes.len());
+    for h in &hexes {
+        hexes_out.push(h.map(|i| {
+            if used[i as usize] == u32::MAX {
+                used[i as usize] = nodes.len() as u32;
+                let mut p = mesh.nodes[i as usize];
+                for c in p.iter_mut().skip(1) {
+                    if c.abs() <= tol {
+                        *c = 0.0;
+                    }
+                }
+                nodes.push(p);
+            }
+            used[i as usize]
+        }));
+    }
+    finish(Mesh {
+        nodes,
+        hexes: hexes_out,
+        ..Default::default()
+    })
+}
+
+fn finish(mut mesh: Mesh) -> Mesh {
+    mesh.boundary = boundary_faces(&mesh.hexes);
+    mesh
+}
+
+/// Adds the node and face sets (see [`ball`]).
+fn with_sets(mut mesh: Mesh, cut: Cut, r: f64) -> Mesh {
+    let on_plane = |q: &[u32; 4], a: usize| q.iter().all(|&i| mesh.nodes[i as usize][a] == 0.0);
+    let (cut_y, cut_z) = match cut {
+        Cut::Full => (false, false),
+        Cut::Half => (false, true),
+        Cut::Quarter => (true, true),
+    };
+    let mut faces: BTreeMap<String, Vec<[u32; 4]>> = BTreeMap::new();
+    for name in ["surface", "contact", "sym_y", "sym_z"] {
+        faces.insert(name.into(), Vec::new());
+    }
+    let cos_c = CONTACT_HALF_ANGLE_DEG.to_radians().cos();
+    let in_contact = |i: u32| {
+        let p = mesh.nodes[i as usize];
+        p[0] >= cos_c * r * (1.0 - 1e-12)
+    };
+    for q in &mesh.boundary {
+        if cut_y && on_plane(q, 1) {
+            faces.get_mut("sym_y").unwrap().push(*q);
+        } else if cut_z && on_plane(q, 2) {
+            faces.get_mut("sym_z").unwrap().push(*q);
+        } else {
+            faces.get_mut("surface").unwrap().push(*q);
+            if q.iter().all(|&i| in_contact(i)) {
+                faces.get_mut("contact").unwrap().push(*q);
+            }
+        }
+    }
+    let nodes_of = |qs: &[[u32; 4]]| {
+        let mut v: Vec<u32> = qs.iter().flatten().copied().collect();
+        v.sort_unstable();
+        v.dedup();
+        v
+    };
+    let mut sets = BTreeMap::new();
+    let surface = nodes_of(&faces["surface"]);
+    sets.insert(
+        "contact".to_string(),
+        surface.iter().copied().filter(|&i| in_contact(i)).collect(),
+    );
+    sets.insert("surface".to_string(), surface);
+    sets.insert("sym_y".to_string(), nodes_of(&faces["sym_y"]));
+    sets.insert("sym_z".to_string(), nodes_of(&faces["sym_z"]));
+    mesh.node_sets = sets;
+    mesh.face_sets = faces;
+    mesh
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn inversion_maps_the_half_ball_onto_the_front_half() {
+        let r = 0.01;
+        // Pole fixed, flat face onto the sphere, dome onto x = 0.
+        assert_eq!(invert([0.0, 0.0, 0.0], r), [r, 0.0, 0.0]);
+        for (v, w) in [(0.003, 0.0), (0.01, -0.007), (0.0, 0.02)] {
+            let x = invert([0.0, v, w], r);
+            let len = (x[0] * x[0] + x[1] * x[1] + x[2] * x[2]).sqrt();
+            assert!((len - r).abs() < 1e-15, "{x:?}");
+        }
+        let d = [0.3f64, -0.5, 0.2];
+        let l = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
+        let x = invert(d.map(|c| c / l * 2.0 * r), r);
+        assert!(x[0].abs() < 1e-15, "{x:?}");
+    }
+
+    #[test]
+    fn refined_core_has_the_requested_shortest_edge_before_mapping() {
+        let plan = Plan::refined(0.01, 16, 1e-4);
+        let mut shortest = f64::INFINITY;
+        for j in 0..16 {
+            let p = core_point(0, j, 8, 16, plan.a);
+            let q = core_point(0, j + 1, 8, 16, plan.a);
+            shortest = shortest.min((q[1] - p[1]).abs());
+        }
+        assert!(shortest >= 1e-4 * (1.0 - 1e-12), "{shortest}");
+        assert!(plan.layers > 10, "{}", plan.layers);
+    }
+}
