@@ -67,12 +67,13 @@ pub struct BallSpec {
 /// Meshes a ball of diameter `spec.diameter` centred at the origin with 8-node hexahedra,
 /// refined toward the pole (+R, 0, 0).
 ///
-/// Node sets: `surface` (nodes on the sphere), `contact` (surface nodes within
-/// [`CONTACT_HALF_ANGLE_DEG`] of +x), `sym_y` / `sym_z` (nodes on the cut planes y = 0 /
-/// z = 0, empty when that plane is not a cut). Face sets with the same names hold outward
-/// quads: `surface` is the spherical boundary only, `contact` the surface quads whose four
-/// nodes are all in the contact set. `Mesh::boundary` holds every boundary quad, cut planes
-/// included. Output is deterministic.
+/// Face sets (outward quads): `surface` (the spherical boundary only), `contact` (surface
+/// quads with at least one node within [`CONTACT_HALF_ANGLE_DEG`] of +x, seen from the
+/// centre), `sym_y` / `sym_z` (quads on the cut planes y = 0 / z = 0, empty when that plane is
+/// not a cut). Each node set is the node set of the face set of the same name, so `contact`
+/// holds every surface node within the contact angle plus the ring just outside it, and a
+/// mesh written to `.msh` and read back keeps its sets. `Mesh::boundary` holds every boundary
+/// quad, cut planes included. Output is deterministic.
 ///
 /// Errors: non-finite or non-positive sizes, `size` above the radius, `pole_size` above
 /// `size` or below `size / 10^4`, or more than [`MAX_ELEMENTS`] elements.
@@ -454,7 +455,7 @@ fn with_sets(mut mesh: Mesh, cut: Cut, r: f64) -> Mesh {
             faces.get_mut("sym_z").unwrap().push(*q);
         } else {
             faces.get_mut("surface").unwrap().push(*q);
-            if q.iter().all(|&i| in_contact(i)) {
+            if q.iter().any(|&i| in_contact(i)) {
                 faces.get_mut("contact").unwrap().push(*q);
             }
         }
@@ -467,10 +468,7 @@ fn with_sets(mut mesh: Mesh, cut: Cut, r: f64) -> Mesh {
     };
     let mut sets = BTreeMap::new();
     let surface = nodes_of(&faces["surface"]);
-    sets.insert(
-        "contact".to_string(),
-        surface.iter().copied().filter(|&i| in_contact(i)).collect(),
-    );
+    sets.insert("contact".to_string(), nodes_of(&faces["contact"]));
     sets.insert("surface".to_string(), surface);
     sets.insert("sym_y".to_string(), nodes_of(&faces["sym_y"]));
     sets.insert("sym_z".to_string(), nodes_of(&faces["sym_z"]));
