@@ -189,7 +189,8 @@ fn run_gmsh(g: GmshArgs) -> Result<()> {
     }
     let s = summary(&loaded.mesh);
     let flux = boundary_flux(&loaded.mesh);
-    if !(s.volume > 0.0) || (flux - 3.0 * s.volume).abs() > 1e-6 * 3.0 * s.volume {
+    let closed = s.volume > 0.0 && (flux - 3.0 * s.volume).abs() <= 1e-6 * 3.0 * s.volume;
+    if !closed {
         cleanup();
         return Err(Error::Numerical(format!(
             "gmsh mesh of {} has an open or inconsistently oriented boundary (surface integral \

@@ -526,7 +526,7 @@ fn read_elements22(c: &mut Cur, binary: bool, raw: &mut Raw) -> Result<()> {
         let t = c.int(true, "element type")?;
         let n = c.int(true, "elements following")?;
         let ntags = c.int(true, "number of element tags")?;
-        if n <= 0 || ntags < 0 || ntags > 64 {
+        if n <= 0 || !(0..=64).contains(&ntags) {
             return Err(c.err(format!(
                 "bad binary element header ({n} elements, {ntags} tags)"
             )));
