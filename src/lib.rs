@@ -14,6 +14,8 @@ pub mod error;
 pub mod fe;
 pub mod material;
 pub mod mesh;
+pub mod scene;
+pub mod study;
 
 pub use error::{Error, Result};
 pub use material::Material;

@@ -5,6 +5,7 @@
 
 mod analytic;
 mod mesh;
+mod sweep;
 
 use clap::{Parser, Subcommand};
 
@@ -28,6 +29,8 @@ pub enum Command {
     Parametric(analytic::ParametricArgs),
     /// Ball meshes: generate, check, run gmsh.
     Mesh(mesh::MeshArgs),
+    /// A parameter sweep (e.g. the paper's ANSYS study): resumable, shardable, one CSV.
+    Sweep(sweep::SweepArgs),
 }
 
 /// Runs the command line and returns the process exit code.
@@ -45,6 +48,7 @@ pub fn main() -> i32 {
         Command::Materials(a) => analytic::run_materials(a),
         Command::Parametric(a) => analytic::run_parametric(a),
         Command::Mesh(a) => mesh::run(a),
+        Command::Sweep(a) => sweep::run(a),
     };
     match result {
         Ok(()) => 0,

@@ -1,0 +1,301 @@
+//! The paper's parametric studies (Figures 11–14): the energy dissipation factor against
+//! density, dynamic friction coefficient, elastic modulus (per modulus ratio) and yield strength
+//! (per yield ratio), written as CSV and SVG.
+//!
+//! Base case (docs/design.md, section 2): two Table 1 copper balls, D = 20 mm, left ball
+//! v_n1 = +1 m/s, right ball v_n2 = −1 m/s (the FE study's set-up), no tangential speed unless
+//! the figure varies it; η is eq. 43 (equal to eq. 33 when there is no tangential speed).
+
+use super::body::Body;
+use super::collision::collide_with_mu;
+use crate::error::{Error, Result};
+use crate::material::Material;
+use std::path::Path;
+
+/// One figure: an x grid and a family of η curves on it.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Figure {
+    /// File stem, e.g. `fig11_density`.
+    pub name: &'static str,
+    /// Plot title.
+    pub title: &'static str,
+    /// x-axis label with unit, for the plot.
+    pub x_label: &'static str,
+    /// x column header with unit, for the CSV.
+    pub x_column: &'static str,
+    /// Multiplier from SI x values to plotted/CSV units (e.g. 1e-9 for GPa).
+    pub x_scale: f64,
+    /// x values, SI.
+    pub x: Vec<f64>,
+    /// (legend / CSV column suffix, η values) per curve.
+    pub curves: Vec<(String, Vec<f64>)>,
+}
+
+/// Diameter of both balls in the base case, m.
+pub const BASE_DIAMETER: f64 = 0.02;
+/// Normal speeds of the base case, m/s (left ball, right ball).
+pub const BASE_SPEEDS: (f64, f64) = (1.0, -1.0);
+
+fn base_material() -> Result<Material> {
+    Material::preset("copper")
+}
+
+/// η (eq. 43) of two balls with the base diameter.
+fn eta(m1: &Material, m2: &Material, v1: [f64; 2], v2: [f64; 2], mu: f64) -> Result<f64> {
+    let b1 = Body::ball(*m1, BASE_DIAMETER, "ball1")?;
+    let b2 = Body::ball(*m2, BASE_DIAMETER, "ball2")?;
+    Ok(collide_with_mu(&b1, &b2, v1, v2, mu)?.eta_friction)
+}
+
+/// `n` evenly spaced values from a to b inclusive.
+fn grid(a: f64, b: f64, n: usize) -> Vec<f64> {
+    (0..n)
+        .map(|i| a + (b - a) * i as f64 / (n - 1) as f64)
+        .collect()
+}
+
+/// Figure 11: η against density 4000–12000 kg/m³ (both balls), left-ball speed 1.0 and
+/// 0.1 m/s, right ball −1 m/s.
+pub fn figure11() -> Result<Figure> {
+    let base = base_material()?;
+    let x = grid(4000.0, 12000.0, 41);
+    let mut curves = vec![];
+    for v in [1.0, 0.1] {
+        let ys = x
+            .iter()
+            .map(|&rho| {
+                let m = Material { rho, ..base }.validated("material")?;
+                eta(&m, &m, [v, 0.0], [BASE_SPEEDS.1, 0.0], m.mu)
+            })
+            .collect::<Result<Vec<_>>>()?;
+        curves.push((format!("left ball {v:.1} m/s"), ys));
+    }
+    Ok(Figure {
+        name: "fig11_density",
+        title: "Fig. 11: energy dissipation factor vs density",
+        x_label: "density of the balls (kg/m^3)",
+        x_column: "density_kg_per_m3",
+        x_scale: 1.0,
+        x,
+        curves,
+    })
+}
+
+/// Figure 12: η against the dynamic friction coefficient 0.1–0.6, left-ball tangential speed
+/// 0.2, 0.6 and 1.0 m/s (right ball none).
+pub fn figure12() -> Result<Figure> {
+    let base = base_material()?;
+    let x = grid(0.1, 0.6, 26);
+    let mut curves = vec![];
+    for vt in [0.2, 0.6, 1.0] {
+        let ys = x
+            .iter()
+            .map(|&mu| eta(&base, &base, [BASE_SPEEDS.0, vt], [BASE_SPEEDS.1, 0.0], mu))
+            .collect::<Result<Vec<_>>>()?;
+        curves.push((format!("left tangential {vt:.1} m/s"), ys));
+    }
+    Ok(Figure {
+        name: "fig12_friction",
+        title: "Fig. 12: energy dissipation factor vs friction coefficient",
+        x_label: "dynamic friction coefficient (-)",
+        x_column: "mu",
+        x_scale: 1.0,
+        x,
+        curves,
+    })
+}
+
+/// Figure 13: η against the left ball's modulus E₁ = 100–400 GPa for modulus ratios
+/// E₂/E₁ = 100, 10, 2, 1, 0.5, 0.1.
+pub fn figure13() -> Result<Figure> {
+    let base = base_material()?;
+    let x = grid(100e9, 400e9, 31);
+    let mut curves = vec![];
+    for ratio in [100.0, 10.0, 2.0, 1.0, 0.5, 0.1] {
+        let ys = x
+            .iter()
+            .map(|&e1| {
+                let m1 = Material { youngs: e1, ..base }.validated("ball1.material")?;
+                let m2 = Material {
+                    youngs: ratio * e1,
+                    ..base
+                }
+                .validated("ball2.material")?;
+                eta(
+                    &m1,
+                    &m2,
+                    [BASE_SPEEDS.0, 0.0],
+                    [BASE_SPEEDS.1, 0.0],
+                    base.mu,
+                )
+            })
+            .collect::<Result<Vec<_>>>()?;
+        curves.push((format!("modulus ratio {ratio}"), ys));
+    }
+    Ok(Figure {
+        name: "fig13_modulus",
+        title: "Fig. 13: energy dissipation factor vs elastic modulus",
+        x_label: "elastic modulus E1 (GPa)",
+        x_column: "E1_GPa",
+        x_scale: 1e-9,
+        x,
+        curves,
+    })
+}
+
+/// Figure 14: η against the left ball's yield strength σ_s1 = 10–450 MPa for yield ratios
+/// σ_s2/σ_s1 = 0.1, 0.5, 1, 2, 10, 100 (σ_s = 0 has no elastic phase; the grid starts at 10).
+pub fn figure14() -> Result<Figure> {
+    let base = base_material()?;
+    let x = grid(10e6, 450e6, 45);
+    let mut curves = vec![];
+    for ratio in [0.1, 0.5, 1.0, 2.0, 10.0, 100.0] {
+        let ys = x
+            .iter()
+            .map(|&s1| {
+                let m1 = Material {
+                    yield_strength: s1,
+                    ..base
+                }
+                .validated("ball1.material")?;
+                let m2 = Material {
+                    yield_strength: ratio * s1,
+                    ..base
+                }
+                .validated("ball2.material")?;
+                eta(
+                    &m1,
+                    &m2,
+                    [BASE_SPEEDS.0, 0.0],
+                    [BASE_SPEEDS.1, 0.0],
+                    base.mu,
+                )
+            })
+            .collect::<Result<Vec<_>>>()?;
+        curves.push((format!("yield ratio {ratio}"), ys));
+    }
+    Ok(Figure {
+        name: "fig14_yield",
+        title: "Fig. 14: energy dissipation factor vs yield strength",
+        x_label: "yield strength sigma_s1 (MPa)",
+        x_column: "yield1_MPa",
+        x_scale: 1e-6,
+        x,
+        curves,
+    })
+}
+
+/// All four figures.
+pub fn all_figures() -> Result<Vec<Figure>> {
+    Ok(vec![figure11()?, figure12()?, figure13()?, figure14()?])
+}
+
+/// Writes `contents` to `path` atomically (temporary file in the same directory, then rename).
+pub fn write_atomic(path: &Path, contents: &[u8]) -> Result<()> {
+    let mut tmp = path.as_os_str().to_owned();
+    tmp.push(".tmp");
+    let tmp = std::path::PathBuf::from(tmp);
+    std::fs::write(&tmp, contents).map_err(|e| Error::io(&tmp, e))?;
+    std::fs::rename(&tmp, path).map_err(|e| Error::io(path, e))
+}
+
+impl Figure {
+    /// Fails if any value is not finite (nothing non-finite is ever written).
+    fn check_finite(&self) -> Result<()> {
+        for (label, ys) in &self.curves {
+            if let Some((i, y)) = ys.iter().enumerate().find(|(_, y)| !y.is_finite()) {
+                return Err(Error::Numerical(format!(
+                    "{}: eta = {y} at x = {} on curve '{label}'",
+                    self.name, self.x[i]
+                )));
+            }
+        }
+        Ok(())
+    }
+
+    /// The CSV text: header `x_column,eta (label),…` (η dimensionless), one row per x.
+    pub fn csv(&self) -> Result<String> {
+        self.check_finite()?;
+        let mut s = String::from(self.x_column);
+        for (label, _) in &self.curves {
+            s.push_str(&format!(",eta [{label}]"));
+        }
+        s.push('\n');
+        for (i, x) in self.x.iter().enumerate() {
+            s.push_str(&format!("{}", x * self.x_scale));
+            for (_, ys) in &self.curves {
+                s.push_str(&format!(",{:.6}", ys[i]));
+            }
+            s.push('\n');
+        }
+        Ok(s)
+    }
+
+    /// The SVG plot (plotters).
+    pub fn svg(&self) -> Result<String> {
+        use plotters::prelude::*;
+        self.check_finite()?;
+        let xs: Vec<f64> = self.x.iter().map(|x| x * self.x_scale).collect();
+        let (x0, x1) = (xs[0], xs[xs.len() - 1]);
+        let ymax = self
+            .curves
+            .iter()
+            .flat_map(|(_, ys)| ys.iter().copied())
+            .fold(0.0_f64, f64::max);
+        let ymax = if ymax > 0.0 { 1.1 * ymax } else { 1.0 };
+        let mut out = String::new();
+        let plot_err =
+            |e: &dyn std::fmt::Display| Error::External(format!("plotting {}: {e}", self.name));
+        {
+            let root = SVGBackend::with_string(&mut out, (800, 560)).into_drawing_area();
+            root.fill(&WHITE).map_err(|e| plot_err(&e))?;
+            let mut chart = ChartBuilder::on(&root)
+                .caption(self.title, ("sans-serif", 22))
+                .margin(16)
+                .x_label_area_size(48)
+                .y_label_area_size(64)
+                .build_cartesian_2d(x0..x1, 0.0..ymax)
+                .map_err(|e| plot_err(&e))?;
+            chart
+                .configure_mesh()
+                .x_desc(self.x_label)
+                .y_desc("energy dissipation factor eta (-)")
+                .draw()
+                .map_err(|e| plot_err(&e))?;
+            for (k, (label, ys)) in self.curves.iter().enumerate() {
+                let color = Palette99::pick(k).to_rgba();
+                chart
+                    .draw_series(LineSeries::new(
+                        xs.iter().copied().zip(ys.iter().copied()),
+                        color.stroke_width(2),
+                    ))
+                    .map_err(|e| plot_err(&e))?
+                    .label(label.as_str())
+                    .legend(move |(x, y)| {
+                        PathElement::new(vec![(x, y), (x + 20, y)], color.stroke_width(2))
+                    });
+            }
+            chart
+                .configure_series_labels()
+                .background_style(WHITE.mix(0.8))
+                .border_style(BLACK)
+                .position(SeriesLabelPosition::LowerRight)
+                .draw()
+                .map_err(|e| plot_err(&e))?;
+            root.present().map_err(|e| plot_err(&e))?;
+        }
+        Ok(out)
+    }
+
+    /// Writes `DIR/name.csv` and `DIR/name.svg`.
+    pub fn write(&self, dir: &Path) -> Result<()> {
+        write_atomic(
+            &dir.join(format!("{}.csv", self.name)),
+            self.csv()?.as_bytes(),
+        )?;
+        write_atomic(
+            &dir.join(format!("{}.svg", self.name)),
+            self.svg()?.as_bytes(),
+        )
+    }
+}

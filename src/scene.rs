@@ -1,0 +1,623 @@
+//! A two-ball scene: what collides, how it is meshed, and how the FE run is set up.
+//!
+//! A scene is a TOML file (or the built-in default, the paper's Figure 8 case):
+//! ```toml
+//! [ball1]
+//! material = "copper-fe"          # a preset, or { preset = "...", E = ..., yield = ... }
+//! diameter = 0.02                 # m
+//! velocity = [1.0, 0.0, 0.0]      # m/s; x = line of centres at first touch, y = tangential
+//! [ball2]
+//! material = "copper-fe"
+//! diameter = 0.02
+//! velocity = [-1.0, 0.0, 0.0]
+//! ```
+//! plus optional `angular_velocity`, `position`, `[ballN.mesh]`, `[contact]`, `[solver]`,
+//! `[output]` and `[reduction]` tables (see [`Scene::from_toml`] and docs/design.md §6).
+//! `--set PATH=VALUE` overrides ([`Override`]) are applied to the TOML tree before it is read.
+
+mod approach;
+mod overrides;
+pub(crate) mod reader;
+
+pub use approach::{approach, Approach, Frame, Touch};
+pub use overrides::Override;
+
+use crate::error::{Error, Result};
+use crate::material::{Material, MaterialOverrides, PRESET_NAMES};
+use reader::{parse_table, Reader};
+use serde::Serialize;
+use std::path::{Path, PathBuf};
+use toml::{Table, Value};
+
+/// The built-in default scene: the paper's Figure 8 case (FE-study copper, D = 20 mm,
+/// +1 and −1 m/s along the line of centres, no tangential speed).
+pub const DEFAULT_SCENE: &str = r#"# The paper's Figure 8 case: two FE-study copper balls, D = 20 mm, +1 / -1 m/s head-on.
+[ball1]
+material = "copper-fe"
+diameter = 0.02
+velocity = [1.0, 0.0, 0.0]
+
+[ball2]
+material = "copper-fe"
+diameter = 0.02
+velocity = [-1.0, 0.0, 0.0]
+"#;
+
+/// How a ball is meshed.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+#[serde(tag = "kind", rename_all = "snake_case")]
+pub enum MeshSettings {
+    /// The built-in graded ball mesher.
+    Builtin {
+        /// Element size in the bulk of the ball, m.
+        size: f64,
+        /// Element size at the contact pole, m (≤ `size`).
+        pole_size: f64,
+    },
+    /// A gmsh `.msh` file (path resolved against the scene file's folder).
+    File {
+        /// Path of the mesh file.
+        path: PathBuf,
+    },
+}
+
+/// One ball of the scene.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct BallScene {
+    /// Its material, presets and overrides resolved.
+    pub material: Material,
+    /// The preset it started from, or `custom`.
+    pub material_name: String,
+    /// Diameter D, m.
+    pub diameter: f64,
+    /// Initial centre-of-mass velocity, m/s.
+    pub velocity: [f64; 3],
+    /// Initial angular velocity, rad/s.
+    pub angular_velocity: [f64; 3],
+    /// Initial centre position, m (`None`: placed touching the other ball along x).
+    pub position: Option<[f64; 3]>,
+    /// Mesh settings.
+    pub mesh: MeshSettings,
+}
+
+/// Friction at the ball-ball contact.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Friction {
+    /// Coulomb friction with the balls' coefficients (the mean of the two balls' μ_d and of
+    /// their μ_s, as the analytical model's pair friction).
+    On,
+    /// Frictionless contact.
+    Off,
+    /// Coulomb friction with this one coefficient (μ_s = μ_d).
+    Coefficient(f64),
+}
+
+/// Contact settings.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct ContactSettings {
+    /// Multiplier of the contact law's default penalty stiffness (1 = default).
+    pub penalty_factor: f64,
+    /// Friction model.
+    pub friction: Friction,
+}
+
+/// Hexahedron formulation (see the FE core, docs/design.md §4).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Formulation {
+    /// One-point integration with hourglass control (`one-point`, the default).
+    OnePoint,
+    /// 2×2×2 integration with B-bar (mean dilatation) volumetric strain (`b-bar`).
+    BBar,
+}
+
+/// Explicit solver settings.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct SolverSettings {
+    /// Element formulation.
+    pub element: Formulation,
+    /// Safety factor on the critical time step, in (0, 1].
+    pub time_step_factor: f64,
+    /// Fixed end time after touch, s; `None` = stop by the separation rule.
+    pub end_time: Option<f64>,
+    /// Separation rule: stop once the balls move apart and the contact force has stayed zero
+    /// for this long, s; `None` = a tenth of the Hertz contact-duration estimate.
+    pub hold_time: Option<f64>,
+    /// Hard cap on the number of time steps.
+    pub max_steps: u64,
+}
+
+/// What to write besides results.json and history.csv.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct OutputSettings {
+    /// Interval between history rows, s; `None` = about 400 rows over the contact.
+    pub history_interval: Option<f64>,
+    /// Number of `.vtu` snapshots over the run (0 = none).
+    pub vtu_snapshots: u32,
+}
+
+/// A switch for an automatic saving: decided per scene, or off.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Switch {
+    /// Use it when the scene allows it.
+    Auto,
+    /// Never use it.
+    Off,
+}
+
+/// The automatic savings (issue 6 item 3), each switchable off.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct ReductionSettings {
+    /// Symmetry reduction (quarter ball vs rigid plane, half model, or full).
+    pub symmetry: Switch,
+    /// Start at first touch (free flight in closed form) instead of at the given positions.
+    pub start_at_touch: Switch,
+    /// Stop by the separation rule instead of at a fixed end time.
+    pub stop_at_separation: Switch,
+    /// Skip plasticity work where no element yields, friction work where μ = 0.
+    pub skip_work: Switch,
+}
+
+/// A complete, validated scene.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Scene {
+    /// The left ball (moves towards +x).
+    pub ball1: BallScene,
+    /// The right ball.
+    pub ball2: BallScene,
+    /// Contact settings.
+    pub contact: ContactSettings,
+    /// Solver settings.
+    pub solver: SolverSettings,
+    /// Output settings.
+    pub output: OutputSettings,
+    /// Automatic savings.
+    pub reduction: ReductionSettings,
+}
+
+const TOP_KEYS: [&str; 6] = ["ball1", "ball2", "contact", "solver", "output", "reduction"];
+const BALL_KEYS: [&str; 6] = [
+    "material",
+    "diameter",
+    "velocity",
+    "angular_velocity",
+    "position",
+    "mesh",
+];
+const MATERIAL_KEYS: [&str; 8] = [
+    "preset",
+    "E",
+    "nu",
+    "rho",
+    "yield",
+    "tangent",
+    "mu",
+    "mu_static",
+];
+const MESH_KEYS: [&str; 3] = ["size", "pole_size", "file"];
+const CONTACT_KEYS: [&str; 2] = ["penalty_factor", "friction"];
+const SOLVER_KEYS: [&str; 5] = [
+    "element",
+    "time_step_factor",
+    "end_time",
+    "hold_time",
+    "max_steps",
+];
+const OUTPUT_KEYS: [&str; 2] = ["history_interval", "vtu_snapshots"];
+const REDUCTION_KEYS: [&str; 4] = [
+    "symmetry",
+    "start_at_touch",
+    "stop_at_separation",
+    "skip_work",
+];
+
+/// Default bulk element size as a fraction of the diameter.
+pub const DEFAULT_SIZE_PER_D: f64 = 1.0 / 10.0;
+/// Default pole element size as a fraction of the diameter.
+pub const DEFAULT_POLE_SIZE_PER_D: f64 = 1.0 / 100.0;
+
+impl Default for Scene {
+    fn default() -> Self {
+        Scene::from_toml(DEFAULT_SCENE, Path::new("."), &[]).expect("the built-in scene is valid")
+    }
+}
+
+impl Scene {
+    /// Reads a scene file and applies `--set` overrides. Mesh file paths are resolved
+    /// against the scene file's folder.
+    pub fn from_file(path: &Path, sets: &[Override]) -> Result<Scene> {
+        let text = std::fs::read_to_string(path).map_err(|e| Error::io(path, e))?;
+        let dir = path.parent().unwrap_or(Path::new("."));
+        Self::parse(&text, &path.display().to_string(), dir, sets)
+    }
+
+    /// Reads scene text (origin `scene`); `dir` resolves relative mesh paths.
+    pub fn from_toml(text: &str, dir: &Path, sets: &[Override]) -> Result<Scene> {
+        Self::parse(text, "scene", dir, sets)
+    }
+
+    fn parse(text: &str, origin: &str, dir: &Path, sets: &[Override]) -> Result<Scene> {
+        let mut root = parse_table(text, origin)?;
+        for s in sets {
+            s.apply(&mut root)?;
+        }
+        Self::from_table(&root, dir)
+    }
+
+    /// Reads a scene from a TOML table already parsed (and overridden).
+    pub fn from_table(root: &Table, dir: &Path) -> Result<Scene> {
+        let r = Reader::new("", root);
+        r.only(&TOP_KEYS)?;
+        let ball = |key: &str| -> Result<BallScene> {
+            let b = r
+                .table(key)?
+                .ok_or_else(|| r.missing(key, "a table with material, diameter, velocity"))?;
+            read_ball(b, dir)
+        };
+        let ball1 = ball("ball1")?;
+        let ball2 = ball("ball2")?;
+        let contact = read_contact(r.table("contact")?)?;
+        let solver = read_solver(r.table("solver")?)?;
+        let output = read_output(r.table("output")?)?;
+        let reduction = read_reduction(r.table("reduction")?)?;
+        if ball1.position.is_some() != ball2.position.is_some() {
+            let which = if ball1.position.is_some() {
+                "ball2.position"
+            } else {
+                "ball1.position"
+            };
+            return Err(Error::Parse(format!(
+                "missing required key {which}: give both balls a position or neither"
+            )));
+        }
+        let scene = Scene {
+            ball1,
+            ball2,
+            contact,
+            solver,
+            output,
+            reduction,
+        };
+        approach(&scene)?; // rejects overlapping balls
+        Ok(scene)
+    }
+
+    /// Initial centre positions (m): as given, or touching at the origin along x.
+    pub fn centres(&self) -> ([f64; 3], [f64; 3]) {
+        match (self.ball1.position, self.ball2.position) {
+            (Some(a), Some(b)) => (a, b),
+            _ => (
+                [-self.ball1.diameter / 2.0, 0.0, 0.0],
+                [self.ball2.diameter / 2.0, 0.0, 0.0],
+            ),
+        }
+    }
+
+    /// The friction coefficients (μ_d, μ_s) of the contact pair.
+    pub fn friction_coefficients(&self) -> (f64, f64) {
+        match self.contact.friction {
+            Friction::Off => (0.0, 0.0),
+            Friction::Coefficient(mu) => (mu, mu),
+            Friction::On => {
+                let (a, b) = (&self.ball1.material, &self.ball2.material);
+                (0.5 * (a.mu + b.mu), 0.5 * (a.mu_static + b.mu_static))
+            }
+        }
+    }
+
+    /// True when both balls have the same material, diameter and mesh (symmetry needs it).
+    pub fn identical_balls(&self) -> bool {
+        self.ball1.material == self.ball2.material
+            && self.ball1.diameter == self.ball2.diameter
+            && self.ball1.mesh == self.ball2.mesh
+    }
+}
+
+fn read_ball(b: Reader<'_>, dir: &Path) -> Result<BallScene> {
+    b.only(&BALL_KEYS)?;
+    let (material, material_name) = read_material(&b)?;
+    let diameter = b
+        .f64(
+            "diameter",
+            |d| (1e-4..=1.0).contains(&d),
+            "1e-4 <= diameter <= 1 m",
+        )?
+        .ok_or_else(|| b.missing("diameter", "ball diameter in m"))?;
+    let speed_ok = |v: f64| v.abs() <= 1000.0;
+    let velocity = b
+        .vec3("velocity", speed_ok, "|component| <= 1000 m/s")?
+        .ok_or_else(|| b.missing("velocity", "[vx, vy, vz] in m/s"))?;
+    let angular_velocity = b
+        .vec3(
+            "angular_velocity",
+            |w| w.abs() <= 1e5,
+            "|component| <= 1e5 rad/s",
+        )?
+        .unwrap_or([0.0; 3]);
+    let position = b.vec3("position", |x| x.abs() <= 1e3, "|component| <= 1000 m")?;
+    let mesh = read_mesh(b.table("mesh")?, diameter, dir)?;
+    Ok(BallScene {
+        material,
+        material_name,
+        diameter,
+        velocity,
+        angular_velocity,
+        position,
+        mesh,
+    })
+}
+
+fn read_material(b: &Reader<'_>) -> Result<(Material, String)> {
+    let path = b.key_path("material");
+    let presets = format!("one of {}", PRESET_NAMES.join(", "));
+    let preset = |name: &str, field: &str| {
+        Material::preset(name)
+            .map_err(|_| Error::invalid(field, format!("\"{name}\""), presets.clone()))
+    };
+    match b.raw("material") {
+        None => Err(b.missing(
+            "material",
+            "a preset name or a table { E, nu, rho, yield, mu, ... }",
+        )),
+        Some(Value::String(name)) => Ok((preset(name, &path)?, name.clone())),
+        Some(Value::Table(t)) => {
+            let m = Reader::new(&path, t);
+            m.only(&MATERIAL_KEYS)?;
+            let base = match m.string("preset")? {
+                Some(name) => Some((preset(name, &m.key_path("preset"))?, name.to_string())),
+                None => None,
+            };
+            let any = |_: f64| true;
+            let o = MaterialOverrides {
+                youngs: m.f64("E", any, "finite")?,
+                nu: m.f64("nu", any, "finite")?,
+                rho: m.f64("rho", any, "finite")?,
+                yield_strength: m.f64("yield", any, "finite")?,
+                tangent: m.f64("tangent", any, "finite")?,
+                mu: m.f64("mu", any, "finite")?,
+                mu_static: m.f64("mu_static", any, "finite")?,
+            };
+            let (base, name) = match base {
+                Some(b) => b,
+                None => {
+                    // No preset: the essential fields are required; E_T = E/100 and μ_s = μ as
+                    // for the presets.
+                    for (key, v) in [
+                        ("E", o.youngs),
+                        ("nu", o.nu),
+                        ("rho", o.rho),
+                        ("yield", o.yield_strength),
+                        ("mu", o.mu),
+                    ] {
+                        if v.is_none() {
+                            return Err(Error::Parse(format!(
+                                "missing required key {path}.{key} (or give {path}.preset)"
+                            )));
+                        }
+                    }
+                    let e = o.youngs.unwrap_or(1.0);
+                    let mu = o.mu.unwrap_or(0.0);
+                    let base = Material {
+                        youngs: e,
+                        nu: 0.0,
+                        rho: 1.0,
+                        yield_strength: 1.0,
+                        tangent: if e.is_finite() && e > 0.0 {
+                            e / 100.0
+                        } else {
+                            0.0
+                        },
+                        mu,
+                        mu_static: mu,
+                    };
+                    (base, "custom".to_string())
+                }
+            };
+            let mat = base.with_overrides(&o).map_err(|e| match e {
+                Error::Invalid {
+                    field,
+                    value,
+                    allowed,
+                } => Error::Invalid {
+                    field: field.replacen("material", &path, 1),
+                    value,
+                    allowed,
+                },
+                other => other,
+            })?;
+            Ok((mat, name))
+        }
+        Some(other) => Err(Error::Parse(format!(
+            "{path} = {} has the wrong type: expected a preset name or a table",
+            reader::show(other)
+        ))),
+    }
+}
+
+fn read_mesh(m: Option<Reader<'_>>, d: f64, dir: &Path) -> Result<MeshSettings> {
+    let default = MeshSettings::Builtin {
+        size: d * DEFAULT_SIZE_PER_D,
+        pole_size: d * DEFAULT_POLE_SIZE_PER_D,
+    };
+    let Some(m) = m else { return Ok(default) };
+    m.only(&MESH_KEYS)?;
+    let file = m.string("file")?;
+    let size = m.f64(
+        "size",
+        |s| s > 0.0 && s <= d / 2.0,
+        "0 < size <= radius (m)",
+    )?;
+    let lo = d / 2000.0;
+    let pole_allowed = format!("{lo:.3e} m (diameter/2000) <= pole_size <= size");
+    let pole = m.f64("pole_size", |s| s >= lo, &pole_allowed)?;
+    let mesh = match file {
+        Some(f) => {
+            if size.is_some() || pole.is_some() {
+                return Err(Error::Parse(format!(
+                    "{} is given with {}: a mesh file has its own sizes, give one or the other",
+                    m.key_path("file"),
+                    m.key_path(if size.is_some() { "size" } else { "pole_size" })
+                )));
+            }
+            let p = dir.join(f);
+            if !p.is_file() {
+                return Err(Error::invalid(
+                    m.key_path("file"),
+                    format!("\"{f}\""),
+                    "an existing gmsh .msh file",
+                ));
+            }
+            MeshSettings::File { path: p }
+        }
+        None => {
+            let size = size.unwrap_or(d * DEFAULT_SIZE_PER_D);
+            let pole_size = pole.unwrap_or((d * DEFAULT_POLE_SIZE_PER_D).min(size));
+            if pole_size > size {
+                return Err(Error::invalid(
+                    m.key_path("pole_size"),
+                    pole_size,
+                    pole_allowed,
+                ));
+            }
+            MeshSettings::Builtin { size, pole_size }
+        }
+    };
+    Ok(mesh)
+}
+
+fn read_contact(c: Option<Reader<'_>>) -> Result<ContactSettings> {
+    let mut out = ContactSettings {
+        penalty_factor: 1.0,
+        friction: Friction::On,
+    };
+    let Some(c) = c else { return Ok(out) };
+    c.only(&CONTACT_KEYS)?;
+    if let Some(p) = c.f64(
+        "penalty_factor",
+        |p| (1e-3..=1e3).contains(&p),
+        "1e-3 <= penalty_factor <= 1e3",
+    )? {
+        out.penalty_factor = p;
+    }
+    out.friction = match c.raw("friction") {
+        None => Friction::On,
+        Some(Value::String(s)) if s == "on" => Friction::On,
+        Some(Value::String(s)) if s == "off" => Friction::Off,
+        Some(Value::Boolean(b)) => {
+            if *b {
+                Friction::On
+            } else {
+                Friction::Off
+            }
+        }
+        Some(Value::Float(_) | Value::Integer(_)) => {
+            let mu = c.f64(
+                "friction",
+                |m| (0.0..=5.0).contains(&m),
+                "\"on\", \"off\" or 0 <= mu <= 5",
+            )?;
+            Friction::Coefficient(mu.unwrap_or(0.0))
+        }
+        Some(other) => {
+            return Err(Error::invalid(
+                c.key_path("friction"),
+                reader::show(other),
+                "\"on\", \"off\" or 0 <= mu <= 5",
+            ))
+        }
+    };
+    Ok(out)
+}
+
+fn read_solver(s: Option<Reader<'_>>) -> Result<SolverSettings> {
+    let mut out = SolverSettings {
+        element: Formulation::OnePoint,
+        time_step_factor: 0.9,
+        end_time: None,
+        hold_time: None,
+        max_steps: 2_000_000,
+    };
+    let Some(s) = s else { return Ok(out) };
+    s.only(&SOLVER_KEYS)?;
+    if let Some(e) = s.choice("element", &["one-point", "b-bar"])? {
+        out.element = if e == "one-point" {
+            Formulation::OnePoint
+        } else {
+            Formulation::BBar
+        };
+    }
+    if let Some(f) = s.f64(
+        "time_step_factor",
+        |f| f > 0.0 && f <= 1.0,
+        "0 < time_step_factor <= 1",
+    )? {
+        out.time_step_factor = f;
+    }
+    out.end_time = s.f64("end_time", |t| t > 0.0 && t <= 1.0, "0 < end_time <= 1 s")?;
+    out.hold_time = s.f64("hold_time", |t| t > 0.0 && t <= 1.0, "0 < hold_time <= 1 s")?;
+    if let Some(n) = s.u64(
+        "max_steps",
+        |n| (1..=100_000_000).contains(&n),
+        "1 <= max_steps <= 1e8",
+    )? {
+        out.max_steps = n;
+    }
+    Ok(out)
+}
+
+fn read_output(o: Option<Reader<'_>>) -> Result<OutputSettings> {
+    let mut out = OutputSettings {
+        history_interval: None,
+        vtu_snapshots: 0,
+    };
+    let Some(o) = o else { return Ok(out) };
+    o.only(&OUTPUT_KEYS)?;
+    out.history_interval = o.f64(
+        "history_interval",
+        |t| t > 0.0 && t <= 1.0,
+        "0 < history_interval <= 1 s",
+    )?;
+    if let Some(n) = o.u64(
+        "vtu_snapshots",
+        |n| n <= 10_000,
+        "0 <= vtu_snapshots <= 10000",
+    )? {
+        out.vtu_snapshots = n as u32;
+    }
+    Ok(out)
+}
+
+fn read_reduction(r: Option<Reader<'_>>) -> Result<ReductionSettings> {
+    let mut out = ReductionSettings {
+        symmetry: Switch::Auto,
+        start_at_touch: Switch::Auto,
+        stop_at_separation: Switch::Auto,
+        skip_work: Switch::Auto,
+    };
+    let Some(r) = r else { return Ok(out) };
+    r.only(&REDUCTION_KEYS)?;
+    let read = |key: &str| -> Result<Option<Switch>> {
+        Ok(r.choice(key, &["auto", "off"])?.map(|s| {
+            if s == "auto" {
+                Switch::Auto
+            } else {
+                Switch::Off
+            }
+        }))
+    };
+    if let Some(s) = read("symmetry")? {
+        out.symmetry = s;
+    }
+    if let Some(s) = read("start_at_touch")? {
+        out.start_at_touch = s;
+    }
+    if let Some(s) = read("stop_at_separation")? {
+        out.stop_at_separation = s;
+    }
+    if let Some(s) = read("skip_work")? {
+        out.skip_work = s;
+    }
+    Ok(out)
+}

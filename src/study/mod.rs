@@ -1,0 +1,13 @@
+//! The two-ball study: FE beside the analytical model for one scene or for a whole sweep.
+//!
+//! - [`outcome`]: the quantities both models produce, and the analytical answer for a scene;
+//! - [`sweep`]: resumable, shardable parameter sweeps (the paper's ANSYS study);
+//! - [`plots`]: SVG charts for the report;
+//! - [`atomic`]: crash-safe file output;
+//! - [`progress`]: the terminal progress bar.
+
+pub mod atomic;
+pub mod outcome;
+pub mod plots;
+pub mod progress;
+pub mod sweep;

@@ -1,0 +1,134 @@
+//! The outcome of one collision, the same quantities from either model, so FE and analytical
+//! answers can be put side by side and differenced.
+
+use crate::analytic::{Body, Collision};
+use crate::error::{Error, Result};
+use crate::scene::{Scene, Touch};
+use serde::{Deserialize, Serialize};
+
+/// What a collision produced. Vectors are in the scene's (global) frame.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct Outcome {
+    /// Normal coefficient of restitution e = −(v1n⁺ − v2n⁺)/(v1n − v2n) along the line of
+    /// centres at touch.
+    pub e: f64,
+    /// Centre-of-mass velocity of ball 1 after the impact, m/s.
+    pub v1_after: [f64; 3],
+    /// Centre-of-mass velocity of ball 2 after the impact, m/s.
+    pub v2_after: [f64; 3],
+    /// Angular velocity of ball 1 after the impact, rad/s.
+    pub w1_after: [f64; 3],
+    /// Angular velocity of ball 2 after the impact, rad/s.
+    pub w2_after: [f64; 3],
+    /// Maximum approach of the mass centres δ_max, m.
+    pub delta_max: f64,
+    /// Contact duration, s.
+    pub contact_duration: f64,
+    /// Energy dissipation factor η = (KE before − KE after)/(2π KE before), eq. 33, with the
+    /// rigid-body kinetic energy (translation and spin) of both balls.
+    pub eta: f64,
+}
+
+impl Outcome {
+    /// True when every number is finite (nothing non-finite is ever written).
+    pub fn is_finite(&self) -> bool {
+        [self.e, self.delta_max, self.contact_duration, self.eta]
+            .iter()
+            .chain(self.v1_after.iter())
+            .chain(self.v2_after.iter())
+            .chain(self.w1_after.iter())
+            .chain(self.w2_after.iter())
+            .all(|v| v.is_finite())
+    }
+
+    /// Fails with a message naming the first non-finite quantity (`what` names the model).
+    pub fn check_finite(&self, what: &str) -> Result<()> {
+        if self.is_finite() {
+            Ok(())
+        } else {
+            Err(Error::Numerical(format!(
+                "{what}: non-finite result {self:?}"
+            )))
+        }
+    }
+}
+
+/// Mass (kg) and moment of inertia (kg m²) of a solid homogeneous ball.
+pub fn ball_inertia(rho: f64, diameter: f64) -> (f64, f64) {
+    let r = diameter / 2.0;
+    let m = rho * 4.0 / 3.0 * std::f64::consts::PI * r.powi(3);
+    (m, 0.4 * m * r * r)
+}
+
+/// Rigid-body kinetic energy (J) of both balls of `scene` with the given velocities (m/s) and
+/// angular velocities (rad/s).
+pub fn rigid_kinetic_energy(scene: &Scene, v: [[f64; 3]; 2], w: [[f64; 3]; 2]) -> f64 {
+    let mut ke = 0.0;
+    for (i, b) in [&scene.ball1, &scene.ball2].into_iter().enumerate() {
+        let (m, j) = ball_inertia(b.material.rho, b.diameter);
+        let v2: f64 = v[i].iter().map(|c| c * c).sum();
+        let w2: f64 = w[i].iter().map(|c| c * c).sum();
+        ke += 0.5 * m * v2 + 0.5 * j * w2;
+    }
+    ke
+}
+
+/// η of eq. 33 from the rigid-body states before and after.
+pub fn dissipation_factor(scene: &Scene, after_v: [[f64; 3]; 2], after_w: [[f64; 3]; 2]) -> f64 {
+    let before = rigid_kinetic_energy(
+        scene,
+        [scene.ball1.velocity, scene.ball2.velocity],
+        [scene.ball1.angular_velocity, scene.ball2.angular_velocity],
+    );
+    let after = rigid_kinetic_energy(scene, after_v, after_w);
+    if before > 0.0 {
+        (before - after) / (2.0 * std::f64::consts::PI * before)
+    } else {
+        0.0
+    }
+}
+
+/// The analytical model's answer for `scene` touching as `touch`: its [`Collision`] and the
+/// [`Outcome`] built from it.
+///
+/// The analytical model is two-dimensional (normal, and one tangential direction: the slip
+/// direction of the contact frame) and starts without spin: initial spins only enter through
+/// the slip direction; the out-of-plane velocity component passes unchanged.
+pub fn analytic_outcome(scene: &Scene, touch: &Touch) -> Result<(Outcome, Collision)> {
+    let b1 = Body::ball(scene.ball1.material, scene.ball1.diameter, "ball1")?;
+    let b2 = Body::ball(scene.ball2.material, scene.ball2.diameter, "ball2")?;
+    let (mu, _) = scene.friction_coefficients();
+    let [a, b] = touch.v;
+    let c = crate::analytic::collide_with_mu(&b1, &b2, [a[0], a[1]], [b[0], b[1]], mu)?;
+    let f = touch.frame;
+    let v1 = f.to_global([c.v1_after[0], c.v1_after[1], a[2]]);
+    let v2 = f.to_global([c.v2_after[0], c.v2_after[1], b[2]]);
+    let [wa, wb] = touch.w;
+    let w1 = f.to_global([wa[0], wa[1], wa[2] + c.spin_after[0]]);
+    let w2 = f.to_global([wb[0], wb[1], wb[2] + c.spin_after[1]]);
+    let (e, delta_max, contact_duration) = match &c.normal {
+        Some(n) => (n.e, n.delta2, n.t3),
+        None => (1.0, 0.0, 0.0),
+    };
+    let out = Outcome {
+        e,
+        v1_after: v1,
+        v2_after: v2,
+        w1_after: w1,
+        w2_after: w2,
+        delta_max,
+        contact_duration,
+        eta: dissipation_factor(scene, [v1, v2], [w1, w2]),
+    };
+    out.check_finite("analytical model")?;
+    Ok((out, c))
+}
+
+/// Relative difference (a − b)/|b|, or the absolute difference when |b| is tiny.
+pub fn relative_difference(a: f64, b: f64) -> f64 {
+    if b.abs() > 1e-300 {
+        (a - b) / b.abs()
+    } else {
+        a - b
+    }
+}

@@ -1,0 +1,575 @@
+//! The FE side of a two-ball run: build the model from a scene, choose the symmetry reduction,
+//! step the explicit solver from first touch until the balls have separated, and reduce the
+//! nodal state to centre-of-mass velocities, spins, δ(t) and energies of the full system.
+//!
+//! Frames: the model is built in the contact frame of [`crate::scene::Touch`] (x along the
+//! line of centres, y along the slip) and in the centre-of-mass frame of the pair (Galilean
+//! invariance: subtracting a uniform velocity changes nothing in the collision), so that the
+//! contact plane x = 0 stays put; results are transformed back to the scene frame.
+
+use super::outcome::{ball_inertia, dissipation_factor, Outcome};
+use crate::error::{Error, Result};
+use crate::fe::contact::{ContactParams, ContactProbe, Coulomb, PenaltyRule, RigidPlane, SurfacePair};
+use crate::fe::explicit::{Settings, Solver};
+use crate::fe::interaction::Interaction;
+use crate::fe::model::{Formulation as FeFormulation, Model};
+use crate::mesh::ball::{ball, BallSpec, Cut};
+use crate::mesh::Mesh;
+use crate::scene::{BallScene, Formulation, MeshSettings, Scene, Switch, Touch};
+use serde::Serialize;
+use std::time::Instant;
+
+/// Which symmetry reduction a run used.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Reduction {
+    /// One quarter of ball 1 against a frictionless rigid plane (1/8 of the system).
+    Quarter,
+    /// Both balls cut by the plane z = 0 of the motion (1/2 of the system).
+    Half,
+    /// Both whole balls.
+    Full,
+}
+
+impl Reduction {
+    /// Fraction of the whole two-ball system that is simulated.
+    pub fn fraction(self) -> f64 {
+        match self {
+            Reduction::Quarter => 1.0 / 8.0,
+            Reduction::Half => 0.5,
+            Reduction::Full => 1.0,
+        }
+    }
+
+    /// Lower-case name, as in results.json.
+    pub fn name(self) -> &'static str {
+        match self {
+            Reduction::Quarter => "quarter",
+            Reduction::Half => "half",
+            Reduction::Full => "full",
+        }
+    }
+}
+
+/// The symmetry reduction `scene` allows when touching as `touch`, and why.
+///
+/// In the pair's centre-of-mass frame, identical balls with no spin and no relative tangential
+/// velocity collide mirror-symmetrically about the contact plane x = 0, and each ball is
+/// axisymmetric about x: a quarter ball against a frictionless rigid plane is exact (the
+/// tangential traction on the plane must equal its own mirror image and its own negative, so
+/// it vanishes). With tangential motion in the x-y plane (and spins about z only) the plane
+/// z = 0 is still a symmetry plane: half model. Anything else runs full.
+pub fn choose_reduction(scene: &Scene, touch: &Touch) -> (Reduction, String) {
+    if scene.reduction.symmetry == Switch::Off {
+        return (Reduction::Full, "symmetry reduction switched off".into());
+    }
+    if !scene.identical_balls() {
+        return (Reduction::Full, "the balls differ (material, diameter or mesh)".into());
+    }
+    if matches!(scene.ball1.mesh, MeshSettings::File { .. }) {
+        return (Reduction::Full, "meshes read from files are used whole".into());
+    }
+    let [v1, v2] = touch.v;
+    let [w1, w2] = touch.w;
+    let scale = (v1[0] - v2[0]).abs();
+    let tiny = |x: f64| x.abs() <= 1e-12 * scale;
+    let spin_scale = scale / (scene.ball1.diameter / 2.0);
+    let no_spin = |w: [f64; 3]| w.iter().all(|c| c.abs() <= 1e-12 * spin_scale);
+    if tiny(v1[1] - v2[1]) && tiny(v1[2] - v2[2]) && no_spin(w1) && no_spin(w2) {
+        return (Reduction::Quarter, "identical balls, pure normal impact: quarter ball against a frictionless rigid plane".into());
+    }
+    let planar_spin = |w: [f64; 3]| w[0].abs() <= 1e-12 * spin_scale && w[1].abs() <= 1e-12 * spin_scale;
+    if tiny(v1[2] - v2[2]) && planar_spin(w1) && planar_spin(w2) {
+        return (Reduction::Half, "identical balls, tangential motion in one plane: half model".into());
+    }
+    (Reduction::Full, "motion out of one plane".into())
+}
+
+/// One row of history.csv; every quantity is for the whole two-ball system.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct HistoryRow {
+    /// Time since first touch, s (negative during simulated free flight).
+    pub t: f64,
+    /// Approach δ = change of the distance between the mass centres since first touch, m.
+    pub delta: f64,
+    /// Normal contact force, N.
+    pub normal_force: f64,
+    /// Tangential (friction) contact force, N.
+    pub tangential_force: f64,
+    /// Centre-of-mass velocities of ball 1 and 2 (scene frame), m/s.
+    pub v: [[f64; 3]; 2],
+    /// Angular velocities of ball 1 and 2 (scene frame), rad/s.
+    pub w: [[f64; 3]; 2],
+    /// Kinetic energy (nodal, includes vibration), J.
+    pub kinetic: f64,
+    /// Elastic strain energy, J.
+    pub elastic: f64,
+    /// Plastic work, J.
+    pub plastic: f64,
+    /// Hourglass energy, J.
+    pub hourglass: f64,
+    /// Energy stored in the contact penalty springs, J.
+    pub contact_stored: f64,
+    /// Energy dissipated by friction (and contact damping), J.
+    pub contact_dissipated: f64,
+    /// Sum of all the above, J.
+    pub total: f64,
+}
+
+/// The header of history.csv, units in brackets.
+pub const HISTORY_HEADER: &str = "t [s],delta [m],normal_force [N],tangential_force [N],\
+v1x [m/s],v1y [m/s],v1z [m/s],v2x [m/s],v2y [m/s],v2z [m/s],\
+w1x [rad/s],w1y [rad/s],w1z [rad/s],w2x [rad/s],w2y [rad/s],w2z [rad/s],\
+kinetic [J],elastic [J],plastic [J],hourglass [J],contact_stored [J],contact_dissipated [J],total [J]";
+
+impl HistoryRow {
+    /// The row as CSV (all values finite by construction; checked by the caller).
+    pub fn csv(&self) -> String {
+        let mut v = vec![self.t, self.delta, self.normal_force, self.tangential_force];
+        v.extend(self.v.iter().flatten());
+        v.extend(self.w.iter().flatten());
+        v.extend([
+            self.kinetic,
+            self.elastic,
+            self.plastic,
+            self.hourglass,
+            self.contact_stored,
+            self.contact_dissipated,
+            self.total,
+        ]);
+        v.iter().map(|x| format!("{x:.9e}")).collect::<Vec<_>>().join(",")
+    }
+
+    fn is_finite(&self) -> bool {
+        self.csv_values().all(f64::is_finite)
+    }
+
+    fn csv_values(&self) -> impl Iterator<Item = f64> + '_ {
+        [self.t, self.delta, self.normal_force, self.tangential_force, self.kinetic, self.elastic, self.plastic]
+            .into_iter()
+            .chain([self.hourglass, self.contact_stored, self.contact_dissipated, self.total])
+            .chain(self.v.iter().flatten().copied())
+            .chain(self.w.iter().flatten().copied())
+    }
+}
+
+/// What the automatic savings decided (issue 6 item 3), for results.json.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Savings {
+    /// Symmetry reduction used.
+    pub reduction: Reduction,
+    /// Why.
+    pub reduction_reason: String,
+    /// Free flight solved in closed form (the run starts at first touch).
+    pub start_at_touch: bool,
+    /// Free-flight time skipped (or simulated when `start_at_touch` is false), s.
+    pub free_flight_time: f64,
+    /// `separation` (stopped once apart and force-free for `hold_time`) or `end_time`.
+    pub stop_rule: String,
+    /// Hold time of the separation rule, s.
+    pub hold_time: f64,
+    /// Per ball: plasticity skipped (the Hertz peak pressure stays below yield by a margin).
+    pub elastic_only: [bool; 2],
+    /// Friction computed (μ > 0 and not the frictionless symmetry plane).
+    pub friction: bool,
+}
+
+/// One FE run's results.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Simulation {
+    /// Results in the scene frame.
+    pub outcome: Outcome,
+    /// Largest relative energy-balance error over the run.
+    pub energy_error: f64,
+    /// Automatic savings used.
+    pub savings: Savings,
+    /// Elements simulated.
+    pub elements: usize,
+    /// Nodes simulated.
+    pub nodes: usize,
+    /// Time steps taken.
+    pub steps: u64,
+    /// Element updates (elements × steps).
+    pub element_cycles: u64,
+    /// Initial stable time step, s.
+    pub dt: f64,
+    /// Why the run stopped.
+    pub stop_reason: String,
+    /// Wall time, s.
+    pub wall_time_s: f64,
+    /// History rows.
+    #[serde(skip)]
+    pub history: Vec<HistoryRow>,
+}
+
+/// Options of a single FE run.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct RunOptions {
+    /// History rows wanted over the expected contact (≥ 2).
+    pub history_rows: usize,
+    /// Draw a progress bar on stderr.
+    pub progress: bool,
+}
+
+/// Contact-frame state of the pair in its centre-of-mass frame.
+struct Kinematics {
+    /// Centre-of-mass velocity of the pair (contact frame), m/s.
+    v_cm: [f64; 3],
+    /// Ball velocities relative to v_cm (contact frame), m/s.
+    u: [[f64; 3]; 2],
+}
+
+fn pair_kinematics(scene: &Scene, touch: &Touch) -> Kinematics {
+    let m1 = ball_inertia(scene.ball1.material.rho, scene.ball1.diameter).0;
+    let m2 = ball_inertia(scene.ball2.material.rho, scene.ball2.diameter).0;
+    let [v1, v2] = touch.v;
+    let v_cm = [0, 1, 2].map(|k| (m1 * v1[k] + m2 * v2[k]) / (m1 + m2));
+    let u = [[0, 1, 2].map(|k| v1[k] - v_cm[k]), [0, 1, 2].map(|k| v2[k] - v_cm[k])];
+    Kinematics { v_cm, u }
+}
+
+fn fe_formulation(f: Formulation) -> FeFormulation {
+    match f {
+        Formulation::OnePoint => FeFormulation::OnePoint,
+        Formulation::BBar => FeFormulation::BBar,
+    }
+}
+
+/// The ball's mesh with its contact pole at +x and centre at the origin.
+fn ball_mesh(b: &BallScene, cut: Cut) -> Result<Mesh> {
+    match &b.mesh {
+        MeshSettings::Builtin { size, pole_size } => {
+            ball(&BallSpec { diameter: b.diameter, size: *size, pole_size: Some(*pole_size), cut })
+        }
+        MeshSettings::File { path } => crate::mesh::read_msh_ball(path, b.diameter),
+    }
+}
+
+/// Whether plasticity can be skipped for a ball: the Hertz peak contact pressure of the
+/// elastic impact stays below 0.8 × 1.6 σ_s (first yield under a Hertz contact is at
+/// p0 ≈ 1.6 σ_s, Johnson 1985 §4.2), for both balls' yield strengths.
+fn never_yields(scene: &Scene, touch: &Touch, b: &BallScene) -> bool {
+    let (Ok(b1), Ok(b2)) = (
+        crate::analytic::Body::ball(scene.ball1.material, scene.ball1.diameter, "ball1"),
+        crate::analytic::Body::ball(scene.ball2.material, scene.ball2.diameter, "ball2"),
+    ) else {
+        return false;
+    };
+    let pair = crate::analytic::HertzPair::between(&b1, &b2);
+    let v = touch.approach_speed;
+    let a = pair.contact_radius(pair.max_approach(v));
+    let p0 = 1.5 * pair.peak_force(v) / (std::f64::consts::PI * a * a);
+    p0.is_finite() && p0 < 0.8 * 1.6 * b.material.yield_strength
+}
+
+/// Mass, centre of mass (m), linear momentum (kg m/s), and angular momentum about the centre
+/// of mass (kg m²/s) and inertia tensor about it (kg m²) of the nodes `range`.
+struct Rigid {
+    mass: f64,
+    com: [f64; 3],
+    momentum: [f64; 3],
+}
+
+fn rigid(solver: &Solver, range: std::ops::Range<usize>) -> Rigid {
+    let (x, v, m) = (solver.x(), solver.v(), solver.mass());
+    let (mut mt, mut mx, mut mv) = (0.0, [0.0; 3], [0.0; 3]);
+    for n in range {
+        mt += m[n];
+        for k in 0..3 {
+            mx[k] += m[n] * x[n][k];
+            mv[k] += m[n] * v[n][k];
+        }
+    }
+    Rigid { mass: mt, com: mx.map(|c| c / mt), momentum: mv }
+}
+
+/// Spin about z of the half ball `range` whose full ball is mirror-symmetric about z = 0:
+/// ω_z = L_z / I_zz about the axis through its centre of mass parallel to z (both sums are
+/// independent of the z offset, and doubling both for the mirrored half changes nothing).
+fn half_spin_z(solver: &Solver, range: std::ops::Range<usize>, r: &Rigid) -> f64 {
+    let (x, v, m) = (solver.x(), solver.v(), solver.mass());
+    let vc = r.momentum.map(|p| p / r.mass);
+    let (mut lz, mut izz) = (0.0, 0.0);
+    for n in range {
+        let (rx, ry) = (x[n][0] - r.com[0], x[n][1] - r.com[1]);
+        let (ux, uy) = (v[n][0] - vc[0], v[n][1] - vc[1]);
+        lz += m[n] * (rx * uy - ry * ux);
+        izz += m[n] * (rx * rx + ry * ry);
+    }
+    if izz > 0.0 {
+        lz / izz
+    } else {
+        0.0
+    }
+}
+
+/// Rigid state (contact frame, CoM frame of the pair) of both balls: velocities, spins,
+/// centre positions (x only is used for δ).
+fn ball_states(solver: &Solver, red: Reduction) -> Result<([[f64; 3]; 2], [[f64; 3]; 2], f64)> {
+    let model = solver.model();
+    match red {
+        Reduction::Quarter => {
+            let r = rigid(solver, model.part(0)?.nodes.clone());
+            let u = r.momentum[0] / r.mass;
+            // Ball 2 is the mirror image of ball 1: centre distance 2|x_c|.
+            Ok(([[u, 0.0, 0.0], [-u, 0.0, 0.0]], [[0.0; 3]; 2], -2.0 * r.com[0]))
+        }
+        Reduction::Half => {
+            let mut v = [[0.0; 3]; 2];
+            let mut w = [[0.0; 3]; 2];
+            let mut c = [[0.0; 3]; 2];
+            for p in 0..2 {
+                let range = model.part(p)?.nodes.clone();
+                let r = rigid(solver, range.clone());
+                v[p] = [r.momentum[0] / r.mass, r.momentum[1] / r.mass, 0.0];
+                w[p] = [0.0, 0.0, half_spin_z(solver, range, &r)];
+                c[p] = [r.com[0], r.com[1], 0.0];
+            }
+            let d = ((c[1][0] - c[0][0]).powi(2) + (c[1][1] - c[0][1]).powi(2)).sqrt();
+            Ok((v, w, d))
+        }
+        Reduction::Full => {
+            let mut v = [[0.0; 3]; 2];
+            let mut w = [[0.0; 3]; 2];
+            let mut c = [[0.0; 3]; 2];
+            for p in 0..2 {
+                let (vc, om) = solver.part_motion(p)?;
+                v[p] = vc;
+                w[p] = om;
+                c[p] = rigid(solver, model.part(p)?.nodes.clone()).com;
+            }
+            let d = (0..3).map(|k| (c[1][k] - c[0][k]).powi(2)).sum::<f64>().sqrt();
+            Ok((v, w, d))
+        }
+    }
+}
+
+/// Builds the model and interactions for `scene` at `touch` with reduction `red`.
+fn build(
+    scene: &Scene,
+    touch: &Touch,
+    red: Reduction,
+    kin: &Kinematics,
+    elastic_only: [bool; 2],
+    mu: f64,
+    pre_gap_time: f64,
+) -> Result<(Model, Vec<Box<dyn Interaction>>, ContactProbe)> {
+    let (b1, b2) = (&scene.ball1, &scene.ball2);
+    let (r1, r2) = (b1.diameter / 2.0, b2.diameter / 2.0);
+    let form = fe_formulation(scene.solver.element);
+    let penalty = PenaltyRule::Fkn { factor: default_fkn() * scene.contact.penalty_factor };
+    let mut params = ContactParams { penalty, ..ContactParams::default() };
+    let mut model = Model::new();
+    // Free flight simulated (start_at_touch off): start each centre back along its path.
+    let back = |u: [f64; 3]| u.map(|c| -c * pre_gap_time);
+    match red {
+        Reduction::Quarter => {
+            let m1 = ball_mesh(b1, Cut::Quarter)?.translated([-r1, 0.0, 0.0]).translated(back(kin.u[0]));
+            let p1 = model.add_part("ball1", &m1, b1.material, form)?;
+            model.part_mut(p1)?.elastic_only = elastic_only[0];
+            model.fix_set(p1, "sym_y", 1)?;
+            model.fix_set(p1, "sym_z", 2)?;
+            model.set_rigid_velocity(p1, kin.u[0], [0.0; 3], [-r1, 0.0, 0.0])?;
+            // The mirror plane takes the whole approach of one ball: twice the pair's
+            // penalty pressure per unit penetration gives the same force-approach law.
+            params.penalty = PenaltyRule::Fkn { factor: 2.0 * default_fkn() * scene.contact.penalty_factor };
+            params.friction = None;
+            let part = model.part(p1)?;
+            let faces = part.face_sets.get("contact").cloned().unwrap_or_default();
+            let plane =
+                RigidPlane::new(&model.nodes, &model.hexes, &faces, &b1.material, [0.0; 3], [-1.0, 0.0, 0.0], params)?;
+            let probe = plane.probe();
+            Ok((model, vec![Box::new(plane)], probe))
+        }
+        Reduction::Half | Reduction::Full => {
+            let cut = if red == Reduction::Half { Cut::Half } else { Cut::Full };
+            let m1 = ball_mesh(b1, cut)?.translated([-r1, 0.0, 0.0]).translated(back(kin.u[0]));
+            let m2 = ball_mesh(b2, cut)?.mirrored_x().translated([r2, 0.0, 0.0]).translated(back(kin.u[1]));
+            let p1 = model.add_part("ball1", &m1, b1.material, form)?;
+            let p2 = model.add_part("ball2", &m2, b2.material, form)?;
+            model.part_mut(p1)?.elastic_only = elastic_only[0];
+            model.part_mut(p2)?.elastic_only = elastic_only[1];
+            if red == Reduction::Half {
+                model.fix_set(p1, "sym_z", 2)?;
+                model.fix_set(p2, "sym_z", 2)?;
+            }
+            let c1 = [-r1 - kin.u[0][0] * pre_gap_time, -kin.u[0][1] * pre_gap_time, -kin.u[0][2] * pre_gap_time];
+            let c2 = [r2 - kin.u[1][0] * pre_gap_time, -kin.u[1][1] * pre_gap_time, -kin.u[1][2] * pre_gap_time];
+            model.set_rigid_velocity(p1, kin.u[0], touch.w[0], c1)?;
+            model.set_rigid_velocity(p2, kin.u[1], touch.w[1], c2)?;
+            params.friction = if mu > 0.0 { Some(Coulomb::new(mu)) } else { None };
+            let f1 = model.part(p1)?.face_sets.get("contact").cloned().unwrap_or_default();
+            let f2 = model.part(p2)?.face_sets.get("contact").cloned().unwrap_or_default();
+            let pair = SurfacePair::new(&model.nodes, &model.hexes, &f1, &b1.material, &f2, &b2.material, params)?;
+            let probe = pair.probe();
+            Ok((model, vec![Box::new(pair)], probe))
+        }
+    }
+}
+
+/// The contact law's default penalty factor FKN (scaled by `contact.penalty_factor`).
+pub fn default_fkn() -> f64 {
+    match PenaltyRule::default() {
+        PenaltyRule::Fkn { factor } => factor,
+        _ => 10.0,
+    }
+}
+
+/// Runs the FE model of `scene` from first touch `touch`. `expected_duration` (s, from the
+/// analytical model) sets the default hold time, history spacing and end time.
+///
+/// Errors: mesh or model construction failures; any solver instability (named by the solver);
+/// no separation within `solver.max_steps`.
+pub fn simulate(scene: &Scene, touch: &Touch, expected_duration: f64, opts: &RunOptions) -> Result<Simulation> {
+    let start = Instant::now();
+    let kin = pair_kinematics(scene, touch);
+    let (red, reason) = choose_reduction(scene, touch);
+    let (mu, _) = scene.friction_coefficients();
+    let skip = scene.reduction.skip_work == Switch::Auto;
+    let elastic_only = [
+        skip && never_yields(scene, touch, &scene.ball1),
+        skip && never_yields(scene, touch, &scene.ball2),
+    ];
+    let start_at_touch = scene.reduction.start_at_touch == Switch::Auto;
+    let pre = if start_at_touch { 0.0 } else { touch.t_touch };
+    let (model, interactions, probe) = build(scene, touch, red, &kin, elastic_only, mu, pre)?;
+    let elements = model.hexes.len();
+    let nodes = model.nodes.len();
+    let settings = Settings { safety: scene.solver.time_step_factor, ..Settings::default() };
+    let mut solver = Solver::new(model, interactions, settings)?;
+    let dt0 = solver.dt();
+
+    let duration = if expected_duration.is_finite() && expected_duration > 0.0 { expected_duration } else { 1e-4 };
+    let hold = scene.solver.hold_time.unwrap_or(0.1 * duration);
+    let by_separation = scene.reduction.stop_at_separation == Switch::Auto && scene.solver.end_time.is_none();
+    let end_time = pre + scene.solver.end_time.unwrap_or(3.0 * duration);
+    let interval = scene
+        .output
+        .history_interval
+        .unwrap_or(duration / opts.history_rows.max(2) as f64)
+        .max(dt0);
+    let scale = 1.0 / red.fraction();
+    let frame = touch.frame;
+    let to_scene = |v: [f64; 3], add: [f64; 3]| frame.to_global([v[0] + add[0], v[1] + add[1], v[2] + add[2]]);
+    let (_, _, d_start) = ball_states(&solver, red)?;
+    let approach_rate = kin.u[0][0] - kin.u[1][0];
+    let d_touch = d_start - approach_rate * pre;
+
+    let mut history = Vec::new();
+    let mut next_row = 0.0;
+    let mut apart_since: Option<f64> = None;
+    let mut stop_reason = String::new();
+    let mut bar = super::progress::Bar::new(opts.progress, end_time.min(pre + 2.0 * duration));
+    loop {
+        let t = solver.time();
+        let probe_now = probe.last();
+        let force_free = probe_now.active_nodes == 0 && probe_now.normal_force == 0.0;
+        let record = t >= next_row;
+        let check = solver.step_count() % 16 == 0;
+        if record || (by_separation && check) {
+            let (u, w, d) = ball_states(&solver, red)?;
+            if record {
+                let e = solver.energy();
+                let row = HistoryRow {
+                    t: t - pre,
+                    delta: d_touch - d,
+                    normal_force: probe_now.normal_force * match red {
+                        Reduction::Quarter => 4.0,
+                        Reduction::Half => 2.0,
+                        Reduction::Full => 1.0,
+                    },
+                    tangential_force: probe_now.tangential_force * if red == Reduction::Half { 2.0 } else { 1.0 },
+                    v: [to_scene(u[0], kin.v_cm), to_scene(u[1], kin.v_cm)],
+                    w: [frame.to_global(w[0]), frame.to_global(w[1])],
+                    kinetic: scale * e.kinetic,
+                    elastic: scale * e.elastic,
+                    plastic: scale * e.plastic,
+                    hourglass: scale * e.hourglass,
+                    contact_stored: scale * e.interaction_stored,
+                    contact_dissipated: scale * e.interaction_dissipated,
+                    total: scale * e.total,
+                };
+                if !row.is_finite() {
+                    return Err(Error::Numerical(format!(
+                        "non-finite state at t = {t:.6e} s (step {}): unstable run; lower solver.time_step_factor or contact.penalty_factor",
+                        solver.step_count()
+                    )));
+                }
+                history.push(row);
+                next_row = t + interval;
+                bar.update(t);
+            }
+            if by_separation {
+                let separating = u[0][0] - u[1][0] < 0.0;
+                let touched = probe.get().first_contact.is_some();
+                if touched && separating && force_free {
+                    let since = *apart_since.get_or_insert(t);
+                    if t - since >= hold {
+                        stop_reason = format!("separated: contact force zero for {hold:.3e} s");
+                        break;
+                    }
+                } else {
+                    apart_since = None;
+                }
+            }
+        }
+        if !by_separation && t >= end_time {
+            stop_reason = format!("end time {:.3e} s reached", end_time - pre);
+            break;
+        }
+        if solver.step_count() >= scene.solver.max_steps {
+            return Err(Error::Numerical(format!(
+                "the balls had not separated after solver.max_steps = {} steps (t = {:.6e} s): raise solver.max_steps or set solver.end_time",
+                scene.solver.max_steps,
+                t - pre
+            )));
+        }
+        solver.step()?;
+    }
+    bar.finish();
+    let (u, w, _) = ball_states(&solver, red)?;
+    let v_after = [to_scene(u[0], kin.v_cm), to_scene(u[1], kin.v_cm)];
+    let w_after = [frame.to_global(w[0]), frame.to_global(w[1])];
+    let data = probe.get();
+    let contact_duration = match (data.first_contact, data.last_contact) {
+        (Some(a), Some(b)) => b - a,
+        _ => 0.0,
+    };
+    let delta_max = history.iter().map(|r| r.delta).fold(0.0, f64::max);
+    let e_rel = -(u[0][0] - u[1][0]) / (kin.u[0][0] - kin.u[1][0]);
+    let outcome = Outcome {
+        e: e_rel,
+        v1_after: v_after[0],
+        v2_after: v_after[1],
+        w1_after: w_after[0],
+        w2_after: w_after[1],
+        delta_max,
+        contact_duration,
+        eta: dissipation_factor(scene, v_after, w_after),
+    };
+    outcome.check_finite("FE model")?;
+    let report = solver.energy();
+    let steps = solver.step_count();
+    Ok(Simulation {
+        outcome,
+        energy_error: report.max_balance_error,
+        savings: Savings {
+            reduction: red,
+            reduction_reason: reason,
+            start_at_touch,
+            free_flight_time: touch.t_touch,
+            stop_rule: if by_separation { "separation".into() } else { "end_time".into() },
+            hold_time: hold,
+            elastic_only,
+            friction: red != Reduction::Quarter && mu > 0.0,
+        },
+        elements,
+        nodes,
+        steps,
+        element_cycles: steps * elements as u64,
+        dt: dt0,
+        stop_reason,
+        wall_time_s: start.elapsed().as_secs_f64(),
+        history,
+    })
+}

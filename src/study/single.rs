@@ -1,0 +1,202 @@
+//! One scene, both models: the FE run beside the analytical answer, with relative
+//! differences, written as results.json and history.csv.
+
+use super::atomic::{ensure_dir, write_atomic};
+use super::outcome::{analytic_outcome, relative_difference, Outcome};
+use super::simulate::{simulate, RunOptions, Simulation, HISTORY_HEADER};
+use crate::error::{Error, Result};
+use crate::scene::{approach, Approach, Scene};
+use serde::Serialize;
+use std::path::Path;
+use std::time::Instant;
+
+/// Relative differences FE vs analytical, (FE − analytical)/|analytical|.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Differences {
+    /// In e.
+    pub e: f64,
+    /// In ball 1's normal velocity after impact.
+    pub v1n_after: f64,
+    /// In ball 2's normal velocity after impact.
+    pub v2n_after: f64,
+    /// In δ_max.
+    pub delta_max: f64,
+    /// In the contact duration.
+    pub contact_duration: f64,
+    /// In η.
+    pub eta: f64,
+}
+
+impl Differences {
+    /// FE against analytical; normal components along the contact frame's x.
+    pub fn between(fe: &Outcome, an: &Outcome, n: [f64; 3]) -> Differences {
+        let dot = |a: [f64; 3]| a[0] * n[0] + a[1] * n[1] + a[2] * n[2];
+        Differences {
+            e: relative_difference(fe.e, an.e),
+            v1n_after: relative_difference(dot(fe.v1_after), dot(an.v1_after)),
+            v2n_after: relative_difference(dot(fe.v2_after), dot(an.v2_after)),
+            delta_max: relative_difference(fe.delta_max, an.delta_max),
+            contact_duration: relative_difference(fe.contact_duration, an.contact_duration),
+            eta: relative_difference(fe.eta, an.eta),
+        }
+    }
+}
+
+/// Everything a run produced; serialised as results.json.
+#[derive(Debug, Clone, Serialize)]
+pub struct RunReport {
+    /// Whether the balls collide at all.
+    pub impact: bool,
+    /// Why not, when they do not.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub no_impact_reason: Option<String>,
+    /// FE coefficient of restitution (absent without impact).
+    pub e: Option<f64>,
+    /// FE centre-of-mass velocity of ball 1 after impact, m/s.
+    pub v1_after: [f64; 3],
+    /// FE centre-of-mass velocity of ball 2 after impact, m/s.
+    pub v2_after: [f64; 3],
+    /// FE angular velocity of ball 1 after impact, rad/s.
+    pub w1_after: [f64; 3],
+    /// FE angular velocity of ball 2 after impact, rad/s.
+    pub w2_after: [f64; 3],
+    /// FE maximum approach of the mass centres, m.
+    pub delta_max: f64,
+    /// FE contact duration, s.
+    pub contact_duration: f64,
+    /// FE energy dissipation factor η (eq. 33, rigid-body kinetic energy).
+    pub eta: Option<f64>,
+    /// Largest relative energy-balance error of the FE run.
+    pub energy_error: f64,
+    /// Symmetry reduction used: quarter, half, full (none without impact).
+    pub reduction: String,
+    /// Wall time of the whole run, s.
+    pub wall_time_s: f64,
+    /// Element updates (elements × steps).
+    pub element_cycles: u64,
+    /// FE run details (savings, sizes, steps, stop reason).
+    pub fe: Option<Simulation>,
+    /// The analytical model's outcome.
+    pub analytic: Option<Outcome>,
+    /// FE vs analytical.
+    pub relative_difference: Option<Differences>,
+    /// The scene as run (presets and overrides resolved).
+    pub scene: Scene,
+}
+
+/// Runs `scene`: analytical model, then FE (unless there is no impact).
+pub fn run_scene(scene: &Scene, opts: &RunOptions) -> Result<RunReport> {
+    let start = Instant::now();
+    let touch = match approach(scene)? {
+        Approach::NoImpact { reason } => {
+            return Ok(RunReport {
+                impact: false,
+                no_impact_reason: Some(reason),
+                e: None,
+                v1_after: scene.ball1.velocity,
+                v2_after: scene.ball2.velocity,
+                w1_after: scene.ball1.angular_velocity,
+                w2_after: scene.ball2.angular_velocity,
+                delta_max: 0.0,
+                contact_duration: 0.0,
+                eta: None,
+                energy_error: 0.0,
+                reduction: "none".into(),
+                wall_time_s: start.elapsed().as_secs_f64(),
+                element_cycles: 0,
+                fe: None,
+                analytic: None,
+                relative_difference: None,
+                scene: scene.clone(),
+            })
+        }
+        Approach::Impact(t) => t,
+    };
+    let (an, _) = analytic_outcome(scene, &touch)?;
+    let sim = simulate(scene, &touch, an.contact_duration, opts)?;
+    let fe = sim.outcome;
+    Ok(RunReport {
+        impact: true,
+        no_impact_reason: None,
+        e: Some(fe.e),
+        v1_after: fe.v1_after,
+        v2_after: fe.v2_after,
+        w1_after: fe.w1_after,
+        w2_after: fe.w2_after,
+        delta_max: fe.delta_max,
+        contact_duration: fe.contact_duration,
+        eta: Some(fe.eta),
+        energy_error: sim.energy_error,
+        reduction: sim.savings.reduction.name().into(),
+        wall_time_s: start.elapsed().as_secs_f64(),
+        element_cycles: sim.element_cycles,
+        relative_difference: Some(Differences::between(&fe, &an, touch.frame.axes[0])),
+        fe: Some(sim),
+        analytic: Some(an),
+        scene: scene.clone(),
+    })
+}
+
+/// Writes results.json and history.csv into `dir` (created if needed), each atomically.
+pub fn write_outputs(report: &RunReport, dir: &Path) -> Result<()> {
+    ensure_dir(dir)?;
+    let json = serde_json::to_string_pretty(report).map_err(|e| Error::Parse(format!("results.json: {e}")))?;
+    if !report.energy_error.is_finite() || report.fe.as_ref().is_some_and(|f| !f.outcome.is_finite()) {
+        return Err(Error::Numerical("results contain a non-finite value; nothing written".into()));
+    }
+    write_atomic(&dir.join("results.json"), json.as_bytes())?;
+    let mut csv = String::from(HISTORY_HEADER);
+    csv.push('\n');
+    if let Some(sim) = &report.fe {
+        for r in &sim.history {
+            csv.push_str(&r.csv());
+            csv.push('\n');
+        }
+    }
+    write_atomic(&dir.join("history.csv"), csv.as_bytes())
+}
+
+/// The side-by-side table printed by `twoball run`.
+pub fn side_by_side(r: &RunReport) -> String {
+    let mut s = String::new();
+    let sc = &r.scene;
+    s.push_str(&format!(
+        "scene: ball1 {} D = {} m v = {:?} m/s; ball2 {} D = {} m v = {:?} m/s\n",
+        sc.ball1.material_name, sc.ball1.diameter, sc.ball1.velocity, sc.ball2.material_name, sc.ball2.diameter, sc.ball2.velocity
+    ));
+    if !r.impact {
+        s.push_str(&format!("no impact: {}\n", r.no_impact_reason.as_deref().unwrap_or("")));
+        return s;
+    }
+    let (Some(sim), Some(an), Some(d)) = (&r.fe, &r.analytic, &r.relative_difference) else {
+        return s;
+    };
+    let fe = &sim.outcome;
+    let n = |v: [f64; 3]| v[0];
+    let t = |v: [f64; 3]| v[1];
+    s.push_str(&format!("{:<34}{:>14}{:>14}{:>10}\n", "quantity", "FE", "analytical", "diff"));
+    let mut row = |name: &str, a: f64, b: f64, diff: Option<f64>| {
+        let d = diff.map_or(String::from("-"), |x| format!("{:+.2}%", 100.0 * x));
+        s.push_str(&format!("{name:<34}{a:>14.6e}{b:>14.6e}{d:>10}\n"));
+    };
+    row("e [-]", fe.e, an.e, Some(d.e));
+    row("ball 1 normal velocity after [m/s]", n(fe.v1_after), n(an.v1_after), Some(d.v1n_after));
+    row("ball 2 normal velocity after [m/s]", n(fe.v2_after), n(an.v2_after), Some(d.v2n_after));
+    row("ball 1 tangential velocity [m/s]", t(fe.v1_after), t(an.v1_after), Some(relative_difference(t(fe.v1_after), t(an.v1_after))));
+    row("ball 2 tangential velocity [m/s]", t(fe.v2_after), t(an.v2_after), Some(relative_difference(t(fe.v2_after), t(an.v2_after))));
+    row("delta_max [m]", fe.delta_max, an.delta_max, Some(d.delta_max));
+    row("contact duration [s]", fe.contact_duration, an.contact_duration, Some(d.contact_duration));
+    row("eta [-]", fe.eta, an.eta, Some(d.eta));
+    s.push_str(&format!(
+        "FE: {} model ({}), {} elements, {} steps, dt = {:.3e} s, energy error {:.2e}, {:.2} s wall; {}\n",
+        sim.savings.reduction.name(),
+        sim.savings.reduction_reason,
+        sim.elements,
+        sim.steps,
+        sim.dt,
+        sim.energy_error,
+        r.wall_time_s,
+        sim.stop_reason
+    ));
+    s
+}

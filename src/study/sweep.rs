@@ -1,0 +1,772 @@
+//! Parameter sweeps such as the paper's ANSYS study (Section 3): a grid of two-ball scenes,
+//! each case run once, its result written atomically to its own JSON file, finished cases
+//! skipped on restart, and one CSV of all cases rewritten atomically at the end.
+//!
+//! The sweep file (TOML):
+//! ```toml
+//! [study]
+//! model = "fe"                                      # "fe" (FE and analytical) or "analytic"
+//! diameters = [0.005, 0.010, 0.020, 0.030]          # m, both balls
+//! left_velocity = 1.0                               # m/s, ball 1 along the line of centres
+//! right_velocities = [-2.5, -1.5, -1.0, 0.0, 0.5, 1.0]
+//! tangential = [[0.0, 0.0], [0.1, -0.1], [0.5, -0.5]]  # m/s along y, ball 1 / ball 2
+//! [base]                                            # scene keys for every case
+//! ball1.material = "copper-fe"
+//! ball2.material = "copper-fe"
+//! [[mesh]]
+//! name = "uniform-2mm"
+//! size = 0.002                                      # m, or size_per_diameter = 0.1
+//! pole_size = 0.002                                 # m, or pole_size_per_diameter = 0.01
+//! ```
+
+use super::atomic::{ensure_dir, remove_stale_temporaries, write_atomic};
+use super::outcome::{analytic_outcome, Outcome};
+use crate::error::{Error, Result};
+use crate::scene::reader::{parse_table, Reader};
+use crate::scene::{approach, Approach, Override, Scene, DEFAULT_SCENE};
+use rayon::prelude::*;
+use serde::{Deserialize, Serialize};
+use std::path::{Path, PathBuf};
+use std::time::{Duration, Instant};
+use toml::{Table, Value};
+
+/// Which models a sweep runs.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum SweepModel {
+    /// FE simulation and the analytical model.
+    Fe,
+    /// The analytical model only (fast; for parameter studies and for testing the runner).
+    Analytic,
+}
+
+/// An element size: absolute (m) or relative to the ball diameter.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Size {
+    /// Metres.
+    Absolute(f64),
+    /// Fraction of the diameter.
+    PerDiameter(f64),
+}
+
+impl Size {
+    fn metres(self, d: f64) -> f64 {
+        match self {
+            Size::Absolute(s) => s,
+            Size::PerDiameter(f) => f * d,
+        }
+    }
+}
+
+/// One mesh setting of the sweep.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct MeshSetting {
+    /// Short name, used in case ids (letters, digits, `-`).
+    pub name: String,
+    /// Bulk element size.
+    pub size: Size,
+    /// Pole element size.
+    pub pole_size: Size,
+}
+
+/// A parsed sweep file.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SweepSpec {
+    /// Models to run.
+    pub model: SweepModel,
+    /// Ball diameters, m (both balls).
+    pub diameters: Vec<f64>,
+    /// Ball 1's velocity along the line of centres, m/s.
+    pub left_velocity: f64,
+    /// Ball 2's velocities along the line of centres, m/s.
+    pub right_velocities: Vec<f64>,
+    /// Tangential (y) velocities of ball 1 and ball 2, m/s.
+    pub tangential: Vec<[f64; 2]>,
+    /// Mesh settings.
+    pub meshes: Vec<MeshSetting>,
+    /// Scene keys applied to every case, as `--set` overrides over the default scene.
+    pub base: Vec<Override>,
+    /// Points kept of each δ(t) history in the case files.
+    pub history_points: usize,
+}
+
+/// One case of a sweep.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Case {
+    /// Position in the full (unsharded) case list.
+    pub index: usize,
+    /// File-name-safe id, e.g. `D20mm_vr-1.0_vt0.1_graded`.
+    pub id: String,
+    /// Its parameters.
+    pub params: CaseParams,
+    /// The scene it runs.
+    pub scene: Scene,
+}
+
+/// The parameters that define a case.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct CaseParams {
+    /// Diameter of both balls, m.
+    pub diameter: f64,
+    /// Ball 1's normal velocity, m/s.
+    pub v1n: f64,
+    /// Ball 2's normal velocity, m/s.
+    pub v2n: f64,
+    /// Ball 1's tangential velocity, m/s.
+    pub v1t: f64,
+    /// Ball 2's tangential velocity, m/s.
+    pub v2t: f64,
+    /// Mesh setting name.
+    pub mesh: String,
+}
+
+/// How a case ended.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Status {
+    /// Simulated (and/or solved analytically).
+    Done,
+    /// The balls do not collide: nothing simulated.
+    NoImpact,
+    /// The run stopped with an error (the message says why).
+    Failed,
+}
+
+/// The FE part of a case result.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct FeSummary {
+    /// The FE outcome.
+    pub outcome: Outcome,
+    /// Relative energy-balance error of the run.
+    pub energy_error: f64,
+    /// Symmetry reduction used (`quarter`, `half`, `full`).
+    pub reduction: String,
+    /// Number of elements simulated.
+    pub elements: usize,
+    /// Element updates (elements × steps).
+    pub element_cycles: u64,
+    /// Wall time of the FE run, s.
+    pub wall_time_s: f64,
+}
+
+/// An FE run as a sweep sees it: the summary and the δ(t) history (t in s, δ in m).
+#[derive(Debug, Clone, PartialEq)]
+pub struct FeCase {
+    /// Summary numbers.
+    pub summary: FeSummary,
+    /// δ(t) samples.
+    pub delta_history: Vec<[f64; 2]>,
+}
+
+/// What is written for each case (one JSON file per case).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct CaseRecord {
+    /// Case id.
+    pub id: String,
+    /// Position in the full case list.
+    pub index: usize,
+    /// Parameters.
+    pub params: CaseParams,
+    /// How it ended.
+    pub status: Status,
+    /// Why (no impact, failure), else empty.
+    pub message: String,
+    /// The analytical outcome (absent for no impact).
+    pub analytic: Option<Outcome>,
+    /// The FE result (absent for no impact, analytic-only sweeps and failures).
+    pub fe: Option<FeSummary>,
+    /// Analytical δ(t): [t (s), δ (m)] pairs.
+    pub analytic_history: Vec<[f64; 2]>,
+    /// FE δ(t): [t (s), δ (m)] pairs.
+    pub fe_history: Vec<[f64; 2]>,
+    /// Wall time of the whole case, s.
+    pub wall_time_s: f64,
+}
+
+/// The FE solver a sweep calls for each impacting case.
+pub type FeRunner<'a> = &'a (dyn Fn(&Scene) -> Result<FeCase> + Sync);
+
+/// `I/N`: this process runs the cases whose index ≡ I − 1 (mod N).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Shard {
+    /// 1-based shard number.
+    pub index: usize,
+    /// Number of shards.
+    pub count: usize,
+}
+
+impl Shard {
+    /// The whole sweep.
+    pub const ALL: Shard = Shard { index: 1, count: 1 };
+
+    /// Parses `I/N` with 1 ≤ I ≤ N.
+    pub fn parse(s: &str) -> Result<Shard> {
+        let bad = || Error::invalid("--shard", s, "I/N with integers 1 <= I <= N, e.g. 2/8");
+        let (i, n) = s.split_once('/').ok_or_else(bad)?;
+        let (i, n): (usize, usize) = (
+            i.trim().parse().map_err(|_| bad())?,
+            n.trim().parse().map_err(|_| bad())?,
+        );
+        if n == 0 || i == 0 || i > n {
+            return Err(bad());
+        }
+        Ok(Shard { index: i, count: n })
+    }
+
+    /// Whether case `index` belongs to this shard.
+    pub fn owns(&self, index: usize) -> bool {
+        index % self.count == self.index - 1
+    }
+}
+
+const STUDY_KEYS: [&str; 7] = [
+    "model",
+    "diameters",
+    "left_velocity",
+    "right_velocities",
+    "tangential",
+    "history_points",
+    "name",
+];
+const MESH_KEYS: [&str; 5] = [
+    "name",
+    "size",
+    "pole_size",
+    "size_per_diameter",
+    "pole_size_per_diameter",
+];
+
+fn list_f64(
+    r: &Reader<'_>,
+    key: &str,
+    ok: impl Fn(f64) -> bool,
+    allowed: &str,
+) -> Result<Vec<f64>> {
+    let v = r
+        .raw(key)
+        .ok_or_else(|| r.missing(key, "a list of numbers"))?;
+    let Value::Array(a) = v else {
+        return Err(Error::Parse(format!(
+            "{} must be a list of numbers",
+            r.key_path(key)
+        )));
+    };
+    if a.is_empty() {
+        return Err(Error::invalid(r.key_path(key), "[]", "a non-empty list"));
+    }
+    a.iter()
+        .enumerate()
+        .map(|(i, x)| {
+            let x = match x {
+                Value::Float(f) => *f,
+                Value::Integer(n) => *n as f64,
+                _ => {
+                    return Err(Error::Parse(format!(
+                        "{}[{i}] must be a number",
+                        r.key_path(key)
+                    )))
+                }
+            };
+            if x.is_finite() && ok(x) {
+                Ok(x)
+            } else {
+                Err(Error::invalid(
+                    format!("{}[{i}]", r.key_path(key)),
+                    x,
+                    allowed,
+                ))
+            }
+        })
+        .collect()
+}
+
+/// Flattens a table of scene keys into `--set` overrides (nested tables become dotted paths).
+fn flatten(prefix: &[String], t: &Table, out: &mut Vec<Override>) {
+    for (k, v) in t {
+        let mut path = prefix.to_vec();
+        path.push(k.clone());
+        match v {
+            Value::Table(sub) => flatten(&path, sub, out),
+            other => out.push(Override {
+                path,
+                value: other.clone(),
+            }),
+        }
+    }
+}
+
+impl SweepSpec {
+    /// Reads a sweep file.
+    pub fn from_file(path: &Path) -> Result<SweepSpec> {
+        let text = std::fs::read_to_string(path).map_err(|e| Error::io(path, e))?;
+        Self::from_toml(&text, &path.display().to_string())
+    }
+
+    /// Reads sweep text; `origin` names it in syntax errors.
+    pub fn from_toml(text: &str, origin: &str) -> Result<SweepSpec> {
+        let root = parse_table(text, origin)?;
+        let r = Reader::new("", &root);
+        r.only(&["study", "base", "mesh"])?;
+        let s = r
+            .table("study")?
+            .ok_or_else(|| r.missing("study", "the sweep's axes"))?;
+        s.only(&STUDY_KEYS)?;
+        let model = match s.choice("model", &["fe", "analytic"])? {
+            Some("analytic") => SweepModel::Analytic,
+            _ => SweepModel::Fe,
+        };
+        let diameters = list_f64(
+            &s,
+            "diameters",
+            |d| (1e-4..=1.0).contains(&d),
+            "1e-4 <= diameter <= 1 m",
+        )?;
+        let left_velocity = s
+            .f64("left_velocity", |v| v.abs() <= 1000.0, "|v| <= 1000 m/s")?
+            .ok_or_else(|| s.missing("left_velocity", "m/s"))?;
+        let right_velocities = list_f64(
+            &s,
+            "right_velocities",
+            |v| v.abs() <= 1000.0,
+            "|v| <= 1000 m/s",
+        )?;
+        let tangential = match s.raw("tangential") {
+            None => vec![[0.0, 0.0]],
+            Some(Value::Array(pairs)) => pairs
+                .iter()
+                .enumerate()
+                .map(|(i, p)| {
+                    let bad = || {
+                        Error::invalid(
+                            format!("study.tangential[{i}]"),
+                            p,
+                            "a pair [v1t, v2t] of numbers, |v| <= 1000 m/s",
+                        )
+                    };
+                    let Value::Array(a) = p else {
+                        return Err(bad());
+                    };
+                    let num = |v: &Value| match v {
+                        Value::Float(f) if f.is_finite() && f.abs() <= 1000.0 => Ok(*f),
+                        Value::Integer(n) if n.abs() <= 1000 => Ok(*n as f64),
+                        _ => Err(bad()),
+                    };
+                    match a.as_slice() {
+                        [a, b] => Ok([num(a)?, num(b)?]),
+                        _ => Err(bad()),
+                    }
+                })
+                .collect::<Result<Vec<_>>>()?,
+            Some(other) => {
+                return Err(Error::invalid(
+                    "study.tangential",
+                    other,
+                    "a list of pairs [v1t, v2t]",
+                ))
+            }
+        };
+        let history_points = s
+            .u64(
+                "history_points",
+                |n| (2..=100_000).contains(&n),
+                "2 <= history_points <= 100000",
+            )?
+            .unwrap_or(200) as usize;
+        let _ = s.string("name")?;
+        let mut base = Vec::new();
+        if let Some(b) = r.raw("base") {
+            let Value::Table(t) = b else {
+                return Err(Error::Parse("base must be a table of scene keys".into()));
+            };
+            flatten(&[], t, &mut base);
+        }
+        let meshes = match r.raw("mesh") {
+            None => vec![MeshSetting {
+                name: "default".into(),
+                size: Size::PerDiameter(crate::scene::DEFAULT_SIZE_PER_D),
+                pole_size: Size::PerDiameter(crate::scene::DEFAULT_POLE_SIZE_PER_D),
+            }],
+            Some(Value::Array(items)) => {
+                let mut out = Vec::new();
+                for (i, it) in items.iter().enumerate() {
+                    let Value::Table(t) = it else {
+                        return Err(Error::Parse(format!(
+                            "mesh[{i}] must be a table ([[mesh]])"
+                        )));
+                    };
+                    let m = Reader::new(&format!("mesh[{i}]"), t);
+                    m.only(&MESH_KEYS)?;
+                    let name = m
+                        .string("name")?
+                        .ok_or_else(|| m.missing("name", "a short mesh name"))?;
+                    if name.is_empty()
+                        || !name.chars().all(|c| c.is_ascii_alphanumeric() || c == '-')
+                    {
+                        return Err(Error::invalid(
+                            m.key_path("name"),
+                            name,
+                            "letters, digits and '-'",
+                        ));
+                    }
+                    let size_of = |abs: &str, rel: &str| -> Result<Size> {
+                        let a = m.f64(abs, |x| x > 0.0 && x <= 1.0, "0 < size <= 1 m")?;
+                        let r = m.f64(rel, |x| x > 0.0 && x <= 1.0, "0 < fraction <= 1")?;
+                        match (a, r) {
+                            (Some(a), None) => Ok(Size::Absolute(a)),
+                            (None, Some(r)) => Ok(Size::PerDiameter(r)),
+                            _ => Err(Error::Parse(format!(
+                                "{}: give exactly one of {abs} and {rel}",
+                                m.key_path(abs)
+                            ))),
+                        }
+                    };
+                    out.push(MeshSetting {
+                        name: name.to_string(),
+                        size: size_of("size", "size_per_diameter")?,
+                        pole_size: size_of("pole_size", "pole_size_per_diameter")?,
+                    });
+                }
+                if out.is_empty() {
+                    return Err(Error::invalid("mesh", "[]", "at least one [[mesh]]"));
+                }
+                out
+            }
+            Some(_) => {
+                return Err(Error::Parse(
+                    "mesh must be an array of tables ([[mesh]])".into(),
+                ))
+            }
+        };
+        let spec = SweepSpec {
+            model,
+            diameters,
+            left_velocity,
+            right_velocities,
+            tangential,
+            meshes,
+            base,
+            history_points,
+        };
+        spec.cases()?; // every case must be a valid scene
+        Ok(spec)
+    }
+
+    /// All cases, in a fixed order: mesh, diameter, tangential pair, right-ball speed.
+    pub fn cases(&self) -> Result<Vec<Case>> {
+        let default = parse_table(DEFAULT_SCENE, "default scene")?;
+        let mut out = Vec::new();
+        for mesh in &self.meshes {
+            for &d in &self.diameters {
+                for &[v1t, v2t] in &self.tangential {
+                    for &v2n in &self.right_velocities {
+                        let v1n = self.left_velocity;
+                        let id = format!("D{}mm_vr{v2n:+.2}_vt{v1t:.2}_{}", fmt_mm(d), mesh.name);
+                        let mut table = default.clone();
+                        for o in &self.base {
+                            o.apply(&mut table)?;
+                        }
+                        let (size, pole) = (
+                            mesh.size.metres(d),
+                            mesh.pole_size.metres(d).min(mesh.size.metres(d)),
+                        );
+                        let sets = [
+                            format!("ball1.diameter={d}"),
+                            format!("ball2.diameter={d}"),
+                            format!("ball1.velocity=[{v1n:e},{v1t:e},0]"),
+                            format!("ball2.velocity=[{v2n:e},{v2t:e},0]"),
+                            format!("ball1.mesh.size={size:e}"),
+                            format!("ball2.mesh.size={size:e}"),
+                            format!("ball1.mesh.pole_size={pole:e}"),
+                            format!("ball2.mesh.pole_size={pole:e}"),
+                        ];
+                        for s in &sets {
+                            Override::parse(s)?.apply(&mut table)?;
+                        }
+                        let scene = Scene::from_table(&table, Path::new("."))
+                            .map_err(|e| Error::Parse(format!("sweep case {id}: {e}")))?;
+                        let params = CaseParams {
+                            diameter: d,
+                            v1n,
+                            v2n,
+                            v1t,
+                            v2t,
+                            mesh: mesh.name.clone(),
+                        };
+                        out.push(Case {
+                            index: out.len(),
+                            id,
+                            params,
+                            scene,
+                        });
+                    }
+                }
+            }
+        }
+        Ok(out)
+    }
+}
+
+/// Diameter in mm for ids: `20`, `5`, `2.5`.
+fn fmt_mm(d: f64) -> String {
+    let mm = d * 1000.0;
+    if (mm - mm.round()).abs() < 1e-9 {
+        format!("{:02}", mm.round() as i64)
+    } else {
+        format!("{mm}")
+    }
+}
+
+/// Runs one case: no impact, or the analytical model and (if given) the FE model.
+pub fn run_case(case: &Case, fe: Option<FeRunner<'_>>, history_points: usize) -> CaseRecord {
+    let start = Instant::now();
+    let mut rec = CaseRecord {
+        id: case.id.clone(),
+        index: case.index,
+        params: case.params.clone(),
+        status: Status::Done,
+        message: String::new(),
+        analytic: None,
+        fe: None,
+        analytic_history: Vec::new(),
+        fe_history: Vec::new(),
+        wall_time_s: 0.0,
+    };
+    let result = (|| -> Result<()> {
+        let touch = match approach(&case.scene)? {
+            Approach::NoImpact { reason } => {
+                rec.status = Status::NoImpact;
+                rec.message = reason;
+                return Ok(());
+            }
+            Approach::Impact(t) => t,
+        };
+        let (outcome, collision) = analytic_outcome(&case.scene, &touch)?;
+        rec.analytic = Some(outcome);
+        if let Some(n) = &collision.normal {
+            rec.analytic_history = crate::analytic::history::history(n, history_points)
+                .iter()
+                .map(|s| [s.t, s.delta])
+                .collect();
+        }
+        if let Some(fe) = fe {
+            let r = fe(&case.scene)?;
+            r.summary.outcome.check_finite("FE model")?;
+            rec.fe_history = thin(&r.delta_history, history_points);
+            rec.fe = Some(r.summary);
+        }
+        Ok(())
+    })();
+    if let Err(e) = result {
+        rec.status = Status::Failed;
+        rec.message = e.to_string();
+    }
+    rec.analytic_history
+        .retain(|p| p.iter().all(|x| x.is_finite()));
+    rec.fe_history.retain(|p| p.iter().all(|x| x.is_finite()));
+    rec.wall_time_s = start.elapsed().as_secs_f64();
+    rec
+}
+
+/// At most `n` evenly picked samples of `h` (first and last kept).
+fn thin(h: &[[f64; 2]], n: usize) -> Vec<[f64; 2]> {
+    if h.len() <= n || n < 2 {
+        return h.to_vec();
+    }
+    (0..n).map(|i| h[i * (h.len() - 1) / (n - 1)]).collect()
+}
+
+/// Options of a sweep run.
+#[derive(Debug, Clone)]
+pub struct SweepOptions {
+    /// Output folder (case files go to `DIR/cases/`).
+    pub out: PathBuf,
+    /// Worker threads (≥ 1).
+    pub jobs: usize,
+    /// Which part of the sweep this process runs.
+    pub shard: Shard,
+    /// Minimum wall time per case (testing aid: makes a fast sweep slow enough to kill).
+    pub pace: Duration,
+    /// Print one line per finished case on stderr.
+    pub verbose: bool,
+}
+
+/// What a sweep run did.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct SweepSummary {
+    /// Cases in the whole sweep.
+    pub total: usize,
+    /// Cases of this shard.
+    pub in_shard: usize,
+    /// Cases of this shard found finished and skipped.
+    pub skipped: usize,
+    /// Cases run now.
+    pub ran: usize,
+    /// Cases of the whole sweep in the CSV.
+    pub in_csv: usize,
+    /// Cases that failed (of the whole sweep, in the CSV).
+    pub failed: usize,
+}
+
+/// Path of a case's result file.
+pub fn case_path(out: &Path, id: &str) -> PathBuf {
+    out.join("cases").join(format!("{id}.json"))
+}
+
+/// Reads a finished case file; `None` if absent or unreadable (then the case is rerun).
+pub fn read_case(out: &Path, id: &str) -> Option<CaseRecord> {
+    let text = std::fs::read_to_string(case_path(out, id)).ok()?;
+    serde_json::from_str::<CaseRecord>(&text)
+        .ok()
+        .filter(|r| r.id == id)
+}
+
+/// Runs (the shard of) a sweep, skipping finished cases, then rewrites `DIR/sweep.csv` from
+/// every finished case of the whole sweep.
+pub fn run_sweep(
+    spec: &SweepSpec,
+    opts: &SweepOptions,
+    fe: Option<FeRunner<'_>>,
+) -> Result<SweepSummary> {
+    if opts.jobs == 0 {
+        return Err(Error::invalid("--jobs", 0, "jobs >= 1"));
+    }
+    let cases = spec.cases()?;
+    let dir = opts.out.join("cases");
+    ensure_dir(&dir)?;
+    remove_stale_temporaries(&dir)?;
+    remove_stale_temporaries(&opts.out)?;
+    let mine: Vec<&Case> = cases.iter().filter(|c| opts.shard.owns(c.index)).collect();
+    let pending: Vec<&Case> = mine
+        .iter()
+        .copied()
+        .filter(|c| read_case(&opts.out, &c.id).is_none())
+        .collect();
+    let skipped = mine.len() - pending.len();
+    let fe = if spec.model == SweepModel::Fe {
+        fe
+    } else {
+        None
+    };
+    if spec.model == SweepModel::Fe && fe.is_none() {
+        return Err(Error::External(
+            "this sweep asks for the FE model, which is not available here".into(),
+        ));
+    }
+    let done = std::sync::atomic::AtomicUsize::new(0);
+    let n_pending = pending.len();
+    let work = |c: &&Case| -> Result<()> {
+        let t0 = Instant::now();
+        let rec = run_case(c, fe, spec.history_points);
+        if let Some(rest) = opts.pace.checked_sub(t0.elapsed()) {
+            std::thread::sleep(rest);
+        }
+        let json = serde_json::to_string_pretty(&rec)
+            .map_err(|e| Error::Parse(format!("case {}: {e}", c.id)))?;
+        write_atomic(&case_path(&opts.out, &c.id), json.as_bytes())?;
+        let k = done.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1;
+        if opts.verbose {
+            eprintln!(
+                "[{k}/{n_pending}] {} {:?} ({:.2} s)",
+                c.id, rec.status, rec.wall_time_s
+            );
+        }
+        Ok(())
+    };
+    if opts.jobs > 1 && n_pending > 1 {
+        // More cases than one: spread whole cases over the workers (each FE run may still use
+        // the pool for its own loops).
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(opts.jobs)
+            .build()
+            .map_err(|e| Error::External(format!("thread pool: {e}")))?;
+        pool.install(|| pending.par_iter().try_for_each(work))?;
+    } else {
+        pending.iter().try_for_each(work)?;
+    }
+    let (in_csv, failed) = write_csv(&opts.out, &cases)?;
+    Ok(SweepSummary {
+        total: cases.len(),
+        in_shard: mine.len(),
+        skipped,
+        ran: n_pending,
+        in_csv,
+        failed,
+    })
+}
+
+/// The CSV header (units in brackets).
+pub const CSV_HEADER: &str = "id,mesh,diameter [m],v1n [m/s],v2n [m/s],v1t [m/s],v2t [m/s],status,\
+e_fe [-],e_an [-],v1n_after_fe [m/s],v1n_after_an [m/s],v2n_after_fe [m/s],v2n_after_an [m/s],\
+v1t_after_fe [m/s],v1t_after_an [m/s],v2t_after_fe [m/s],v2t_after_an [m/s],\
+delta_max_fe [m],delta_max_an [m],contact_duration_fe [s],contact_duration_an [s],\
+eta_fe [-],eta_an [-],energy_error_fe [-],reduction,elements,element_cycles,wall_time [s],message";
+
+fn num(x: Option<f64>) -> String {
+    match x {
+        Some(v) if v.is_finite() => format!("{v:.6e}"),
+        _ => String::new(),
+    }
+}
+
+/// One CSV row of a case record (normal = x, tangential = y of the scene frame).
+pub fn csv_row(r: &CaseRecord) -> String {
+    let p = &r.params;
+    let fe = r.fe.as_ref().map(|f| &f.outcome);
+    let an = r.analytic.as_ref();
+    let both = |g: &dyn Fn(&Outcome) -> f64| [num(fe.map(g)), num(an.map(g))];
+    let status = match r.status {
+        Status::Done => "done",
+        Status::NoImpact => "no_impact",
+        Status::Failed => "failed",
+    };
+    let mut cols = vec![
+        r.id.clone(),
+        p.mesh.clone(),
+        num(Some(p.diameter)),
+        num(Some(p.v1n)),
+        num(Some(p.v2n)),
+        num(Some(p.v1t)),
+        num(Some(p.v2t)),
+        status.to_string(),
+    ];
+    cols.extend(both(&|o| o.e));
+    cols.extend(both(&|o| o.v1_after[0]));
+    cols.extend(both(&|o| o.v2_after[0]));
+    cols.extend(both(&|o| o.v1_after[1]));
+    cols.extend(both(&|o| o.v2_after[1]));
+    cols.extend(both(&|o| o.delta_max));
+    cols.extend(both(&|o| o.contact_duration));
+    cols.extend(both(&|o| o.eta));
+    let f = r.fe.as_ref();
+    cols.push(num(f.map(|f| f.energy_error)));
+    cols.push(f.map_or(String::new(), |f| f.reduction.clone()));
+    cols.push(f.map_or(String::new(), |f| f.elements.to_string()));
+    cols.push(f.map_or(String::new(), |f| f.element_cycles.to_string()));
+    cols.push(num(Some(r.wall_time_s)));
+    cols.push(format!("\"{}\"", r.message.replace('"', "'")));
+    cols.join(",")
+}
+
+/// Rewrites `DIR/sweep.csv` (atomically) from the finished case files of `cases`, in case
+/// order; returns (rows written, failed rows).
+pub fn write_csv(out: &Path, cases: &[Case]) -> Result<(usize, usize)> {
+    let mut text = String::from(CSV_HEADER);
+    text.push('\n');
+    let (mut rows, mut failed) = (0, 0);
+    for c in cases {
+        if let Some(r) = read_case(out, &c.id) {
+            text.push_str(&csv_row(&r));
+            text.push('\n');
+            rows += 1;
+            failed += usize::from(r.status == Status::Failed);
+        }
+    }
+    write_atomic(&out.join("sweep.csv"), text.as_bytes())?;
+    Ok((rows, failed))
+}
+
+/// Reads every finished case record of `cases` from `out`.
+pub fn read_records(out: &Path, cases: &[Case]) -> Vec<CaseRecord> {
+    cases.iter().filter_map(|c| read_case(out, &c.id)).collect()
+}
