@@ -162,9 +162,16 @@ fn contact_patch_surrounds_the_pole() {
     let m = ball(&spec(0.002, Some(1e-4), Cut::Half)).unwrap();
     let cos_c = CONTACT_HALF_ANGLE_DEG.to_radians().cos();
     let contact = &m.node_sets["contact"];
+    // Every surface node within the contact angle is in the set, and nothing far beyond it.
+    for &i in &m.node_sets["surface"] {
+        if m.nodes[i as usize][0] >= cos_c * 0.01 {
+            assert!(contact.binary_search(&i).is_ok());
+        }
+    }
+    let cos_outer = (CONTACT_HALF_ANGLE_DEG + 10.0).to_radians().cos();
     assert!(contact
         .iter()
-        .all(|&i| m.nodes[i as usize][0] >= cos_c * 0.01 * (1.0 - 1e-12)));
+        .all(|&i| m.nodes[i as usize][0] >= cos_outer * 0.01));
     let pole = contact
         .iter()
         .find(|&&i| m.nodes[i as usize] == [0.01, 0.0, 0.0]);
@@ -181,7 +188,7 @@ fn contact_patch_surrounds_the_pole() {
         ];
         assert!(n[0] * p[0][0] + n[1] * p[0][1] + n[2] * p[0][2] > 0.0);
     }
-    // The patch covers the 30-degree cap: its area is close to 2 pi R^2 (1 - cos 30) / 2.
+    // The patch covers the 30-degree cap and a little more (the half ball holds half of it).
     let area: f64 = m.face_sets["contact"]
         .iter()
         .map(|q| {
@@ -197,7 +204,8 @@ fn contact_patch_surrounds_the_pole() {
         })
         .sum();
     let cap = PI * 1e-4 * (1.0 - cos_c);
-    assert!(area > 0.8 * cap && area < cap, "{area} vs {cap}");
+    let outer = PI * 1e-4 * (1.0 - cos_outer);
+    assert!(area > cap && area < outer, "{area} vs {cap}..{outer}");
 }
 
 #[test]

@@ -1,0 +1,711 @@
+//! THE LOOP: explicit central-difference time integration, following Box 6.1 of Belytschko,
+//! Liu & Moran, *Nonlinear Finite Elements for Continua and Structures* (2000). Each line of
+//! [`Solver::step`] is one step of the box.
+//!
+//! Updated Lagrangian: positions x are current coordinates, stresses are Cauchy stresses in
+//! the current frame; every array is allocated once in [`Solver::new`].
+
+use super::{
+    elements::{ElementBlock, ElementFailure},
+    energy::{EnergyReport, PartEnergy},
+    interaction::{Interaction, StepContext},
+    mass::element_lumped_mass,
+    model::Model,
+    plasticity::J2Material,
+    tensor::{cross, inverse, Sym},
+    timestep::StableStep,
+};
+use crate::error::{Error, Result};
+use rayon::prelude::*;
+
+/// Nodes per chunk of the node loops; fixed so that partial sums never depend on threads.
+const NODE_CHUNK: usize = 4096;
+
+/// Solver settings.
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct Settings {
+    /// Time-step safety factor on the Courant limit (0 < s ≤ 1; default 0.9).
+    pub safety: f64,
+    /// Hourglass coefficient ε_hg of the one-point hex (0 ≤ ε ≤ 0.5; default 0.05).
+    pub hourglass: f64,
+    /// Fixed time step (s) instead of the Courant limit; `None` = automatic.
+    pub fixed_dt: Option<f64>,
+    /// Stop when the step falls below this fraction of the initial step (default 1e-3).
+    pub dt_collapse: f64,
+    /// Steps between Box 6.1 energy-balance checks (≥ 1; default 100).
+    pub energy_interval: u64,
+    /// Relative hysteresis of the automatic step (0 ≤ h < 1; default 0.05): the step taken
+    /// drops as soon as the stable limit falls below it but grows only when the limit exceeds
+    /// it by this fraction. A step that breathes with every vibration cycle pumps energy into
+    /// the model (variable-step central differences are not symplectic).
+    pub dt_hysteresis: f64,
+}
+
+impl Default for Settings {
+    fn default() -> Self {
+        Settings {
+            safety: 0.9,
+            hourglass: 0.05,
+            fixed_dt: None,
+            dt_collapse: 1e-3,
+            energy_interval: 100,
+            dt_hysteresis: 0.05,
+        }
+    }
+}
+
+impl Settings {
+    /// Checks every field, naming the bad one.
+    pub fn validated(self) -> Result<Self> {
+        if !(self.safety > 0.0 && self.safety <= 1.0) {
+            return Err(Error::invalid(
+                "solver.safety",
+                self.safety,
+                "0 < safety <= 1",
+            ));
+        }
+        if !(self.hourglass >= 0.0 && self.hourglass <= 0.5) {
+            return Err(Error::invalid(
+                "solver.hourglass",
+                self.hourglass,
+                "0 <= hourglass <= 0.5",
+            ));
+        }
+        if let Some(dt) = self.fixed_dt {
+            if !(dt > 0.0 && dt.is_finite()) {
+                return Err(Error::invalid("solver.fixed_dt", dt, "dt > 0 s, finite"));
+            }
+        }
+        if !(self.dt_collapse >= 0.0 && self.dt_collapse < 1.0) {
+            return Err(Error::invalid(
+                "solver.dt_collapse",
+                self.dt_collapse,
+                "0 <= dt_collapse < 1",
+            ));
+        }
+        if !(self.dt_hysteresis >= 0.0 && self.dt_hysteresis < 1.0) {
+            return Err(Error::invalid(
+                "solver.dt_hysteresis",
+                self.dt_hysteresis,
+                "0 <= dt_hysteresis < 1",
+            ));
+        }
+        if self.energy_interval == 0 {
+            return Err(Error::invalid(
+                "solver.energy_interval",
+                0,
+                "at least 1 step",
+            ));
+        }
+        Ok(self)
+    }
+}
+
+/// The explicit solver: model, interactions and the state of the central-difference loop.
+pub struct Solver {
+    model: Model,
+    interactions: Vec<Box<dyn Interaction>>,
+    settings: Settings,
+    blocks: Vec<ElementBlock>,
+    /// Time t^n, s.
+    t: f64,
+    step: u64,
+    /// The step Δt^{n+1/2} to take next, s.
+    dt_next: f64,
+    dt_initial: f64,
+    /// The step Δt^{n-1/2} just taken (0 before the first step), s.
+    dt_prev: f64,
+    stable: StableStep,
+    x: Vec<[f64; 3]>,
+    v: Vec<[f64; 3]>,
+    a: Vec<[f64; 3]>,
+    f_int: Vec<[f64; 3]>,
+    f_ext: Vec<[f64; 3]>,
+    mass: Vec<f64>,
+    /// Per node: bit k set when velocity component k is held at zero.
+    fixed: Vec<u8>,
+    elem_force: Vec<[[f64; 3]; 8]>,
+    /// Node → (element·8 + local node) incidence, CSR, in element order.
+    inc_ptr: Vec<usize>,
+    inc: Vec<u32>,
+    w_int: f64,
+    w_ext: f64,
+    e0: f64,
+    max_balance_error: f64,
+}
+
+impl Solver {
+    /// Box 6.1 step 1-3: initial conditions and mass, first `getforce`, initial accelerations.
+    ///
+    /// Fails if settings are invalid, the model is empty, an element is inverted, or the
+    /// initial forces are not finite.
+    pub fn new(
+        model: Model,
+        interactions: Vec<Box<dyn Interaction>>,
+        settings: Settings,
+    ) -> Result<Self> {
+        let settings = settings.validated()?;
+        if model.hexes.is_empty() {
+            return Err(Error::invalid(
+                "model",
+                "0 elements",
+                "at least one part with elements",
+            ));
+        }
+        let n = model.nodes.len();
+        // 1. Initial conditions and lumped mass.
+        let mut mass = vec![0.0; n];
+        let mut blocks = Vec::with_capacity(model.parts.len());
+        for (p, part) in model.parts.iter().enumerate() {
+            let conn: Vec<[u32; 8]> = model.hexes[part.elements.clone()].to_vec();
+            for (k, h) in conn.iter().enumerate() {
+                let xe = h.map(|i| model.nodes[i as usize]);
+                let me = element_lumped_mass(&xe, part.material.rho).map_err(|e| {
+                    Error::Numerical(format!(
+                        "part {} element {}: {e}",
+                        part.name,
+                        part.elements.start + k
+                    ))
+                })?;
+                for (i, m) in h.iter().zip(me) {
+                    mass[*i as usize] += m;
+                }
+            }
+            let mat = J2Material::new(&part.material, part.elastic_only);
+            blocks.push(ElementBlock::new(
+                p,
+                part.elements.start,
+                conn,
+                part.formulation,
+                mat,
+                settings.hourglass,
+            ));
+        }
+        if let Some(i) = mass.iter().position(|m| m.is_nan() || *m <= 0.0) {
+            return Err(Error::invalid(
+                "model.nodes",
+                format!("node {i} belongs to no element"),
+                "every node in an element",
+            ));
+        }
+        let mut fixed = vec![0u8; n];
+        for &(node, axis) in &model.fixed {
+            fixed[node as usize] |= 1 << axis;
+        }
+        // Node-element incidence for the deterministic gather of element forces.
+        let ne = model.hexes.len();
+        let mut inc_ptr = vec![0usize; n + 1];
+        for h in &model.hexes {
+            for &i in h {
+                inc_ptr[i as usize + 1] += 1;
+            }
+        }
+        for i in 0..n {
+            inc_ptr[i + 1] += inc_ptr[i];
+        }
+        let mut fill = inc_ptr.clone();
+        let mut inc = vec![0u32; inc_ptr[n]];
+        for (e, h) in model.hexes.iter().enumerate() {
+            for (l, &i) in h.iter().enumerate() {
+                inc[fill[i as usize]] = (e * 8 + l) as u32;
+                fill[i as usize] += 1;
+            }
+        }
+        let mut v = model.velocity.clone();
+        apply_fixed(&mut v, &fixed);
+        let x = model.nodes.clone();
+        let mut s = Solver {
+            interactions,
+            settings,
+            blocks,
+            t: 0.0,
+            step: 0,
+            dt_next: 0.0,
+            dt_initial: 0.0,
+            dt_prev: 0.0,
+            stable: StableStep {
+                dt: 0.0,
+                element: None,
+                interaction: None,
+            },
+            a: vec![[0.0; 3]; n],
+            f_int: vec![[0.0; 3]; n],
+            f_ext: vec![[0.0; 3]; n],
+            mass,
+            fixed,
+            elem_force: vec![[[0.0; 3]; 8]; ne],
+            inc_ptr,
+            inc,
+            w_int: 0.0,
+            w_ext: 0.0,
+            e0: 0.0,
+            max_balance_error: 0.0,
+            x,
+            v,
+            model,
+        };
+        // 2. getforce at t = 0 (evaluation only, Δt = 0).
+        s.getforce(0.0)?;
+        s.dt_initial = s.dt_next;
+        // 3. Accelerations a⁰ = M⁻¹(f_ext − f_int).
+        s.accelerations()?;
+        s.e0 = s.energy().total;
+        Ok(s)
+    }
+
+    /// One time step n → n+1, Box 6.1 steps 4-12.
+    pub fn step(&mut self) -> Result<()> {
+        // 4. Time update: t^{n+1} = t^n + Δt^{n+1/2}.
+        let dt = self.dt_next;
+        let t_new = self.t + dt;
+        // 5. First partial velocity update: v^{n+1/2} = v^n + (t^{n+1/2} − t^n) a^n.
+        self.partial_velocity_update(0.5 * dt);
+        // 6. Enforce velocity boundary conditions (symmetry planes).
+        apply_fixed(&mut self.v, &self.fixed);
+        let (p_int_old, p_ext_old) = self.power();
+        // 7. Displacement update: x^{n+1} = x^n + Δt^{n+1/2} v^{n+1/2}.
+        self.update_positions(dt);
+        self.t = t_new;
+        // 8. getforce: element loop, interactions, critical time step.
+        self.getforce(dt)?;
+        // 9. Accelerations a^{n+1} = M⁻¹(f_ext − f_int).
+        self.accelerations()?;
+        // 11 (first half). Work of internal and external forces over the step (trapezoid with
+        // v^{n+1/2}), needs v^{n+1/2}: before the second partial update.
+        let (p_int_new, p_ext_new) = self.power();
+        self.w_int += 0.5 * dt * (p_int_old + p_int_new);
+        self.w_ext += 0.5 * dt * (p_ext_old + p_ext_new);
+        // 10. Second partial velocity update: v^{n+1} = v^{n+1/2} + (t^{n+1} − t^{n+1/2}) a^{n+1}.
+        self.partial_velocity_update(0.5 * dt);
+        apply_fixed(&mut self.v, &self.fixed);
+        self.step += 1;
+        self.dt_prev = dt;
+        // 11. Energy balance check.
+        if self.step.is_multiple_of(self.settings.energy_interval) {
+            let e = self.energy();
+            self.max_balance_error = self.max_balance_error.max(e.balance_error);
+        }
+        // 12. Output: the caller reads the state between steps.
+        Ok(())
+    }
+
+    /// Steps until `stop(self)` returns true (checked before every step).
+    pub fn run_until(&mut self, mut stop: impl FnMut(&Solver) -> bool) -> Result<()> {
+        while !stop(self) {
+            self.step()?;
+        }
+        Ok(())
+    }
+
+    /// Box 6.1 `getforce` at the current x = x^{n+1}, v = v^{n+1/2}: element loop (gather,
+    /// deformation, constitutive update, internal forces, scatter), critical time step, then
+    /// every interaction's external forces for the step about to be taken.
+    fn getforce(&mut self, dt: f64) -> Result<()> {
+        let mut best = (f64::INFINITY, usize::MAX);
+        for b in &mut self.blocks {
+            let range = b.first..b.first + b.conn.len();
+            match b.update(&self.x, &self.v, dt, &mut self.elem_force[range]) {
+                Ok(d) => {
+                    if d.0 < best.0 {
+                        best = d;
+                    }
+                }
+                Err((e, why)) => {
+                    let part = &self.model.parts[b.part].name;
+                    let cause = match why {
+                        ElementFailure::Inverted(j) => format!(
+                            "inverted (Jacobian {j:.3e}): excessive deformation, time step too large or hourglassing"
+                        ),
+                        ElementFailure::NonFinite => "non-finite internal force: instability".to_string(),
+                    };
+                    return Err(Error::Numerical(format!(
+                        "element {e} (part {part}) at t = {:.6e} s, step {}: {cause}",
+                        self.t, self.step
+                    )));
+                }
+            }
+        }
+        self.gather_internal_forces();
+        // Critical time step: elements (Courant) and interactions.
+        let mut stable = StableStep {
+            dt: self.settings.safety * best.0,
+            element: Some(best.1),
+            interaction: None,
+        };
+        for (k, it) in self.interactions.iter().enumerate() {
+            if let Some(d) = it.stable_time_step(&self.mass) {
+                let d = self.settings.safety * d;
+                if d < stable.dt {
+                    stable = StableStep {
+                        dt: d,
+                        element: None,
+                        interaction: Some(k),
+                    };
+                }
+            }
+        }
+        self.stable = stable;
+        self.dt_next = match self.settings.fixed_dt {
+            Some(dt) => dt,
+            None if self.dt_next > 0.0
+                && stable.dt >= self.dt_next
+                && stable.dt <= self.dt_next * (1.0 + self.settings.dt_hysteresis) =>
+            {
+                self.dt_next
+            }
+            None => stable.dt,
+        };
+        if !(self.dt_next > 0.0 && self.dt_next.is_finite())
+            || (self.dt_initial > 0.0 && self.dt_next < self.settings.dt_collapse * self.dt_initial)
+        {
+            return Err(Error::Numerical(format!(
+                "time step collapsed to {:.3e} s (initial {:.3e} s) at t = {:.6e} s, controlled by {}: \
+                 an element is being crushed or an interaction is too stiff",
+                self.dt_next,
+                self.dt_initial,
+                self.t,
+                self.controlling()
+            )));
+        }
+        // External forces from interactions (contact, walls) at t^{n+1}.
+        for f in &mut self.f_ext {
+            *f = [0.0; 3];
+        }
+        let ctx = StepContext {
+            t: self.t,
+            dt: self.dt_next,
+            x: &self.x,
+            v: &self.v,
+            mass: &self.mass,
+        };
+        for it in &mut self.interactions {
+            it.add_forces(&ctx, &mut self.f_ext)?;
+        }
+        Ok(())
+    }
+
+    /// Scatter: f_int at each node = Σ of its elements' force blocks, in element order.
+    fn gather_internal_forces(&mut self) {
+        let ef = &self.elem_force;
+        let ptr = &self.inc_ptr;
+        let inc = &self.inc;
+        self.f_int
+            .par_chunks_mut(NODE_CHUNK)
+            .enumerate()
+            .for_each(|(c, fs)| {
+                for (k, f) in fs.iter_mut().enumerate() {
+                    let n = c * NODE_CHUNK + k;
+                    let mut s = [0.0; 3];
+                    for &slot in &inc[ptr[n]..ptr[n + 1]] {
+                        let g = ef[slot as usize / 8][slot as usize % 8];
+                        s[0] += g[0];
+                        s[1] += g[1];
+                        s[2] += g[2];
+                    }
+                    *f = s;
+                }
+            });
+    }
+
+    /// a = M⁻¹ (f_ext − f_int), zero on constrained components; fails on non-finite values.
+    fn accelerations(&mut self) -> Result<()> {
+        let (fi, fe, m, fx) = (&self.f_int, &self.f_ext, &self.mass, &self.fixed);
+        let bad = self
+            .a
+            .par_chunks_mut(NODE_CHUNK)
+            .enumerate()
+            .map(|(c, a)| {
+                for (k, ak) in a.iter_mut().enumerate() {
+                    let n = c * NODE_CHUNK + k;
+                    let r = 1.0 / m[n];
+                    for d in 0..3 {
+                        ak[d] = if fx[n] & (1 << d) != 0 {
+                            0.0
+                        } else {
+                            (fe[n][d] - fi[n][d]) * r
+                        };
+                    }
+                    if !ak.iter().all(|v| v.is_finite()) {
+                        return Some(n);
+                    }
+                }
+                None
+            })
+            .reduce(
+                || None,
+                |a, b| match (a, b) {
+                    (Some(x), Some(y)) => Some(x.min(y)),
+                    (x, None) => x,
+                    (None, y) => y,
+                },
+            );
+        if let Some(n) = bad {
+            return Err(Error::Numerical(format!(
+                "node {n} has a non-finite acceleration at t = {:.6e} s, step {}: force blew up \
+                 (unstable time step or interaction)",
+                self.t, self.step
+            )));
+        }
+        Ok(())
+    }
+
+    fn partial_velocity_update(&mut self, h: f64) {
+        self.v
+            .par_iter_mut()
+            .zip(self.a.par_iter())
+            .for_each(|(v, a)| {
+                v[0] += h * a[0];
+                v[1] += h * a[1];
+                v[2] += h * a[2];
+            });
+    }
+
+    fn update_positions(&mut self, dt: f64) {
+        self.x
+            .par_iter_mut()
+            .zip(self.v.par_iter())
+            .for_each(|(x, v)| {
+                x[0] += dt * v[0];
+                x[1] += dt * v[1];
+                x[2] += dt * v[2];
+            });
+    }
+
+    /// Power of the internal and external forces with the current velocities, W:
+    /// (Σ v·f_int, Σ v·f_ext), summed in fixed chunks (thread-count independent).
+    fn power(&self) -> (f64, f64) {
+        let (f_int, f_ext) = (&self.f_int, &self.f_ext);
+        let parts: Vec<(f64, f64)> = self
+            .v
+            .par_chunks(NODE_CHUNK)
+            .enumerate()
+            .map(|(c, vs)| {
+                let mut pi = 0.0;
+                let mut pe = 0.0;
+                for (k, v) in vs.iter().enumerate() {
+                    let n = c * NODE_CHUNK + k;
+                    let (fi, fe) = (f_int[n], f_ext[n]);
+                    pi += v[0] * fi[0] + v[1] * fi[1] + v[2] * fi[2];
+                    pe += v[0] * fe[0] + v[1] * fe[1] + v[2] * fe[2];
+                }
+                (pi, pe)
+            })
+            .collect();
+        parts.iter().fold((0.0, 0.0), |a, b| (a.0 + b.0, a.1 + b.1))
+    }
+
+    fn controlling(&self) -> String {
+        match (self.stable.element, self.stable.interaction) {
+            (_, Some(k)) => format!("interaction '{}'", self.interactions[k].name()),
+            (Some(e), _) => format!("element {e}"),
+            _ => "nothing".into(),
+        }
+    }
+
+    /// The energy report now (kinetic from v^n, elastic from current stresses).
+    pub fn energy(&self) -> EnergyReport {
+        let mut parts: Vec<PartEnergy> = Vec::with_capacity(self.model.parts.len());
+        for (p, part) in self.model.parts.iter().enumerate() {
+            let mut pe = PartEnergy {
+                name: part.name.clone(),
+                ..Default::default()
+            };
+            // Central-difference kinetic energy ½ v^{n−1/2}·M v^{n+1/2}
+            // = ½ M (|v^n|² − Δt^{n−1/2} Δt^{n+1/2}/4 |a^n|²): with it the discrete energy of
+            // a linear elastic system is conserved exactly by the central-difference scheme;
+            // ½ M |v^n|² oscillates about it by O((ω Δt)²/8).
+            let c = 0.25 * self.dt_prev * self.dt_next;
+            for n in part.nodes.clone() {
+                let (v, a) = (self.v[n], self.a[n]);
+                let vv = v[0] * v[0] + v[1] * v[1] + v[2] * v[2];
+                let aa = a[0] * a[0] + a[1] * a[1] + a[2] * a[2];
+                pe.kinetic_central += 0.5 * self.mass[n] * (vv - c * aa);
+                pe.kinetic += 0.5 * self.mass[n] * vv;
+            }
+            let b = &self.blocks[p];
+            for k in 0..b.conn.len() {
+                pe.internal += b.internal_energy[k];
+                pe.elastic_from_stress += b.element_elastic_energy(k);
+                pe.plastic += b.plastic_work[k];
+                pe.hourglass += b.hourglass_energy[k];
+            }
+            pe.elastic = pe.internal - pe.plastic;
+            parts.push(pe);
+        }
+        let mut r = EnergyReport {
+            time: self.t,
+            step: self.step,
+            ..Default::default()
+        };
+        for pe in &parts {
+            r.kinetic += pe.kinetic;
+            r.kinetic_central += pe.kinetic_central;
+            r.elastic += pe.elastic;
+            r.elastic_from_stress += pe.elastic_from_stress;
+            r.internal += pe.internal;
+            r.plastic += pe.plastic;
+            r.hourglass += pe.hourglass;
+        }
+        for it in &self.interactions {
+            let e = it.energy();
+            r.interaction_stored += e.stored;
+            r.interaction_dissipated += e.dissipated;
+            r.interaction_work += e.work;
+        }
+        r.internal_work = self.w_int;
+        r.external_work = self.w_ext;
+        r.total = r.kinetic_central
+            + r.internal
+            + r.hourglass
+            + r.interaction_stored
+            + r.interaction_dissipated;
+        r.initial_total = if self.step == 0 && self.e0 == 0.0 {
+            r.total
+        } else {
+            self.e0
+        };
+        r.energy_ratio = if r.initial_total > 0.0 {
+            r.total / r.initial_total
+        } else {
+            1.0
+        };
+        let e0 = r.initial_total;
+        let scale = r
+            .kinetic
+            .max(self.w_int.abs())
+            .max(self.w_ext.abs())
+            .max(e0);
+        r.balance_error = if scale > 0.0 {
+            (r.kinetic_central + self.w_int - self.w_ext - e0).abs() / scale
+        } else {
+            0.0
+        };
+        r.max_balance_error = self.max_balance_error.max(r.balance_error);
+        r.parts = parts;
+        r
+    }
+
+    /// Centre-of-mass velocity (m/s) and angular velocity (rad/s) of part `p` from its linear
+    /// and angular momentum: v_cm = Σ m v / Σ m, ω = I⁻¹ L about the centre of mass.
+    pub fn part_motion(&self, p: usize) -> Result<([f64; 3], [f64; 3])> {
+        let range = self.model.part(p)?.nodes.clone();
+        let (mut m, mut mx, mut mv) = (0.0, [0.0; 3], [0.0; 3]);
+        for n in range.clone() {
+            m += self.mass[n];
+            for k in 0..3 {
+                mx[k] += self.mass[n] * self.x[n][k];
+                mv[k] += self.mass[n] * self.v[n][k];
+            }
+        }
+        let xc = mx.map(|c| c / m);
+        let vc = mv.map(|c| c / m);
+        let mut l = [0.0; 3];
+        let mut inertia = [[0.0; 3]; 3];
+        for n in range {
+            let r = [0, 1, 2].map(|k| self.x[n][k] - xc[k]);
+            let u = [0, 1, 2].map(|k| self.v[n][k] - vc[k]);
+            let h = cross(r, u);
+            let rr = r[0] * r[0] + r[1] * r[1] + r[2] * r[2];
+            for i in 0..3 {
+                l[i] += self.mass[n] * h[i];
+                for j in 0..3 {
+                    inertia[i][j] += self.mass[n] * (if i == j { rr } else { 0.0 } - r[i] * r[j]);
+                }
+            }
+        }
+        let (inv, det) = inverse(&inertia);
+        let omega = if det > 0.0 {
+            super::tensor::mat_vec(&inv, l)
+        } else {
+            [0.0; 3]
+        };
+        Ok((vc, omega))
+    }
+
+    /// Time t^n, s.
+    pub fn time(&self) -> f64 {
+        self.t
+    }
+    /// Steps taken.
+    pub fn step_count(&self) -> u64 {
+        self.step
+    }
+    /// The step Δt that the next call to [`Solver::step`] will take, s (never above the stable
+    /// limit [`Solver::stable_step`] unless `fixed_dt` is set).
+    pub fn dt(&self) -> f64 {
+        self.dt_next
+    }
+    /// The current stable-step limit and what controls it.
+    pub fn stable_step(&self) -> StableStep {
+        self.stable
+    }
+    /// Current nodal coordinates x^n, m.
+    pub fn x(&self) -> &[[f64; 3]] {
+        &self.x
+    }
+    /// Nodal velocities v^n, m/s.
+    pub fn v(&self) -> &[[f64; 3]] {
+        &self.v
+    }
+    /// Lumped nodal masses, kg.
+    pub fn mass(&self) -> &[f64] {
+        &self.mass
+    }
+    /// Internal nodal forces at t^n, N.
+    pub fn internal_forces(&self) -> &[[f64; 3]] {
+        &self.f_int
+    }
+    /// The model.
+    pub fn model(&self) -> &Model {
+        &self.model
+    }
+    /// The interactions.
+    pub fn interactions(&self) -> &[Box<dyn Interaction>] {
+        &self.interactions
+    }
+    /// The settings in use.
+    pub fn settings(&self) -> &Settings {
+        &self.settings
+    }
+    /// Mean Cauchy stress of global element `e` (Pa, Voigt [xx, yy, zz, xy, yz, zx]).
+    pub fn element_stress(&self, e: usize) -> Sym {
+        let (b, k) = self.locate(e);
+        self.blocks[b].element_stress(k)
+    }
+    /// Mean equivalent plastic strain of global element `e`.
+    pub fn element_plastic_strain(&self, e: usize) -> f64 {
+        let (b, k) = self.locate(e);
+        self.blocks[b].element_eps_p(k)
+    }
+    /// Plastic work dissipated in global element `e`, J.
+    pub fn element_plastic_work(&self, e: usize) -> f64 {
+        let (b, k) = self.locate(e);
+        self.blocks[b].plastic_work[k]
+    }
+    /// Element blocks (one per part), for output and benchmarks.
+    pub fn blocks(&self) -> &[ElementBlock] {
+        &self.blocks
+    }
+
+    fn locate(&self, e: usize) -> (usize, usize) {
+        let b = self
+            .blocks
+            .iter()
+            .position(|b| e >= b.first && e < b.first + b.conn.len())
+            .expect("element index in range");
+        (b, e - self.blocks[b].first)
+    }
+}
+
+fn apply_fixed(v: &mut [[f64; 3]], fixed: &[u8]) {
+    for (vi, &f) in v.iter_mut().zip(fixed) {
+        if f != 0 {
+            for (d, c) in vi.iter_mut().enumerate() {
+                if f & (1 << d) != 0 {
+                    *c = 0.0;
+                }
+            }
+        }
+    }
+}
