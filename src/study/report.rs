@@ -37,27 +37,42 @@ const QUANTITIES: [(&str, Getter); 5] = [
 ];
 
 fn fe_an(r: &CaseRecord, g: Getter) -> (Option<f64>, Option<f64>) {
-    (r.fe.as_ref().map(|f| g(&f.outcome)), r.analytic.as_ref().map(g))
+    (
+        r.fe.as_ref().map(|f| g(&f.outcome)),
+        r.analytic.as_ref().map(g),
+    )
 }
 
 /// Writes `REPORT.md` into `to` (and its CSV/SVG files into `to/ansys/`), from the sweep
 /// results in `dir` for the sweep file `spec_path`; `notes` (Markdown, optional) is appended
 /// as the discussion.
-pub fn write_report(spec_path: &Path, dir: &Path, to: &Path, notes: Option<&str>) -> Result<String> {
+pub fn write_report(
+    spec_path: &Path,
+    dir: &Path,
+    to: &Path,
+    notes: Option<&str>,
+) -> Result<String> {
     let spec = SweepSpec::from_file(spec_path)?;
     let cases = spec.cases()?;
     let recs = read_records(dir, &cases);
     if recs.is_empty() {
-        return Err(Error::Parse(format!("{}: no finished cases (run twoball sweep first)", dir.display())));
+        return Err(Error::Parse(format!(
+            "{}: no finished cases (run twoball sweep first)",
+            dir.display()
+        )));
     }
     let fig_dir = to.join("ansys");
     ensure_dir(&fig_dir)?;
-    let csv = std::fs::read(dir.join("sweep.csv")).map_err(|e| Error::io(dir.join("sweep.csv"), e))?;
+    let csv =
+        std::fs::read(dir.join("sweep.csv")).map_err(|e| Error::io(dir.join("sweep.csv"), e))?;
     write_atomic(&fig_dir.join("sweep.csv"), &csv)?;
 
     let mut md = String::new();
     let w = &mut md;
-    let _ = writeln!(w, "# Verification report: the paper's FE study, FE beside the analytical model\n");
+    let _ = writeln!(
+        w,
+        "# Verification report: the paper's FE study, FE beside the analytical model\n"
+    );
     let _ = writeln!(
         w,
         "Regenerate with `twoball sweep {} --out DIR` then `twoball report DIR`. \
@@ -87,7 +102,12 @@ pub fn write_report(spec_path: &Path, dir: &Path, to: &Path, notes: Option<&str>
         "Meshes: {}.\n",
         spec.meshes
             .iter()
-            .map(|m| format!("`{}` (element size {} in the bulk, {} at the contact pole)", m.name, size(m.size), size(m.pole_size)))
+            .map(|m| format!(
+                "`{}` (element size {} in the bulk, {} at the contact pole)",
+                m.name,
+                size(m.size),
+                size(m.pole_size)
+            ))
             .collect::<Vec<_>>()
             .join("; ")
     );
@@ -104,14 +124,22 @@ pub fn write_report(spec_path: &Path, dir: &Path, to: &Path, notes: Option<&str>
         for t in &spec.tangential {
             let sel: Vec<&CaseRecord> = recs
                 .iter()
-                .filter(|r| r.params.mesh == m.name && r.params.v1t == t[0] && r.params.v2t == t[1] && r.fe.is_some())
+                .filter(|r| {
+                    r.params.mesh == m.name
+                        && r.params.v1t == t[0]
+                        && r.params.v2t == t[1]
+                        && r.fe.is_some()
+                })
                 .collect();
             let _ = write!(w, "| {} | {}/{} | {} |", m.name, t[0], t[1], sel.len());
             for (_, g) in QUANTITIES {
-                let v: Vec<f64> = sel.iter().filter_map(|r| {
-                    let (a, b) = fe_an(r, g);
-                    rel(a, b)
-                }).collect();
+                let v: Vec<f64> = sel
+                    .iter()
+                    .filter_map(|r| {
+                        let (a, b) = fe_an(r, g);
+                        rel(a, b)
+                    })
+                    .collect();
                 let _ = write!(w, " {} |", stats(&v));
             }
             let _ = writeln!(w);
@@ -119,9 +147,20 @@ pub fn write_report(spec_path: &Path, dir: &Path, to: &Path, notes: Option<&str>
     }
 
     // The Figure 8 case.
-    let _ = writeln!(w, "\n## The Figure 8 case (D = 20 mm, +1 / -1 m/s, no tangential speed)\n");
-    let _ = writeln!(w, "| mesh | quantity | FE | analytical | difference |\n|---|---|---|---|---|");
-    for r in recs.iter().filter(|r| (r.params.diameter - 0.02).abs() < 1e-12 && r.params.v2n == -1.0 && r.params.v1t == 0.0 && r.params.v2t == 0.0) {
+    let _ = writeln!(
+        w,
+        "\n## The Figure 8 case (D = 20 mm, +1 / -1 m/s, no tangential speed)\n"
+    );
+    let _ = writeln!(
+        w,
+        "| mesh | quantity | FE | analytical | difference |\n|---|---|---|---|---|"
+    );
+    for r in recs.iter().filter(|r| {
+        (r.params.diameter - 0.02).abs() < 1e-12
+            && r.params.v2n == -1.0
+            && r.params.v1t == 0.0
+            && r.params.v2t == 0.0
+    }) {
         for (q, g) in QUANTITIES {
             let (a, b) = fe_an(r, g);
             let f = |x: Option<f64>| x.map_or("-".to_string(), |v| format!("{v:.4e}"));
@@ -132,18 +171,33 @@ pub fn write_report(spec_path: &Path, dir: &Path, to: &Path, notes: Option<&str>
             let _ = writeln!(w, "| {} | {q} | {} | {} | {d} |", r.params.mesh, f(a), f(b));
         }
         if let Some(fe) = &r.fe {
-            let _ = writeln!(w, "| {} | energy error, elements, reduction | {:.2e} | {} | {} |", r.params.mesh, fe.energy_error, fe.elements, fe.reduction);
+            let _ = writeln!(
+                w,
+                "| {} | energy error, elements, reduction | {:.2e} | {} | {} |",
+                r.params.mesh, fe.energy_error, fe.elements, fe.reduction
+            );
         }
     }
 
     // Figures 6 and 7 per mesh: after-impact normal speeds against the right ball's speed.
-    let _ = writeln!(w, "\n## Figures 6 and 7: after-impact speeds against the right ball's speed\n");
+    let _ = writeln!(
+        w,
+        "\n## Figures 6 and 7: after-impact speeds against the right ball's speed\n"
+    );
     let _ = writeln!(w, "No tangential speed. Analytical curve: it does not depend on D for equal balls of one material.\n");
     for m in &spec.meshes {
         for (fig, ball, getter) in [(6, "left", 0usize), (7, "right", 1usize)] {
             let mut series = Vec::new();
-            let sel = |r: &&CaseRecord| r.params.mesh == m.name && r.params.v1t == 0.0 && r.params.v2t == 0.0;
-            let speed = |o: &crate::study::outcome::Outcome| if getter == 0 { o.v1_after[0] } else { o.v2_after[0] } ;
+            let sel = |r: &&CaseRecord| {
+                r.params.mesh == m.name && r.params.v1t == 0.0 && r.params.v2t == 0.0
+            };
+            let speed = |o: &crate::study::outcome::Outcome| {
+                if getter == 0 {
+                    o.v1_after[0]
+                } else {
+                    o.v2_after[0]
+                }
+            };
             let d0 = spec.diameters[0];
             let mut an: Vec<(f64, f64)> = recs
                 .iter()
@@ -151,11 +205,22 @@ pub fn write_report(spec_path: &Path, dir: &Path, to: &Path, notes: Option<&str>
                 .filter(|r| r.params.diameter == d0)
                 .map(|r| match &r.analytic {
                     Some(o) => (r.params.v2n, speed(o)),
-                    None => (r.params.v2n, if getter == 0 { r.params.v1n } else { r.params.v2n }),
+                    None => (
+                        r.params.v2n,
+                        if getter == 0 {
+                            r.params.v1n
+                        } else {
+                            r.params.v2n
+                        },
+                    ),
                 })
                 .collect();
             an.sort_by(|a, b| a.0.total_cmp(&b.0));
-            series.push(Series { label: "analytical".into(), points: an, style: Style::Line });
+            series.push(Series {
+                label: "analytical".into(),
+                points: an,
+                style: Style::Line,
+            });
             for &d in &spec.diameters {
                 let pts: Vec<(f64, f64)> = recs
                     .iter()
@@ -163,12 +228,23 @@ pub fn write_report(spec_path: &Path, dir: &Path, to: &Path, notes: Option<&str>
                     .filter(|r| r.params.diameter == d)
                     .filter_map(|r| match (&r.fe, r.status) {
                         (Some(f), _) => Some((r.params.v2n, speed(&f.outcome))),
-                        (None, Status::NoImpact) => Some((r.params.v2n, if getter == 0 { r.params.v1n } else { r.params.v2n })),
+                        (None, Status::NoImpact) => Some((
+                            r.params.v2n,
+                            if getter == 0 {
+                                r.params.v1n
+                            } else {
+                                r.params.v2n
+                            },
+                        )),
                         _ => None,
                     })
                     .collect();
                 if !pts.is_empty() {
-                    series.push(Series { label: format!("FE, D = {} mm", d * 1000.0), points: pts, style: Style::Points });
+                    series.push(Series {
+                        label: format!("FE, D = {} mm", d * 1000.0),
+                        points: pts,
+                        style: Style::Points,
+                    });
                 }
             }
             let chart = Chart {
@@ -184,22 +260,49 @@ pub fn write_report(spec_path: &Path, dir: &Path, to: &Path, notes: Option<&str>
     }
 
     // Figures 8-10: delta(t) for the three tangential pairs at D = 20 mm, right ball -1 m/s.
-    let _ = writeln!(w, "## Figures 8-10: relative deformation δ(t), D = 20 mm, +1 / -1 m/s\n");
+    let _ = writeln!(
+        w,
+        "## Figures 8-10: relative deformation δ(t), D = 20 mm, +1 / -1 m/s\n"
+    );
     for (k, t) in spec.tangential.iter().enumerate() {
         let fig = 8 + k;
         let mut series = Vec::new();
-        let pick = |r: &&CaseRecord| (r.params.diameter - 0.02).abs() < 1e-12 && r.params.v2n == -1.0 && r.params.v1t == t[0] && r.params.v2t == t[1];
-        if let Some(r) = recs.iter().filter(pick).find(|r| !r.analytic_history.is_empty()) {
-            series.push(Series { label: "analytical".into(), points: r.analytic_history.iter().map(|p| (p[0], p[1])).collect(), style: Style::Line });
+        let pick = |r: &&CaseRecord| {
+            (r.params.diameter - 0.02).abs() < 1e-12
+                && r.params.v2n == -1.0
+                && r.params.v1t == t[0]
+                && r.params.v2t == t[1]
+        };
+        if let Some(r) = recs
+            .iter()
+            .filter(pick)
+            .find(|r| !r.analytic_history.is_empty())
+        {
+            series.push(Series {
+                label: "analytical".into(),
+                points: r.analytic_history.iter().map(|p| (p[0], p[1])).collect(),
+                style: Style::Line,
+            });
         }
-        for r in recs.iter().filter(pick).filter(|r| !r.fe_history.is_empty()) {
-            series.push(Series { label: format!("FE, mesh {}", r.params.mesh), points: r.fe_history.iter().map(|p| (p[0], p[1])).collect(), style: Style::Line });
+        for r in recs
+            .iter()
+            .filter(pick)
+            .filter(|r| !r.fe_history.is_empty())
+        {
+            series.push(Series {
+                label: format!("FE, mesh {}", r.params.mesh),
+                points: r.fe_history.iter().map(|p| (p[0], p[1])).collect(),
+                style: Style::Line,
+            });
         }
         if series.is_empty() {
             continue;
         }
         let chart = Chart {
-            title: format!("Figure {fig}: tangential velocities {} and {} m/s", t[0], t[1]),
+            title: format!(
+                "Figure {fig}: tangential velocities {} and {} m/s",
+                t[0], t[1]
+            ),
             x_label: "time since first touch (s)".into(),
             y_label: "relative deformation delta (m)".into(),
             series,
