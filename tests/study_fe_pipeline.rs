@@ -60,8 +60,8 @@ const COARSE: [&str; 4] = [
 fn elastic_impact_matches_hertz_within_one_percent() {
     let mut sets = vec!["ball1.material.yield=1e11", "ball2.material.yield=1e11"];
     sets.extend([
-        "ball1.mesh.size=0.004",
-        "ball2.mesh.size=0.004",
+        "ball1.mesh.size=0.002",
+        "ball2.mesh.size=0.002",
         "ball1.mesh.pole_size=0.0001",
         "ball2.mesh.pole_size=0.0001",
     ]);
