@@ -15,3 +15,4 @@ fi
 if ! python3 -c "import meshio" >/dev/null 2>&1; then
   python3 -m pip install --quiet meshio
 fi
+if ! command -v ccx >/dev/null 2>&1 && command -v apt-get >/dev/null 2>&1; then $SUDO apt-get update -qq && DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends calculix-ccx >/dev/null; fi  # CalculiX peer (scripts/ccx_peer.py)
