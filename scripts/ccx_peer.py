@@ -42,6 +42,7 @@ import json
 import math
 import os
 import re
+import resource
 import shutil
 import subprocess
 import sys
@@ -289,11 +290,13 @@ def mesh_ball(twoball, ball, workdir):
 
 
 def hex_integrals(nodes, hexes):
-    """Per element: volume (m^3) and integral of each shape function (m^3), 2x2x2 Gauss."""
+    """Per element: volume, integrals of each shape function N_i and of N_i^2 (m^3), by
+    2x2x2 Gauss (exact for the trilinear hex)."""
     x = nodes[hexes]  # (e, 8, 3)
     g = 1.0 / math.sqrt(3.0)
     vol = np.zeros(len(hexes))
     nint = np.zeros((len(hexes), 8))
+    nsq = np.zeros((len(hexes), 8))
     for gp in HEX_CORNERS * g:
         n = 0.125 * np.prod(1.0 + HEX_CORNERS * gp, axis=1)  # (8,)
         dn = np.empty((8, 3))
@@ -305,7 +308,8 @@ def hex_integrals(nodes, hexes):
         det = np.linalg.det(jac)
         vol += det
         nint += det[:, None] * n[None, :]
-    return vol, nint
+        nsq += det[:, None] * (n * n)[None, :]
+    return vol, nint, nsq
 
 
 def face_area(nodes, hexes, e, f):
@@ -357,7 +361,7 @@ def penalty_slope(model, scene, analytic):
     """K = FKN E / h (Pa/m): h = median thickness of ball 1's elements under the contact
     patch within 1.5 x the analytical contact radius (or the 10 % nearest the pole)."""
     n1, h1 = model["nodes"][0], model["hexes"][0]
-    vol, _ = hex_integrals(n1, h1)
+    vol, _, _ = hex_integrals(n1, h1)
     r1, r2 = (0.5 * b["diameter"] for b in scene["balls"])
     a = math.sqrt(analytic["delta_max_m"] * r1 * r2 / (r1 + r2))  # Hertz-like contact radius
     thick, dist = [], []
@@ -431,21 +435,25 @@ def write_deck(path, model, scene, k_pen, t_end, dt_guess, freq, element="C3D8R"
 
 
 def run_ccx(ccx, workdir, job, threads):
-    """Runs ccx on workdir/job.inp; returns (wall time s, stdout text)."""
+    """Runs ccx on workdir/job.inp; returns (wall time s, CPU time s, stdout text). The CPU
+    time (user + system of the ccx process) is the fair measure on a shared machine."""
     env = dict(os.environ, OMP_NUM_THREADS=str(threads), CCX_NPROC_STIFFNESS=str(threads),
                CCX_NPROC_RESULTS=str(threads), NUMBER_OF_CPUS=str(threads))
     t0 = time.perf_counter()
+    r0 = resource.getrusage(resource.RUSAGE_CHILDREN)
     try:
         r = subprocess.run([ccx, "-i", job], cwd=workdir, capture_output=True, text=True, env=env)
     except FileNotFoundError:
         raise PeerError(f"ccx not found ({ccx}): apt-get install calculix-ccx, or pass --ccx PATH") from None
     wall = time.perf_counter() - t0
+    r1 = resource.getrusage(resource.RUSAGE_CHILDREN)
+    cpu = (r1.ru_utime - r0.ru_utime) + (r1.ru_stime - r0.ru_stime)
     log = r.stdout + r.stderr
     (Path(workdir) / f"{job}.log").write_text(log)
     if r.returncode != 0 or "*ERROR" in log:
         err = [ln.strip() for ln in log.splitlines() if "ERROR" in ln][:3]
         raise PeerError(f"ccx failed (exit {r.returncode}) on {workdir}/{job}.inp: {' | '.join(err)}")
-    return wall, log
+    return wall, cpu, log
 
 
 FLOAT_FIX = re.compile(r"(\d)([+-]\d{3})\b")
@@ -545,8 +553,7 @@ def collision_quantities(times, vels, masses, split, v0, gap):
     d0, d1 = abs(u2[k - 1] - u2f), abs(u2[k] - u2f)
     frac = (d0 - 0.01 * change) / (d0 - d1) if d0 > d1 else 1.0
     t_end = t[k - 1] + (t[k] - t[k - 1]) * min(max(frac, 0.0), 1.0)
-    after = t >= t_end
-    v1p, v2p = u1[after].mean(), u2[after].mean()
+    v1p, v2p = u1[tail].mean(), u2[tail].mean()
     e = (v2p - v1p) / vr0
     kmax = int(np.argmax(delta))
     dmax = delta[kmax]
@@ -561,7 +568,7 @@ def collision_quantities(times, vels, masses, split, v0, gap):
         "contact_duration_s": float(t_end - t_touch),
         "v1_after_m_per_s": float(v1p),
         "v2_after_m_per_s": float(v2p),
-        "v_after_spread_m_per_s": float(max(np.ptp(u1[after]), np.ptp(u2[after]))),
+        "v_after_spread_m_per_s": float(max(np.ptp(u1[tail]), np.ptp(u2[tail]))),
         "peak_force_n": float(fpk),
         "samples": int(len(times)),
         "sample_interval_s": float(np.median(np.diff(times))) if len(times) > 1 else 0.0,
@@ -639,25 +646,28 @@ def main(argv=None):
 
     # Probe: one short run to read the stable increment CalculiX chooses for this mesh.
     write_deck(work / "probe.inp", model, scene, k_pen, 1e-12, 1e-13, 0, a.element)
-    _, plog = run_ccx(a.ccx, work, "probe", a.threads)
+    _, _, plog = run_ccx(a.ccx, work, "probe", a.threads)
     m = re.search(r"stable time increment:\s*(\S+)", plog)
     dt = float(m.group(1)) if m else t_end / 1e4
     freq = max(1, int(t_end / (dt * a.samples)))
     write_deck(work / "peer.inp", model, scene, k_pen, t_end, dt, freq, a.element)
-    wall, log = run_ccx(a.ccx, work, "peer", a.threads)
+    wall, cpu, log = run_ccx(a.ccx, work, "peer", a.threads)
     scaling = re.search(r"Reduction of spring stiffness by \(maximum\) =\s*(\S+)", log)
     n_all = len(n1) + len(n2)
     times, vels = parse_dat(work / "peer.dat", n_all)
     if not a.keep:
         (work / "peer.dat").unlink()
 
-    # Nodal masses: CalculiX lumps each C3D8R element's mass equally on its 8 nodes; a
-    # row-sum lumping (rho * integral of N_i) is the alternative. The one under which both
-    # balls' momenta stay constant after separation is CalculiX's: it is chosen and reported.
-    lumpings = {"volume/8": np.zeros(n_all), "row-sum": np.zeros(n_all)}
+    # Nodal masses: CalculiX lumps a C3D8R element's mass equally on its 8 nodes; for C3D8
+    # it is neither that nor the row sum (rho * integral of N_i); the diagonal-scaled (HRZ)
+    # lumping is tried too. The one under which both balls' momenta stay constant after
+    # separation is CalculiX's: it is chosen and reported.
+    lumpings = {"volume/8": np.zeros(n_all), "row-sum": np.zeros(n_all), "diagonal-scaled": np.zeros(n_all)}
     for (nodes, hexes, off, ball) in ((n1, h1, 0, scene["balls"][0]), (n2, h2, len(n1), scene["balls"][1])):
-        vol, nint = hex_integrals(nodes, hexes)
+        vol, nint, nsq = hex_integrals(nodes, hexes)
         rho = ball["material"]["rho"]
+        hrz = rho * vol[:, None] * nsq / nsq.sum(axis=1, keepdims=True)  # Hinton-Rock-Zienkiewicz
+        np.add.at(lumpings["diagonal-scaled"], (hexes + off).ravel(), hrz.ravel())
         np.add.at(lumpings["volume/8"], (hexes + off).ravel(), np.repeat(rho * vol / 8.0, 8))
         np.add.at(lumpings["row-sum"], (hexes + off).ravel(), rho * nint.ravel())
     v0 = (scene["balls"][0]["velocity"][0], scene["balls"][1]["velocity"][0])
@@ -672,7 +682,7 @@ def main(argv=None):
         "mesh": {"nodes": n_all, "elements": len(h1) + len(h2), "size_m": scene["balls"][0]["mesh"].get("size"),
                  "pole_size_m": scene["balls"][0]["mesh"].get("pole_size"),
                  "contact_faces": [len(model["patch"][0]), len(model["patch"][1])]},
-        "ccx": {"wall_time_s": wall, "element": a.element, "threads": a.threads, "time_increment_s": dt,
+        "ccx": {"wall_time_s": wall, "cpu_time_s": cpu, "element": a.element, "threads": a.threads, "time_increment_s": dt,
                 "increments": int(round(t_end / dt)), "end_time_s": t_end, "output_every": freq,
                 "penalty_slope_pa_per_m": k_pen, "penalty_fkn": fkn, "pole_thickness_m": h_pole,
                 "spring_stiffness_reduction": float(scaling.group(1)) if scaling else 1.0,
@@ -691,7 +701,7 @@ def main(argv=None):
             result["wall_time_ratio_ccx_over_twoball"] = wall / tb["wall_time_s"]
 
     print(f"CalculiX peer: {n_all} nodes, {len(h1) + len(h2)} {a.element}, dt = {dt:.3e} s, "
-          f"{result['ccx']['increments']} increments, wall {wall:.2f} s ({a.threads} thread(s))")
+          f"{result['ccx']['increments']} increments, wall {wall:.2f} s, CPU {cpu:.2f} s ({a.threads} thread(s))")
     print(f"penalty K = {k_pen:.3e} Pa/m (FKN {fkn:g}, h = {h_pole:.3e} m), spring reduction "
           f"{result['ccx']['spring_stiffness_reduction']:.3g}")
     cols = [("calculix", q), ("analytic", ana)] + ([("twoball", result["twoball"])] if "twoball" in result else [])
