@@ -10,7 +10,10 @@ e = (v2+ - v1+)/(v1 - v2) and delta_max. It compares them with the analytical mo
 (`twoball analytic --json`) and, when given, with a twoball results.json.
 
 Model choices (docs/peer.md explains each):
-- C3D8R hexahedra (CalculiX's C3D8I is not usable in dynamics), one *SOLID SECTION a ball.
+- C3D8 hexahedra by default, one *SOLID SECTION a ball. C3D8R (--element C3D8R) runs, but
+  in ccx 2.20 explicit runs its pole nodes sink into their elements under the contact
+  springs (zero-energy modes) and the balls chatter or pass through each other (measured in
+  docs/peer.md); CalculiX's C3D8I is not usable in dynamics.
 - Ball 2 is ball 1's mesh reflected x -> -x (hex node order 1-4-3-2 / 5-8-7-6 to keep the
   Jacobian positive); the poles face each other across a gap of --gap (1e-7 m), which the
   balls close in gap / v_r before contact starts; delta is measured from touch.
@@ -321,7 +324,7 @@ def face_area(nodes, hexes, e, f):
 # ----------------------------------------------------------------------------- model
 
 
-def build_model(scene, twoball, workdir, gap):
+def build_model(scene, twoball, workdir, gap, twist_deg=0.0):
     """Both balls in one numbering: ball 1 left of x = 0 (pole at -gap/2), ball 2 mirrored."""
     b1, b2 = scene["balls"]
     n1, h1, q1 = mesh_ball(twoball, b1, workdir)
@@ -339,6 +342,9 @@ def build_model(scene, twoball, workdir, gap):
     # Face f of the old node order is face fmap[f] of the new one (S3<->S6, S4<->S5).
     fmap = {0: 0, 1: 1, 2: 5, 3: 4, 4: 3, 5: 2}
     p2 = [(e, fmap[f]) for e, f in p2]
+    if twist_deg:  # turn ball 2 about the line of centres (x): poles' nodes no longer face each other
+        c, s_ = math.cos(math.radians(twist_deg)), math.sin(math.radians(twist_deg))
+        n2 = n2 @ np.array([[1.0, 0.0, 0.0], [0.0, c, s_], [0.0, -s_, c]])
     n1 = n1 + np.array([-r1 - 0.5 * gap, 0.0, 0.0])
     n2 = n2 + np.array([r2 + 0.5 * gap, 0.0, 0.0])
     centres = (np.array([-r1 - 0.5 * gap, 0, 0]), np.array([r2 + 0.5 * gap, 0, 0]))
@@ -383,7 +389,7 @@ def write_deck(path, model, scene, k_pen, t_end, dt_guess, freq, element="C3D8R"
     """Writes the CalculiX input deck (SI units)."""
     (n1, n2), (h1, h2) = model["nodes"], model["hexes"]
     off_n, off_e = len(n1), len(h1)
-    out = ["** twoball peer: two balls, C3D8R, explicit dynamics, node-to-surface contact",
+    out = [f"** twoball peer: two balls, {element}, explicit dynamics, node-to-surface contact",
            "*HEADING", "twoball peer deck", "*NODE, NSET=NALL"]
     for k, p in enumerate(np.vstack([n1, n2])):
         out.append(f"{k + 1}, {p[0]:.12e}, {p[1]:.12e}, {p[2]:.12e}")
@@ -607,8 +613,11 @@ def main(argv=None):
     ap.add_argument("--end-factor", type=float, default=1.5,
                     help="end time as a multiple of the analytical contact duration t3 (1.5)")
     ap.add_argument("--samples", type=int, default=150, help="about this many velocity outputs (150)")
-    ap.add_argument("--element", default="C3D8R", choices=["C3D8R", "C3D8"],
-                    help="CalculiX hexahedron: C3D8R (one point, hourglass control; default) or C3D8")
+    ap.add_argument("--element", default="C3D8", choices=["C3D8", "C3D8R"],
+                    help="CalculiX hexahedron: C3D8 (2x2x2 points; default) or C3D8R (one point: its "
+                         "pole nodes sink through the other ball in ccx 2.20 explicit runs, docs/peer.md)")
+    ap.add_argument("--twist", type=float, default=0.0,
+                    help="turn ball 2 by this angle (degrees) about the line of centres (0)")
     ap.add_argument("--threads", type=int, default=1, help="threads ccx may use (1)")
     ap.add_argument("--twoball-results", help="a twoball results.json of the same scene, to compare")
     ap.add_argument("--json", help="write the results here (JSON)")
@@ -636,7 +645,7 @@ def main(argv=None):
     work = Path(a.work) if a.work else Path(tempfile.mkdtemp(prefix="ccx_peer_"))
     work.mkdir(parents=True, exist_ok=True)
 
-    model = build_model(scene, twoball, work, a.gap)
+    model = build_model(scene, twoball, work, a.gap, a.twist)
     (n1, n2), (h1, h2) = model["nodes"], model["hexes"]
     c1, c2 = model["centres"]
     check_faces(n1, h1, model["patch"][0], lambda p: p - c1)
