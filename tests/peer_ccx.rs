@@ -76,7 +76,10 @@ fn ccx_peer_tiny_default_scene() {
     // centre-of-mass velocities are constant once the balls are apart.
     let v1 = num(&["calculix", "v1_after_m_per_s"]);
     let v2 = num(&["calculix", "v2_after_m_per_s"]);
-    assert!((v1 + v2).abs() < 1e-6 * v1.abs().max(1e-3), "v1+ {v1}, v2+ {v2}");
+    assert!(
+        (v1 + v2).abs() < 1e-6 * v1.abs().max(1e-3),
+        "v1+ {v1}, v2+ {v2}"
+    );
     assert!(num(&["calculix", "v_after_spread_m_per_s"]) < 1e-4);
 
     // Physical collision quantities.
@@ -85,7 +88,10 @@ fn ccx_peer_tiny_default_scene() {
     let dmax = num(&["calculix", "delta_max_m"]);
     assert!(dmax > 0.0 && dmax < 1e-3, "delta_max = {dmax}");
     let tc = num(&["calculix", "contact_duration_s"]);
-    assert!(tc > 0.0 && tc < num(&["ccx", "end_time_s"]), "contact duration {tc}");
+    assert!(
+        tc > 0.0 && tc < num(&["ccx", "end_time_s"]),
+        "contact duration {tc}"
+    );
     assert!(num(&["ccx", "wall_time_s"]) > 0.0);
     assert_eq!(r["ccx"]["element"], "C3D8");
 
