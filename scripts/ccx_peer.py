@@ -664,6 +664,10 @@ def main(argv=None):
     scaling = re.search(r"Reduction of spring stiffness by \(maximum\) =\s*(\S+)", log)
     n_all = len(n1) + len(n2)
     times, vels = parse_dat(work / "peer.dat", n_all)
+    # The increment ccx really used (it may step below the Courant estimate the probe prints).
+    dt_courant = dt
+    if len(times) > 2:
+        dt = float(np.median(np.diff(times))) / freq
     if not a.keep:
         (work / "peer.dat").unlink()
 
@@ -691,7 +695,7 @@ def main(argv=None):
         "mesh": {"nodes": n_all, "elements": len(h1) + len(h2), "size_m": scene["balls"][0]["mesh"].get("size"),
                  "pole_size_m": scene["balls"][0]["mesh"].get("pole_size"),
                  "contact_faces": [len(model["patch"][0]), len(model["patch"][1])]},
-        "ccx": {"wall_time_s": wall, "cpu_time_s": cpu, "element": a.element, "threads": a.threads, "time_increment_s": dt,
+        "ccx": {"wall_time_s": wall, "cpu_time_s": cpu, "element": a.element, "threads": a.threads, "time_increment_s": dt, "courant_increment_s": dt_courant,
                 "increments": int(round(t_end / dt)), "end_time_s": t_end, "output_every": freq,
                 "penalty_slope_pa_per_m": k_pen, "penalty_fkn": fkn, "pole_thickness_m": h_pole,
                 "spring_stiffness_reduction": float(scaling.group(1)) if scaling else 1.0,
