@@ -121,7 +121,10 @@ def material_of(spec, where):
         m = {"tangent": float(spec["E"]) / 100.0, "mu_static": float(spec["mu"])}
     for k in keys:
         if k in spec:
-            m[k] = float(spec[k])
+            try:
+                m[k] = float(spec[k])
+            except (TypeError, ValueError):
+                raise PeerError(f"{where}.{k} = {spec[k]!r}: must be a number (SI units)") from None
     if "mu" in spec and "mu_static" not in spec:
         m["mu_static"] = max(m["mu_static"], m["mu"])
     checks = {
@@ -140,7 +143,10 @@ def material_of(spec, where):
 
 def read_scene(path):
     """Reads a scene file (or the default) into plain dicts, with twoball's defaults."""
-    text = DEFAULT_SCENE if path is None else Path(path).read_text()
+    try:
+        text = DEFAULT_SCENE if path is None else Path(path).read_text()
+    except OSError as e:
+        raise PeerError(f"cannot read scene {path}: {e.strerror}") from None
     try:
         root = tomllib.loads(text)
     except tomllib.TOMLDecodeError as e:
@@ -153,11 +159,15 @@ def read_scene(path):
         for req in ("material", "diameter", "velocity"):
             if req not in b:
                 raise PeerError(f"missing required key {key}.{req}")
-        d = float(b["diameter"])
+        try:
+            d = float(b["diameter"])
+            v = [float(x) for x in b["velocity"]]
+            w = [float(x) for x in b.get("angular_velocity", [0.0, 0.0, 0.0])]
+        except (TypeError, ValueError):
+            raise PeerError(f"{key}.diameter, velocity and angular_velocity must be numbers "
+                            "(velocity: [vx, vy, vz] in m/s)") from None
         if not 1e-4 <= d <= 1.0:
             raise PeerError(f"{key}.diameter = {d}: allowed 1e-4 <= diameter <= 1 m")
-        v = [float(x) for x in b["velocity"]]
-        w = [float(x) for x in b.get("angular_velocity", [0.0, 0.0, 0.0])]
         if len(v) != 3 or len(w) != 3:
             raise PeerError(f"{key}.velocity and angular_velocity must have 3 components")
         mesh = b.get("mesh", {})
