@@ -6,6 +6,7 @@
 mod analytic;
 mod mesh;
 mod run;
+mod stress;
 mod sweep;
 
 use clap::{Parser, Subcommand};
@@ -36,6 +37,8 @@ pub enum Command {
     Sweep(sweep::SweepArgs),
     /// The verification report (REPORT.md, CSV, Figures 6-10) from a finished sweep.
     Report(sweep::ReportArgs),
+    /// Stability matrix of extreme scenes: every case completes cleanly or stops with a reason.
+    Stress(stress::StressArgs),
 }
 
 /// Runs the command line and returns the process exit code.
@@ -56,6 +59,7 @@ pub fn main() -> i32 {
         Command::Run(a) => run::run(a),
         Command::Sweep(a) => sweep::run(a),
         Command::Report(a) => sweep::report(a),
+        Command::Stress(a) => stress::run(a),
     };
     match result {
         Ok(()) => 0,

@@ -15,4 +15,5 @@ pub mod progress;
 pub mod report;
 pub mod simulate;
 pub mod single;
+pub mod stress;
 pub mod sweep;
