@@ -40,6 +40,10 @@ pub struct Settings {
     /// it by this fraction. A step that breathes with every vibration cycle pumps energy into
     /// the model (variable-step central differences are not symplectic).
     pub dt_hysteresis: f64,
+    /// Stop when the total energy exceeds its start value plus the external work by this
+    /// fraction of the start value (default 0.5): energy created from nothing means an
+    /// instability, long before values turn non-finite.
+    pub energy_growth: f64,
 }
 
 impl Default for Settings {
@@ -51,6 +55,7 @@ impl Default for Settings {
             dt_collapse: 1e-3,
             energy_interval: 100,
             dt_hysteresis: 0.05,
+            energy_growth: 0.5,
         }
     }
 }
@@ -89,6 +94,13 @@ impl Settings {
                 "solver.dt_hysteresis",
                 self.dt_hysteresis,
                 "0 <= dt_hysteresis < 1",
+            ));
+        }
+        if !(self.energy_growth > 0.0 && self.energy_growth.is_finite()) {
+            return Err(Error::invalid(
+                "solver.energy_growth",
+                self.energy_growth,
+                "energy_growth > 0, finite",
             ));
         }
         if self.energy_interval == 0 {
@@ -285,6 +297,12 @@ impl Solver {
         if self.step.is_multiple_of(self.settings.energy_interval) {
             let e = self.energy();
             self.max_balance_error = self.max_balance_error.max(e.balance_error);
+            // Energy created beyond the external work: kinetic + stored + dissipated above
+            // the start value (external work subtracted, so never a false alarm).
+            let created = (e.total - self.e0 - self.w_ext.max(0.0)) / self.e0;
+            if self.e0 > 0.0 && created > self.settings.energy_growth {
+                return Err(self.energy_growth_error(created));
+            }
         }
         // 12. Output: the caller reads the state between steps.
         Ok(())
@@ -493,6 +511,25 @@ impl Solver {
             })
             .collect();
         parts.iter().fold((0.0, 0.0), |a, b| (a.0 + b.0, a.1 + b.1))
+    }
+
+    /// The stop message for energy created by the integration: names the fastest node (where
+    /// an instability shows first), the time and the likely causes.
+    fn energy_growth_error(&self, created: f64) -> Error {
+        let (node, speed) = self
+            .v
+            .iter()
+            .enumerate()
+            .map(|(i, v)| (i, (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt()))
+            .fold((0, -1.0), |a, b| if b.1 > a.1 { b } else { a });
+        Error::Numerical(format!(
+            "energy grew by {:.3e} of its start value (limit {:.3e}) at t = {:.6e} s, step {} (fastest node {node},              {speed:.3e} m/s; step controlled by {}): energy grows, the time step is too large for an              element or the penalty is too stiff: lower solver.time_step_factor or contact.penalty_factor",
+            created,
+            self.settings.energy_growth,
+            self.t,
+            self.step,
+            self.controlling()
+        ))
     }
 
     fn controlling(&self) -> String {

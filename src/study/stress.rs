@@ -125,8 +125,7 @@ pub struct StressRecord {
 
 fn valid_label(s: &str) -> bool {
     !s.is_empty()
-        && s
-            .chars()
+        && s.chars()
             .all(|c| c.is_ascii_alphanumeric() || matches!(c, '.' | '-' | '+'))
 }
 
@@ -143,7 +142,11 @@ impl StressSpec {
             toml::from_str(text).map_err(|e| Error::Parse(format!("{origin}: {e}")))?;
         let s = &spec.stress;
         if !(s.timeout_s > 0.0 && s.timeout_s <= 86_400.0) {
-            return Err(Error::invalid("stress.timeout_s", s.timeout_s, "0 < t <= 86400 s"));
+            return Err(Error::invalid(
+                "stress.timeout_s",
+                s.timeout_s,
+                "0 < t <= 86400 s",
+            ));
         }
         if !(s.energy_tolerance > 0.0 && s.energy_tolerance < 1.0) {
             return Err(Error::invalid(
@@ -162,7 +165,11 @@ impl StressSpec {
         }
         for (name, values) in &spec.axis {
             if values.is_empty() {
-                return Err(Error::invalid(format!("axis.{name}"), "[]", "a non-empty list"));
+                return Err(Error::invalid(
+                    format!("axis.{name}"),
+                    "[]",
+                    "a non-empty list",
+                ));
             }
             for v in values {
                 if !valid_label(&v.label) {
@@ -176,7 +183,11 @@ impl StressSpec {
         }
         for (i, g) in spec.group.iter().enumerate() {
             if g.axes.is_empty() {
-                return Err(Error::invalid(format!("group[{i}].axes"), "[]", "at least one axis"));
+                return Err(Error::invalid(
+                    format!("group[{i}].axes"),
+                    "[]",
+                    "at least one axis",
+                ));
             }
             for a in &g.axes {
                 if !spec.axis.contains_key(a) {
@@ -240,7 +251,10 @@ impl StressSpec {
                 .map_err(|e| Error::Parse(format!("stress case {id}: {e}")))
         };
         let scene = parse(&sets)?;
-        for (b, d) in [("ball1", scene.ball1.diameter), ("ball2", scene.ball2.diameter)] {
+        for (b, d) in [
+            ("ball1", scene.ball1.diameter),
+            ("ball2", scene.ball2.diameter),
+        ] {
             if !sets.iter().any(|s| s.starts_with(&format!("{b}.mesh"))) {
                 let size = self.stress.size_per_diameter * d;
                 let pole = (self.stress.pole_size_per_diameter * d).min(size);
@@ -290,7 +304,9 @@ fn record_path(out: &Path, id: &str) -> PathBuf {
 
 fn read_record(out: &Path, id: &str) -> Option<StressRecord> {
     let t = std::fs::read_to_string(record_path(out, id)).ok()?;
-    serde_json::from_str::<StressRecord>(&t).ok().filter(|r| r.id == id)
+    serde_json::from_str::<StressRecord>(&t)
+        .ok()
+        .filter(|r| r.id == id)
 }
 
 /// Whether a CSV text holds a non-finite number (`NaN`, `inf`).
@@ -330,7 +346,10 @@ pub fn json_has_non_finite(v: &serde_json::Value) -> bool {
 /// Rigid-body kinetic energy (J) of the two balls from results.json's scene and velocities.
 fn kinetic(v: &serde_json::Value, after: bool) -> Option<f64> {
     let mut k = 0.0;
-    for (b, vk, wk) in [("ball1", "v1_after", "w1_after"), ("ball2", "v2_after", "w2_after")] {
+    for (b, vk, wk) in [
+        ("ball1", "v1_after", "w1_after"),
+        ("ball2", "v2_after", "w2_after"),
+    ] {
         let ball = &v["scene"][b];
         let d = ball["diameter"].as_f64()?;
         let rho = ball["material"]["rho"].as_f64()?;
@@ -338,7 +357,11 @@ fn kinetic(v: &serde_json::Value, after: bool) -> Option<f64> {
         let i = 0.1 * m * d * d;
         let vec3 = |x: &serde_json::Value| -> Option<[f64; 3]> {
             let a = x.as_array()?;
-            Some([a.first()?.as_f64()?, a.get(1)?.as_f64()?, a.get(2)?.as_f64()?])
+            Some([
+                a.first()?.as_f64()?,
+                a.get(1)?.as_f64()?,
+                a.get(2)?.as_f64()?,
+            ])
         };
         let (vel, w) = if after {
             (vec3(&v[vk])?, vec3(&v[wk])?)
@@ -352,6 +375,7 @@ fn kinetic(v: &serde_json::Value, after: bool) -> Option<f64> {
 }
 
 /// Classifies a finished child run: exit status, stderr and the output folder.
+#[allow(clippy::too_many_arguments)]
 pub fn classify(
     id: &str,
     sets: &[String],
@@ -374,7 +398,11 @@ pub fn classify(
         non_finite: false,
         wall_time_s: wall,
     };
-    let last_line = stderr.lines().rev().find(|l| !l.trim().is_empty()).unwrap_or("");
+    let last_line = stderr
+        .lines()
+        .rev()
+        .find(|l| !l.trim().is_empty())
+        .unwrap_or("");
     if timed_out {
         r.status = "timeout".into();
         r.reason = format!("no answer within the wall-time cap ({wall:.0} s)");
@@ -414,7 +442,11 @@ pub fn classify(
     if v["impact"] == serde_json::Value::Bool(false) {
         r.status = "no_impact".into();
         r.reason = v["no_impact_reason"].as_str().unwrap_or("").to_string();
-        r.class = if r.non_finite { Class::Silent } else { Class::Clean };
+        r.class = if r.non_finite {
+            Class::Silent
+        } else {
+            Class::Clean
+        };
         return r;
     }
     r.status = "completed".into();
