@@ -1,3 +1,4 @@
+#![allow(dead_code)]
 //! Normal elastic impact harness: a quarter ball against a frictionless rigid wall (the exact
 //! mirror image of two identical balls) and two quarter balls against each other.
 
@@ -121,10 +122,10 @@ pub fn impact_damped(v: f64, pole: f64, size: f64, penalty: PenaltyRule, zeta: f
         mx / m
     };
     let x0 = cm(&s, 0);
+    let x1 = if ball_ball { cm(&s, 1) } else { 0.0 };
     let mut history: Vec<(f64, f64)> = Vec::new();
     let t_end = 1.3 * hertz_duration;
     let mut step = 0u64;
-    eprintln!("elements {elements}, dt {:.3e} controlled by {:?}", s.dt(), s.stable_step());
     while s.time() < t_end {
         if let (Some(_), Some(l)) = (probe.get().first_contact, probe.get().last_contact) {
             if s.time() > l + 0.05 * hertz_duration {
@@ -133,7 +134,8 @@ pub fn impact_damped(v: f64, pole: f64, size: f64, penalty: PenaltyRule, zeta: f
         }
         s.step().unwrap();
         step += 1;
-        let d = if ball_ball { 2.0 * (cm(&s, 0) - x0) } else { 2.0 * (cm(&s, 0) - x0) };
+        // Approach of the centres of mass; the wall is the mirror plane of the pair.
+        let d = if ball_ball { (cm(&s, 0) - x0) - (cm(&s, 1) - x1) } else { 2.0 * (cm(&s, 0) - x0) };
         delta_max = delta_max.max(d);
         history.push((s.time(), 4.0 * probe.last().normal_force));
         if step % 50 == 0 {

@@ -24,6 +24,8 @@ pub struct StaticHertz {
     /// Samples (r, p) of the final state.
     pub samples: Vec<(f64, f64)>,
     pub elements: usize,
+    /// Kinetic energy left at the end (J): how well the relaxation settled.
+    pub final_kinetic: f64,
 }
 
 /// Compresses by `depth` (m) over `t_load` (s), then relaxes for `t_hold` (s).
@@ -54,9 +56,11 @@ pub fn compress(depth: f64, pole: f64, size: f64, t_load: f64, t_hold: f64, alph
     let inter: Vec<Box<dyn Interaction>> = vec![Box::new(wall), Box::new(MassDamping::new(alpha, 0..n).unwrap())];
     let mut s = Solver::new(model, inter, Settings::default()).unwrap();
     s.run_until(|s| s.time() >= t_load + t_hold).unwrap();
-    eprintln!("KE at end {:.3e} J, stored {:.3e} J", s.energy().kinetic, s.energy().interaction_stored);
+    let ke = s.energy().kinetic;
     let data = probe.get();
-    finish(&data.pressures, 4.0 * data.last.normal_force, &mat, r, elements)
+    let mut out = finish(&data.pressures, 4.0 * data.last.normal_force, &mat, r, elements);
+    out.final_kinetic = ke;
+    out
 }
 
 /// Hertz comparison of a set of pressure samples.
@@ -85,5 +89,5 @@ pub fn finish(samples: &[PressureSample], force: f64, mat: &Material, r: f64, el
     let slope = (k * sxy - sx * sy) / (k * sxx - sx * sx);
     let icpt = (sy - slope * sx) / k;
     let a_fit = (-icpt / slope).sqrt();
-    StaticHertz { force, a_hertz, p0, a_fit, max_pressure_error: max_err, samples: rp, elements }
+    StaticHertz { force, a_hertz, p0, a_fit, max_pressure_error: max_err, samples: rp, elements, final_kinetic: 0.0 }
 }
