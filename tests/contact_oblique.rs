@@ -52,9 +52,10 @@ fn oblique(vn: f64, vt: f64) -> Oblique {
         if s.step_count() % 50 == 0 {
             energy_error = energy_error.max((s.energy().energy_ratio - 1.0).abs());
         }
-        let pd = probe.get();
-        if let (Some(a), Some(b)) = (pd.first_contact, pd.last_contact) {
-            if s.time() > b + 0.1 * (b - a) && o.active_nodes == 0 {
+        // Done once the ball moves away from the wall and no node touches it.
+        if o.active_nodes == 0 && probe.get().first_contact.is_some() && s.step_count() % 20 == 0 {
+            let (v, _) = s.part_motion(0).unwrap();
+            if v[0] < 0.0 {
                 break;
             }
         }
