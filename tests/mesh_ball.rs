@@ -107,6 +107,17 @@ fn pole_refinement_puts_the_smallest_edge_at_the_pole() {
     let p = s.min_edge_at;
     let dist = ((p[0] - 0.01).powi(2) + p[1] * p[1] + p[2] * p[2]).sqrt();
     assert!(dist < 0.002, "shortest edge {dist} m from the pole");
+    // The cells at the pole itself have the requested size (edges within 5 % of it).
+    let pole = m.nodes.iter().position(|p| *p == [0.01, 0.0, 0.0]).unwrap() as u32;
+    let at_pole: Vec<&[u32; 8]> = m.hexes.iter().filter(|h| h.contains(&pole)).collect();
+    assert_eq!(at_pole.len(), 4);
+    for h in at_pole {
+        for [a, b] in twoball::mesh::quality::HEX_EDGES {
+            let (p, q) = (m.nodes[h[a] as usize], m.nodes[h[b] as usize]);
+            let e = ((p[0] - q[0]).powi(2) + (p[1] - q[1]).powi(2) + (p[2] - q[2]).powi(2)).sqrt();
+            assert!((e - 1e-4).abs() < 0.05e-4, "pole edge {e}");
+        }
+    }
     assert!(s.elements < 80_000, "{}", s.elements);
     assert!(s.min_scaled_jacobian > 0.2);
     assert!(max_neighbour_size_ratio(&m) <= 1.3);
