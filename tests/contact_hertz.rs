@@ -43,7 +43,11 @@ fn report(label: &str, r: &Impact) {
 fn check_impact_invariants(r: &Impact) {
     assert!(r.restitution > 0.97, "restitution {}", r.restitution);
     assert!(r.energy_error < 0.01, "energy drift {}", r.energy_error);
-    assert!(r.residual_contact_energy.abs() < 1e-12, "contact energy left {}", r.residual_contact_energy);
+    assert!(
+        r.residual_contact_energy.abs() < 1e-12,
+        "contact energy left {}",
+        r.residual_contact_energy
+    );
 }
 
 #[test]
@@ -52,7 +56,10 @@ fn quarter_ball_on_frictionless_wall_matches_hertz_at_2_m_s() {
     report("wall 2 m/s pole 0.1 mm", &r);
     check_impact_invariants(&r);
     let (ed, et, ef) = r.errors();
-    assert!(ed.abs() < 0.015 && et.abs() < 0.015, "delta {ed}, duration {et}");
+    assert!(
+        ed.abs() < 0.015 && et.abs() < 0.015,
+        "delta {ed}, duration {et}"
+    );
     assert!(ef.abs() < 0.03, "peak force {ef}");
 }
 
@@ -65,7 +72,10 @@ fn two_balls_with_two_pass_contact_match_hertz_at_2_m_s() {
     report("ball-ball 2 m/s pole 0.2 mm", &pair);
     check_impact_invariants(&pair);
     let (ed, et, ef) = pair.errors();
-    assert!(ed.abs() < 0.06 && et.abs() < 0.04 && ef.abs() < 0.05, "delta {ed}, duration {et}, force {ef}");
+    assert!(
+        ed.abs() < 0.06 && et.abs() < 0.04 && ef.abs() < 0.05,
+        "delta {ed}, duration {et}, force {ef}"
+    );
 }
 
 /// The two-ball (two-pass) model on the mesh of the cargo-test wall run.
@@ -76,7 +86,10 @@ fn refined_two_balls_2_m_s() {
     report("ball-ball 2 m/s pole 1.0e-4 m", &r);
     check_impact_invariants(&r);
     let (ed, et, ef) = r.errors();
-    assert!(ed.abs() < 0.015 && et.abs() < 0.015 && ef.abs() < 0.03, "{ed} {et} {ef}");
+    assert!(
+        ed.abs() < 0.015 && et.abs() < 0.015 && ef.abs() < 0.03,
+        "{ed} {et} {ef}"
+    );
 }
 
 /// A refined run at relative speed `v` (m/s) with pole element `pole` (m, about a/10).
@@ -90,7 +103,10 @@ fn refined(v: f64, pole: f64) {
     report(&format!("wall {v} m/s pole {pole:.1e} m"), &r);
     check_impact_invariants(&r);
     let (ed, et, ef) = r.errors();
-    assert!(ed.abs() < 0.01 && et.abs() < 0.01, "{v} m/s: delta {ed}, duration {et}");
+    assert!(
+        ed.abs() < 0.01 && et.abs() < 0.01,
+        "{v} m/s: delta {ed}, duration {et}"
+    );
     assert!(ef.abs() < 0.025, "{v} m/s: force {ef}");
 }
 

@@ -27,15 +27,37 @@ fn oblique(vn: f64, vt: f64) -> Oblique {
     let r = 0.5 * d;
     let mut mat = Material::preset("copper-fe").unwrap();
     mat.yield_strength = 1e15;
-    let mesh = ball(&BallSpec { diameter: d, size: 3e-3, pole_size: Some(2e-4), cut: Cut::Half }).unwrap();
+    let mesh = ball(&BallSpec {
+        diameter: d,
+        size: 3e-3,
+        pole_size: Some(2e-4),
+        cut: Cut::Half,
+    })
+    .unwrap();
     let mut model = Model::new();
-    let p = model.add_part("ball", &mesh, mat, Formulation::OnePoint).unwrap();
+    let p = model
+        .add_part("ball", &mesh, mat, Formulation::OnePoint)
+        .unwrap();
     model.part_mut(p).unwrap().elastic_only = true;
     model.fix_set(p, "sym_z", 2).unwrap();
-    model.set_rigid_velocity(p, [vn, vt, 0.0], [0.0; 3], [0.0; 3]).unwrap();
+    model
+        .set_rigid_velocity(p, [vn, vt, 0.0], [0.0; 3], [0.0; 3])
+        .unwrap();
     let faces = model.parts[p].face_sets["contact"].clone();
-    let params = ContactParams { friction: Some(Coulomb::new(MU)), ..Default::default() };
-    let wall = RigidPlane::new(&model.nodes, &model.hexes, &faces, &mat, [r, 0.0, 0.0], [-1.0, 0.0, 0.0], params).unwrap();
+    let params = ContactParams {
+        friction: Some(Coulomb::new(MU)),
+        ..Default::default()
+    };
+    let wall = RigidPlane::new(
+        &model.nodes,
+        &model.hexes,
+        &faces,
+        &mat,
+        [r, 0.0, 0.0],
+        [-1.0, 0.0, 0.0],
+        params,
+    )
+    .unwrap();
     let probe = wall.probe();
     let mut s = Solver::new(model, vec![Box::new(wall)], Settings::default()).unwrap();
     let (v0, _) = s.part_motion(0).unwrap();
@@ -49,11 +71,11 @@ fn oblique(vn: f64, vt: f64) -> Oblique {
                 stuck_steps += 1;
             }
         }
-        if s.step_count() % 50 == 0 {
+        if s.step_count().is_multiple_of(50) {
             energy_error = energy_error.max((s.energy().energy_ratio - 1.0).abs());
         }
         // Done once the ball moves away from the wall and no node touches it.
-        if o.active_nodes == 0 && probe.get().first_contact.is_some() && s.step_count() % 20 == 0 {
+        if o.active_nodes == 0 && probe.get().first_contact.is_some() && s.step_count().is_multiple_of(20) {
             let (v, _) = s.part_motion(0).unwrap();
             if v[0] < 0.0 {
                 break;
@@ -82,7 +104,11 @@ fn gross_sliding_gives_tangential_impulse_mu_times_normal() {
         "J_t/J_n = {:.5} (mu {MU}), stuck steps {}/{}, energy {:.2e}, friction {:.3e} J",
         r.impulse_ratio, r.stuck_steps, r.contact_steps, r.energy_error, r.friction_energy
     );
-    assert!((r.impulse_ratio / MU - 1.0).abs() < 0.02, "J_t/J_n = {}", r.impulse_ratio);
+    assert!(
+        (r.impulse_ratio / MU - 1.0).abs() < 0.02,
+        "J_t/J_n = {}",
+        r.impulse_ratio
+    );
     assert!(r.energy_error < 0.01);
     assert!(r.residual_contact_energy.abs() < 1e-15);
     assert!(r.friction_energy > 0.0);
@@ -97,7 +123,12 @@ fn small_tangential_speed_stops_sliding_during_contact() {
         r.impulse_ratio, r.stuck_steps, r.contact_steps, r.energy_error
     );
     assert!(r.impulse_ratio < 0.9 * MU, "J_t/J_n = {}", r.impulse_ratio);
-    assert!(r.stuck_steps > r.contact_steps / 10, "stuck {} of {}", r.stuck_steps, r.contact_steps);
+    assert!(
+        r.stuck_steps > r.contact_steps / 10,
+        "stuck {} of {}",
+        r.stuck_steps,
+        r.contact_steps
+    );
     assert!(r.energy_error < 0.01);
     assert!(r.residual_contact_energy.abs() < 1e-15);
 }

@@ -19,7 +19,12 @@ fn static_hertz_pressure_profile_and_contact_radius() {
     s.sort_by(|x, y| x.0.total_cmp(&y.0));
     for (ri, pi) in s.iter().filter(|p| p.0 < r.a_hertz).step_by(4) {
         let exact = (1.0 - (ri / r.a_hertz).powi(2)).max(0.0).sqrt();
-        println!("r/a {:.3}  p/p0 {:.4}  Hertz {:.4}", ri / r.a_hertz, pi / r.p0, exact);
+        println!(
+            "r/a {:.3}  p/p0 {:.4}  Hertz {:.4}",
+            ri / r.a_hertz,
+            pi / r.p0,
+            exact
+        );
     }
     let a_err = r.a_fit / r.a_hertz - 1.0;
     println!(
@@ -27,6 +32,10 @@ fn static_hertz_pressure_profile_and_contact_radius() {
          {} elements, final KE {:.1e} J",
         r.force, r.a_hertz, r.a_fit, 100.0 * a_err, r.p0, r.max_pressure_error, r.elements, r.final_kinetic
     );
-    assert!(r.max_pressure_error < 0.03, "pressure error {}", r.max_pressure_error);
+    assert!(
+        r.max_pressure_error < 0.03,
+        "pressure error {}",
+        r.max_pressure_error
+    );
     assert!(a_err.abs() < 0.02, "contact radius error {a_err}");
 }
