@@ -23,3 +23,4 @@ if ! python3 -c "import meshio" >/dev/null 2>&1; then
     python3 -m pip install --quiet meshio || python3 -m pip install --quiet --break-system-packages meshio
   fi
 fi
+if ! command -v ccx >/dev/null 2>&1 && command -v apt-get >/dev/null 2>&1; then $SUDO apt-get update -qq && DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends calculix-ccx >/dev/null; fi  # CalculiX peer (scripts/ccx_peer.py)
