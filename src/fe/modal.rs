@@ -263,7 +263,7 @@ pub fn modes_near(
     // a fill-reducing ordering; otherwise a sparse LU with partial pivoting.
     enum Factor {
         Llt(faer::sparse::linalg::solvers::Llt<usize, f64>),
-        Lu(faer::sparse::linalg::solvers::Lu<usize, f64>),
+        Lu(Box<faer::sparse::linalg::solvers::Lu<usize, f64>>),
     }
     let lu =
         if shift < 0.0 {
@@ -271,10 +271,9 @@ pub fn modes_near(
                 Error::Numerical(format!("sparse Cholesky of K − σM failed: {e:?}"))
             })?)
         } else {
-            Factor::Lu(
-                a.sp_lu()
-                    .map_err(|e| Error::Numerical(format!("sparse LU of K − σM failed: {e:?}")))?,
-            )
+            Factor::Lu(Box::new(a.sp_lu().map_err(|e| {
+                Error::Numerical(format!("sparse LU of K − σM failed: {e:?}"))
+            })?))
         };
     let steps = (3 * count + 20).min(n);
     let mut q: Vec<Vec<f64>> = Vec::with_capacity(steps + 1);
