@@ -1,13 +1,273 @@
-//! `twoball mesh ball|check|gmsh`.
-//! (Placeholder arguments: the mesh work replaces this file.)
+//! `twoball mesh ball|check|gmsh`: generate ball meshes, summarise mesh files, run gmsh.
 
 use crate::error::{Error, Result};
-use clap::Args;
+use crate::mesh::ball::{ball, BallSpec, Cut};
+use crate::mesh::quality::{boundary_flux, summary, MeshSummary};
+use crate::mesh::{msh, vtu, Mesh};
+use clap::{Args, Subcommand};
+use std::path::{Path, PathBuf};
+use std::process::Command;
 
 /// Arguments of `twoball mesh`.
 #[derive(Debug, Args)]
-pub struct MeshArgs {}
+pub struct MeshArgs {
+    #[command(subcommand)]
+    what: MeshCommand,
+}
 
-pub fn run(_a: MeshArgs) -> Result<()> {
-    Err(Error::External("twoball mesh: not built yet".into()))
+#[derive(Debug, Subcommand)]
+enum MeshCommand {
+    /// Built-in all-hex ball mesh, graded toward the contact pole (+R, 0, 0).
+    Ball(BallArgs),
+    /// Print the size and quality summary of a mesh file (.msh 4.1 or 2.2, ASCII or binary).
+    Check(CheckArgs),
+    /// Mesh a parametric .geo script with the gmsh program, then read and check the result.
+    Gmsh(GmshArgs),
+}
+
+#[derive(Debug, Args)]
+struct BallArgs {
+    /// Ball diameter, m.
+    #[arg(long)]
+    diameter: f64,
+    /// Far-field element size, m (element edges stay below about 0.6 x size).
+    #[arg(long)]
+    size: f64,
+    /// Element size at the contact pole, m (default: no pole refinement).
+    #[arg(long)]
+    pole_size: Option<f64>,
+    /// full, half (z >= 0) or quarter (y >= 0, z >= 0).
+    #[arg(long, default_value = "full")]
+    cut: String,
+    /// Output file: .msh (gmsh 4.1 ASCII) or .vtu (ParaView).
+    #[arg(short, long)]
+    output: PathBuf,
+    /// Print the summary as JSON.
+    #[arg(long)]
+    json: bool,
+}
+
+#[derive(Debug, Args)]
+struct CheckArgs {
+    /// Mesh file (.msh).
+    file: PathBuf,
+    /// Print the summary as JSON.
+    #[arg(long)]
+    json: bool,
+}
+
+#[derive(Debug, Args)]
+struct GmshArgs {
+    /// The .geo script, e.g. meshes/ball.geo.
+    geo: PathBuf,
+    /// Script parameter NAME=VALUE (passed as gmsh -setnumber NAME VALUE); repeatable.
+    #[arg(long = "set", value_name = "NAME=VALUE")]
+    set: Vec<String>,
+    /// Output .msh file.
+    #[arg(short, long)]
+    output: PathBuf,
+    /// The gmsh program.
+    #[arg(long, default_value = "gmsh")]
+    gmsh: PathBuf,
+    /// Print the summary as JSON.
+    #[arg(long)]
+    json: bool,
+}
+
+/// Runs `twoball mesh ...`.
+pub fn run(a: MeshArgs) -> Result<()> {
+    match a.what {
+        MeshCommand::Ball(b) => run_ball(b),
+        MeshCommand::Check(c) => run_check(c),
+        MeshCommand::Gmsh(g) => run_gmsh(g),
+    }
+}
+
+fn run_ball(b: BallArgs) -> Result<()> {
+    let cut: Cut = b.cut.parse()?;
+    let format = output_format(&b.output)?;
+    let mesh = ball(&BallSpec {
+        diameter: b.diameter,
+        size: b.size,
+        pole_size: b.pole_size,
+        cut,
+    })?;
+    match format {
+        Format::Msh => msh::write(&b.output, &mesh)?,
+        Format::Vtu => vtu::write(&b.output, &mesh, &[], &[])?,
+    }
+    report(&mesh, &b.output, b.json)
+}
+
+fn run_check(c: CheckArgs) -> Result<()> {
+    let loaded = msh::read(&c.file)?;
+    for w in &loaded.warnings {
+        eprintln!("warning: {w}");
+    }
+    report(&loaded.mesh, &c.file, c.json)
+}
+
+/// Runs gmsh into a temporary file next to the output, reads and checks it (hexahedra only,
+/// no inverted elements, closed outward boundary), then renames it into place.
+fn run_gmsh(g: GmshArgs) -> Result<()> {
+    if !g.geo.is_file() {
+        return Err(Error::invalid(
+            "geo",
+            g.geo.display(),
+            "an existing .geo file",
+        ));
+    }
+    if output_format(&g.output)? != Format::Msh {
+        return Err(Error::invalid("output", g.output.display(), "a .msh file"));
+    }
+    let mut cmd = Command::new(&g.gmsh);
+    cmd.arg(&g.geo).args(["-3", "-format", "msh41"]);
+    for s in &g.set {
+        let (name, value) = s
+            .split_once('=')
+            .ok_or_else(|| Error::invalid("--set", s, "NAME=VALUE"))?;
+        let ok_name =
+            !name.is_empty() && name.chars().all(|c| c.is_ascii_alphanumeric() || c == '_');
+        let v: f64 = value
+            .trim()
+            .parse()
+            .map_err(|_| Error::invalid("--set", s, "NAME=number"))?;
+        if !ok_name || !v.is_finite() {
+            return Err(Error::invalid(
+                "--set",
+                s,
+                "NAME=VALUE with a plain name and a finite number",
+            ));
+        }
+        cmd.args(["-setnumber", name, &format!("{v:e}")]);
+    }
+    let tmp = temp_next_to(&g.output);
+    cmd.arg("-o").arg(&tmp);
+    let out = cmd.output().map_err(|e| {
+        if e.kind() == std::io::ErrorKind::NotFound {
+            Error::External(format!(
+                "gmsh not found ({}): install it (Debian/Ubuntu: apt-get install gmsh; or \
+                 pip install gmsh) or pass --gmsh PATH",
+                g.gmsh.display()
+            ))
+        } else {
+            Error::External(format!("cannot run {}: {e}", g.gmsh.display()))
+        }
+    })?;
+    let cleanup = || {
+        let _ = std::fs::remove_file(&tmp);
+    };
+    if !out.status.success() || !tmp.is_file() {
+        cleanup();
+        let text = String::from_utf8_lossy(&out.stdout).to_string()
+            + &String::from_utf8_lossy(&out.stderr);
+        let tail: Vec<&str> = text
+            .lines()
+            .filter(|l| l.contains("rror"))
+            .take(5)
+            .collect();
+        return Err(Error::External(format!(
+            "gmsh failed on {} ({}): {}",
+            g.geo.display(),
+            out.status,
+            if tail.is_empty() {
+                text.lines().last().unwrap_or("").to_string()
+            } else {
+                tail.join(" | ")
+            }
+        )));
+    }
+    let loaded = match msh::read(&tmp) {
+        Ok(l) => l,
+        Err(e) => {
+            cleanup();
+            return Err(e);
+        }
+    };
+    for w in &loaded.warnings {
+        eprintln!("warning: {w}");
+    }
+    let s = summary(&loaded.mesh);
+    let flux = boundary_flux(&loaded.mesh);
+    let closed = s.volume > 0.0 && (flux - 3.0 * s.volume).abs() <= 1e-6 * 3.0 * s.volume;
+    if !closed {
+        cleanup();
+        return Err(Error::Numerical(format!(
+            "gmsh mesh of {} has an open or inconsistently oriented boundary (surface integral \
+             of x.n = {flux:e}, 3V = {:e})",
+            g.geo.display(),
+            3.0 * s.volume
+        )));
+    }
+    std::fs::rename(&tmp, &g.output).map_err(|e| {
+        cleanup();
+        Error::io(&g.output, e)
+    })?;
+    report(&loaded.mesh, &g.output, g.json)
+}
+
+#[derive(Debug, PartialEq)]
+enum Format {
+    Msh,
+    Vtu,
+}
+
+fn output_format(p: &Path) -> Result<Format> {
+    match p.extension().and_then(|e| e.to_str()) {
+        Some("msh") => Ok(Format::Msh),
+        Some("vtu") => Ok(Format::Vtu),
+        _ => Err(Error::invalid(
+            "output",
+            p.display(),
+            "a file name ending in .msh or .vtu",
+        )),
+    }
+}
+
+fn temp_next_to(p: &Path) -> PathBuf {
+    let name = p
+        .file_name()
+        .map(|n| n.to_string_lossy().into_owned())
+        .unwrap_or_default();
+    let dir = match p.parent() {
+        Some(d) if !d.as_os_str().is_empty() => d.to_path_buf(),
+        _ => PathBuf::from("."),
+    };
+    dir.join(format!(".{name}.{}.tmp.msh", std::process::id()))
+}
+
+fn report(mesh: &Mesh, file: &Path, json: bool) -> Result<()> {
+    use std::io::Write;
+    let s = summary(mesh);
+    let text = if json {
+        serde_json::to_string_pretty(&s)
+            .map_err(|e| Error::Numerical(format!("summary is not representable as JSON: {e}")))?
+    } else {
+        summary_text(&s, file)
+    };
+    // A closed pipe (e.g. `| head`) is not an error worth a panic.
+    let _ = writeln!(std::io::stdout().lock(), "{text}");
+    Ok(())
+}
+
+fn summary_text(s: &MeshSummary, file: &Path) -> String {
+    format!(
+        "{}\n  nodes                 {}\n  elements              {} hexahedra, {} boundary quads\n  \
+         volume                {:.6e} m^3\n  \
+         edge length           {:.4e} .. {:.4e} m (shortest at {:.4e}, {:.4e}, {:.4e})\n  \
+         scaled Jacobian       min {:.4}, mean {:.4}\n  max aspect ratio      {:.3}",
+        file.display(),
+        s.nodes,
+        s.elements,
+        s.boundary_faces,
+        s.volume,
+        s.min_edge,
+        s.max_edge,
+        s.min_edge_at[0],
+        s.min_edge_at[1],
+        s.min_edge_at[2],
+        s.min_scaled_jacobian,
+        s.mean_scaled_jacobian,
+        s.max_aspect_ratio
+    )
 }

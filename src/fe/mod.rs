@@ -5,6 +5,7 @@
 //! and [`plasticity`]. [`model`] builds the input, [`energy`] reports the balance.
 // Index loops mirror the index notation of the formulas (σ_ij B_Ij, ...): keep them.
 #![allow(clippy::needless_range_loop)]
+pub mod contact;
 pub mod elements;
 pub mod energy;
 pub mod explicit;

@@ -6,8 +6,11 @@
 
 pub mod ball;
 pub mod block;
+pub mod file;
+pub mod msh;
 pub mod quality;
 pub mod topology;
+pub mod vtu;
 
 use std::collections::BTreeMap;
 

@@ -1,0 +1,96 @@
+//! Penalty frictional contact for the explicit solver.
+//!
+//! - [`rigid_plane::RigidPlane`]: a deformable surface against a rigid, possibly moving plane
+//!   (symmetry-reduced normal impact, ball on a wall, quasi-static compression);
+//! - [`node_to_segment::SurfacePair`]: two deformable surfaces, symmetric two-pass
+//!   node-to-segment (each surface is slave once and master once, each pass weighted ½).
+//!
+//! Both implement [`crate::fe::interaction::Interaction`]. The normal law is a penalty spring
+//! ([`penalty`]), optionally with a dashpot; friction is Coulomb with regularised stick and a
+//! return mapping ([`friction`]); candidates come from a bounding-box and bucket search
+//! ([`search`]); each step's resultants, area, penetration and energies are in
+//! [`output::ContactOutput`].
+
+pub mod friction;
+pub mod law;
+pub mod node_to_segment;
+pub mod output;
+pub mod penalty;
+pub mod projection;
+pub mod relaxation;
+pub mod rigid_plane;
+pub mod search;
+pub mod surface;
+pub mod vec3;
+
+pub use friction::Coulomb;
+pub use node_to_segment::SurfacePair;
+pub use output::{ContactOutput, ContactProbe, PressureSample};
+pub use penalty::PenaltyRule;
+pub use rigid_plane::RigidPlane;
+pub use surface::ContactSurface;
+
+use crate::error::{Error, Result};
+
+/// Settings shared by every contact pair.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ContactParams {
+    /// Normal penalty stiffness rule.
+    pub penalty: PenaltyRule,
+    /// Normal contact damping as a fraction of critical (0 ≤ ζ ≤ 1; 0 = none).
+    pub damping: f64,
+    /// Coulomb friction; `None` = frictionless.
+    pub friction: Option<Coulomb>,
+    /// Tangential stick stiffness as a multiple of the node's normal penalty stiffness (> 0).
+    pub tangential_ratio: f64,
+    /// Largest allowed penetration as a fraction of the thickness of the element under the
+    /// node; beyond it the step fails (the penalty is too soft for the impact).
+    pub max_penetration: f64,
+}
+
+impl Default for ContactParams {
+    fn default() -> Self {
+        ContactParams {
+            penalty: PenaltyRule::default(),
+            damping: 0.0,
+            friction: None,
+            tangential_ratio: 1.0,
+            max_penetration: 0.5,
+        }
+    }
+}
+
+impl ContactParams {
+    /// Checks every field; `field` names the contact in messages (e.g. `contact`).
+    pub fn validated(self, field: &str) -> Result<Self> {
+        self.penalty.validated(field)?;
+        if let Some(c) = self.friction {
+            c.validated(field)?;
+        }
+        if !(self.damping.is_finite() && (0.0..=1.0).contains(&self.damping)) {
+            return Err(Error::invalid(
+                format!("{field}.damping"),
+                self.damping,
+                "0 <= damping <= 1 (fraction of critical)",
+            ));
+        }
+        if !(self.tangential_ratio.is_finite() && self.tangential_ratio > 0.0) {
+            return Err(Error::invalid(
+                format!("{field}.tangential_ratio"),
+                self.tangential_ratio,
+                "> 0, finite",
+            ));
+        }
+        if !(self.max_penetration.is_finite()
+            && self.max_penetration > 0.0
+            && self.max_penetration <= 1.0)
+        {
+            return Err(Error::invalid(
+                format!("{field}.max_penetration"),
+                self.max_penetration,
+                "0 < max_penetration <= 1",
+            ));
+        }
+        Ok(self)
+    }
+}

@@ -1,0 +1,276 @@
+//! A deformable surface against a rigid plane: the mirror image of a symmetric ball–ball impact
+//! (frictionless), a wall (frictional), or a moving platen for quasi-static compression.
+
+use super::friction::StickState;
+use super::law::{respond, stored_energy, Kinematics, NodeLaw};
+use super::output::{ContactOutput, ContactProbe, NodeContact, OutputBuilder, PressureSample};
+use super::penalty::{damping_constant, stable_step};
+use super::surface::ContactSurface;
+use super::vec3::{add_into, axpy, dot, norm, scale, sub, tangential};
+use super::ContactParams;
+use crate::error::{Error, Result};
+use crate::fe::interaction::{Interaction, InteractionEnergy, StepContext};
+use crate::material::Material;
+
+/// Penalty contact of one surface against the half-space behind a rigid plane.
+#[derive(Debug, Clone)]
+pub struct RigidPlane {
+    name: String,
+    surface: ContactSurface,
+    /// A point of the plane at t = 0, m.
+    point: [f64; 3],
+    /// Unit normal pointing out of the rigid half-space (towards the body).
+    normal: [f64; 3],
+    /// Plane velocity (rigid translation), m/s.
+    velocity: [f64; 3],
+    /// The plane moves until this time, then stays (s; infinite = always).
+    stop: f64,
+    params: ContactParams,
+    youngs: f64,
+    bulk: f64,
+    laws: Vec<NodeLaw>,
+    ready: bool,
+    stick: Vec<StickState>,
+    prev_force: Vec<[f64; 3]>,
+    dt_prev: Option<f64>,
+    energy: InteractionEnergy,
+    output: ContactOutput,
+    samples: Vec<PressureSample>,
+    probe: ContactProbe,
+    friction_energy: f64,
+}
+
+impl RigidPlane {
+    /// Contact of the outward quads `faces` of the hexahedra `hexes` over reference
+    /// coordinates `nodes` (m), body material `material`, against the plane through
+    /// `point` (m) with unit normal `normal` pointing towards the body.
+    ///
+    /// Fails with [`Error::Invalid`] for a bad face set, a zero or non-finite normal or point,
+    /// or invalid `params`.
+    pub fn new(
+        nodes: &[[f64; 3]],
+        hexes: &[[u32; 8]],
+        faces: &[[u32; 4]],
+        material: &Material,
+        point: [f64; 3],
+        normal: [f64; 3],
+        params: ContactParams,
+    ) -> Result<RigidPlane> {
+        let params = params.validated("wall")?;
+        let surface = ContactSurface::new(nodes, hexes, faces, "wall.faces")?;
+        let l = norm(normal);
+        if !(l.is_finite() && l > 0.0) {
+            return Err(Error::invalid(
+                "wall.normal",
+                format!("{normal:?}"),
+                "a non-zero finite vector",
+            ));
+        }
+        if point.iter().any(|v| !v.is_finite()) {
+            return Err(Error::invalid(
+                "wall.point",
+                format!("{point:?}"),
+                "finite coordinates",
+            ));
+        }
+        let laws = (0..surface.nodes.len())
+            .map(|i| {
+                let k = params.penalty.geometric_stiffness(
+                    material.youngs,
+                    material.bulk_modulus(),
+                    surface.area[i],
+                    surface.thickness[i],
+                    surface.volume[i],
+                );
+                NodeLaw {
+                    k,
+                    kt: params.tangential_ratio * k,
+                    c: 0.0,
+                }
+            })
+            .collect();
+        let n = surface.nodes.len();
+        Ok(RigidPlane {
+            name: "rigid-plane contact".into(),
+            surface,
+            point,
+            normal: scale(1.0 / l, normal),
+            velocity: [0.0; 3],
+            stop: f64::INFINITY,
+            params,
+            youngs: material.youngs,
+            bulk: material.bulk_modulus(),
+            laws,
+            ready: false,
+            stick: vec![StickState::default(); n],
+            prev_force: vec![[0.0; 3]; n],
+            dt_prev: None,
+            energy: InteractionEnergy::default(),
+            output: ContactOutput::default(),
+            samples: Vec::new(),
+            probe: ContactProbe::default(),
+            friction_energy: 0.0,
+        })
+    }
+
+    /// The same plane translating rigidly at `velocity` (m/s).
+    pub fn with_velocity(mut self, velocity: [f64; 3]) -> Self {
+        self.velocity = velocity;
+        self
+    }
+
+    /// The same plane translating at `velocity` (m/s) until time `duration` (s), then at rest:
+    /// a ramp of depth |velocity| × duration for quasi-static compression.
+    pub fn with_ramp(mut self, velocity: [f64; 3], duration: f64) -> Self {
+        self.velocity = velocity;
+        self.stop = duration;
+        self
+    }
+
+    /// The contact surface (nodes, tributary areas).
+    pub fn surface(&self) -> &ContactSurface {
+        &self.surface
+    }
+
+    /// A shared handle on this pair's output that stays readable after the pair is boxed
+    /// and handed to the solver.
+    pub fn probe(&self) -> ContactProbe {
+        self.probe.clone()
+    }
+
+    /// Output of the last evaluated step.
+    pub fn output(&self) -> &ContactOutput {
+        &self.output
+    }
+
+    /// Pressure at every node in contact at the last evaluated step.
+    pub fn pressures(&self) -> &[PressureSample] {
+        &self.samples
+    }
+
+    /// Normal penalty stiffness of each surface node (after the first step for the SOFT rule), N/m.
+    pub fn node_stiffness(&self) -> Vec<f64> {
+        self.laws.iter().map(|l| l.k).collect()
+    }
+
+    /// Young's and bulk moduli the penalty is scaled by, Pa.
+    pub fn moduli(&self) -> (f64, f64) {
+        (self.youngs, self.bulk)
+    }
+
+    fn prepare(&mut self, ctx: &StepContext<'_>) {
+        for (i, &g) in self.surface.nodes.iter().enumerate() {
+            let m = ctx.mass[g as usize];
+            let law = &mut self.laws[i];
+            law.k = law
+                .k
+                .max(self.params.penalty.time_step_stiffness(m, ctx.dt));
+            law.kt = self.params.tangential_ratio * law.k;
+            law.c = damping_constant(self.params.damping, law.k, m);
+        }
+        self.ready = true;
+    }
+}
+
+impl Interaction for RigidPlane {
+    fn name(&self) -> &str {
+        &self.name
+    }
+
+    fn add_forces(&mut self, ctx: &StepContext<'_>, f: &mut [[f64; 3]]) -> Result<()> {
+        if !self.ready {
+            self.prepare(ctx);
+        }
+        let origin = axpy(self.point, ctx.t.min(self.stop), self.velocity);
+        let wall_v = if ctx.t < self.stop {
+            self.velocity
+        } else {
+            [0.0; 3]
+        };
+        let n = self.normal;
+        let dt_prev = self.dt_prev.unwrap_or(0.0);
+        let mut out = OutputBuilder::new(ctx.t);
+        let mut stored = 0.0;
+        for (i, &g) in self.surface.nodes.iter().enumerate() {
+            let gi = g as usize;
+            let gap = dot(sub(ctx.x[gi], origin), n);
+            let mut force = [0.0; 3];
+            if gap < 0.0 {
+                if -gap > self.params.max_penetration * self.surface.thickness[i] {
+                    return Err(Error::Numerical(format!(
+                        "{}: node {g} penetrates {:.3e} m at t = {:.6e} s, more than {} of its element \
+                         thickness {:.3e} m; raise the penalty factor or lower the time step",
+                        self.name, -gap, ctx.t, self.params.max_penetration, self.surface.thickness[i]
+                    )));
+                }
+                let rel = sub(ctx.v[gi], wall_v);
+                let kin = Kinematics {
+                    gap,
+                    gap_rate: dot(rel, n),
+                    slip: scale(dt_prev, tangential(rel, n)),
+                    normal: n,
+                    dt: dt_prev,
+                };
+                let r = respond(
+                    &self.laws[i],
+                    &mut self.stick[i],
+                    &kin,
+                    self.params.friction,
+                );
+                self.energy.dissipated += r.dissipated;
+                self.friction_energy += r.friction;
+                stored += stored_energy(&self.laws[i], &self.stick[i], gap);
+                force = r.force(n);
+                let s = PressureSample {
+                    node: g,
+                    position: ctx.x[gi],
+                    normal: n,
+                    pressure: r.normal / self.surface.area[i],
+                    area: self.surface.area[i],
+                };
+                out.add(
+                    1.0,
+                    s,
+                    NodeContact {
+                        normal: r.normal,
+                        tangential: r.tangential,
+                        penetration: -gap,
+                        sliding: self.stick[i].sliding,
+                    },
+                );
+            } else {
+                self.stick[i] = StickState::default();
+            }
+            add_into(f, gi, force);
+            // Trapezoidal work of the contact force over x^{n-1} → x^n = v^{n-1/2} Δt.
+            let fp = self.prev_force[i];
+            let avg = [
+                0.5 * (fp[0] + force[0]),
+                0.5 * (fp[1] + force[1]),
+                0.5 * (fp[2] + force[2]),
+            ];
+            self.energy.work += dot(avg, ctx.v[gi]) * dt_prev;
+            self.prev_force[i] = force;
+        }
+        self.energy.stored = stored;
+        let (o, s) = out.finish(stored, self.energy.dissipated, self.friction_energy);
+        self.probe.update(&o, &s);
+        self.output = o;
+        self.samples = s;
+        self.dt_prev = Some(ctx.dt);
+        Ok(())
+    }
+
+    fn stable_time_step(&self, mass: &[f64]) -> Option<f64> {
+        self.surface
+            .nodes
+            .iter()
+            .zip(&self.laws)
+            .map(|(&g, l)| stable_step(l.k, mass[g as usize]))
+            .min_by(f64::total_cmp)
+    }
+
+    fn energy(&self) -> InteractionEnergy {
+        self.energy
+    }
+}
