@@ -4,6 +4,7 @@
 //! malformed flags, as clap does); nothing panics on user input.
 
 mod analytic;
+mod bench;
 mod mesh;
 mod sweep;
 
@@ -31,6 +32,8 @@ pub enum Command {
     Mesh(mesh::MeshArgs),
     /// A parameter sweep (e.g. the paper's ANSYS study): resumable, shardable, one CSV.
     Sweep(sweep::SweepArgs),
+    /// Benchmarks: `bench kernel` (explicit step cost per element, threads, determinism).
+    Bench(bench::BenchArgs),
 }
 
 /// Runs the command line and returns the process exit code.
@@ -49,6 +52,7 @@ pub fn main() -> i32 {
         Command::Parametric(a) => analytic::run_parametric(a),
         Command::Mesh(a) => mesh::run(a),
         Command::Sweep(a) => sweep::run(a),
+        Command::Bench(a) => bench::run(a),
     };
     match result {
         Ok(()) => 0,
