@@ -100,6 +100,13 @@ fn run_ball(b: BallArgs) -> Result<()> {
 }
 
 fn run_check(c: CheckArgs) -> Result<()> {
+    if c.file.extension().is_some_and(|e| e == "vtu") {
+        return Err(Error::invalid(
+            "file",
+            c.file.display(),
+            "a gmsh .msh file (4.1 or 2.2); .vtu is an output format only",
+        ));
+    }
     let loaded = msh::read(&c.file)?;
     for w in &loaded.warnings {
         eprintln!("warning: {w}");

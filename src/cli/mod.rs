@@ -6,6 +6,7 @@
 mod analytic;
 mod bench;
 mod mesh;
+mod run;
 mod sweep;
 
 use clap::{Parser, Subcommand};
@@ -30,10 +31,14 @@ pub enum Command {
     Parametric(analytic::ParametricArgs),
     /// Ball meshes: generate, check, run gmsh.
     Mesh(mesh::MeshArgs),
+    /// One scene: FE beside the analytical model (default: the paper's Figure 8 case).
+    Run(run::RunArgs),
     /// A parameter sweep (e.g. the paper's ANSYS study): resumable, shardable, one CSV.
     Sweep(sweep::SweepArgs),
     /// Benchmarks: `bench kernel` (explicit step cost per element, threads, determinism).
     Bench(bench::BenchArgs),
+    /// The verification report (REPORT.md, CSV, Figures 6-10) from a finished sweep.
+    Report(sweep::ReportArgs),
 }
 
 /// Runs the command line and returns the process exit code.
@@ -51,8 +56,10 @@ pub fn main() -> i32 {
         Command::Materials(a) => analytic::run_materials(a),
         Command::Parametric(a) => analytic::run_parametric(a),
         Command::Mesh(a) => mesh::run(a),
+        Command::Run(a) => run::run(a),
         Command::Sweep(a) => sweep::run(a),
         Command::Bench(a) => bench::run(a),
+        Command::Report(a) => sweep::report(a),
     };
     match result {
         Ok(()) => 0,

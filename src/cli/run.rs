@@ -24,17 +24,28 @@ pub struct RunArgs {
 
 /// Runs `twoball run`.
 pub fn run(a: RunArgs) -> Result<()> {
-    let sets = a.sets.iter().map(|s| Override::parse(s)).collect::<Result<Vec<_>>>()?;
+    let sets = a
+        .sets
+        .iter()
+        .map(|s| Override::parse(s))
+        .collect::<Result<Vec<_>>>()?;
     let scene = match &a.scene {
         Some(p) => Scene::from_file(p, &sets)?,
         None => Scene::from_toml(DEFAULT_SCENE, Path::new("."), &sets)?,
     };
-    let opts = RunOptions { history_rows: 400, progress: std::io::stderr().is_terminal() };
+    let opts = RunOptions {
+        history_rows: 400,
+        progress: std::io::stderr().is_terminal(),
+    };
     let report = run_scene(&scene, &opts)?;
     print!("{}", side_by_side(&report));
     if let Some(dir) = &a.out {
         write_outputs(&report, dir)?;
-        println!("wrote {} and {}", dir.join("results.json").display(), dir.join("history.csv").display());
+        println!(
+            "wrote {} and {}",
+            dir.join("results.json").display(),
+            dir.join("history.csv").display()
+        );
     }
     Ok(())
 }

@@ -65,3 +65,32 @@ pub fn run(a: SweepArgs) -> Result<()> {
     );
     Ok(())
 }
+
+/// Arguments of `twoball report`.
+#[derive(Debug, Args)]
+pub struct ReportArgs {
+    /// Sweep output folder (from `twoball sweep --out DIR`).
+    pub dir: PathBuf,
+    /// The sweep file that produced it.
+    #[arg(long, default_value = "verification/ansys-study.toml")]
+    pub sweep: PathBuf,
+    /// Where REPORT.md and its files go.
+    #[arg(long, default_value = "verification")]
+    pub to: PathBuf,
+    /// Markdown appended as the discussion (default: NOTES.md beside the report, if present).
+    #[arg(long)]
+    pub notes: Option<PathBuf>,
+}
+
+/// Runs `twoball report`.
+pub fn report(a: ReportArgs) -> Result<()> {
+    let notes_path = a.notes.clone().unwrap_or_else(|| a.to.join("NOTES.md"));
+    let notes = match std::fs::read_to_string(&notes_path) {
+        Ok(t) => Some(t),
+        Err(_) if a.notes.is_none() => None,
+        Err(e) => return Err(crate::Error::io(&notes_path, e)),
+    };
+    crate::study::report::write_report(&a.sweep, &a.dir, &a.to, notes.as_deref())?;
+    println!("wrote {}", a.to.join("REPORT.md").display());
+    Ok(())
+}

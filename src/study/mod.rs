@@ -2,6 +2,8 @@
 //!
 //! - [`outcome`]: the quantities both models produce, and the analytical answer for a scene;
 //! - [`sweep`]: resumable, shardable parameter sweeps (the paper's ANSYS study);
+//! - [`simulate`]: the FE run (model, reductions, stop rule, reduction to rigid motion);
+//! - [`single`]: one scene, both models side by side, results.json and history.csv;
 //! - [`plots`]: SVG charts for the report;
 //! - [`atomic`]: crash-safe file output;
 //! - [`progress`]: the terminal progress bar.
@@ -10,4 +12,7 @@ pub mod atomic;
 pub mod outcome;
 pub mod plots;
 pub mod progress;
+pub mod report;
+pub mod simulate;
+pub mod single;
 pub mod sweep;

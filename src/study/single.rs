@@ -140,9 +140,14 @@ pub fn run_scene(scene: &Scene, opts: &RunOptions) -> Result<RunReport> {
 /// Writes results.json and history.csv into `dir` (created if needed), each atomically.
 pub fn write_outputs(report: &RunReport, dir: &Path) -> Result<()> {
     ensure_dir(dir)?;
-    let json = serde_json::to_string_pretty(report).map_err(|e| Error::Parse(format!("results.json: {e}")))?;
-    if !report.energy_error.is_finite() || report.fe.as_ref().is_some_and(|f| !f.outcome.is_finite()) {
-        return Err(Error::Numerical("results contain a non-finite value; nothing written".into()));
+    let json = serde_json::to_string_pretty(report)
+        .map_err(|e| Error::Parse(format!("results.json: {e}")))?;
+    if !report.energy_error.is_finite()
+        || report.fe.as_ref().is_some_and(|f| !f.outcome.is_finite())
+    {
+        return Err(Error::Numerical(
+            "results contain a non-finite value; nothing written".into(),
+        ));
     }
     write_atomic(&dir.join("results.json"), json.as_bytes())?;
     let mut csv = String::from(HISTORY_HEADER);
@@ -162,10 +167,18 @@ pub fn side_by_side(r: &RunReport) -> String {
     let sc = &r.scene;
     s.push_str(&format!(
         "scene: ball1 {} D = {} m v = {:?} m/s; ball2 {} D = {} m v = {:?} m/s\n",
-        sc.ball1.material_name, sc.ball1.diameter, sc.ball1.velocity, sc.ball2.material_name, sc.ball2.diameter, sc.ball2.velocity
+        sc.ball1.material_name,
+        sc.ball1.diameter,
+        sc.ball1.velocity,
+        sc.ball2.material_name,
+        sc.ball2.diameter,
+        sc.ball2.velocity
     ));
     if !r.impact {
-        s.push_str(&format!("no impact: {}\n", r.no_impact_reason.as_deref().unwrap_or("")));
+        s.push_str(&format!(
+            "no impact: {}\n",
+            r.no_impact_reason.as_deref().unwrap_or("")
+        ));
         return s;
     }
     let (Some(sim), Some(an), Some(d)) = (&r.fe, &r.analytic, &r.relative_difference) else {
@@ -174,18 +187,51 @@ pub fn side_by_side(r: &RunReport) -> String {
     let fe = &sim.outcome;
     let n = |v: [f64; 3]| v[0];
     let t = |v: [f64; 3]| v[1];
-    s.push_str(&format!("{:<34}{:>14}{:>14}{:>10}\n", "quantity", "FE", "analytical", "diff"));
+    s.push_str(&format!(
+        "{:<34}{:>14}{:>14}{:>10}\n",
+        "quantity", "FE", "analytical", "diff"
+    ));
     let mut row = |name: &str, a: f64, b: f64, diff: Option<f64>| {
         let d = diff.map_or(String::from("-"), |x| format!("{:+.2}%", 100.0 * x));
         s.push_str(&format!("{name:<34}{a:>14.6e}{b:>14.6e}{d:>10}\n"));
     };
     row("e [-]", fe.e, an.e, Some(d.e));
-    row("ball 1 normal velocity after [m/s]", n(fe.v1_after), n(an.v1_after), Some(d.v1n_after));
-    row("ball 2 normal velocity after [m/s]", n(fe.v2_after), n(an.v2_after), Some(d.v2n_after));
-    row("ball 1 tangential velocity [m/s]", t(fe.v1_after), t(an.v1_after), Some(relative_difference(t(fe.v1_after), t(an.v1_after))));
-    row("ball 2 tangential velocity [m/s]", t(fe.v2_after), t(an.v2_after), Some(relative_difference(t(fe.v2_after), t(an.v2_after))));
-    row("delta_max [m]", fe.delta_max, an.delta_max, Some(d.delta_max));
-    row("contact duration [s]", fe.contact_duration, an.contact_duration, Some(d.contact_duration));
+    row(
+        "ball 1 normal velocity after [m/s]",
+        n(fe.v1_after),
+        n(an.v1_after),
+        Some(d.v1n_after),
+    );
+    row(
+        "ball 2 normal velocity after [m/s]",
+        n(fe.v2_after),
+        n(an.v2_after),
+        Some(d.v2n_after),
+    );
+    row(
+        "ball 1 tangential velocity [m/s]",
+        t(fe.v1_after),
+        t(an.v1_after),
+        Some(relative_difference(t(fe.v1_after), t(an.v1_after))),
+    );
+    row(
+        "ball 2 tangential velocity [m/s]",
+        t(fe.v2_after),
+        t(an.v2_after),
+        Some(relative_difference(t(fe.v2_after), t(an.v2_after))),
+    );
+    row(
+        "delta_max [m]",
+        fe.delta_max,
+        an.delta_max,
+        Some(d.delta_max),
+    );
+    row(
+        "contact duration [s]",
+        fe.contact_duration,
+        an.contact_duration,
+        Some(d.contact_duration),
+    );
     row("eta [-]", fe.eta, an.eta, Some(d.eta));
     s.push_str(&format!(
         "FE: {} model ({}), {} elements, {} steps, dt = {:.3e} s, energy error {:.2e}, {:.2} s wall; {}\n",

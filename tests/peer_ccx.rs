@@ -1,0 +1,117 @@
+//! The CalculiX peer (scripts/ccx_peer.py) on a tiny, coarse case: the default scene on the
+//! coarsest ball mesh, C3D8 elements, a short end time. Runs only when `ccx` (Debian package
+//! calculix-ccx) and python3 with numpy are installed; otherwise it prints a skip notice.
+//!
+//! What it checks does not depend on CalculiX being accurate on so coarse a mesh (it is not):
+//! that the deck runs, that the extraction conserves momentum (equal balls leave with equal
+//! and opposite centre-of-mass velocities, constant after separation), that the collision
+//! quantities are physical, and that the analytical reference is the scene's.
+
+use std::path::PathBuf;
+use std::process::Command;
+
+/// True when `program` can be started (ccx -v prints its version but exits with 201).
+fn found(program: &str, args: &[&str]) -> bool {
+    Command::new(program).args(args).output().is_ok()
+}
+
+/// True when `program args` runs and succeeds.
+fn works(program: &str, args: &[&str]) -> bool {
+    Command::new(program)
+        .args(args)
+        .output()
+        .map(|o| o.status.success())
+        .unwrap_or(false)
+}
+
+fn script() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("scripts/ccx_peer.py")
+}
+
+#[test]
+fn ccx_peer_tiny_default_scene() {
+    if !found("ccx", &["-v"]) {
+        eprintln!("SKIPPED peer_ccx: ccx not found (apt-get install calculix-ccx)");
+        return;
+    }
+    if !works("python3", &["-c", "import numpy, tomllib"]) {
+        eprintln!("SKIPPED peer_ccx: python3 >= 3.11 with numpy not found");
+        return;
+    }
+    let dir = std::env::temp_dir().join(format!("twoball_peer_test_{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    let json = dir.join("peer.json");
+    let out = Command::new("python3")
+        .arg(script())
+        .args(["--twoball", env!("CARGO_BIN_EXE_twoball")])
+        .args(["--size", "0.01", "--pole-size", "0.01", "--element", "C3D8"])
+        .args(["--end-factor", "0.5", "--samples", "60"])
+        .arg("--work")
+        .arg(&dir)
+        .arg("--json")
+        .arg(&json)
+        .output()
+        .expect("python3 runs");
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "script failed:\n{stdout}\n{stderr}");
+    println!("{stdout}");
+    let r: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+    let num = |path: &[&str]| -> f64 {
+        let mut v = &r;
+        for p in path {
+            v = &v[*p];
+        }
+        v.as_f64()
+            .unwrap_or_else(|| panic!("{path:?} is not a number: {v}"))
+    };
+
+    // The analytical reference is the scene's (the worked case of the three-phase model).
+    assert!((num(&["analytic", "e"]) - 0.342645).abs() < 1e-5);
+    assert!((num(&["analytic", "contact_duration_s"]) - 1.409233e-4).abs() < 1e-9);
+
+    // Momentum: equal balls, equal and opposite speeds -> equal and opposite after, and the
+    // centre-of-mass velocities are constant once the balls are apart.
+    let v1 = num(&["calculix", "v1_after_m_per_s"]);
+    let v2 = num(&["calculix", "v2_after_m_per_s"]);
+    assert!(
+        (v1 + v2).abs() < 1e-6 * v1.abs().max(1e-3),
+        "v1+ {v1}, v2+ {v2}"
+    );
+    assert!(num(&["calculix", "v_after_spread_m_per_s"]) < 1e-4);
+
+    // Physical collision quantities.
+    let e = num(&["calculix", "e"]);
+    assert!(e > 0.0 && e <= 1.0, "e = {e}");
+    let dmax = num(&["calculix", "delta_max_m"]);
+    assert!(dmax > 0.0 && dmax < 1e-3, "delta_max = {dmax}");
+    let tc = num(&["calculix", "contact_duration_s"]);
+    assert!(
+        tc > 0.0 && tc < num(&["ccx", "end_time_s"]),
+        "contact duration {tc}"
+    );
+    assert!(num(&["ccx", "wall_time_s"]) > 0.0);
+    assert_eq!(r["ccx"]["element"], "C3D8");
+
+    // The deck: one element-face line per contact quad of each ball (16 on this mesh).
+    let deck = std::fs::read_to_string(dir.join("peer.inp")).unwrap();
+    let faces = deck
+        .lines()
+        .filter(|l| {
+            l.rsplit(", ")
+                .next()
+                .is_some_and(|s| s.len() == 2 && s.starts_with('S'))
+        })
+        .count();
+    let patch: u64 = r["mesh"]["contact_faces"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|v| v.as_u64().unwrap())
+        .sum();
+    assert_eq!(faces as u64, patch);
+    assert!(patch > 0);
+    let _ = std::fs::remove_dir_all(&dir);
+}
