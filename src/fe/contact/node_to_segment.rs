@@ -14,7 +14,7 @@ use super::penalty::{damping_constant, effective_mass, stable_step};
 use super::projection::{project, shape, Projection};
 use super::search::{bounding_box, BucketSearch};
 use super::surface::ContactSurface;
-use super::vec3::{add, dot, scale, sub, tangential};
+use super::vec3::{add, dot, norm, scale, sub, tangential};
 use super::ContactParams;
 use crate::error::{Error, Result};
 use crate::fe::interaction::{Interaction, InteractionEnergy, StepContext};
@@ -31,6 +31,11 @@ struct Pass {
     stick: Vec<StickState>,
     search: BucketSearch,
     watched: Vec<u32>,
+    /// For each slave node, the nearest master node in the reference configuration: whose
+    /// mass pairs with the slave's in the penalty time step.
+    partner: Vec<u32>,
+    /// For each slave node, the smallest master mass it has touched (or its partner's), kg.
+    partner_mass: Vec<f64>,
 }
 
 /// Penalty frictional contact between two deformable surfaces.
@@ -52,6 +57,8 @@ pub struct SurfacePair {
     samples: Vec<PressureSample>,
     probe: ContactProbe,
     friction_energy: f64,
+    /// Global-test inflation: search margin plus the deepest allowed penetration, m.
+    reach: f64,
     /// Steps on which the global bounding-box test found the surfaces apart.
     pub free_steps: usize,
 }
@@ -86,15 +93,19 @@ impl SurfacePair {
         let youngs = mat_a.youngs.min(mat_b.youngs);
         let bulk = mat_a.bulk_modulus().min(mat_b.bulk_modulus());
         let surfaces = [a, b];
-        let margin = {
-            let edge = surfaces[0].min_edge.min(surfaces[1].min_edge);
-            let th = surfaces
-                .iter()
-                .flat_map(|s| s.thickness.iter())
-                .cloned()
-                .fold(f64::INFINITY, f64::min);
-            (0.5 * edge).max(params.max_penetration * th)
-        };
+        let xref = nodes;
+        // Boxes inflated by half the smallest edge, plus, per segment, 1.5x the allowed
+        // penetration behind it, so a node beyond the limit is still found and flagged.
+        let margin = 0.5 * surfaces[0].min_edge.min(surfaces[1].min_edge);
+        let depths: Vec<Vec<f64>> = surfaces
+            .iter()
+            .map(|s| {
+                s.face_thickness
+                    .iter()
+                    .map(|t| 1.5 * params.max_penetration * t)
+                    .collect()
+            })
+            .collect();
         let mut nodes: Vec<u32> = surfaces[0]
             .nodes
             .iter()
@@ -130,12 +141,29 @@ impl SurfacePair {
                     weight: 0.5,
                     laws,
                     stick: vec![StickState::default(); sf.nodes.len()],
-                    search: BucketSearch::new(margin),
+                    search: BucketSearch::new(margin).with_depths(depths[m].clone()),
                     watched: nodes.clone(),
+                    partner: sf
+                        .nodes
+                        .iter()
+                        .map(|&g| {
+                            let x = xref[g as usize];
+                            *surfaces[m]
+                                .nodes
+                                .iter()
+                                .min_by(|&&a, &&b| {
+                                    norm(sub(xref[a as usize], x))
+                                        .total_cmp(&norm(sub(xref[b as usize], x)))
+                                })
+                                .expect("surfaces are not empty")
+                        })
+                        .collect(),
+                    partner_mass: Vec::new(),
                 }
             })
             .collect();
         let n = nodes.len();
+        let reach = margin + depths.iter().flatten().cloned().fold(0.0, f64::max);
         Ok(SurfacePair {
             name: "surface-pair contact".into(),
             surfaces,
@@ -153,6 +181,7 @@ impl SurfacePair {
             probe: ContactProbe::default(),
             friction_energy: 0.0,
             free_steps: 0,
+            reach,
         })
     }
 
@@ -177,20 +206,11 @@ impl SurfacePair {
         self.passes.iter().map(|p| p.search.rebuilds).sum()
     }
 
-    /// Smallest node mass of surface `s`, kg.
-    fn min_mass(&self, s: usize, mass: &[f64]) -> f64 {
-        self.surfaces[s]
-            .nodes
-            .iter()
-            .map(|&g| mass[g as usize])
-            .fold(f64::INFINITY, f64::min)
-    }
-
     fn prepare(&mut self, ctx: &StepContext<'_>) {
-        let mins = [self.min_mass(0, ctx.mass), self.min_mass(1, ctx.mass)];
         for p in &mut self.passes {
+            p.partner_mass = p.partner.iter().map(|&g| ctx.mass[g as usize]).collect();
             for (i, &g) in self.surfaces[p.slave].nodes.iter().enumerate() {
-                let m = effective_mass(ctx.mass[g as usize], mins[p.master]);
+                let m = effective_mass(ctx.mass[g as usize], p.partner_mass[i]);
                 let law = &mut p.laws[i];
                 law.k = law
                     .k
@@ -244,7 +264,7 @@ impl Interaction for SurfacePair {
         let mut out = OutputBuilder::new(ctx.t);
         let mut stored = 0.0;
         // Global gap test: the boxes of the two surfaces, inflated by the search margin.
-        let margin = self.passes[0].search.margin();
+        let margin = self.reach;
         let apart = !bounding_box(ctx.x, &self.surfaces[0].nodes)
             .overlaps(&bounding_box(ctx.x, &self.surfaces[1].nodes), margin);
         if apart {
@@ -275,6 +295,13 @@ impl Interaction for SurfacePair {
                     }
                     let quad = master.faces[fi];
                     let nsh = shape(pr.xi);
+                    let mq = quad
+                        .iter()
+                        .map(|&a| ctx.mass[a as usize])
+                        .fold(f64::INFINITY, f64::min);
+                    if mq < p.partner_mass[i] {
+                        p.partner_mass[i] = mq;
+                    }
                     let mut vm = [0.0; 3];
                     for a in 0..4 {
                         vm = add(vm, scale(nsh[a], ctx.v[quad[a] as usize]));
@@ -346,8 +373,11 @@ impl Interaction for SurfacePair {
         Ok(())
     }
 
+    /// Per slave node: √2 sqrt(m*/k) with the full (both-pass) spring and m* pairing the slave
+    /// with its reference partner or the lightest master node it has touched since. This
+    /// assumes the two surfaces have similar element sizes where they meet (as the graded
+    /// balls do); the penetration guard in `add_forces` catches a violation.
     fn stable_time_step(&self, mass: &[f64]) -> Option<f64> {
-        let mins = [self.min_mass(0, mass), self.min_mass(1, mass)];
         self.passes
             .iter()
             .flat_map(|p| {
@@ -355,12 +385,15 @@ impl Interaction for SurfacePair {
                     .nodes
                     .iter()
                     .zip(&p.laws)
-                    .map(move |(&g, l)| {
+                    .enumerate()
+                    .map(move |(i, (&g, l))| {
+                        let mp = p
+                            .partner_mass
+                            .get(i)
+                            .copied()
+                            .unwrap_or(mass[p.partner[i] as usize]);
                         // Both passes can load a node pair: take the full (unweighted) spring.
-                        stable_step(
-                            l.k / p.weight,
-                            effective_mass(mass[g as usize], mins[p.master]),
-                        )
+                        stable_step(l.k / p.weight, effective_mass(mass[g as usize], mp))
                     })
             })
             .min_by(f64::total_cmp)
@@ -368,5 +401,204 @@ impl Interaction for SurfacePair {
 
     fn energy(&self) -> InteractionEnergy {
         self.energy
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::fe::contact::{Coulomb, PenaltyRule};
+    use crate::mesh::block::block;
+    use crate::mesh::Mesh;
+
+    /// Block A = [0,1]² x [0,0.5] cut n_a x n_a x 1, block B on top of it cut n_b x n_b x 1,
+    /// overlapping by `overlap` (m). Returns the mesh, A's top quads and B's bottom quads.
+    fn stacked(n_a: usize, n_b: usize, overlap: f64) -> (Mesh, Vec<[u32; 4]>, Vec<[u32; 4]>) {
+        let a = block([1.0, 1.0, 0.5], [n_a, n_a, 1]);
+        let b = block([1.0, 1.0, 0.5], [n_b, n_b, 1]).translated([0.0, 0.0, 0.5 - overlap]);
+        let mut m = a.clone();
+        let (off, _) = m.append(&b, "b").unwrap();
+        let on = |m: &Mesh, q: &[u32; 4], z: f64| {
+            q.iter()
+                .all(|&i| (m.nodes[i as usize][2] - z).abs() < 1e-12)
+        };
+        let top: Vec<[u32; 4]> = m.boundary[..a.boundary.len()]
+            .iter()
+            .copied()
+            .filter(|q| on(&m, q, 0.5))
+            .collect();
+        let bottom: Vec<[u32; 4]> = m
+            .boundary
+            .iter()
+            .copied()
+            .filter(|q| q[0] as usize >= off && on(&m, q, 0.5 - overlap))
+            .collect();
+        (m, top, bottom)
+    }
+
+    fn eval(pair: &mut SurfacePair, m: &Mesh, v: &[[f64; 3]], dt: f64) -> Vec<[f64; 3]> {
+        let mass = vec![1.0; m.nodes.len()];
+        let mut f = vec![[0.0; 3]; m.nodes.len()];
+        pair.add_forces(
+            &StepContext {
+                t: 0.0,
+                dt,
+                x: &m.nodes,
+                v,
+                mass: &mass,
+            },
+            &mut f,
+        )
+        .unwrap();
+        f
+    }
+
+    fn steel() -> Material {
+        Material::preset("steel").unwrap()
+    }
+
+    #[test]
+    fn flat_patch_carries_uniform_pressure_and_balances_forces() {
+        // Pressure ε g with ε = FKN E / h (h = 0.5 m), on matching and non-matching meshes.
+        let g = 1e-6;
+        for (na, nb) in [(2, 2), (2, 3), (4, 3)] {
+            let (m, top, bottom) = stacked(na, nb, g);
+            let mat = steel();
+            let mut pair = SurfacePair::new(
+                &m.nodes,
+                &m.hexes,
+                &top,
+                &mat,
+                &bottom,
+                &mat,
+                ContactParams::default(),
+            )
+            .unwrap();
+            let f = eval(&mut pair, &m, &vec![[0.0; 3]; m.nodes.len()], 1e-7);
+            let eps = 10.0 * mat.youngs / 0.5;
+            let total: [f64; 3] = f.iter().fold([0.0; 3], |s, v| add(s, *v));
+            let o = *pair.output();
+            assert!(
+                total.iter().all(|c| c.abs() < 1e-9 * eps * g),
+                "{na}x{nb}: net force {total:?}"
+            );
+            assert!(
+                (o.normal_resultant[2] + eps * g).abs() < 1e-9 * eps * g,
+                "{na}x{nb}: {:?}",
+                o.normal_resultant
+            );
+            assert!((o.area - 1.0).abs() < 1e-12, "{}", o.area);
+            assert!((o.stored_energy - 0.5 * eps * g * g).abs() < 1e-9 * eps * g * g);
+            if na == nb {
+                // Patch test: every node sees the same pressure.
+                for s in pair.pressures() {
+                    assert!((s.pressure - eps * g).abs() < 1e-9 * eps * g, "{s:?}");
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn surfaces_apart_cost_no_contact_work() {
+        let (m, top, bottom) = stacked(2, 2, -1.0);
+        let mat = steel();
+        let mut pair = SurfacePair::new(
+            &m.nodes,
+            &m.hexes,
+            &top,
+            &mat,
+            &bottom,
+            &mat,
+            ContactParams::default(),
+        )
+        .unwrap();
+        let f = eval(&mut pair, &m, &vec![[0.0; 3]; m.nodes.len()], 1e-7);
+        assert!(f.iter().all(|v| *v == [0.0; 3]));
+        assert_eq!((pair.free_steps, pair.search_rebuilds()), (1, 0));
+    }
+
+    #[test]
+    fn sliding_drags_the_lower_block_with_mu_times_the_normal_force() {
+        let g = 1e-6;
+        let (m, top, bottom) = stacked(2, 2, g);
+        let mat = steel();
+        let params = ContactParams {
+            friction: Some(Coulomb::new(0.3)),
+            ..Default::default()
+        };
+        let mut pair =
+            SurfacePair::new(&m.nodes, &m.hexes, &top, &mat, &bottom, &mat, params).unwrap();
+        // B slides along +x at 10 m/s: slip 1e-5 m per step, far beyond the elastic μ g.
+        let nb0 = m.nodes.len() / 2;
+        let v: Vec<[f64; 3]> = (0..m.nodes.len())
+            .map(|i| if i >= nb0 { [10.0, 0.0, 0.0] } else { [0.0; 3] })
+            .collect();
+        eval(&mut pair, &m, &v, 1e-6);
+        eval(&mut pair, &m, &v, 1e-6);
+        let o = *pair.output();
+        let fnorm = o.normal_resultant[2].abs();
+        assert!(
+            (o.tangential_resultant[0] - 0.3 * fnorm).abs() < 1e-9 * fnorm,
+            "{o:?}"
+        );
+        assert!(o.tangential_resultant[1].abs() < 1e-12 * fnorm);
+        assert_eq!(o.sliding_nodes, o.active_nodes);
+        // Dissipation of the second step: μ F_n |slip| (the first step had no previous step).
+        let expect = 0.3 * fnorm * 1e-5;
+        assert!(
+            (o.friction_energy - expect).abs() < 0.05 * expect,
+            "{} vs {expect}",
+            o.friction_energy
+        );
+    }
+
+    #[test]
+    fn too_deep_penetration_is_an_error_not_a_pass_through() {
+        let (m, top, bottom) = stacked(2, 2, 0.3);
+        let mat = steel();
+        let mut pair = SurfacePair::new(
+            &m.nodes,
+            &m.hexes,
+            &top,
+            &mat,
+            &bottom,
+            &mat,
+            ContactParams::default(),
+        )
+        .unwrap();
+        let mass = vec![1.0; m.nodes.len()];
+        let v = vec![[0.0; 3]; m.nodes.len()];
+        let mut f = vec![[0.0; 3]; m.nodes.len()];
+        let e = pair
+            .add_forces(
+                &StepContext {
+                    t: 0.0,
+                    dt: 1e-7,
+                    x: &m.nodes,
+                    v: &v,
+                    mass: &mass,
+                },
+                &mut f,
+            )
+            .unwrap_err();
+        assert!(matches!(e, Error::Numerical(_)), "{e}");
+        assert!(e.to_string().contains("penetrates"));
+    }
+
+    #[test]
+    fn stable_step_follows_the_penalty_spring() {
+        let (m, top, bottom) = stacked(2, 2, 1e-6);
+        let mat = steel();
+        let params = ContactParams {
+            penalty: PenaltyRule::Fkn { factor: 1.0 },
+            ..Default::default()
+        };
+        let pair = SurfacePair::new(&m.nodes, &m.hexes, &top, &mat, &bottom, &mat, params).unwrap();
+        let mass = vec![2.0; m.nodes.len()];
+        // Stiffest node spring: an interior node, area 0.25, h = 0.5: k = E/2; m* = 1.
+        let k = mat.youngs * 0.25 / 0.5;
+        let expect = std::f64::consts::SQRT_2 * (1.0 / k).sqrt();
+        let dt = pair.stable_time_step(&mass).unwrap();
+        assert!((dt - expect).abs() < 1e-12 * expect, "{dt} vs {expect}");
     }
 }

@@ -274,3 +274,92 @@ impl Interaction for RigidPlane {
         self.energy
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::mesh::block::block;
+
+    #[test]
+    fn flat_face_pressed_into_the_plane_carries_eps_g_per_area() {
+        // Bottom face of a 1 x 1 x 0.5 block, 3 x 3 x 1 elements (h = 0.5), plane at z = g.
+        let m = block([1.0, 1.0, 0.5], [3, 3, 1]);
+        let bottom: Vec<[u32; 4]> = m
+            .boundary
+            .iter()
+            .copied()
+            .filter(|q| q.iter().all(|&i| m.nodes[i as usize][2] == 0.0))
+            .collect();
+        let mat = Material::preset("steel").unwrap();
+        let g = 1e-6;
+        let mut wall = RigidPlane::new(
+            &m.nodes,
+            &m.hexes,
+            &bottom,
+            &mat,
+            [0.0, 0.0, g],
+            [0.0, 0.0, 1.0],
+            ContactParams::default(),
+        )
+        .unwrap();
+        let mass = vec![1.0; m.nodes.len()];
+        let v = vec![[0.0; 3]; m.nodes.len()];
+        let mut f = vec![[0.0; 3]; m.nodes.len()];
+        wall.add_forces(
+            &StepContext {
+                t: 0.0,
+                dt: 1e-7,
+                x: &m.nodes,
+                v: &v,
+                mass: &mass,
+            },
+            &mut f,
+        )
+        .unwrap();
+        let eps = 10.0 * mat.youngs / 0.5;
+        let fz: f64 = f.iter().map(|v| v[2]).sum();
+        assert!((fz - eps * g).abs() < 1e-9 * eps * g, "{fz}");
+        assert!(wall
+            .pressures()
+            .iter()
+            .all(|s| (s.pressure - eps * g).abs() < 1e-9 * eps * g));
+        let o = *wall.output();
+        assert_eq!(o.active_nodes, 16);
+        assert!((o.stored_energy - 0.5 * eps * g * g).abs() < 1e-9 * eps * g * g);
+        // Stable step of the stiffest spring: interior node, A = 1/9, k = ε A, m = 1.
+        let dt = wall.stable_time_step(&mass).unwrap();
+        assert!((dt - std::f64::consts::SQRT_2 / (eps / 9.0).sqrt()).abs() < 1e-12 * dt);
+        // A node pushed through half its element thickness stops the run.
+        let deep = RigidPlane::new(
+            &m.nodes,
+            &m.hexes,
+            &bottom,
+            &mat,
+            [0.0, 0.0, 0.3],
+            [0.0, 0.0, 1.0],
+            ContactParams::default(),
+        );
+        let e = deep.unwrap().add_forces(
+            &StepContext {
+                t: 0.0,
+                dt: 1e-7,
+                x: &m.nodes,
+                v: &v,
+                mass: &mass,
+            },
+            &mut f,
+        );
+        assert!(matches!(e, Err(Error::Numerical(_))));
+        // Bad input is an error naming the field.
+        let bad = RigidPlane::new(
+            &m.nodes,
+            &m.hexes,
+            &bottom,
+            &mat,
+            [0.0; 3],
+            [0.0; 3],
+            ContactParams::default(),
+        );
+        assert!(bad.unwrap_err().to_string().contains("wall.normal"));
+    }
+}

@@ -57,6 +57,8 @@ pub struct BucketSearch {
     candidates: Vec<Vec<u32>>,
     /// Whether `candidates` is valid.
     built: bool,
+    /// Extra inflation of each segment's box, m (how deep a node may be behind it).
+    depth: Vec<f64>,
     /// Number of rebuilds so far (for tests and reports).
     pub rebuilds: usize,
 }
@@ -68,6 +70,13 @@ impl BucketSearch {
             margin,
             ..Default::default()
         }
+    }
+
+    /// The same search with each segment's box further inflated by `depth[f]` (m): nodes that
+    /// have penetrated up to that depth behind segment f are still found (and can be flagged).
+    pub fn with_depths(mut self, depth: Vec<f64>) -> Self {
+        self.depth = depth;
+        self
     }
 
     /// The search margin, m.
@@ -107,9 +116,13 @@ impl BucketSearch {
         self.reference = watched.iter().map(|&g| x[g as usize]).collect();
         let boxes: Vec<Aabb> = faces
             .iter()
-            .map(|q| {
+            .enumerate()
+            .map(|(f, q)| {
                 let mut b = Aabb::empty();
                 q.iter().for_each(|&g| b.grow(x[g as usize]));
+                let d = self.depth.get(f).copied().unwrap_or(0.0);
+                b.min = b.min.map(|v| v - d);
+                b.max = b.max.map(|v| v + d);
                 b
             })
             .collect();

@@ -21,6 +21,8 @@ pub struct ContactSurface {
     pub thickness: Vec<f64>,
     /// Volume of the solid under each node (area-weighted mean element volume), m³.
     pub volume: Vec<f64>,
+    /// Thickness of the solid element under each quad (volume / face area), m.
+    pub face_thickness: Vec<f64>,
     /// Smallest edge length of the quads, m (sets search margins and penetration limits).
     pub min_edge: f64,
 }
@@ -100,10 +102,12 @@ impl ContactSurface {
         let mut th = vec![0.0; list.len()];
         let mut vol = vec![0.0; list.len()];
         let mut min_edge = f64::INFINITY;
+        let mut face_thickness = Vec::with_capacity(faces.len());
         for (q, &e) in faces.iter().zip(&owner) {
             let p = q.map(|i| nodes[i as usize]);
             let a = quad_area(&p);
             let v = hex_volume(nodes, &hexes[e]);
+            face_thickness.push(v / a);
             for k in 0..4 {
                 min_edge = min_edge.min(super::vec3::norm(sub(p[(k + 1) % 4], p[k])));
             }
@@ -135,6 +139,7 @@ impl ContactSurface {
             area,
             thickness: th,
             volume: vol,
+            face_thickness,
             min_edge,
         })
     }
