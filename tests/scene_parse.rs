@@ -270,3 +270,57 @@ fn free_flight_reaches_touch_in_closed_form() {
             && rel[2].abs() < 1e-12
     );
 }
+
+#[test]
+fn run_command_rejects_bad_input_with_one_line_and_exit_1() {
+    let bin = env!("CARGO_BIN_EXE_twoball");
+    for args in [
+        vec!["run", "--set", "ball1.diameter=-1"],
+        vec!["run", "--set", "nonsense"],
+        vec!["run", "/nonexistent/scene.toml"],
+        vec![
+            "run",
+            "--set",
+            "ball1.position=[0,0,0]",
+            "--set",
+            "ball2.position=[0.001,0,0]",
+        ],
+    ] {
+        let o = std::process::Command::new(bin)
+            .args(&args)
+            .output()
+            .unwrap();
+        assert_eq!(o.status.code(), Some(1), "{args:?}");
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert!(
+            err.starts_with("error: ") && err.trim_end().lines().count() == 1,
+            "{args:?}: {err}"
+        );
+    }
+}
+
+#[test]
+fn run_without_impact_reports_it_and_writes_no_nan() {
+    let dir = std::env::temp_dir().join(format!("twoball-noimpact-{}", std::process::id()));
+    let o = std::process::Command::new(env!("CARGO_BIN_EXE_twoball"))
+        .args([
+            "run",
+            "--set",
+            "ball2.velocity=[1,0,0]",
+            "--out",
+            dir.to_str().unwrap(),
+        ])
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert!(String::from_utf8_lossy(&o.stdout).contains("no impact"));
+    let json = std::fs::read_to_string(dir.join("results.json")).unwrap();
+    let v: serde_json::Value = serde_json::from_str(&json).unwrap();
+    assert_eq!(v["impact"], false);
+    assert_eq!(v["reduction"], "none");
+    assert_eq!(v["v1_after"][0], 1.0);
+    assert!(!json.contains("NaN"));
+    let csv = std::fs::read_to_string(dir.join("history.csv")).unwrap();
+    assert!(csv.starts_with("t [s],delta [m]"));
+    std::fs::remove_dir_all(&dir).unwrap();
+}

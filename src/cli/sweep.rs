@@ -1,5 +1,6 @@
 //! `twoball sweep FILE --out DIR [--jobs N] [--shard I/N]`: a parameter sweep such as the
-//! paper's ANSYS study, resumable and shardable.
+//! paper's ANSYS study, resumable and shardable; each impacting case runs the FE model
+//! ([`crate::study::simulate::sweep_case`]) beside the analytical one.
 
 use crate::error::Result;
 use crate::study::sweep::{run_sweep, Shard, SweepModel, SweepOptions, SweepSpec};
@@ -49,7 +50,8 @@ pub fn run(a: SweepArgs) -> Result<()> {
         pace: Duration::from_millis(a.pace_ms),
         verbose: std::io::stderr().is_terminal(),
     };
-    let s = run_sweep(&spec, &opts, None)?;
+    let fe: crate::study::sweep::FeRunner<'_> = &crate::study::simulate::sweep_case;
+    let s = run_sweep(&spec, &opts, Some(fe))?;
     println!(
         "sweep {}: {} cases, shard {}/{} has {} ({} already done, {} run now); {} in {} ({} failed)",
         a.file.display(),

@@ -63,9 +63,9 @@ pub fn write_report(
     }
     let fig_dir = to.join("ansys");
     ensure_dir(&fig_dir)?;
-    let csv =
-        std::fs::read(dir.join("sweep.csv")).map_err(|e| Error::io(dir.join("sweep.csv"), e))?;
-    write_atomic(&fig_dir.join("sweep.csv"), &csv)?;
+    // The CSV from the finished case files (also while a sweep is running or after a kill).
+    let (csv, _, _) = super::sweep::csv_text(dir, &cases);
+    write_atomic(&fig_dir.join("sweep.csv"), csv.as_bytes())?;
 
     let mut md = String::new();
     let w = &mut md;

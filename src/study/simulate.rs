@@ -761,3 +761,36 @@ pub fn simulate(
         history,
     })
 }
+
+/// The FE runner of a sweep case: analytical duration estimate, FE run, summary and δ(t).
+///
+/// Errors: as [`simulate`]; a scene without impact (the sweep never asks for one).
+pub fn sweep_case(scene: &Scene) -> Result<super::sweep::FeCase> {
+    let touch = match crate::scene::approach(scene)? {
+        crate::scene::Approach::Impact(t) => t,
+        crate::scene::Approach::NoImpact { reason } => {
+            return Err(Error::Parse(format!("no impact: {reason}")))
+        }
+    };
+    let (an, _) = super::outcome::analytic_outcome(scene, &touch)?;
+    let sim = simulate(
+        scene,
+        &touch,
+        an.contact_duration,
+        &RunOptions {
+            history_rows: 400,
+            progress: false,
+        },
+    )?;
+    Ok(super::sweep::FeCase {
+        delta_history: sim.history.iter().map(|r| [r.t, r.delta]).collect(),
+        summary: super::sweep::FeSummary {
+            outcome: sim.outcome,
+            energy_error: sim.energy_error,
+            reduction: sim.savings.reduction.name().into(),
+            elements: sim.elements,
+            element_cycles: sim.element_cycles,
+            wall_time_s: sim.wall_time_s,
+        },
+    })
+}

@@ -751,6 +751,14 @@ pub fn csv_row(r: &CaseRecord) -> String {
 /// Rewrites `DIR/sweep.csv` (atomically) from the finished case files of `cases`, in case
 /// order; returns (rows written, failed rows).
 pub fn write_csv(out: &Path, cases: &[Case]) -> Result<(usize, usize)> {
+    let (text, rows, failed) = csv_text(out, cases);
+    write_atomic(&out.join("sweep.csv"), text.as_bytes())?;
+    Ok((rows, failed))
+}
+
+/// The CSV text of the finished case files of `cases` in `out`, in case order, with the
+/// number of rows and of failed rows.
+pub fn csv_text(out: &Path, cases: &[Case]) -> (String, usize, usize) {
     let mut text = String::from(CSV_HEADER);
     text.push('\n');
     let (mut rows, mut failed) = (0, 0);
@@ -762,8 +770,7 @@ pub fn write_csv(out: &Path, cases: &[Case]) -> Result<(usize, usize)> {
             failed += usize::from(r.status == Status::Failed);
         }
     }
-    write_atomic(&out.join("sweep.csv"), text.as_bytes())?;
-    Ok((rows, failed))
+    (text, rows, failed)
 }
 
 /// Reads every finished case record of `cases` from `out`.
