@@ -9,6 +9,7 @@
 //! All quantities are SI: metres, seconds, kilograms, newtons, pascals, joules.
 
 pub mod analytic;
+pub mod atomic;
 pub mod cli;
 pub mod error;
 pub mod fe;

@@ -190,15 +190,6 @@ pub fn all_figures() -> Result<Vec<Figure>> {
     Ok(vec![figure11()?, figure12()?, figure13()?, figure14()?])
 }
 
-/// Writes `contents` to `path` atomically (temporary file in the same directory, then rename).
-pub fn write_atomic(path: &Path, contents: &[u8]) -> Result<()> {
-    let mut tmp = path.as_os_str().to_owned();
-    tmp.push(".tmp");
-    let tmp = std::path::PathBuf::from(tmp);
-    std::fs::write(&tmp, contents).map_err(|e| Error::io(&tmp, e))?;
-    std::fs::rename(&tmp, path).map_err(|e| Error::io(path, e))
-}
-
 impl Figure {
     /// Fails if any value is not finite (nothing non-finite is ever written).
     fn check_finite(&self) -> Result<()> {
@@ -289,12 +280,12 @@ impl Figure {
 
     /// Writes `DIR/name.csv` and `DIR/name.svg`.
     pub fn write(&self, dir: &Path) -> Result<()> {
-        write_atomic(
-            &dir.join(format!("{}.csv", self.name)),
+        crate::atomic::write_atomic(
+            dir.join(format!("{}.csv", self.name)),
             self.csv()?.as_bytes(),
         )?;
-        write_atomic(
-            &dir.join(format!("{}.svg", self.name)),
+        crate::atomic::write_atomic(
+            dir.join(format!("{}.svg", self.name)),
             self.svg()?.as_bytes(),
         )
     }

@@ -7,8 +7,9 @@ use crate::analytic::damping_index::{
 };
 use crate::analytic::friction::TangentialExit;
 use crate::analytic::history::history;
-use crate::analytic::parametric::{all_figures, write_atomic};
+use crate::analytic::parametric::all_figures;
 use crate::analytic::{collide_with_mu, Body, Collision};
+use crate::atomic::write_atomic;
 use crate::error::{Error, Result};
 use crate::material::{Material, MaterialOverrides, PRESET_NAMES};
 use clap::{Args, ValueEnum};

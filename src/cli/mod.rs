@@ -4,6 +4,7 @@
 //! malformed flags, as clap does); nothing panics on user input.
 
 mod analytic;
+mod bench;
 mod mesh;
 mod run;
 mod stress;
@@ -35,6 +36,8 @@ pub enum Command {
     Run(run::RunArgs),
     /// A parameter sweep (e.g. the paper's ANSYS study): resumable, shardable, one CSV.
     Sweep(sweep::SweepArgs),
+    /// Benchmarks: `bench kernel` (explicit step cost per element, threads, determinism).
+    Bench(bench::BenchArgs),
     /// The verification report (REPORT.md, CSV, Figures 6-10) from a finished sweep.
     Report(sweep::ReportArgs),
     /// Stability matrix of extreme scenes: every case completes cleanly or stops with a reason.
@@ -58,6 +61,7 @@ pub fn main() -> i32 {
         Command::Mesh(a) => mesh::run(a),
         Command::Run(a) => run::run(a),
         Command::Sweep(a) => sweep::run(a),
+        Command::Bench(a) => bench::run(a),
         Command::Report(a) => sweep::report(a),
         Command::Stress(a) => stress::run(a),
     };

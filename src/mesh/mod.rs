@@ -6,7 +6,6 @@
 
 pub mod ball;
 pub mod block;
-pub mod file;
 pub mod msh;
 pub mod quality;
 pub mod topology;

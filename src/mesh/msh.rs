@@ -12,7 +12,8 @@
 //! corners are all inverted (a mirrored node order) are reoriented with a warning; partly
 //! inverted or degenerate ones are an error naming the element.
 
-use super::{file::write_atomic, quality::corner_scaled_jacobians, topology::boundary_faces, Mesh};
+use super::{quality::corner_scaled_jacobians, topology::boundary_faces, Mesh};
+use crate::atomic::write_atomic;
 use crate::error::{Error, Result};
 use std::collections::{BTreeMap, HashMap};
 use std::fmt::Write as _;

@@ -4,7 +4,8 @@
 //! Hexahedra are VTK_HEXAHEDRON (type 12), whose node order is gmsh's. Symmetric tensors
 //! (stress, strain) are written as 6 components in ParaView's order xx, yy, zz, xy, yz, xz.
 
-use super::{file::write_atomic, Mesh};
+use super::Mesh;
+use crate::atomic::write_atomic;
 use crate::error::{Error, Result};
 use std::fmt::Write as _;
 use std::path::Path;

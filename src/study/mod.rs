@@ -8,7 +8,6 @@
 //! - [`atomic`]: crash-safe file output;
 //! - [`progress`]: the terminal progress bar.
 
-pub mod atomic;
 pub mod outcome;
 pub mod plots;
 pub mod progress;

@@ -1,9 +1,9 @@
 //! The verification report: tables and the paper's Figures 6-10 regenerated from a finished
 //! sweep folder, written as Markdown with its CSV and SVG files beside it.
 
-use super::atomic::{ensure_dir, write_atomic};
 use super::plots::{Chart, Series, Style};
 use super::sweep::{read_records, CaseRecord, Status, SweepSpec};
+use crate::atomic::{ensure_dir, write_atomic};
 use crate::error::{Error, Result};
 use std::fmt::Write as _;
 use std::path::Path;
@@ -65,7 +65,7 @@ pub fn write_report(
     ensure_dir(&fig_dir)?;
     // The CSV from the finished case files (also while a sweep is running or after a kill).
     let (csv, _, _) = super::sweep::csv_text(dir, &cases);
-    write_atomic(&fig_dir.join("sweep.csv"), csv.as_bytes())?;
+    write_atomic(fig_dir.join("sweep.csv"), csv.as_bytes())?;
 
     let mut md = String::new();
     let w = &mut md;
@@ -254,7 +254,7 @@ pub fn write_report(
                 series,
             };
             let name = format!("fig{fig}_{}.svg", m.name);
-            write_atomic(&fig_dir.join(&name), chart.svg()?.as_bytes())?;
+            write_atomic(fig_dir.join(&name), chart.svg()?.as_bytes())?;
             let _ = writeln!(w, "![Figure {fig}, {}](ansys/{name})\n", m.name);
         }
     }
@@ -308,7 +308,7 @@ pub fn write_report(
             series,
         };
         let name = format!("fig{fig}.svg");
-        write_atomic(&fig_dir.join(&name), chart.svg()?.as_bytes())?;
+        write_atomic(fig_dir.join(&name), chart.svg()?.as_bytes())?;
         let _ = writeln!(w, "![Figure {fig}](ansys/{name})\n");
     }
 
@@ -332,6 +332,6 @@ pub fn write_report(
     if let Some(n) = notes {
         let _ = writeln!(w, "## Discussion\n\n{n}");
     }
-    write_atomic(&to.join("REPORT.md"), md.as_bytes())?;
+    write_atomic(to.join("REPORT.md"), md.as_bytes())?;
     Ok(md)
 }

@@ -1,9 +1,9 @@
 //! One scene, both models: the FE run beside the analytical answer, with relative
 //! differences, written as results.json and history.csv.
 
-use super::atomic::{ensure_dir, write_atomic};
 use super::outcome::{analytic_outcome, relative_difference, Outcome};
 use super::simulate::{simulate, RunOptions, Simulation, HISTORY_HEADER};
+use crate::atomic::{ensure_dir, write_atomic};
 use crate::error::{Error, Result};
 use crate::scene::{approach, Approach, Scene};
 use serde::Serialize;
@@ -149,7 +149,7 @@ pub fn write_outputs(report: &RunReport, dir: &Path) -> Result<()> {
             "results contain a non-finite value; nothing written".into(),
         ));
     }
-    write_atomic(&dir.join("results.json"), json.as_bytes())?;
+    write_atomic(dir.join("results.json"), json.as_bytes())?;
     let mut csv = String::from(HISTORY_HEADER);
     csv.push('\n');
     if let Some(sim) = &report.fe {
@@ -158,7 +158,7 @@ pub fn write_outputs(report: &RunReport, dir: &Path) -> Result<()> {
             csv.push('\n');
         }
     }
-    write_atomic(&dir.join("history.csv"), csv.as_bytes())
+    write_atomic(dir.join("history.csv"), csv.as_bytes())
 }
 
 /// The side-by-side table printed by `twoball run`.

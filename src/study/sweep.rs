@@ -19,8 +19,8 @@
 //! pole_size = 0.002                                 # m, or pole_size_per_diameter = 0.01
 //! ```
 
-use super::atomic::{ensure_dir, remove_stale_temporaries, write_atomic};
 use super::outcome::{analytic_outcome, Outcome};
+use crate::atomic::{ensure_dir, remove_stale_temporaries, write_atomic};
 use crate::error::{Error, Result};
 use crate::scene::reader::{parse_table, Reader};
 use crate::scene::{approach, Approach, Override, Scene, DEFAULT_SCENE};
@@ -663,7 +663,7 @@ pub fn run_sweep(
         }
         let json = serde_json::to_string_pretty(&rec)
             .map_err(|e| Error::Parse(format!("case {}: {e}", c.id)))?;
-        write_atomic(&case_path(&opts.out, &c.id), json.as_bytes())?;
+        write_atomic(case_path(&opts.out, &c.id), json.as_bytes())?;
         let k = done.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1;
         if opts.verbose {
             eprintln!(
@@ -752,7 +752,7 @@ pub fn csv_row(r: &CaseRecord) -> String {
 /// order; returns (rows written, failed rows).
 pub fn write_csv(out: &Path, cases: &[Case]) -> Result<(usize, usize)> {
     let (text, rows, failed) = csv_text(out, cases);
-    write_atomic(&out.join("sweep.csv"), text.as_bytes())?;
+    write_atomic(out.join("sweep.csv"), text.as_bytes())?;
     Ok((rows, failed))
 }
 

@@ -1,0 +1,160 @@
+//! `twoball bench kernel`: the cost of one explicit step per element ("time per zone cycle"),
+//! on one thread and on all threads, for both hex formulations, on a ball mesh of about
+//! 50 000 elements, and a check that the results do not depend on the thread count.
+
+use crate::error::{Error, Result};
+use crate::fe::{Formulation, Model, Settings, Solver};
+use crate::material::Material;
+use crate::mesh::ball::{ball, BallSpec, Cut};
+use clap::{Args, Subcommand};
+use std::time::Instant;
+
+/// Arguments of `twoball bench`.
+#[derive(Debug, Args)]
+pub struct BenchArgs {
+    /// Which benchmark.
+    #[command(subcommand)]
+    pub which: BenchKind,
+}
+
+/// The benchmarks.
+#[derive(Debug, Subcommand)]
+pub enum BenchKind {
+    /// Explicit element kernel + step: ns per element-cycle, 1 thread vs all threads.
+    Kernel(KernelArgs),
+}
+
+/// Arguments of `twoball bench kernel`.
+#[derive(Debug, Args)]
+pub struct KernelArgs {
+    /// Ball element size as a fraction of the diameter (1/14.3 gives about 55 000 elements).
+    #[arg(long, default_value_t = 0.07)]
+    pub size_per_d: f64,
+    /// Timed steps per repetition.
+    #[arg(long, default_value_t = 20)]
+    pub steps: u64,
+    /// Repetitions (the median is reported).
+    #[arg(long, default_value_t = 5)]
+    pub repeats: usize,
+    /// Thread count of the parallel run (default: all available).
+    #[arg(long)]
+    pub threads: Option<usize>,
+}
+
+/// Runs `twoball bench …`.
+pub fn run(a: BenchArgs) -> Result<()> {
+    match a.which {
+        BenchKind::Kernel(k) => kernel(k),
+    }
+}
+
+/// Median ns per element-step and the final nodal positions and velocities of one run.
+struct Timing {
+    ns: f64,
+    x: Vec<[f64; 3]>,
+    v: Vec<[f64; 3]>,
+}
+
+/// One timed configuration on `threads` threads.
+fn time_one(model: &Model, threads: usize, steps: u64, repeats: usize) -> Result<Timing> {
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(threads)
+        .build()
+        .map_err(|e| Error::External(format!("thread pool: {e}")))?;
+    pool.install(|| {
+        let mut s = Solver::new(model.clone(), vec![], Settings::default())?;
+        // Warm up (caches, page faults, first plastic steps).
+        for _ in 0..5 {
+            s.step()?;
+        }
+        let ne = model.hexes.len() as f64;
+        let mut samples = Vec::with_capacity(repeats);
+        for _ in 0..repeats {
+            let t = Instant::now();
+            for _ in 0..steps {
+                s.step()?;
+            }
+            samples.push(t.elapsed().as_secs_f64() * 1e9 / (steps as f64 * ne));
+        }
+        samples.sort_by(f64::total_cmp);
+        Ok(Timing {
+            ns: samples[samples.len() / 2],
+            x: s.x().to_vec(),
+            v: s.v().to_vec(),
+        })
+    })
+}
+
+fn kernel(a: KernelArgs) -> Result<()> {
+    if !(a.size_per_d > 0.005 && a.size_per_d <= 0.5) {
+        return Err(Error::invalid(
+            "--size-per-d",
+            a.size_per_d,
+            "0.005 < size <= 0.5",
+        ));
+    }
+    if a.steps == 0 || a.repeats == 0 {
+        return Err(Error::invalid("--steps/--repeats", 0, "at least 1"));
+    }
+    let all = a.threads.unwrap_or_else(|| {
+        std::thread::available_parallelism()
+            .map(|n| n.get())
+            .unwrap_or(1)
+    });
+    if all == 0 {
+        return Err(Error::invalid("--threads", 0, "at least 1"));
+    }
+    let d = 0.02;
+    let mesh = ball(&BallSpec {
+        diameter: d,
+        size: a.size_per_d * d,
+        pole_size: None,
+        cut: Cut::Full,
+    })?;
+    println!(
+        "# twoball bench kernel: full ball D = 20 mm, {} elements, {} nodes, copper-fe elastic-plastic,",
+        mesh.hexes.len(),
+        mesh.nodes.len()
+    );
+    println!(
+        "# {} timed steps x {} repeats (median), ns per element-cycle = step time / elements",
+        a.steps, a.repeats
+    );
+    println!("formulation,threads,ns_per_element_cycle,speedup,bitwise_identical");
+    for f in [Formulation::OnePoint, Formulation::BBar] {
+        let mut model = Model::new();
+        let p = model.add_part("ball", &mesh, Material::preset("copper-fe")?, f)?;
+        // A strong quadrupole plus spin: plastic flow near the surface, rotation everywhere.
+        model.set_velocity_field(p, |x| {
+            [
+                4000.0 * x[0] - 500.0 * x[1],
+                -4000.0 * x[1] + 500.0 * x[0],
+                0.0,
+            ]
+        })?;
+        let Timing {
+            ns: t1,
+            x: x1,
+            v: v1,
+        } = time_one(&model, 1, a.steps, a.repeats)?;
+        println!("{f:?},1,{t1:.1},1.00,-");
+        if all > 1 {
+            let Timing {
+                ns: tn,
+                x: xn,
+                v: vn,
+            } = time_one(&model, all, a.steps, a.repeats)?;
+            let same = x1
+                .iter()
+                .zip(&xn)
+                .chain(v1.iter().zip(&vn))
+                .all(|(p, q)| p.iter().zip(q).all(|(a, b)| a.to_bits() == b.to_bits()));
+            println!(
+                "{f:?},{all},{tn:.1},{:.2},{}",
+                t1 / tn,
+                if same { "yes" } else { "NO" }
+            );
+        }
+    }
+    Ok(())
+}
