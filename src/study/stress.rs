@@ -19,7 +19,7 @@
 //! Per-case records go to `DIR/cases/ID.json` (atomic; finished cases are skipped on
 //! restart, as in the sweep), the summary to `DIR/summary.md`.
 
-use super::atomic::{ensure_dir, remove_stale_temporaries, write_atomic};
+use crate::atomic::{ensure_dir, remove_stale_temporaries, write_atomic};
 use crate::error::{Error, Result};
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
@@ -558,7 +558,7 @@ pub fn run_stress(spec: &StressSpec, opts: &StressOptions) -> Result<(StressCoun
                 let res = run_one(c, spec, opts).and_then(|rec| {
                     let json = serde_json::to_string_pretty(&rec)
                         .map_err(|e| Error::Parse(format!("case {}: {e}", c.id)))?;
-                    write_atomic(&record_path(&opts.out, &c.id), json.as_bytes())?;
+                    write_atomic(record_path(&opts.out, &c.id), json.as_bytes())?;
                     if opts.verbose {
                         eprintln!(
                             "[{}/{}] {} {:?} ({:.1} s) {}",
@@ -587,7 +587,7 @@ pub fn run_stress(spec: &StressSpec, opts: &StressOptions) -> Result<(StressCoun
         .filter_map(|c| read_record(&opts.out, &c.id))
         .collect();
     let (counts, text) = summary(&records, spec.stress.energy_tolerance);
-    write_atomic(&opts.out.join("summary.md"), text.as_bytes())?;
+    write_atomic(opts.out.join("summary.md"), text.as_bytes())?;
     Ok((counts, text))
 }
 
