@@ -132,20 +132,44 @@ impl ElementBlock {
         dt: f64,
         forces: &mut [[[f64; 3]; 8]],
     ) -> Result<(f64, usize), (usize, ElementFailure)> {
+        self.update_range(0..self.conn.len(), x, v, dt, forces)
+    }
+
+    /// The element loop over the local elements `range` only (for multi-time-step
+    /// integration, where element groups advance with their own steps): as
+    /// [`ElementBlock::update`], with `forces[k]` the force block of local element
+    /// `range.start + k` (so `forces.len() == range.len()`). Elements outside `range` keep
+    /// their state. Panics if `range` is out of bounds or `forces` has the wrong length
+    /// (programming errors, not input errors).
+    pub fn update_range(
+        &mut self,
+        range: std::ops::Range<usize>,
+        x: &[[f64; 3]],
+        v: &[[f64; 3]],
+        dt: f64,
+        forces: &mut [[[f64; 3]; 8]],
+    ) -> Result<(f64, usize), (usize, ElementFailure)> {
+        assert_eq!(
+            forces.len(),
+            range.len(),
+            "one force block per element of the range"
+        );
         let npe = self.points_per_element();
         let mat = self.material;
         let hg = self.hourglass_coeff;
         let form = self.formulation;
-        let first = self.first;
+        let first = self.first + range.start;
+        let r = range.clone();
+        let rp = range.start * npe..range.end * npe;
         let res = (
-            self.conn.par_chunks(BATCH),
-            self.points.par_chunks_mut(BATCH * npe),
-            self.plastic_work.par_chunks_mut(BATCH),
-            self.internal_energy.par_chunks_mut(BATCH),
-            self.hourglass.par_chunks_mut(BATCH),
-            self.hourglass_energy.par_chunks_mut(BATCH),
-            self.volume.par_chunks_mut(BATCH),
-            self.dt_crit.par_chunks_mut(BATCH),
+            self.conn[r.clone()].par_chunks(BATCH),
+            self.points[rp].par_chunks_mut(BATCH * npe),
+            self.plastic_work[r.clone()].par_chunks_mut(BATCH),
+            self.internal_energy[r.clone()].par_chunks_mut(BATCH),
+            self.hourglass[r.clone()].par_chunks_mut(BATCH),
+            self.hourglass_energy[r.clone()].par_chunks_mut(BATCH),
+            self.volume[r.clone()].par_chunks_mut(BATCH),
+            self.dt_crit[r].par_chunks_mut(BATCH),
             forces.par_chunks_mut(BATCH),
         )
             .into_par_iter()
