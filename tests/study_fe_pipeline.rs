@@ -102,9 +102,9 @@ fn quarter_model_matches_the_full_model() {
     assert_eq!(quarter.savings.reduction, Reduction::Quarter);
     assert_eq!(full.savings.reduction, Reduction::Full);
     report("quarter vs full", &quarter, &full);
-    // e within 1 %, not 0.5 %: the rigid plane's penalty compliance is twice the pair's and e
-    // is sensitive to the small elastic rebound (design.md §6, known gap).
-    close("e", quarter.outcome.e, full.outcome.e, 0.01);
+    // The plane carries twice the pair's penalty factor (design.md §6): measured e 0.34142 vs
+    // 0.34141, delta_max −0.008 %, duration −0.11 %.
+    close("e", quarter.outcome.e, full.outcome.e, 0.005);
     close(
         "delta_max",
         quarter.outcome.delta_max,

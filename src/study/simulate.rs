@@ -482,12 +482,15 @@ fn build(
             model.fix_set(p1, "sym_y", 1)?;
             model.fix_set(p1, "sym_z", 2)?;
             model.set_rigid_velocity(p1, kin.u[0], [0.0; 3], [-r1, 0.0, 0.0])?;
-            // The plane takes half the pair's overlap, so twice the pair's penalty would give
-            // the same force-approach law; but that stiffer plane made the total energy grow
-            // (35 % in the elastic check, 20 % on a 0.5 mm pole mesh), so the plane keeps the
-            // pair's penalty: its penalty compliance is twice the pair's (about 1e-7 m against
-            // a 1e-4 m approach), which shows in e at the 0.5-1 % level (design.md §6).
+            // The mirror plane of the pair (design.md §6): each ball crosses it by p while the
+            // two-pass pair sees a gap 2p at half stiffness in each of its two passes, so a
+            // node of the pair carries 2 k p. The plane reproduces that with twice the pair's
+            // factor and half its penetration limit (measured on p instead of 2p).
             params.friction = None;
+            params.penalty = PenaltyRule::Fkn {
+                factor: 2.0 * default_fkn() * scene.contact.penalty_factor,
+            };
+            params.max_penetration *= 0.5;
             let part = model.part(p1)?;
             let faces = part.face_sets.get("contact").cloned().unwrap_or_default();
             let plane = RigidPlane::new(

@@ -14,6 +14,8 @@ pub struct NodeLaw {
     pub kt: f64,
     /// Normal dashpot, N s/m.
     pub c: f64,
+    /// Highest element frequency at the node, 2 c / L (wave speed c, Courant length L), rad/s.
+    pub omega_elem: f64,
 }
 
 /// What one node did this step.

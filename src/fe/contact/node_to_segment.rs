@@ -93,6 +93,10 @@ impl SurfacePair {
         let youngs = mat_a.youngs.min(mat_b.youngs);
         let bulk = mat_a.bulk_modulus().min(mat_b.bulk_modulus());
         let surfaces = [a, b];
+        let wave = [
+            mat_a.dilatational_wave_speed(),
+            mat_b.dilatational_wave_speed(),
+        ];
         let xref = nodes;
         // Boxes inflated by half the smallest edge, plus, per segment, 1.5x the allowed
         // penetration behind it, so a node beyond the limit is still found and flagged.
@@ -132,6 +136,7 @@ impl SurfacePair {
                             k,
                             kt: params.tangential_ratio * k,
                             c: 0.0,
+                            omega_elem: 2.0 * wave[s] / sf.courant_length[i],
                         }
                     })
                     .collect();
@@ -393,7 +398,11 @@ impl Interaction for SurfacePair {
                             .copied()
                             .unwrap_or(mass[p.partner[i] as usize]);
                         // Both passes can load a node pair: take the full (unweighted) spring.
-                        stable_step(l.k / p.weight, effective_mass(mass[g as usize], mp))
+                        stable_step(
+                            l.k / p.weight,
+                            effective_mass(mass[g as usize], mp),
+                            l.omega_elem,
+                        )
                     })
             })
             .min_by(f64::total_cmp)
@@ -595,9 +604,11 @@ mod tests {
         };
         let pair = SurfacePair::new(&m.nodes, &m.hexes, &top, &mat, &bottom, &mat, params).unwrap();
         let mass = vec![2.0; m.nodes.len()];
-        // Stiffest node spring: an interior node, area 0.25, h = 0.5: k = E/2; m* = 1.
+        // Stiffest node spring: an interior node, area 0.25, h = 0.5: k = E/2; m* = 1. Its
+        // elements are 0.5 m cubes: Courant frequency 2 c / 0.5.
         let k = mat.youngs * 0.25 / 0.5;
-        let expect = std::f64::consts::SQRT_2 * (1.0 / k).sqrt();
+        let (wp, we) = (k.sqrt(), 4.0 * mat.dilatational_wave_speed());
+        let expect = (2.0 / (wp + we)).min(1.0 / wp);
         let dt = pair.stable_time_step(&mass).unwrap();
         assert!((dt - expect).abs() < 1e-12 * expect, "{dt} vs {expect}");
     }

@@ -86,6 +86,8 @@ impl RigidPlane {
                     k,
                     kt: params.tangential_ratio * k,
                     c: 0.0,
+                    omega_elem: 2.0 * material.dilatational_wave_speed()
+                        / surface.courant_length[i],
                 }
             })
             .collect();
@@ -266,7 +268,7 @@ impl Interaction for RigidPlane {
             .nodes
             .iter()
             .zip(&self.laws)
-            .map(|(&g, l)| stable_step(l.k, mass[g as usize]))
+            .map(|(&g, l)| stable_step(l.k, mass[g as usize], l.omega_elem))
             .min_by(f64::total_cmp)
     }
 
@@ -326,9 +328,12 @@ mod tests {
         let o = *wall.output();
         assert_eq!(o.active_nodes, 16);
         assert!((o.stored_energy - 0.5 * eps * g * g).abs() < 1e-9 * eps * g * g);
-        // Stable step of the stiffest spring: interior node, A = 1/9, k = ε A, m = 1.
+        // Stable step of the stiffest spring: interior node, A = 1/9, k = ε A, m = 1, on
+        // elements 1/3 x 1/3 x 0.5 (Courant length V / largest face = 1/3: frequency 6 c).
         let dt = wall.stable_time_step(&mass).unwrap();
-        assert!((dt - std::f64::consts::SQRT_2 / (eps / 9.0).sqrt()).abs() < 1e-12 * dt);
+        let (wp, we) = ((eps / 9.0).sqrt(), 6.0 * mat.dilatational_wave_speed());
+        let expect = (2.0 / (wp + we)).min(1.0 / wp);
+        assert!((dt - expect).abs() < 1e-12 * dt, "{dt} vs {expect}");
         // A node pushed through half its element thickness stops the run.
         let deep = RigidPlane::new(
             &m.nodes,

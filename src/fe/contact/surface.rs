@@ -3,6 +3,7 @@
 
 use super::vec3::{quad_area, sub};
 use crate::error::{Error, Result};
+use crate::fe::timestep::characteristic_length;
 use crate::mesh::topology::HEX_FACES;
 use std::collections::HashMap;
 
@@ -25,6 +26,9 @@ pub struct ContactSurface {
     pub face_thickness: Vec<f64>,
     /// Smallest edge length of the quads, m (sets search margins and penetration limits).
     pub min_edge: f64,
+    /// Courant length of the solid under each node: the smallest V / (largest face area) of the
+    /// elements under the node's quads (the solver's element step is this over the wave speed), m.
+    pub courant_length: Vec<f64>,
 }
 
 /// Volume of a hexahedron (m³) by the divergence theorem over its
@@ -103,11 +107,13 @@ impl ContactSurface {
         let mut vol = vec![0.0; list.len()];
         let mut min_edge = f64::INFINITY;
         let mut face_thickness = Vec::with_capacity(faces.len());
+        let mut courant = vec![f64::INFINITY; list.len()];
         for (q, &e) in faces.iter().zip(&owner) {
             let p = q.map(|i| nodes[i as usize]);
             let a = quad_area(&p);
             let v = hex_volume(nodes, &hexes[e]);
             face_thickness.push(v / a);
+            let l = characteristic_length(&hexes[e].map(|i| nodes[i as usize]), v);
             for k in 0..4 {
                 min_edge = min_edge.min(super::vec3::norm(sub(p[(k + 1) % 4], p[k])));
             }
@@ -116,6 +122,7 @@ impl ContactSurface {
                 area[i] += 0.25 * a;
                 th[i] += 0.25 * a * (v / a);
                 vol[i] += 0.25 * a * v;
+                courant[i] = courant[i].min(l);
             }
         }
         for i in 0..list.len() {
@@ -141,6 +148,7 @@ impl ContactSurface {
             volume: vol,
             face_thickness,
             min_edge,
+            courant_length: courant,
         })
     }
 
@@ -181,6 +189,8 @@ mod tests {
             .unwrap();
         assert!((s.area[corner] - 0.0625).abs() < 1e-12);
         assert!((s.min_edge - 0.5).abs() < 1e-12);
+        // Elements 0.5 x 0.5 x 0.1: V / largest face = 0.025 / 0.25.
+        assert!(s.courant_length.iter().all(|&l| (l - 0.1).abs() < 1e-12));
     }
 
     #[test]
