@@ -5,6 +5,7 @@
 //! - [`simulate`]: the FE run (model, reductions, stop rule, reduction to rigid motion);
 //! - [`single`]: one scene, both models side by side, results.json and history.csv;
 //! - [`plots`]: SVG charts for the report;
+//! - [`snapshots`]: `.vtu` snapshots of a run for ParaView;
 //! - [`atomic`]: crash-safe file output;
 //! - [`progress`]: the terminal progress bar.
 
@@ -14,5 +15,6 @@ pub mod progress;
 pub mod report;
 pub mod simulate;
 pub mod single;
+pub mod snapshots;
 pub mod stress;
 pub mod sweep;
