@@ -103,7 +103,7 @@ pub struct ContactSettings {
 }
 
 /// Hexahedron formulation (see the FE core, docs/design.md §4).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, serde::Deserialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum Formulation {
     /// One-point integration with hourglass control (`one-point`, the default).

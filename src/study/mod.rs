@@ -1,6 +1,7 @@
 //! The two-ball study: FE beside the analytical model for one scene or for a whole sweep.
 //!
 //! - [`outcome`]: the quantities both models produce, and the analytical answer for a scene;
+//! - [`bench`]: run time against error on a mesh/element/time-step ladder;
 //! - [`sweep`]: resumable, shardable parameter sweeps (the paper's ANSYS study);
 //! - [`simulate`]: the FE run (model, reductions, stop rule, reduction to rigid motion);
 //! - [`single`]: one scene, both models side by side, results.json and history.csv;
@@ -9,6 +10,7 @@
 //! - [`atomic`]: crash-safe file output;
 //! - [`progress`]: the terminal progress bar.
 
+pub mod bench;
 pub mod outcome;
 pub mod plots;
 pub mod progress;
