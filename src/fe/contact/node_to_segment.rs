@@ -378,8 +378,8 @@ impl Interaction for SurfacePair {
         Ok(())
     }
 
-    /// Per slave node: √2 sqrt(m*/k) with the full (both-pass) spring and m* pairing the slave
-    /// with its reference partner or the lightest master node it has touched since. This
+    /// Per slave node: `penalty::stable_step` of the full (both-pass) spring, the element
+    /// frequency under the slave, and m* pairing the slave with its reference partner or the lightest master node it has touched since. This
     /// assumes the two surfaces have similar element sizes where they meet (as the graded
     /// balls do); the penetration guard in `add_forces` catches a violation.
     fn stable_time_step(&self, mass: &[f64]) -> Option<f64> {
