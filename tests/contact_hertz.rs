@@ -10,7 +10,8 @@
 #[path = "contact_support/hertz.rs"]
 mod hertz;
 
-use hertz::{impact, Impact};
+use hertz::{hertz_pulse, impact, windowed_peak, Impact, DIAMETER};
+use twoball::analytic::hertz::HertzPair;
 use twoball::fe::contact::PenaltyRule;
 
 fn fkn(f: f64) -> PenaltyRule {
@@ -21,15 +22,16 @@ fn report(label: &str, r: &Impact) {
     let (ed, et, ef) = r.errors();
     println!(
         "{label}: {} elements, {} steps | delta_max {:.4e} m ({:+.2}%) | t_c {:.4e} s ({:+.2}%) | \
-         F_peak {:.4e} N ({:+.2}% filtered, {:+.2}% raw) | e {:.5} | energy {:.2e} | residual {:.1e} | \
-         penetration/delta {:.4}",
+         F_peak {:.4e} N ({:+.2}% t_c/20 window vs windowed Hertz, {:+.2}% t_c/100, {:+.2}% raw) | \
+         e {:.5} | energy {:.2e} | residual {:.1e} | penetration/delta {:.4}",
         r.elements,
         r.steps,
         r.delta_max,
         100.0 * ed,
         r.duration,
         100.0 * et,
-        r.peak_force_filtered,
+        r.peak_force_window,
+        100.0 * r.force_window_error(),
         100.0 * ef,
         100.0 * (r.peak_force / r.hertz_force - 1.0),
         r.restitution,
@@ -92,50 +94,82 @@ fn refined_two_balls_2_m_s() {
     );
 }
 
-/// A refined run at relative speed `v` (m/s) with pole element `pole` (m, about a/10).
-///
-/// Acceptance 1 asks for 1 % on all three quantities. Measured at 2 m/s, pole 50 µm: δ_max
-/// −0.67 %, t_c −0.96 %, peak force +1.9 % (sliding t_c/100 average; +2.4 % raw). The force
-/// bound below is therefore 2.5 %, not 1 %: the residual is the stiffness of the graded far
-/// field (size fixed at 2 mm) plus the ringing of the discrete patch (docs/contact-penalty.md).
-fn refined(v: f64, pole: f64) {
-    let r = impact(v, pole, 2e-3, fkn(10.0), false);
-    report(&format!("wall {v} m/s pole {pole:.1e} m"), &r);
+/// A refined run at relative speed `v` (m/s) with pole element `pole` (m, about a/10) and
+/// far-field size `size` (m). Acceptance 1: δ_max, t_c and the peak force within 1 % of Hertz;
+/// the peak force is the t_c/20 moving average against the same average of Hertz's pulse
+/// (the raw and t_c/100 peaks are printed beside it).
+fn refined(v: f64, pole: f64, size: f64) {
+    let r = impact(v, pole, size, fkn(10.0), false);
+    report(&format!("wall {v} m/s pole {pole:.1e} m size {size:.1e} m"), &r);
     check_impact_invariants(&r);
-    let (ed, et, ef) = r.errors();
+    let (ed, et, _) = r.errors();
+    let ef = r.force_window_error();
     assert!(
-        ed.abs() < 0.01 && et.abs() < 0.01,
-        "{v} m/s: delta {ed}, duration {et}"
+        ed.abs() < 0.01 && et.abs() < 0.01 && ef.abs() < 0.01,
+        "{v} m/s: delta {ed}, duration {et}, force {ef}"
     );
-    assert!(ef.abs() < 0.025, "{v} m/s: force {ef}");
 }
 
 #[test]
 #[ignore]
 fn refined_hertz_2_m_s() {
-    refined(2.0, 5e-5);
+    refined(2.0, 7e-5, 1.4e-3);
 }
 
 #[test]
 #[ignore]
 fn refined_hertz_0_5_m_s() {
-    refined(0.5, 3e-5);
+    refined(0.5, 3e-5, 2e-3);
 }
 
 #[test]
 #[ignore]
 fn refined_hertz_0_1_m_s() {
-    refined(0.1, 2e-5);
+    refined(0.1, 2e-5, 2e-3);
 }
 
-/// Three-mesh convergence at 2 m/s (docs/contact-penalty.md).
+/// Mesh ladder at 2 m/s refining the pole and the far field together (docs/contact-penalty.md):
+/// the errors in δ_max, t_c and the windowed peak force shrink monotonically, under 1 % on the
+/// finest mesh.
 #[test]
 #[ignore]
 fn convergence_table_2_m_s() {
-    for pole in [2e-4, 1e-4, 5e-5] {
-        let r = impact(2.0, pole, 2e-3, fkn(10.0), false);
-        report(&format!("wall 2 m/s pole {pole:.1e} m"), &r);
+    let mut last = [f64::INFINITY; 3];
+    for (pole, size) in [(2e-4, 4e-3), (1e-4, 2e-3), (7e-5, 1.4e-3)] {
+        let r = impact(2.0, pole, size, fkn(10.0), false);
+        report(&format!("wall 2 m/s pole {pole:.1e} m size {size:.1e} m"), &r);
+        check_impact_invariants(&r);
+        let (ed, et, _) = r.errors();
+        let now = [ed.abs(), et.abs(), r.force_window_error().abs()];
+        for k in 0..3 {
+            assert!(now[k] < last[k], "error {k} grew: {now:?} after {last:?}");
+        }
+        last = now;
     }
+    assert!(last.iter().all(|&e| e < 0.01), "finest mesh: {last:?}");
+}
+
+/// The reference pulse the peak force is compared with reproduces Hertz's closed forms, and the
+/// t_c/20 window lowers its peak by the expected 0.17 %.
+#[test]
+fn hertz_pulse_reproduces_the_closed_forms() {
+    let mut mat = twoball::Material::preset("copper-fe").unwrap();
+    mat.yield_strength = 1e15;
+    let m = std::f64::consts::PI / 6.0 * DIAMETER.powi(3) * mat.rho;
+    let pair = HertzPair::new(mat.plane_strain_modulus() / 2.0, DIAMETER / 4.0, m / 2.0);
+    let v = 2.0;
+    let (d, f, tc) = (
+        pair.max_approach(v),
+        pair.peak_force(v),
+        pair.contact_duration(v),
+    );
+    let p = hertz_pulse(v, d, f, 200_000);
+    let duration = p.last().unwrap().0;
+    let peak = p.iter().map(|x| x.1).fold(0.0, f64::max);
+    assert!((duration / tc - 1.0).abs() < 1e-4, "{duration} vs {tc}");
+    assert!((peak / f - 1.0).abs() < 1e-6, "{peak} vs {f}");
+    let bias = windowed_peak(&p, tc / 20.0) / f - 1.0;
+    assert!((bias + 0.0017).abs() < 2e-4, "window bias {bias}");
 }
 
 /// Penalty sensitivity at 2 m/s (acceptance 6, docs/contact-penalty.md).
