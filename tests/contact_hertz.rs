@@ -39,6 +39,12 @@ fn report(label: &str, r: &Impact) {
         r.residual_contact_energy,
         r.penetration_ratio
     );
+    let w: Vec<String> = r
+        .windows
+        .iter()
+        .map(|(d, f, h)| format!("t_c/{d}: {:+.2}%", 100.0 * (f / h - 1.0)))
+        .collect();
+    println!("  windowed peak force vs windowed Hertz: {}", w.join(", "));
 }
 
 /// Energy, restitution and clean separation: what every impact must satisfy.
@@ -100,7 +106,10 @@ fn refined_two_balls_2_m_s() {
 /// (the raw and t_c/100 peaks are printed beside it).
 fn refined(v: f64, pole: f64, size: f64) {
     let r = impact(v, pole, size, fkn(10.0), false);
-    report(&format!("wall {v} m/s pole {pole:.1e} m size {size:.1e} m"), &r);
+    report(
+        &format!("wall {v} m/s pole {pole:.1e} m size {size:.1e} m"),
+        &r,
+    );
     check_impact_invariants(&r);
     let (ed, et, _) = r.errors();
     let ef = r.force_window_error();
@@ -137,7 +146,10 @@ fn convergence_table_2_m_s() {
     let mut last = [f64::INFINITY; 3];
     for (pole, size) in [(2e-4, 4e-3), (1e-4, 2e-3), (7e-5, 1.4e-3)] {
         let r = impact(2.0, pole, size, fkn(10.0), false);
-        report(&format!("wall 2 m/s pole {pole:.1e} m size {size:.1e} m"), &r);
+        report(
+            &format!("wall 2 m/s pole {pole:.1e} m size {size:.1e} m"),
+            &r,
+        );
         check_impact_invariants(&r);
         let (ed, et, _) = r.errors();
         let now = [ed.abs(), et.abs(), r.force_window_error().abs()];

@@ -21,7 +21,7 @@ pub fn elastic_copper() -> Material {
 }
 
 /// What one impact gave, with the Hertz values it is compared with.
-#[derive(Debug, Clone, Copy)]
+#[derive(Debug, Clone)]
 pub struct Impact {
     pub elements: usize,
     pub steps: u64,
@@ -43,6 +43,8 @@ pub struct Impact {
     /// the peak for the Hertz pulse).
     pub peak_force_window: f64,
     pub hertz_force_window: f64,
+    /// (t_c / window, FE windowed peak, Hertz windowed peak) for several windows, N.
+    pub windows: Vec<(f64, f64, f64)>,
     /// Coefficient of restitution (normal, from centre-of-mass velocities).
     pub restitution: f64,
     /// Largest |total/initial − 1| over the impact.
@@ -68,19 +70,20 @@ impl Impact {
     }
 }
 
-/// Peak of the moving average, over a window `w` (s), of a sampled history (t, F) (any spacing).
+/// Peak of the moving average, over a window of at least `w` (s), of a sampled history (t, F),
+/// each sample holding over the step that ends at it (any spacing).
 pub fn windowed_peak(history: &[(f64, f64)], w: f64) -> f64 {
-    // Time-weighted average over [t - w, t] with each sample holding over its own step.
     let mut peak: f64 = 0.0;
     let (mut lo, mut sum) = (0usize, 0.0);
     for hi in 1..history.len() {
         sum += history[hi].1 * (history[hi].0 - history[hi - 1].0);
-        while history[hi].0 - history[lo].0 > w && lo + 1 < hi {
+        // Drop the oldest step while the rest still spans the window.
+        while lo + 1 < hi && history[hi].0 - history[lo + 1].0 >= w {
             sum -= history[lo + 1].1 * (history[lo + 1].0 - history[lo].0);
             lo += 1;
         }
         let span = history[hi].0 - history[lo].0;
-        if span >= 0.999 * w {
+        if span >= w {
             peak = peak.max(sum / span);
         }
     }
@@ -261,13 +264,19 @@ pub fn impact_damped(
         }
         peak_force_filtered = peak_force_filtered.max(sum / (hi - lo + 1) as f64);
     }
+    let pulse = hertz_pulse(v, hertz_delta, hertz_force, 200_000);
+    let windows: Vec<(f64, f64, f64)> = [100.0, 50.0, 20.0, 10.0, 6.0]
+        .iter()
+        .map(|&d| {
+            let w = hertz_duration / d;
+            (d, windowed_peak(&history, w), windowed_peak(&pulse, w))
+        })
+        .collect();
     let w20 = hertz_duration / 20.0;
     let peak_force_window = windowed_peak(&history, w20);
-    let hertz_force_window = windowed_peak(
-        &hertz_pulse(v, hertz_delta, hertz_force, 200_000),
-        w20,
-    );
+    let hertz_force_window = windowed_peak(&hertz_pulse(v, hertz_delta, hertz_force, 200_000), w20);
     Impact {
+        windows,
         peak_force_window,
         hertz_force_window,
         peak_force_filtered,

@@ -61,6 +61,16 @@ impl Default for ContactParams {
 }
 
 impl ContactParams {
+    /// Factor on a node's normal penalty stiffness for its time step: 1 + μ_s with friction, 1
+    /// without. Sliding friction adds a tangential force μ k g that follows the normal
+    /// penetration: the node's contact stiffness is triangular, its eigenvalues stay k and k_t,
+    /// but its norm (largest column sum) is k (1 + μ), and it is the norm that bounds how much a
+    /// non-symmetric coupling can amplify a step. Measured: μ = 1 on a two-node patch (half
+    /// model, pole 3.4 mm) created 2.1 % of the energy without the factor, 0.16 % with it.
+    pub fn coupling(&self) -> f64 {
+        self.friction.map_or(1.0, |c| 1.0 + c.mu_static)
+    }
+
     /// Checks every field; `field` names the contact in messages (e.g. `contact`).
     pub fn validated(self, field: &str) -> Result<Self> {
         self.penalty.validated(field)?;

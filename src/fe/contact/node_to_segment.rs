@@ -399,7 +399,7 @@ impl Interaction for SurfacePair {
                             .unwrap_or(mass[p.partner[i] as usize]);
                         // Both passes can load a node pair: take the full (unweighted) spring.
                         stable_step(
-                            l.k / p.weight,
+                            l.k / p.weight * self.params.coupling(),
                             effective_mass(mass[g as usize], mp),
                             l.omega_elem,
                         )

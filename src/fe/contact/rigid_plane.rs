@@ -268,7 +268,9 @@ impl Interaction for RigidPlane {
             .nodes
             .iter()
             .zip(&self.laws)
-            .map(|(&g, l)| stable_step(l.k, mass[g as usize], l.omega_elem))
+            .map(|(&g, l)| {
+                stable_step(l.k * self.params.coupling(), mass[g as usize], l.omega_elem)
+            })
             .min_by(f64::total_cmp)
     }
 
