@@ -103,7 +103,7 @@ pub struct ContactSettings {
 }
 
 /// Hexahedron formulation (see the FE core, docs/design.md §4).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, serde::Deserialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum Formulation {
     /// One-point integration with hourglass control (`one-point`, the default).
@@ -591,11 +591,10 @@ fn read_output(o: Option<Reader<'_>>) -> Result<OutputSettings> {
         |t| t > 0.0 && t <= 1.0,
         "0 < history_interval <= 1 s",
     )?;
-    // Snapshots are not written yet: refuse rather than silently ignore the request.
     if let Some(n) = o.u64(
         "vtu_snapshots",
-        |n| n == 0,
-        "0 (.vtu snapshots of a run are not implemented yet)",
+        |n| n <= 1000,
+        "0 <= vtu_snapshots <= 1000 (written with `twoball run --out DIR`)",
     )? {
         out.vtu_snapshots = n as u32;
     }

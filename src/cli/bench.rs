@@ -22,6 +22,8 @@ pub struct BenchArgs {
 pub enum BenchKind {
     /// Explicit element kernel + step: ns per element-cycle, 1 thread vs all threads.
     Kernel(KernelArgs),
+    /// Run time against error on a ladder of meshes, elements and time-step factors.
+    Study(super::bench_study::StudyArgs),
 }
 
 /// Arguments of `twoball bench kernel`.
@@ -45,6 +47,7 @@ pub struct KernelArgs {
 pub fn run(a: BenchArgs) -> Result<()> {
     match a.which {
         BenchKind::Kernel(k) => kernel(k),
+        BenchKind::Study(s) => super::bench_study::run(s),
     }
 }
 
