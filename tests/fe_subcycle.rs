@@ -110,10 +110,17 @@ fn elastic_impact_keeps_energy_and_rebound() {
     assert_eq!(off.updates, off.steps * 800);
     assert_eq!(on.steps, off.steps);
     // This coarse graded ball (800 elements) allows levels 0-2: 1.7x predicted.
-    assert!((on.updates as f64) < off.updates as f64 / 1.5, "saving below 1.5x");
+    assert!(
+        (on.updates as f64) < off.updates as f64 / 1.5,
+        "saving below 1.5x"
+    );
     let de = (on.rebound - off.rebound).abs() / off.rebound;
     assert!(de < 2e-3, "rebound differs by {de:.2e}");
-    assert!(on.worst_total < 5e-3, "total energy drift {:.2e}", on.worst_total);
+    assert!(
+        on.worst_total < 5e-3,
+        "total energy drift {:.2e}",
+        on.worst_total
+    );
     assert!(on.balance < 1e-6, "balance error {:.2e}", on.balance);
 }
 
@@ -208,7 +215,14 @@ fn bar_wave(sub: Subcycling) -> (Vec<f64>, Vec<f64>, f64, f64, u64, u64) {
     }
     // After the front has passed, the free end moves at 2 v_p: u = 2 v_p (t − t_arrival).
     let arrival = s.time() - far_u(&s) / (2.0 * vp);
-    (ts, us, arrival, len / c, s.element_updates(), s.step_count())
+    (
+        ts,
+        us,
+        arrival,
+        len / c,
+        s.element_updates(),
+        s.step_count(),
+    )
 }
 
 /// Linear interpolation of (ts, vs) at t.
@@ -236,17 +250,29 @@ fn wave_crosses_a_graded_bar_as_with_one_step() {
          updates {upd1} ({steps1} steps) vs {upd2} ({steps2} steps)"
     );
     // The front travels at c: the free end's motion extrapolates back to L/c.
-    assert!((arr1 - expected).abs() / expected < 0.01, "one-step {arr1:e} vs {expected:e}");
-    assert!((arr2 - expected).abs() / expected < 0.01, "subcycled {arr2:e} vs {expected:e}");
+    assert!(
+        (arr1 - expected).abs() / expected < 0.01,
+        "one-step {arr1:e} vs {expected:e}"
+    );
+    assert!(
+        (arr2 - expected).abs() / expected < 0.01,
+        "subcycled {arr2:e} vs {expected:e}"
+    );
     // Coarse elements step near their own limit (less dispersion than at h): the two
     // discretisations of the front differ slightly.
-    assert!((arr2 - arr1).abs() / expected < 0.01, "{arr2:e} vs one-step {arr1:e}");
+    assert!(
+        (arr2 - arr1).abs() / expected < 0.01,
+        "{arr2:e} vs one-step {arr1:e}"
+    );
     // The whole far-end history agrees with single-step integration.
     assert!(worst < 0.02, "displacement histories differ by {worst:.3e}");
     // The bar's coarse end steps up to 8x the fine one: far fewer element updates.
     assert_eq!(steps2, steps1);
     assert_eq!(upd1, steps1 * 60);
-    assert!((upd2 as f64) < 0.65 * upd1 as f64, "{upd2} vs {upd1} updates");
+    assert!(
+        (upd2 as f64) < 0.65 * upd1 as f64,
+        "{upd2} vs {upd1} updates"
+    );
 }
 
 /// Holds the fine step: a stable-step limit (s) acting on no node.
@@ -317,7 +343,12 @@ fn squeezed_elements_drop_a_level_and_stay_stable() {
     let mut off = squeezed_bar(200.0, Subcycling::Off);
     let mut s = squeezed_bar(200.0, Subcycling::On);
     let start = s.subcycling();
-    assert_eq!(start.initial_levels, vec![11, 0, 9], "levels {:?}", start.initial_levels);
+    assert_eq!(
+        start.initial_levels,
+        vec![11, 0, 9],
+        "levels {:?}",
+        start.initial_levels
+    );
     let e0 = s.energy().total;
     let mut worst_ratio: f64 = 0.0;
     let (mut worst_total, mut worst_off): (f64, f64) = (0.0, 0.0);
@@ -341,7 +372,10 @@ fn squeezed_elements_drop_a_level_and_stay_stable() {
     assert!(r.level_drops > 0, "no level dropped");
     // No node ever stepped beyond the Courant limit of its elements (the safety factor 0.9
     // leaves room for the deformation within one of its steps).
-    assert!(worst_ratio <= 1.0, "a node stepped {worst_ratio:.4} x its limit");
+    assert!(
+        worst_ratio <= 1.0,
+        "a node stepped {worst_ratio:.4} x its limit"
+    );
     // Nothing blew up (no growth over 2000 steps). The nodal partition conserves a
     // pseudo-energy, not the total: here, with all kinetic energy in the coarse part and the
     // whole load crossing one level-0 interface element, they differ by about 6 % (the same

@@ -445,7 +445,8 @@ impl Solver {
 
     fn getforce_with(&mut self, sub: &mut Subcycler, dt: f64) -> Result<()> {
         sub.advance(dt);
-        let done = sub.update_due_elements(&mut self.blocks, &self.x, &self.v, &mut self.elem_force);
+        let done =
+            sub.update_due_elements(&mut self.blocks, &self.x, &self.v, &mut self.elem_force);
         self.updates += done.map_err(|(e, why)| self.element_error(e, why))?;
         // Critical steps: every element's latest Courant limit, and the interactions.
         let mut best = (f64::INFINITY, usize::MAX);
@@ -487,8 +488,13 @@ impl Solver {
     /// Subcycling: opening accelerations into `a`, closing ones into `a_close`.
     fn kick_accelerations(&mut self) -> Result<()> {
         let (fe, m, fx) = (&self.f_ext, &self.mass, &self.fixed);
-        let bad = accelerations_into(&mut self.a, &self.f_open, fe, m, fx)
-            .or(accelerations_into(&mut self.a_close, &self.f_int, fe, m, fx));
+        let bad = accelerations_into(&mut self.a, &self.f_open, fe, m, fx).or(accelerations_into(
+            &mut self.a_close,
+            &self.f_int,
+            fe,
+            m,
+            fx,
+        ));
         match bad {
             Some(n) => Err(self.non_finite_error(n)),
             None => Ok(()),
@@ -643,7 +649,13 @@ impl Solver {
 
     /// a = M⁻¹ (f_ext − f_int), zero on constrained components; fails on non-finite values.
     fn accelerations(&mut self) -> Result<()> {
-        let bad = accelerations_into(&mut self.a, &self.f_int, &self.f_ext, &self.mass, &self.fixed);
+        let bad = accelerations_into(
+            &mut self.a,
+            &self.f_int,
+            &self.f_ext,
+            &self.mass,
+            &self.fixed,
+        );
         match bad {
             Some(n) => Err(self.non_finite_error(n)),
             None => Ok(()),
@@ -883,10 +895,7 @@ impl Solver {
         match &self.sub {
             Some(s) => {
                 let mut r = s.report().clone();
-                r.reason = format!(
-                    "on: predicted saving {:.2}x",
-                    r.predicted_saving
-                );
+                r.reason = format!("on: predicted saving {:.2}x", r.predicted_saving);
                 r
             }
             None => self.sub_report.clone(),

@@ -462,8 +462,11 @@ impl Subcycler {
     fn levels_changed(&mut self, blocks: &[ElementBlock], _inc_ptr: &[usize], _inc: &[u32]) {
         for b in blocks {
             for (k, c) in b.conn.iter().enumerate() {
-                self.elem_level[b.first + k] =
-                    c.iter().map(|&i| self.node_level[i as usize]).min().unwrap_or(0);
+                self.elem_level[b.first + k] = c
+                    .iter()
+                    .map(|&i| self.node_level[i as usize])
+                    .min()
+                    .unwrap_or(0);
             }
         }
         self.top = self.node_level.iter().copied().max().unwrap_or(0) as u32;
@@ -576,8 +579,11 @@ impl Subcycler {
                         continue;
                     }
                     for (a, &i) in c.iter().enumerate() {
-                        let (xi, x0, f) = (x[i as usize], self.snap[l][i as usize], elem_force[e][a]);
-                        w += f[0] * (xi[0] - x0[0]) + f[1] * (xi[1] - x0[1]) + f[2] * (xi[2] - x0[2]);
+                        let (xi, x0, f) =
+                            (x[i as usize], self.snap[l][i as usize], elem_force[e][a]);
+                        w += f[0] * (xi[0] - x0[0])
+                            + f[1] * (xi[1] - x0[1])
+                            + f[2] * (xi[2] - x0[2]);
                     }
                 }
                 w
