@@ -19,6 +19,7 @@ pub mod model;
 pub mod objective;
 pub mod plasticity;
 pub mod shape;
+pub mod subcycle;
 pub mod tensor;
 pub mod timestep;
 

@@ -199,6 +199,8 @@ pub struct Savings {
     pub free_flight_time: f64,
     /// `separation` (stopped once apart and force-free for `hold_time`) or `end_time`.
     pub stop_rule: String,
+    /// Multi-time-step integration: used or not and why, levels, element updates.
+    pub subcycling: crate::fe::subcycle::SubcycleReport,
     /// Hold time of the separation rule, s.
     pub hold_time: f64,
     /// Per ball: plasticity skipped (the Hertz peak pressure stays below yield by a margin).
@@ -224,7 +226,7 @@ pub struct Simulation {
     pub nodes: usize,
     /// Time steps taken.
     pub steps: u64,
-    /// Element updates (elements × steps).
+    /// Element updates actually taken (elements × steps without subcycling).
     pub element_cycles: u64,
     /// Initial stable time step, s.
     pub dt: f64,
@@ -609,6 +611,7 @@ pub fn simulate(
     let nodes = model.nodes.len();
     let settings = Settings {
         safety: scene.solver.time_step_factor,
+        subcycling: scene.solver.subcycling,
         ..Settings::default()
     };
     let mut solver = Solver::new(model, interactions, settings)?;
@@ -767,11 +770,12 @@ pub fn simulate(
             hold_time: hold,
             elastic_only,
             friction: red != Reduction::Quarter && mu > 0.0,
+            subcycling: solver.subcycling(),
         },
         elements,
         nodes,
         steps,
-        element_cycles: steps * elements as u64,
+        element_cycles: solver.element_updates(),
         dt: dt0,
         stop_reason,
         wall_time_s: start.elapsed().as_secs_f64(),

@@ -411,6 +411,10 @@ impl Interaction for SurfacePair {
     fn energy(&self) -> InteractionEnergy {
         self.energy
     }
+
+    fn active_nodes(&self) -> Option<&[u32]> {
+        Some(&self.nodes)
+    }
 }
 
 #[cfg(test)]

@@ -277,6 +277,10 @@ impl Interaction for RigidPlane {
     fn energy(&self) -> InteractionEnergy {
         self.energy
     }
+
+    fn active_nodes(&self) -> Option<&[u32]> {
+        Some(&self.surface.nodes)
+    }
 }
 
 #[cfg(test)]
