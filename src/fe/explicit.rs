@@ -12,6 +12,7 @@ use super::{
     mass::element_lumped_mass,
     model::Model,
     plasticity::J2Material,
+    profile::{Phase, Profile},
     tensor::{cross, inverse, Sym},
     timestep::StableStep,
 };
@@ -145,6 +146,7 @@ pub struct Solver {
     w_ext: f64,
     e0: f64,
     max_balance_error: f64,
+    profile: Profile,
 }
 
 impl Solver {
@@ -253,6 +255,7 @@ impl Solver {
             w_ext: 0.0,
             e0: 0.0,
             max_balance_error: 0.0,
+            profile: Profile::new(ne),
             x,
             v,
             model,
@@ -268,6 +271,7 @@ impl Solver {
 
     /// One time step n → n+1, Box 6.1 steps 4-12.
     pub fn step(&mut self) -> Result<()> {
+        self.profile.lap(Phase::Outside);
         // 4. Time update: t^{n+1} = t^n + Δt^{n+1/2}.
         let dt = self.dt_next;
         let t_new = self.t + dt;
@@ -279,6 +283,7 @@ impl Solver {
         // 7. Displacement update: x^{n+1} = x^n + Δt^{n+1/2} v^{n+1/2}.
         self.update_positions(dt);
         self.t = t_new;
+        self.profile.lap(Phase::Nodal);
         // 8. getforce: element loop, interactions, critical time step.
         self.getforce(dt)?;
         // 9. Accelerations a^{n+1} = M⁻¹(f_ext − f_int).
@@ -293,6 +298,7 @@ impl Solver {
         apply_fixed(&mut self.v, &self.fixed);
         self.step += 1;
         self.dt_prev = dt;
+        self.profile.lap(Phase::Nodal);
         // 11. Energy balance check.
         if self.step.is_multiple_of(self.settings.energy_interval) {
             let e = self.energy();
@@ -304,6 +310,8 @@ impl Solver {
                 return Err(self.energy_growth_error(created));
             }
         }
+        self.profile.lap(Phase::Energy);
+        self.profile.end_step();
         // 12. Output: the caller reads the state between steps.
         Ok(())
     }
@@ -344,7 +352,9 @@ impl Solver {
                 }
             }
         }
+        self.profile.lap(Phase::Elements);
         self.gather_internal_forces();
+        self.profile.lap(Phase::Gather);
         // Critical time step: elements (Courant) and interactions.
         let mut stable = StableStep {
             dt: self.settings.safety * best.0,
@@ -386,6 +396,7 @@ impl Solver {
                 self.controlling()
             )));
         }
+        self.profile.lap(Phase::StableStep);
         // External forces from interactions (contact, walls) at t^{n+1}.
         for f in &mut self.f_ext {
             *f = [0.0; 3];
@@ -400,6 +411,7 @@ impl Solver {
         for it in &mut self.interactions {
             it.add_forces(&ctx, &mut self.f_ext)?;
         }
+        self.profile.lap(Phase::Contact);
         Ok(())
     }
 
@@ -719,6 +731,10 @@ impl Solver {
     pub fn element_plastic_work(&self, e: usize) -> f64 {
         let (b, k) = self.locate(e);
         self.blocks[b].plastic_work[k]
+    }
+    /// The phase timer (on when [`super::profile::set_enabled`] was called before `new`).
+    pub fn profile(&self) -> &Profile {
+        &self.profile
     }
     /// Element blocks (one per part), for output and benchmarks.
     pub fn blocks(&self) -> &[ElementBlock] {

@@ -18,6 +18,7 @@ pub mod modal;
 pub mod model;
 pub mod objective;
 pub mod plasticity;
+pub mod profile;
 pub mod shape;
 pub mod tensor;
 pub mod timestep;
