@@ -55,8 +55,7 @@ fn flops(rounds: u64) -> (f64, f64) {
     let run = |fused: bool| {
         let t = Instant::now();
         #[cfg(target_arch = "x86_64")]
-        let s = if std::is_x86_feature_detected!("avx2") && std::is_x86_feature_detected!("fma")
-        {
+        let s = if std::is_x86_feature_detected!("avx2") && std::is_x86_feature_detected!("fma") {
             // SAFETY: the CPU supports the features the function was compiled for.
             unsafe { fma_rounds_avx2(rounds, fused) }
         } else {

@@ -70,10 +70,7 @@ pub fn profile(a: ProfileArgs) -> Result<()> {
     let setup = (wall - t.sum()).max(0.0);
     println!(
         "{:<48} {:>9.3}\n{:<48} {:>9.3}",
-        "setup (mesh, model, analytic, first forces)",
-        setup,
-        "wall time of the run",
-        wall
+        "setup (mesh, model, analytic, first forces)", setup, "wall time of the run", wall
     );
     let solver = t.sum() - t.get(Phase::Outside);
     if solver > 0.0 {
