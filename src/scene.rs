@@ -103,7 +103,7 @@ pub struct ContactSettings {
 }
 
 /// Hexahedron formulation (see the FE core, docs/design.md §4).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, serde::Deserialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum Formulation {
     /// One-point integration with hourglass control (`one-point`, the default).
@@ -126,6 +126,8 @@ pub struct SolverSettings {
     pub hold_time: Option<f64>,
     /// Hard cap on the number of time steps.
     pub max_steps: u64,
+    /// Multi-time-step integration (`auto`: on when the predicted saving is worth it).
+    pub subcycling: crate::fe::subcycle::Subcycling,
 }
 
 /// What to write besides results.json and history.csv.
@@ -198,12 +200,13 @@ const MATERIAL_KEYS: [&str; 8] = [
 ];
 const MESH_KEYS: [&str; 3] = ["size", "pole_size", "file"];
 const CONTACT_KEYS: [&str; 2] = ["penalty_factor", "friction"];
-const SOLVER_KEYS: [&str; 5] = [
+const SOLVER_KEYS: [&str; 6] = [
     "element",
     "time_step_factor",
     "end_time",
     "hold_time",
     "max_steps",
+    "subcycling",
 ];
 const OUTPUT_KEYS: [&str; 2] = ["history_interval", "vtu_snapshots"];
 const REDUCTION_KEYS: [&str; 4] = [
@@ -538,6 +541,7 @@ fn read_solver(s: Option<Reader<'_>>) -> Result<SolverSettings> {
         end_time: None,
         hold_time: None,
         max_steps: 2_000_000,
+        subcycling: crate::fe::subcycle::Subcycling::Auto,
     };
     let Some(s) = s else { return Ok(out) };
     s.only(&SOLVER_KEYS)?;
@@ -564,6 +568,14 @@ fn read_solver(s: Option<Reader<'_>>) -> Result<SolverSettings> {
     )? {
         out.max_steps = n;
     }
+    if let Some(c) = s.choice("subcycling", &["auto", "on", "off"])? {
+        use crate::fe::subcycle::Subcycling;
+        out.subcycling = match c {
+            "auto" => Subcycling::Auto,
+            "on" => Subcycling::On,
+            _ => Subcycling::Off,
+        };
+    }
     Ok(out)
 }
 
@@ -579,11 +591,10 @@ fn read_output(o: Option<Reader<'_>>) -> Result<OutputSettings> {
         |t| t > 0.0 && t <= 1.0,
         "0 < history_interval <= 1 s",
     )?;
-    // Snapshots are not written yet: refuse rather than silently ignore the request.
     if let Some(n) = o.u64(
         "vtu_snapshots",
-        |n| n == 0,
-        "0 (.vtu snapshots of a run are not implemented yet)",
+        |n| n <= 1000,
+        "0 <= vtu_snapshots <= 1000 (written with `twoball run --out DIR`)",
     )? {
         out.vtu_snapshots = n as u32;
     }

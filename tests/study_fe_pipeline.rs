@@ -24,7 +24,7 @@ fn run(s: &Scene) -> Simulation {
         an.contact_duration,
         &RunOptions {
             history_rows: 200,
-            progress: false,
+            ..RunOptions::default()
         },
     )
     .unwrap()

@@ -26,6 +26,8 @@ pub enum BenchKind {
     Profile(ProfileArgs),
     /// This machine's limits: FMA throughput and memory bandwidth per core (roofline).
     Machine(MachineArgs),
+    /// Run time against error on a ladder of meshes, elements and time-step factors.
+    Study(super::bench_study::StudyArgs),
 }
 
 /// Arguments of `twoball bench kernel`.
@@ -54,6 +56,7 @@ pub fn run(a: BenchArgs) -> Result<()> {
         BenchKind::Kernel(k) => kernel(k),
         BenchKind::Profile(p) => super::bench_profile::profile(p),
         BenchKind::Machine(m) => super::bench_machine::machine(m),
+        BenchKind::Study(s) => super::bench_study::run(s),
     }
 }
 

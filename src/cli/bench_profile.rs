@@ -52,6 +52,7 @@ pub fn profile(a: ProfileArgs) -> Result<()> {
             &RunOptions {
                 history_rows: 400,
                 progress: false,
+                ..Default::default()
             },
         )
     });

@@ -7,6 +7,7 @@ mod analytic;
 mod bench;
 mod bench_machine;
 mod bench_profile;
+mod bench_study;
 mod mesh;
 mod run;
 mod stress;
@@ -38,7 +39,8 @@ pub enum Command {
     Run(run::RunArgs),
     /// A parameter sweep (e.g. the paper's ANSYS study): resumable, shardable, one CSV.
     Sweep(sweep::SweepArgs),
-    /// Benchmarks: `bench kernel` (explicit step cost per element, threads, determinism).
+    /// Benchmarks: `bench kernel` (explicit step cost per element, threads, determinism),
+    /// `bench study` (run time against error).
     Bench(bench::BenchArgs),
     /// The verification report (REPORT.md, CSV, Figures 6-10) from a finished sweep.
     Report(sweep::ReportArgs),

@@ -36,7 +36,13 @@ pub fn run(a: RunArgs) -> Result<()> {
     let opts = RunOptions {
         history_rows: 400,
         progress: std::io::stderr().is_terminal(),
+        snapshot_dir: a.out.clone(),
     };
+    if let Some(dir) = &a.out {
+        crate::atomic::ensure_dir(dir)?;
+    } else if scene.output.vtu_snapshots > 0 {
+        eprintln!("note: output.vtu_snapshots needs --out DIR; no snapshots written");
+    }
     let report = run_scene(&scene, &opts)?;
     print!("{}", side_by_side(&report));
     if let Some(dir) = &a.out {

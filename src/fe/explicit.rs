@@ -13,6 +13,7 @@ use super::{
     model::Model,
     plasticity::J2Material,
     profile::{Phase, Profile},
+    subcycle::{SubcycleReport, Subcycler, Subcycling, AUTO_MIN_SAVING},
     tensor::{cross, inverse, Sym},
     timestep::StableStep,
 };
@@ -45,6 +46,11 @@ pub struct Settings {
     /// fraction of the start value (default 0.5): energy created from nothing means an
     /// instability, long before values turn non-finite.
     pub energy_growth: f64,
+    /// Multi-time-step integration: element groups step with powers of two of the fine step
+    /// (see [`super::subcycle`]); default off. Ignored with `fixed_dt`.
+    pub subcycling: Subcycling,
+    /// Highest subcycling level: an element steps at most 2^level fine steps (1..=8; default 4).
+    pub subcycle_max_level: u32,
 }
 
 impl Default for Settings {
@@ -57,6 +63,8 @@ impl Default for Settings {
             energy_interval: 100,
             dt_hysteresis: 0.05,
             energy_growth: 0.5,
+            subcycling: Subcycling::Off,
+            subcycle_max_level: 4,
         }
     }
 }
@@ -104,6 +112,13 @@ impl Settings {
                 "energy_growth > 0, finite",
             ));
         }
+        if !(1..=8).contains(&self.subcycle_max_level) {
+            return Err(Error::invalid(
+                "solver.subcycle_max_level",
+                self.subcycle_max_level,
+                "1 <= subcycle_max_level <= 8",
+            ));
+        }
         if self.energy_interval == 0 {
             return Err(Error::invalid(
                 "solver.energy_interval",
@@ -147,6 +162,16 @@ pub struct Solver {
     e0: f64,
     max_balance_error: f64,
     profile: Profile,
+    /// Element updates taken (all steps, all levels).
+    updates: u64,
+    /// Multi-time-step bookkeeping when subcycling is in use.
+    sub: Option<Subcycler>,
+    /// Why subcycling is (not) in use, and what it did.
+    sub_report: SubcycleReport,
+    /// Subcycling: opening half-kick forces Σ 2^{k_new} f_e (`f_int` holds the closing ones).
+    f_open: Vec<[f64; 3]>,
+    /// Subcycling: closing accelerations M⁻¹(f_ext − f_int) (`a` holds the opening ones).
+    a_close: Vec<[f64; 3]>,
 }
 
 impl Solver {
@@ -256,6 +281,11 @@ impl Solver {
             e0: 0.0,
             max_balance_error: 0.0,
             profile: Profile::new(ne),
+            updates: 0,
+            sub: None,
+            sub_report: SubcycleReport::default(),
+            f_open: Vec::new(),
+            a_close: Vec::new(),
             x,
             v,
             model,
@@ -265,13 +295,68 @@ impl Solver {
         s.dt_initial = s.dt_next;
         // 3. Accelerations a⁰ = M⁻¹(f_ext − f_int).
         s.accelerations()?;
+        // Multi-time-step integration, if asked for and worth it: levels from the limits now.
+        s.start_subcycling()?;
         s.e0 = s.energy().total;
         Ok(s)
+    }
+
+    /// Decides whether to subcycle (setting, fixed step, predicted saving) and, if so, sets
+    /// up the levels and replaces the first accelerations by the level-weighted kicks.
+    fn start_subcycling(&mut self) -> Result<()> {
+        let why_not = match self.settings.subcycling {
+            Subcycling::Off => Some("off (solver.subcycling = off)".to_string()),
+            _ if self.settings.fixed_dt.is_some() => Some("off: fixed time step".to_string()),
+            _ => None,
+        };
+        if let Some(reason) = why_not {
+            self.sub_report.reason = reason;
+            return Ok(());
+        }
+        let mut pinned = vec![false; self.x.len()];
+        for it in &self.interactions {
+            for &i in it.active_nodes().unwrap_or(&[]) {
+                pinned[i as usize] = true;
+            }
+        }
+        let mut sub = Subcycler::new(
+            &self.blocks,
+            &self.x,
+            &self.inc_ptr,
+            &self.inc,
+            &pinned,
+            self.settings.safety,
+            self.dt_next,
+            self.settings.subcycle_max_level,
+        );
+        let saving = sub.report().predicted_saving;
+        if self.settings.subcycling == Subcycling::Auto && saving < AUTO_MIN_SAVING {
+            self.sub_report = sub.report().clone();
+            self.sub_report.used = false;
+            self.sub_report.reason =
+                format!("off: predicted saving {saving:.2}x below {AUTO_MIN_SAVING}x");
+            return Ok(());
+        }
+        let n = self.x.len();
+        self.f_open = vec![[0.0; 3]; n];
+        self.a_close = vec![[0.0; 3]; n];
+        sub.gather_kicks(
+            &self.inc_ptr,
+            &self.inc,
+            &self.elem_force,
+            &mut self.f_int,
+            &mut self.f_open,
+        );
+        self.sub = Some(sub);
+        self.kick_accelerations()
     }
 
     /// One time step n → n+1, Box 6.1 steps 4-12.
     pub fn step(&mut self) -> Result<()> {
         self.profile.lap(Phase::Outside);
+        if self.sub.is_some() {
+            return self.step_subcycled();
+        }
         // 4. Time update: t^{n+1} = t^n + Δt^{n+1/2}.
         let dt = self.dt_next;
         let t_new = self.t + dt;
@@ -286,6 +371,7 @@ impl Solver {
         self.profile.lap(Phase::Nodal);
         // 8. getforce: element loop, interactions, critical time step.
         self.getforce(dt)?;
+        self.updates += self.model.hexes.len() as u64;
         // 9. Accelerations a^{n+1} = M⁻¹(f_ext − f_int).
         self.accelerations()?;
         // 11 (first half). Work of internal and external forces over the step (trapezoid with
@@ -298,8 +384,49 @@ impl Solver {
         apply_fixed(&mut self.v, &self.fixed);
         self.step += 1;
         self.dt_prev = dt;
-        self.profile.lap(Phase::Nodal);
         // 11. Energy balance check.
+        self.energy_check()?;
+        // 12. Output: the caller reads the state between steps.
+        Ok(())
+    }
+
+    /// One fine step n → n+1 with subcycling (module [`super::subcycle`]): Box 6.1 with the
+    /// half-kicks split into closing and opening parts. Elements due now act with the weight
+    /// 2^k of their own step; the others act not at all until their next update.
+    fn step_subcycled(&mut self) -> Result<()> {
+        // 4. Time update with the fine step.
+        let dt = self.dt_next;
+        let t_new = self.t + dt;
+        // 5. Opening half-kick: v^{n+1/2} = v^n + (Δt/2) M⁻¹(f_ext − Σ 2^{k_new} f_e)^n.
+        kick(&mut self.v, &self.a, 0.5 * dt);
+        // 6. Velocity boundary conditions.
+        apply_fixed(&mut self.v, &self.fixed);
+        let (p_int_old, p_ext_old) = self.power_with(&self.f_open);
+        // 7. Drift of every node: x^{n+1} = x^n + Δt v^{n+1/2}.
+        self.update_positions(dt);
+        self.t = t_new;
+        self.profile.lap(Phase::Nodal);
+        // 8. getforce: elements due now with their own steps, levels and fine step, interactions.
+        self.getforce_subcycled(dt)?;
+        // 9. Closing and opening accelerations M⁻¹(f_ext − Σ 2^k f_e).
+        self.kick_accelerations()?;
+        // 11 (first half). Work over the step: trapezoid of the closing and opening forces.
+        let (p_int_new, p_ext_new) = self.power_with(&self.f_int);
+        self.w_int += 0.5 * dt * (p_int_old + p_int_new);
+        self.w_ext += 0.5 * dt * (p_ext_old + p_ext_new);
+        // 10. Closing half-kick: v^{n+1} = v^{n+1/2} + (Δt/2) M⁻¹(f_ext − Σ 2^{k_old} f_e)^{n+1}.
+        kick(&mut self.v, &self.a_close, 0.5 * dt);
+        apply_fixed(&mut self.v, &self.fixed);
+        self.step += 1;
+        self.dt_prev = dt;
+        // 11. Energy balance check.
+        self.energy_check()?;
+        Ok(())
+    }
+
+    /// Box 6.1 step 11: records the balance error and stops when energy is created.
+    fn energy_check(&mut self) -> Result<()> {
+        self.profile.lap(Phase::Nodal);
         if self.step.is_multiple_of(self.settings.energy_interval) {
             let e = self.energy();
             self.max_balance_error = self.max_balance_error.max(e.balance_error);
@@ -311,9 +438,79 @@ impl Solver {
             }
         }
         self.profile.lap(Phase::Energy);
-        self.profile.end_step();
-        // 12. Output: the caller reads the state between steps.
+        self.profile.end_step(Some(self.updates));
         Ok(())
+    }
+
+    /// `getforce` with subcycling at x^{n+1}: the elements due now (each with its own step
+    /// and mean velocities over it), the stable limits, the levels and fine step for the
+    /// next interval, the level-weighted kick forces, then the interactions (every step).
+    fn getforce_subcycled(&mut self, dt: f64) -> Result<()> {
+        let mut sub = self.sub.take().expect("subcycling in use");
+        let res = self.getforce_with(&mut sub, dt);
+        self.sub = Some(sub);
+        res
+    }
+
+    fn getforce_with(&mut self, sub: &mut Subcycler, dt: f64) -> Result<()> {
+        sub.advance(dt);
+        let done =
+            sub.update_due_elements(&mut self.blocks, &self.x, &self.v, &mut self.elem_force);
+        self.updates += done.map_err(|(e, why)| self.element_error(e, why))?;
+        self.profile.lap(Phase::Elements);
+        // Critical steps: every element's latest Courant limit, and the interactions.
+        let mut best = (f64::INFINITY, usize::MAX);
+        for b in &self.blocks {
+            for (k, &d) in b.dt_crit.iter().enumerate() {
+                if d < best.0 {
+                    best = (d, b.first + k);
+                }
+            }
+        }
+        self.stable = self.stable_limit(best);
+        let interaction_limit = match self.stable.interaction {
+            Some(_) => self.stable.dt,
+            None => f64::INFINITY,
+        };
+        let stable_dt = self.stable.dt;
+        let h = sub.choose_levels(
+            &self.blocks,
+            &self.x,
+            &self.inc_ptr,
+            &self.inc,
+            self.settings.safety,
+            dt,
+            interaction_limit,
+            |h_taken| self.next_step(h_taken, stable_dt),
+        );
+        self.dt_next = h;
+        self.check_collapse()?;
+        self.profile.lap(Phase::StableStep);
+        sub.gather_kicks(
+            &self.inc_ptr,
+            &self.inc,
+            &self.elem_force,
+            &mut self.f_int,
+            &mut self.f_open,
+        );
+        self.profile.lap(Phase::Gather);
+        self.external_forces()
+    }
+
+    /// Subcycling: opening accelerations into `a`, closing ones into `a_close`.
+    fn kick_accelerations(&mut self) -> Result<()> {
+        let (fe, m, fx) = (&self.f_ext, &self.mass, &self.fixed);
+        let bad = accelerations_into(&mut self.a, &self.f_open, fe, m, fx).or(accelerations_into(
+            &mut self.a_close,
+            &self.f_int,
+            fe,
+            m,
+            fx,
+        ));
+        match bad {
+            Some(n) => Err(self.non_finite_error(n)),
+            None => Ok(()),
+        }
     }
 
     /// Steps until `stop(self)` returns true (checked before every step).
@@ -337,25 +534,40 @@ impl Solver {
                         best = d;
                     }
                 }
-                Err((e, why)) => {
-                    let part = &self.model.parts[b.part].name;
-                    let cause = match why {
-                        ElementFailure::Inverted(j) => format!(
-                            "inverted (Jacobian {j:.3e}): excessive deformation, time step too large or hourglassing"
-                        ),
-                        ElementFailure::NonFinite => "non-finite internal force: instability".to_string(),
-                    };
-                    return Err(Error::Numerical(format!(
-                        "element {e} (part {part}) at t = {:.6e} s, step {}: {cause}",
-                        self.t, self.step
-                    )));
-                }
+                Err((e, why)) => return Err(self.element_error(e, why)),
             }
         }
         self.profile.lap(Phase::Elements);
         self.gather_internal_forces();
         self.profile.lap(Phase::Gather);
         // Critical time step: elements (Courant) and interactions.
+        self.stable = self.stable_limit(best);
+        self.dt_next = self.next_step(self.dt_next, self.stable.dt);
+        self.check_collapse()?;
+        self.profile.lap(Phase::StableStep);
+        // External forces from interactions (contact, walls) at t^{n+1}.
+        self.external_forces()
+    }
+
+    /// The error for a failed element `e` (global index).
+    fn element_error(&self, e: usize, why: ElementFailure) -> Error {
+        let (b, _) = self.locate(e);
+        let part = &self.model.parts[self.blocks[b].part].name;
+        let cause = match why {
+            ElementFailure::Inverted(j) => format!(
+                "inverted (Jacobian {j:.3e}): excessive deformation, time step too large or hourglassing"
+            ),
+            ElementFailure::NonFinite => "non-finite internal force: instability".to_string(),
+        };
+        Error::Numerical(format!(
+            "element {e} (part {part}) at t = {:.6e} s, step {}: {cause}",
+            self.t, self.step
+        ))
+    }
+
+    /// The stable step (safety included) from the smallest element Courant limit `best`
+    /// (s, global element) and every interaction's limit.
+    fn stable_limit(&self, best: (f64, usize)) -> StableStep {
         let mut stable = StableStep {
             dt: self.settings.safety * best.0,
             element: Some(best.1),
@@ -373,17 +585,27 @@ impl Solver {
                 }
             }
         }
-        self.stable = stable;
-        self.dt_next = match self.settings.fixed_dt {
-            Some(dt) => dt,
-            None if self.dt_next > 0.0
-                && stable.dt >= self.dt_next
-                && stable.dt <= self.dt_next * (1.0 + self.settings.dt_hysteresis) =>
+        stable
+    }
+
+    /// The step to take after `dt` given the stable step `stable` (s): the fixed step, or
+    /// `stable` with the growth hysteresis.
+    fn next_step(&self, dt: f64, stable: f64) -> f64 {
+        match self.settings.fixed_dt {
+            Some(f) => f,
+            None if dt > 0.0
+                && stable >= dt
+                && stable <= dt * (1.0 + self.settings.dt_hysteresis) =>
             {
-                self.dt_next
+                dt
             }
-            None => stable.dt,
-        };
+            None => stable,
+        }
+    }
+
+    /// Stops when the step is not positive and finite, or collapsed below `dt_collapse` of
+    /// the initial step.
+    fn check_collapse(&self) -> Result<()> {
         if !(self.dt_next > 0.0 && self.dt_next.is_finite())
             || (self.dt_initial > 0.0 && self.dt_next < self.settings.dt_collapse * self.dt_initial)
         {
@@ -396,8 +618,11 @@ impl Solver {
                 self.controlling()
             )));
         }
-        self.profile.lap(Phase::StableStep);
-        // External forces from interactions (contact, walls) at t^{n+1}.
+        Ok(())
+    }
+
+    /// Every interaction's forces at t^{n+1} for the step about to be taken.
+    fn external_forces(&mut self) -> Result<()> {
         for f in &mut self.f_ext {
             *f = [0.0; 3];
         }
@@ -440,55 +665,29 @@ impl Solver {
 
     /// a = M⁻¹ (f_ext − f_int), zero on constrained components; fails on non-finite values.
     fn accelerations(&mut self) -> Result<()> {
-        let (fi, fe, m, fx) = (&self.f_int, &self.f_ext, &self.mass, &self.fixed);
-        let bad = self
-            .a
-            .par_chunks_mut(NODE_CHUNK)
-            .enumerate()
-            .map(|(c, a)| {
-                for (k, ak) in a.iter_mut().enumerate() {
-                    let n = c * NODE_CHUNK + k;
-                    let r = 1.0 / m[n];
-                    for d in 0..3 {
-                        ak[d] = if fx[n] & (1 << d) != 0 {
-                            0.0
-                        } else {
-                            (fe[n][d] - fi[n][d]) * r
-                        };
-                    }
-                    if !ak.iter().all(|v| v.is_finite()) {
-                        return Some(n);
-                    }
-                }
-                None
-            })
-            .reduce(
-                || None,
-                |a, b| match (a, b) {
-                    (Some(x), Some(y)) => Some(x.min(y)),
-                    (x, None) => x,
-                    (None, y) => y,
-                },
-            );
-        if let Some(n) = bad {
-            return Err(Error::Numerical(format!(
-                "node {n} has a non-finite acceleration at t = {:.6e} s, step {}: force blew up \
-                 (unstable time step or interaction)",
-                self.t, self.step
-            )));
+        let bad = accelerations_into(
+            &mut self.a,
+            &self.f_int,
+            &self.f_ext,
+            &self.mass,
+            &self.fixed,
+        );
+        match bad {
+            Some(n) => Err(self.non_finite_error(n)),
+            None => Ok(()),
         }
-        Ok(())
+    }
+
+    fn non_finite_error(&self, n: usize) -> Error {
+        Error::Numerical(format!(
+            "node {n} has a non-finite acceleration at t = {:.6e} s, step {}: force blew up \
+             (unstable time step or interaction)",
+            self.t, self.step
+        ))
     }
 
     fn partial_velocity_update(&mut self, h: f64) {
-        self.v
-            .par_iter_mut()
-            .zip(self.a.par_iter())
-            .for_each(|(v, a)| {
-                v[0] += h * a[0];
-                v[1] += h * a[1];
-                v[2] += h * a[2];
-            });
+        kick(&mut self.v, &self.a, h);
     }
 
     fn update_positions(&mut self, dt: f64) {
@@ -505,7 +704,13 @@ impl Solver {
     /// Power of the internal and external forces with the current velocities, W:
     /// (Σ v·f_int, Σ v·f_ext), summed in fixed chunks (thread-count independent).
     fn power(&self) -> (f64, f64) {
-        let (f_int, f_ext) = (&self.f_int, &self.f_ext);
+        self.power_with(&self.f_int)
+    }
+
+    /// Power (W) of internal forces `f_int` and of the external forces with the current
+    /// velocities, summed in fixed chunks.
+    fn power_with(&self, f_int: &[[f64; 3]]) -> (f64, f64) {
+        let f_ext = &self.f_ext;
         let parts: Vec<(f64, f64)> = self
             .v
             .par_chunks(NODE_CHUNK)
@@ -571,6 +776,23 @@ impl Solver {
                 let aa = a[0] * a[0] + a[1] * a[1] + a[2] * a[2];
                 pe.kinetic_central += 0.5 * self.mass[n] * (vv - c * aa);
                 pe.kinetic += 0.5 * self.mass[n] * vv;
+            }
+            if self.sub.is_some() && self.dt_prev > 0.0 {
+                // Subcycling: the closing and opening kicks differ where an element changed
+                // level, so v^{n∓1/2} = v^n ∓ (Δt^{n∓1/2}/2) a_close/open, each exactly.
+                pe.kinetic_central = 0.0;
+                let (hm, hp) = (0.5 * self.dt_prev, 0.5 * self.dt_next);
+                for n in part.nodes.clone() {
+                    let (v, ao, ac) = (self.v[n], self.a[n], self.a_close[n]);
+                    let vm = [0, 1, 2].map(|d| v[d] - hm * ac[d]);
+                    let vp = [0, 1, 2].map(|d| v[d] + hp * ao[d]);
+                    pe.kinetic_central +=
+                        0.5 * self.mass[n] * (vm[0] * vp[0] + vm[1] * vp[1] + vm[2] * vp[2]);
+                }
+            }
+            if let Some(sub) = &self.sub {
+                // Elements between their updates: the work done on them since.
+                pe.internal += sub.pending_work(&self.blocks, &self.x, &self.elem_force)[p];
             }
             let b = &self.blocks[p];
             for k in 0..b.conn.len() {
@@ -676,9 +898,35 @@ impl Solver {
     pub fn time(&self) -> f64 {
         self.t
     }
-    /// Steps taken.
+    /// Steps taken (fine steps with subcycling).
     pub fn step_count(&self) -> u64 {
         self.step
+    }
+    /// Element updates taken so far (elements × steps without subcycling; fewer with it).
+    pub fn element_updates(&self) -> u64 {
+        self.updates
+    }
+    /// Whether subcycling is in use, why, and what it did so far.
+    pub fn subcycling(&self) -> SubcycleReport {
+        match &self.sub {
+            Some(s) => {
+                let mut r = s.report().clone();
+                r.reason = format!("on: predicted saving {:.2}x", r.predicted_saving);
+                r
+            }
+            None => self.sub_report.clone(),
+        }
+    }
+    /// With subcycling: the largest ratio of a node's own step to the Courant limit (no
+    /// safety factor) of its elements; above 1 it would be unstable. 0 without subcycling.
+    pub fn subcycle_step_ratio(&self) -> f64 {
+        self.sub.as_ref().map_or(0.0, |s| {
+            s.worst_step_ratio(&self.blocks, &self.inc_ptr, &self.inc, self.dt_next)
+        })
+    }
+    /// The subcycling update level of global element `e` (0 without subcycling).
+    pub fn element_level(&self, e: usize) -> u32 {
+        self.sub.as_ref().map_or(0, |s| s.element_level(e))
     }
     /// The step Δt that the next call to [`Solver::step`] will take, s (never above the stable
     /// limit [`Solver::stable_step`] unless `fixed_dt` is set).
@@ -749,6 +997,53 @@ impl Solver {
             .expect("element index in range");
         (b, e - self.blocks[b].first)
     }
+}
+
+/// a = M⁻¹ (f_ext − f_int) into `out`, zero on constrained components; returns the lowest
+/// node with a non-finite value, if any.
+fn accelerations_into(
+    out: &mut [[f64; 3]],
+    fi: &[[f64; 3]],
+    fe: &[[f64; 3]],
+    m: &[f64],
+    fx: &[u8],
+) -> Option<usize> {
+    out.par_chunks_mut(NODE_CHUNK)
+        .enumerate()
+        .map(|(c, a)| {
+            for (k, ak) in a.iter_mut().enumerate() {
+                let n = c * NODE_CHUNK + k;
+                let r = 1.0 / m[n];
+                for d in 0..3 {
+                    ak[d] = if fx[n] & (1 << d) != 0 {
+                        0.0
+                    } else {
+                        (fe[n][d] - fi[n][d]) * r
+                    };
+                }
+                if !ak.iter().all(|v| v.is_finite()) {
+                    return Some(n);
+                }
+            }
+            None
+        })
+        .reduce(
+            || None,
+            |a, b| match (a, b) {
+                (Some(x), Some(y)) => Some(x.min(y)),
+                (x, None) => x,
+                (None, y) => y,
+            },
+        )
+}
+
+/// Half-kick v += h a, m/s.
+fn kick(v: &mut [[f64; 3]], a: &[[f64; 3]], h: f64) {
+    v.par_iter_mut().zip(a.par_iter()).for_each(|(v, a)| {
+        v[0] += h * a[0];
+        v[1] += h * a[1];
+        v[2] += h * a[2];
+    });
 }
 
 fn apply_fixed(v: &mut [[f64; 3]], fixed: &[u8]) {

@@ -49,4 +49,12 @@ pub trait Interaction: Send {
 
     /// Stored, dissipated and total work so far, J.
     fn energy(&self) -> InteractionEnergy;
+
+    /// The nodes (global numbers) this interaction may ever act on, if it knows them.
+    /// Multi-time-step integration keeps the elements around them at the finest level, so
+    /// that the interaction's force and the element forces that balance it are evaluated at
+    /// the same instants. `None` (the default): unknown, no element is held back.
+    fn active_nodes(&self) -> Option<&[u32]> {
+        None
+    }
 }

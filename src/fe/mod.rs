@@ -22,6 +22,7 @@ pub mod objective;
 pub mod plasticity;
 pub mod profile;
 pub mod shape;
+pub mod subcycle;
 pub mod tensor;
 pub mod timestep;
 

@@ -173,12 +173,16 @@ impl Profile {
         }
     }
 
-    /// Counts one finished step.
+    /// Counts one finished step; `updates` is the solver's running count of element updates
+    /// (with subcycling fewer than elements × steps), `None` for elements × steps.
     #[inline]
-    pub fn end_step(&mut self) {
+    pub fn end_step(&mut self, updates: Option<u64>) {
         if self.last.is_some() {
             self.totals.steps += 1;
-            self.totals.element_cycles += self.elements;
+            self.totals.element_cycles = match updates {
+                Some(u) => u,
+                None => self.totals.element_cycles + self.elements,
+            };
         }
     }
 
@@ -209,7 +213,7 @@ mod tests {
             elements: 10,
         };
         off.lap(Phase::Elements);
-        off.end_step();
+        off.end_step(None);
         assert_eq!(off.totals(), Totals::default());
 
         let mut on = Profile {
@@ -220,7 +224,7 @@ mod tests {
         std::thread::sleep(std::time::Duration::from_millis(20));
         on.lap(Phase::Contact);
         on.lap(Phase::Gather);
-        on.end_step();
+        on.end_step(None);
         let t = on.totals();
         assert!(t.get(Phase::Contact) >= 0.02, "{t:?}");
         assert!(t.get(Phase::Gather) < t.get(Phase::Contact));

@@ -8,6 +8,7 @@
 //! contact plane x = 0 stays put; results are transformed back to the scene frame.
 
 use super::outcome::{ball_inertia, dissipation_factor, Outcome};
+use super::snapshots::Snapshots;
 use crate::error::{Error, Result};
 use crate::fe::contact::{
     ContactParams, ContactProbe, Coulomb, PenaltyRule, RigidPlane, SurfacePair,
@@ -198,6 +199,8 @@ pub struct Savings {
     pub free_flight_time: f64,
     /// `separation` (stopped once apart and force-free for `hold_time`) or `end_time`.
     pub stop_rule: String,
+    /// Multi-time-step integration: used or not and why, levels, element updates.
+    pub subcycling: crate::fe::subcycle::SubcycleReport,
     /// Hold time of the separation rule, s.
     pub hold_time: f64,
     /// Per ball: plasticity skipped (the Hertz peak pressure stays below yield by a margin).
@@ -223,7 +226,7 @@ pub struct Simulation {
     pub nodes: usize,
     /// Time steps taken.
     pub steps: u64,
-    /// Element updates (elements × steps).
+    /// Element updates actually taken (elements × steps without subcycling).
     pub element_cycles: u64,
     /// Initial stable time step, s.
     pub dt: f64,
@@ -237,12 +240,15 @@ pub struct Simulation {
 }
 
 /// Options of a single FE run.
-#[derive(Debug, Clone, Copy, Default)]
+#[derive(Debug, Clone, Default)]
 pub struct RunOptions {
     /// History rows wanted over the expected contact (≥ 2).
     pub history_rows: usize,
     /// Draw a progress bar on stderr.
     pub progress: bool,
+    /// Folder for the scene's `.vtu` snapshots (`output.vtu_snapshots` of them); none
+    /// written without it.
+    pub snapshot_dir: Option<std::path::PathBuf>,
 }
 
 /// Contact-frame state of the pair in its centre-of-mass frame.
@@ -602,6 +608,7 @@ pub fn simulate(
     let nodes = model.nodes.len();
     let settings = Settings {
         safety: scene.solver.time_step_factor,
+        subcycling: scene.solver.subcycling,
         ..Settings::default()
     };
     let mut solver = Solver::new(model, interactions, settings)?;
@@ -636,7 +643,14 @@ pub fn simulate(
     let mut apart_since: Option<f64> = None;
     let stop_reason;
     let mut bar = super::progress::Bar::new(opts.progress, end_time.min(pre + 2.0 * duration));
+    let mut snapshots = match (&opts.snapshot_dir, scene.output.vtu_snapshots) {
+        (Some(dir), n) if n > 0 => Some(Snapshots::new(dir.clone(), n, pre, duration)),
+        _ => None,
+    };
     loop {
+        if let Some(s) = &mut snapshots {
+            s.maybe_write(&solver, pre)?;
+        }
         let t = solver.time();
         let probe_now = probe.last();
         let force_free = probe_now.active_nodes == 0 && probe_now.normal_force == 0.0;
@@ -708,6 +722,9 @@ pub fn simulate(
         solver.step()?;
     }
     bar.finish();
+    if let Some(s) = &mut snapshots {
+        s.finish(&solver, pre)?;
+    }
     let (u, w, _) = ball_states(&solver, red)?;
     let v_after = [to_scene(u[0], kin.v_cm), to_scene(u[1], kin.v_cm)];
     let w_after = [frame.to_global(w[0]), frame.to_global(w[1])];
@@ -750,11 +767,12 @@ pub fn simulate(
             hold_time: hold,
             elastic_only,
             friction: red != Reduction::Quarter && mu > 0.0,
+            subcycling: solver.subcycling(),
         },
         elements,
         nodes,
         steps,
-        element_cycles: steps * elements as u64,
+        element_cycles: solver.element_updates(),
         dt: dt0,
         stop_reason,
         wall_time_s: start.elapsed().as_secs_f64(),
@@ -779,7 +797,7 @@ pub fn sweep_case(scene: &Scene) -> Result<super::sweep::FeCase> {
         an.contact_duration,
         &RunOptions {
             history_rows: 400,
-            progress: false,
+            ..RunOptions::default()
         },
     )?;
     Ok(super::sweep::FeCase {

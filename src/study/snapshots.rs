@@ -1,0 +1,111 @@
+//! `.vtu` snapshots of a run for ParaView: the simulated model (a quarter, a half or both
+//! balls, in the contact frame: x along the line of centres, y the tangential direction) with
+//! displacement and velocity at the nodes and stress, von Mises stress and equivalent plastic
+//! strain in the elements, plus a `.pvd` collection that plays them as a time series.
+//!
+//! Snapshot times are spread evenly over the analytical contact duration from first touch
+//! (the window where the fields change); the state at the end of the run is always written
+//! as the last snapshot. Each file is written atomically and the collection is rewritten
+//! after every snapshot, so an interrupted run leaves a valid, shorter series.
+
+use crate::error::Result;
+use crate::fe::{explicit::Solver, tensor::von_mises};
+use crate::mesh::{vtu, Mesh};
+use std::path::PathBuf;
+
+/// The snapshot plan of one run and what has been written so far.
+#[derive(Debug)]
+pub struct Snapshots {
+    dir: PathBuf,
+    /// Model time of snapshot k (s, solver clock), ascending.
+    times: Vec<f64>,
+    /// Written so far: (time since first touch in s, file name).
+    written: Vec<(f64, String)>,
+}
+
+impl Snapshots {
+    /// `count` snapshots (≥ 1) into `dir` over `[start, start + window]` of the solver clock
+    /// (s); the last one is taken at the end of the run whatever its time.
+    pub fn new(dir: PathBuf, count: u32, start: f64, window: f64) -> Self {
+        let n = count.max(1) as usize;
+        let times = (0..n.saturating_sub(1))
+            .map(|k| start + window * k as f64 / (n - 1).max(1) as f64)
+            .collect();
+        Snapshots {
+            dir,
+            times,
+            written: Vec::new(),
+        }
+    }
+
+    /// Writes a snapshot if the solver clock has reached the next planned time; `t0` is the
+    /// time of first touch on the solver clock (s), used for the time written in the series.
+    pub fn maybe_write(&mut self, solver: &Solver, t0: f64) -> Result<()> {
+        let k = self.written.len();
+        if k < self.times.len() && solver.time() >= self.times[k] {
+            self.write(solver, t0)?;
+        }
+        Ok(())
+    }
+
+    /// Writes the final state (always the last snapshot of the series).
+    pub fn finish(&mut self, solver: &Solver, t0: f64) -> Result<()> {
+        self.write(solver, t0)
+    }
+
+    fn write(&mut self, solver: &Solver, t0: f64) -> Result<()> {
+        let name = format!("snapshot_{:04}.vtu", self.written.len());
+        write_state(&self.dir.join(&name), solver)?;
+        self.written.push((solver.time() - t0, name));
+        vtu::write_pvd(self.dir.join("snapshots.pvd"), &self.written)
+    }
+
+    /// Files written so far.
+    pub fn count(&self) -> usize {
+        self.written.len()
+    }
+}
+
+/// Writes the solver's current state as one `.vtu` file: deformed coordinates (m); point
+/// fields `displacement` (m) and `velocity` (m/s); cell fields `stress` (Pa, symmetric
+/// tensor), `von_mises` (Pa), `plastic_strain` (-) and `part` (0-based part index).
+///
+/// Errors: a non-finite value anywhere (nothing is written), I/O errors naming the path.
+pub fn write_state(path: &std::path::Path, solver: &Solver) -> Result<()> {
+    let model = solver.model();
+    let x = solver.x();
+    let mesh = Mesh {
+        nodes: x.to_vec(),
+        hexes: model.hexes.clone(),
+        ..Default::default()
+    };
+    let displacement: Vec<[f64; 3]> = x
+        .iter()
+        .zip(&model.nodes)
+        .map(|(a, b)| [a[0] - b[0], a[1] - b[1], a[2] - b[2]])
+        .collect();
+    let ne = model.hexes.len();
+    let stress: Vec<[f64; 6]> = (0..ne).map(|e| solver.element_stress(e)).collect();
+    let mises: Vec<f64> = stress.iter().map(von_mises).collect();
+    let eps_p: Vec<f64> = (0..ne).map(|e| solver.element_plastic_strain(e)).collect();
+    let mut part = vec![0.0; ne];
+    for (p, pt) in model.parts.iter().enumerate() {
+        for e in pt.elements.clone() {
+            part[e] = p as f64;
+        }
+    }
+    vtu::write(
+        path,
+        &mesh,
+        &[
+            vtu::Field::vectors("displacement", &displacement),
+            vtu::Field::vectors("velocity", solver.v()),
+        ],
+        &[
+            vtu::Field::sym_tensors("stress", &stress),
+            vtu::Field::scalars("von_mises", &mises),
+            vtu::Field::scalars("plastic_strain", &eps_p),
+            vtu::Field::scalars("part", &part),
+        ],
+    )
+}

@@ -1,0 +1,72 @@
+//! `twoball bench study`: a small ladder runs end to end, writes its table, summary and plot,
+//! reuses finished runs when restarted, and refuses a ladder Richardson cannot use.
+
+use std::process::Command;
+
+fn twoball() -> Command {
+    Command::new(env!("CARGO_BIN_EXE_twoball"))
+}
+
+#[test]
+fn small_ladder_writes_table_plot_and_resumes() {
+    let dir = std::env::temp_dir().join(format!("twoball-bench-study-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    let args = [
+        "bench",
+        "study",
+        "--densities",
+        "0.25,0.3,0.36",
+        "--elements",
+        "one-point",
+        "--time-step-factors",
+        "0.6",
+        "--out",
+    ];
+    let out = twoball().args(args).arg(&dir).output().unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let csv = std::fs::read_to_string(dir.join("bench-study.csv")).unwrap();
+    let mut lines = csv.lines();
+    let header = lines.next().unwrap();
+    assert!(header.contains("wall_time_s") && header.contains("delta_max_m"));
+    let rows: Vec<Vec<f64>> = lines
+        .map(|l| l.split(',').skip(1).map(|v| v.parse().unwrap()).collect())
+        .collect();
+    assert_eq!(rows.len(), 4, "3 ladder meshes + 1 extra time-step factor");
+    // Finer meshes have more elements; every run restitutes part of the energy.
+    assert!(rows[0][4] < rows[1][4] && rows[1][4] <= rows[2][4]);
+    assert!(rows.iter().all(|r| r[7] > 0.0 && r[7] < 1.0), "e in (0, 1)");
+    let md = std::fs::read_to_string(dir.join("bench-study.md")).unwrap();
+    assert!(md.contains("Richardson references"));
+    let svg = std::fs::read_to_string(dir.join("bench-study.svg")).unwrap();
+    assert!(svg.contains("<svg") && svg.contains("log10 wall time"));
+    // A rerun reuses every finished case.
+    let again = twoball().args(args).arg(&dir).output().unwrap();
+    let text = String::from_utf8_lossy(&again.stdout);
+    assert_eq!(text.matches("(reused)").count(), 4, "{text}");
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn ladder_without_constant_ratio_is_refused() {
+    let out = twoball()
+        .args([
+            "bench",
+            "study",
+            "--densities",
+            "0.3,0.35,0.4",
+            "--out",
+            "unused",
+        ])
+        .output()
+        .unwrap();
+    assert!(!out.status.success());
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        err.contains("--densities") && err.contains("constant ratio"),
+        "{err}"
+    );
+}
