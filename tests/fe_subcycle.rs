@@ -427,9 +427,15 @@ fn default_scene_three_times_fewer_updates_same_results() {
         off.wall_time_s,
         on.wall_time_s
     );
-    assert!(on.fe.as_ref().unwrap().savings.subcycling.used, "auto left it off");
+    assert!(
+        on.fe.as_ref().unwrap().savings.subcycling.used,
+        "auto left it off"
+    );
     assert!(saving >= 3.0, "only {saving:.2}x fewer element updates");
-    assert!(de < 2e-3 && dd < 2e-3 && dt < 2e-3, "results moved: {de:e} {dd:e} {dt:e}");
+    assert!(
+        de < 2e-3 && dd < 2e-3 && dt < 2e-3,
+        "results moved: {de:e} {dd:e} {dt:e}"
+    );
 }
 
 /// Subcycled runs are bitwise identical on 1 and 2 threads (fixed chunks, element-order sums).
