@@ -22,6 +22,10 @@ pub struct BenchArgs {
 pub enum BenchKind {
     /// Explicit element kernel + step: ns per element-cycle, 1 thread vs all threads.
     Kernel(KernelArgs),
+    /// Where a scene's run spends its wall time, phase by phase.
+    Profile(ProfileArgs),
+    /// This machine's limits: FMA throughput and memory bandwidth per core (roofline).
+    Machine(MachineArgs),
     /// Run time against error on a ladder of meshes, elements and time-step factors.
     Study(super::bench_study::StudyArgs),
 }
@@ -43,10 +47,15 @@ pub struct KernelArgs {
     pub threads: Option<usize>,
 }
 
+pub use super::bench_machine::MachineArgs;
+pub use super::bench_profile::ProfileArgs;
+
 /// Runs `twoball bench …`.
 pub fn run(a: BenchArgs) -> Result<()> {
     match a.which {
         BenchKind::Kernel(k) => kernel(k),
+        BenchKind::Profile(p) => super::bench_profile::profile(p),
+        BenchKind::Machine(m) => super::bench_machine::machine(m),
         BenchKind::Study(s) => super::bench_study::run(s),
     }
 }

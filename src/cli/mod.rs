@@ -5,6 +5,8 @@
 
 mod analytic;
 mod bench;
+mod bench_machine;
+mod bench_profile;
 mod bench_study;
 mod mesh;
 mod run;

@@ -12,6 +12,7 @@ use super::{
     mass::element_lumped_mass,
     model::Model,
     plasticity::J2Material,
+    profile::{Phase, Profile},
     subcycle::{SubcycleReport, Subcycler, Subcycling, AUTO_MIN_SAVING},
     tensor::{cross, inverse, Sym},
     timestep::StableStep,
@@ -160,6 +161,7 @@ pub struct Solver {
     w_ext: f64,
     e0: f64,
     max_balance_error: f64,
+    profile: Profile,
     /// Element updates taken (all steps, all levels).
     updates: u64,
     /// Multi-time-step bookkeeping when subcycling is in use.
@@ -278,6 +280,7 @@ impl Solver {
             w_ext: 0.0,
             e0: 0.0,
             max_balance_error: 0.0,
+            profile: Profile::new(ne),
             updates: 0,
             sub: None,
             sub_report: SubcycleReport::default(),
@@ -350,6 +353,7 @@ impl Solver {
 
     /// One time step n → n+1, Box 6.1 steps 4-12.
     pub fn step(&mut self) -> Result<()> {
+        self.profile.lap(Phase::Outside);
         if self.sub.is_some() {
             return self.step_subcycled();
         }
@@ -364,6 +368,7 @@ impl Solver {
         // 7. Displacement update: x^{n+1} = x^n + Δt^{n+1/2} v^{n+1/2}.
         self.update_positions(dt);
         self.t = t_new;
+        self.profile.lap(Phase::Nodal);
         // 8. getforce: element loop, interactions, critical time step.
         self.getforce(dt)?;
         self.updates += self.model.hexes.len() as u64;
@@ -400,6 +405,7 @@ impl Solver {
         // 7. Drift of every node: x^{n+1} = x^n + Δt v^{n+1/2}.
         self.update_positions(dt);
         self.t = t_new;
+        self.profile.lap(Phase::Nodal);
         // 8. getforce: elements due now with their own steps, levels and fine step, interactions.
         self.getforce_subcycled(dt)?;
         // 9. Closing and opening accelerations M⁻¹(f_ext − Σ 2^k f_e).
@@ -420,6 +426,7 @@ impl Solver {
 
     /// Box 6.1 step 11: records the balance error and stops when energy is created.
     fn energy_check(&mut self) -> Result<()> {
+        self.profile.lap(Phase::Nodal);
         if self.step.is_multiple_of(self.settings.energy_interval) {
             let e = self.energy();
             self.max_balance_error = self.max_balance_error.max(e.balance_error);
@@ -430,6 +437,8 @@ impl Solver {
                 return Err(self.energy_growth_error(created));
             }
         }
+        self.profile.lap(Phase::Energy);
+        self.profile.end_step(Some(self.updates));
         Ok(())
     }
 
@@ -448,6 +457,7 @@ impl Solver {
         let done =
             sub.update_due_elements(&mut self.blocks, &self.x, &self.v, &mut self.elem_force);
         self.updates += done.map_err(|(e, why)| self.element_error(e, why))?;
+        self.profile.lap(Phase::Elements);
         // Critical steps: every element's latest Courant limit, and the interactions.
         let mut best = (f64::INFINITY, usize::MAX);
         for b in &self.blocks {
@@ -475,6 +485,7 @@ impl Solver {
         );
         self.dt_next = h;
         self.check_collapse()?;
+        self.profile.lap(Phase::StableStep);
         sub.gather_kicks(
             &self.inc_ptr,
             &self.inc,
@@ -482,6 +493,7 @@ impl Solver {
             &mut self.f_int,
             &mut self.f_open,
         );
+        self.profile.lap(Phase::Gather);
         self.external_forces()
     }
 
@@ -525,11 +537,14 @@ impl Solver {
                 Err((e, why)) => return Err(self.element_error(e, why)),
             }
         }
+        self.profile.lap(Phase::Elements);
         self.gather_internal_forces();
+        self.profile.lap(Phase::Gather);
         // Critical time step: elements (Courant) and interactions.
         self.stable = self.stable_limit(best);
         self.dt_next = self.next_step(self.dt_next, self.stable.dt);
         self.check_collapse()?;
+        self.profile.lap(Phase::StableStep);
         // External forces from interactions (contact, walls) at t^{n+1}.
         self.external_forces()
     }
@@ -621,6 +636,7 @@ impl Solver {
         for it in &mut self.interactions {
             it.add_forces(&ctx, &mut self.f_ext)?;
         }
+        self.profile.lap(Phase::Contact);
         Ok(())
     }
 
@@ -963,6 +979,10 @@ impl Solver {
     pub fn element_plastic_work(&self, e: usize) -> f64 {
         let (b, k) = self.locate(e);
         self.blocks[b].plastic_work[k]
+    }
+    /// The phase timer (on when [`super::profile::set_enabled`] was called before `new`).
+    pub fn profile(&self) -> &Profile {
+        &self.profile
     }
     /// Element blocks (one per part), for output and benchmarks.
     pub fn blocks(&self) -> &[ElementBlock] {

@@ -1,0 +1,135 @@
+//! `twoball bench machine`: the two ceilings of a roofline for this machine, measured with
+//! small kernels: floating-point throughput per core (independent FMA chains on 4-wide f64
+//! vectors, and separate multiply + add) and memory bandwidth (STREAM-style triad
+//! a = b + s c on arrays sized for L2, L3 and main memory, 1 thread and all threads).
+
+use crate::error::{Error, Result};
+use clap::Args;
+use rayon::prelude::*;
+use std::hint::black_box;
+use std::time::Instant;
+
+/// Arguments of `twoball bench machine`.
+#[derive(Debug, Args)]
+pub struct MachineArgs {
+    /// Repetitions per measurement (the best is reported, as STREAM does).
+    #[arg(long, default_value_t = 5)]
+    pub repeats: usize,
+}
+
+/// Independent accumulators: enough to hide the FMA latency (4 cycles) on 2 pipes.
+const CHAINS: usize = 12;
+
+/// `n` rounds of acc = acc·m + c on CHAINS x 4 lanes; returns a checksum. Plain arrays: the
+/// compiler turns each `[f64; 4]` statement into one vector instruction.
+#[inline(always)]
+fn fma_rounds(n: u64, fused: bool) -> f64 {
+    let mut acc = [[1.0f64; 4]; CHAINS];
+    for (k, a) in acc.iter_mut().enumerate() {
+        a[0] += k as f64 * 1e-3;
+    }
+    let m = black_box([0.999_999_9f64; 4]);
+    let c = black_box([1e-7f64; 4]);
+    for _ in 0..n {
+        for a in acc.iter_mut() {
+            for l in 0..4 {
+                a[l] = if fused {
+                    a[l].mul_add(m[l], c[l])
+                } else {
+                    a[l] * m[l] + c[l]
+                };
+            }
+        }
+    }
+    acc.iter().flatten().sum()
+}
+
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2,fma")]
+unsafe fn fma_rounds_avx2(n: u64, fused: bool) -> f64 {
+    fma_rounds(n, fused)
+}
+
+/// Flops per second of one thread: (fused FMA, separate multiply + add).
+fn flops(rounds: u64) -> (f64, f64) {
+    let run = |fused: bool| {
+        let t = Instant::now();
+        #[cfg(target_arch = "x86_64")]
+        let s = if std::is_x86_feature_detected!("avx2") && std::is_x86_feature_detected!("fma") {
+            // SAFETY: the CPU supports the features the function was compiled for.
+            unsafe { fma_rounds_avx2(rounds, fused) }
+        } else {
+            fma_rounds(rounds, fused)
+        };
+        #[cfg(not(target_arch = "x86_64"))]
+        let s = fma_rounds(rounds, fused);
+        black_box(s);
+        (rounds * CHAINS as u64 * 4 * 2) as f64 / t.elapsed().as_secs_f64()
+    };
+    (run(true), run(false))
+}
+
+/// Triad bandwidth (bytes/s counted as STREAM does: 3 x 8 B per element) over arrays of `n`
+/// doubles, on the current thread pool with chunks of `chunk` elements.
+fn triad(n: usize, chunk: usize, passes: usize) -> f64 {
+    let b = vec![1.0f64; n];
+    let c = vec![2.0f64; n];
+    let mut a = vec![0.0f64; n];
+    let s = black_box(0.5);
+    let t = Instant::now();
+    for _ in 0..passes {
+        a.par_chunks_mut(chunk)
+            .zip(b.par_chunks(chunk))
+            .zip(c.par_chunks(chunk))
+            .for_each(|((a, b), c)| {
+                for i in 0..a.len() {
+                    a[i] = b[i] + s * c[i];
+                }
+            });
+        black_box(&mut a);
+    }
+    (passes * n * 24) as f64 / t.elapsed().as_secs_f64()
+}
+
+/// Runs `twoball bench machine`.
+pub fn machine(a: MachineArgs) -> Result<()> {
+    if a.repeats == 0 {
+        return Err(Error::invalid("--repeats", 0, "at least 1"));
+    }
+    let all = std::thread::available_parallelism().map_or(1, |n| n.get());
+    println!("# twoball bench machine: best of {} repeats", a.repeats);
+    let rounds = 20_000_000;
+    let (mut fused, mut sep) = (0.0f64, 0.0f64);
+    for _ in 0..a.repeats {
+        let (f, s) = flops(rounds);
+        fused = fused.max(f);
+        sep = sep.max(s);
+    }
+    println!("measure,threads,value,unit");
+    println!("fma_throughput,1,{:.2},Gflop/s", fused * 1e-9);
+    println!("mul_add_separate,1,{:.2},Gflop/s", sep * 1e-9);
+    for (label, bytes) in [
+        ("triad_l2", 1usize << 19),
+        ("triad_l3", 12 << 20),
+        ("triad_dram", 384 << 20),
+    ] {
+        let n = bytes / 24;
+        let passes = ((2usize << 30) / bytes).clamp(2, 4000);
+        for threads in [1, all] {
+            let pool = rayon::ThreadPoolBuilder::new()
+                .num_threads(threads)
+                .build()
+                .map_err(|e| Error::External(format!("thread pool: {e}")))?;
+            let chunk = n.div_ceil(threads);
+            let mut best = 0.0f64;
+            for _ in 0..a.repeats {
+                best = best.max(pool.install(|| triad(n, chunk, passes)));
+            }
+            println!("{label},{threads},{:.2},GB/s", best * 1e-9);
+            if all == 1 {
+                break;
+            }
+        }
+    }
+    Ok(())
+}
