@@ -20,6 +20,8 @@ fn small_ladder_writes_table_plot_and_resumes() {
         "one-point",
         "--time-step-factors",
         "0.6",
+        "--pole-refinements",
+        "2",
         "--out",
     ];
     let out = twoball().args(args).arg(&dir).output().unwrap();
@@ -35,9 +37,17 @@ fn small_ladder_writes_table_plot_and_resumes() {
     let rows: Vec<Vec<f64>> = lines
         .map(|l| l.split(',').skip(1).map(|v| v.parse().unwrap()).collect())
         .collect();
-    assert_eq!(rows.len(), 4, "3 ladder meshes + 1 extra time-step factor");
+    assert_eq!(
+        rows.len(),
+        5,
+        "3 ladder meshes + 1 extra time-step factor + 1 finer pole"
+    );
     // Finer meshes have more elements; every run restitutes part of the energy.
     assert!(rows[0][4] < rows[1][4] && rows[1][4] <= rows[2][4]);
+    // The finer-pole run sits on the middle density with half its pole size and more elements.
+    assert_eq!(rows[4][0], rows[1][0]);
+    assert!((rows[4][2] / rows[1][2] - 0.5).abs() < 1e-5 && rows[4][1] == rows[1][1]);
+    assert!(rows[4][4] > rows[1][4]);
     assert!(rows.iter().all(|r| r[7] > 0.0 && r[7] < 1.0), "e in (0, 1)");
     let md = std::fs::read_to_string(dir.join("bench-study.md")).unwrap();
     assert!(md.contains("Richardson references"));
@@ -46,7 +56,7 @@ fn small_ladder_writes_table_plot_and_resumes() {
     // A rerun reuses every finished case.
     let again = twoball().args(args).arg(&dir).output().unwrap();
     let text = String::from_utf8_lossy(&again.stdout);
-    assert_eq!(text.matches("(reused)").count(), 4, "{text}");
+    assert_eq!(text.matches("(reused)").count(), 5, "{text}");
     let _ = std::fs::remove_dir_all(&dir);
 }
 

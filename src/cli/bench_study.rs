@@ -28,6 +28,10 @@ pub struct StudyArgs {
     /// Time-step factor of the mesh ladder.
     #[arg(long, default_value_t = 0.9)]
     pub time_step_factor: f64,
+    /// Extra pole refinements k (pole size D/(100 m k)) run on the middle density with the
+    /// first formulation; an empty value runs none.
+    #[arg(long, value_delimiter = ',', default_values_t = [2.0, 4.0])]
+    pub pole_refinements: Vec<f64>,
 }
 
 /// Runs `twoball bench study`.
@@ -46,6 +50,7 @@ pub fn run(a: StudyArgs) -> Result<()> {
         elements,
         time_step_factors: a.time_step_factors,
         base_factor: a.time_step_factor,
+        pole_refinements: a.pole_refinements,
     }
     .validated()?;
     let (toml, dir) = match &a.scene {

@@ -10,6 +10,10 @@
 //!   p = ln((q₁ − q₂)/(q₂ − q₃)) / ln r,   q* = q₃ + (q₃ − q₂)/(r^p − 1).
 //! When the differences change sign (not yet in the asymptotic range) or p falls outside
 //! [0.5, 4], no extrapolation is made: the finest value is the reference, marked as such.
+//!
+//! Because the contact patch is resolved only by the pole elements, the error in e is
+//! governed mostly by the pole size; extra "pole refinement" runs (pole size D/(100 m k) at
+//! the middle density) show what a finer pole alone buys, judged against the same reference.
 
 use super::plots::{Chart, Series, Style};
 use super::single::run_scene;
@@ -29,13 +33,25 @@ pub struct Setting {
     pub element: Formulation,
     /// Time-step safety factor.
     pub time_step_factor: f64,
+    /// Extra pole refinement k (pole size D/(100 m k)); 1 on the mesh ladder.
+    #[serde(default = "one")]
+    pub pole_refinement: f64,
+}
+
+fn one() -> f64 {
+    1.0
 }
 
 impl Setting {
     /// A short label, e.g. `one-point m=1.41 s=0.9`.
     pub fn label(&self) -> String {
+        let pole = if self.pole_refinement == 1.0 {
+            String::new()
+        } else {
+            format!(" pole/{}", self.pole_refinement)
+        };
         format!(
-            "{} m={:.3} s={}",
+            "{} m={:.3}{pole} s={}",
             element_name(self.element),
             self.density,
             self.time_step_factor
@@ -43,12 +59,32 @@ impl Setting {
     }
 
     fn file_stem(&self) -> String {
+        let pole = if self.pole_refinement == 1.0 {
+            String::new()
+        } else {
+            format!("_k{:.3}", self.pole_refinement)
+        };
         format!(
-            "{}_m{:.4}_s{:.3}",
+            "{}_m{:.4}{pole}_s{:.3}",
             element_name(self.element),
             self.density,
             self.time_step_factor
         )
+    }
+
+    /// Bulk element size over diameter, D/(10 m) / D.
+    pub fn bulk_size_per_d(&self) -> f64 {
+        0.1 / self.density
+    }
+
+    /// Pole element size over diameter, D/(100 m k) / D.
+    pub fn pole_size_per_d(&self) -> f64 {
+        0.01 / (self.density * self.pole_refinement)
+    }
+
+    /// Whether this setting is a level of the mesh ladder (no extra pole refinement).
+    fn on_ladder(&self) -> bool {
+        self.pole_refinement == 1.0
     }
 }
 
@@ -137,6 +173,9 @@ pub struct Ladder {
     pub time_step_factors: Vec<f64>,
     /// Time-step factor of the mesh ladder.
     pub base_factor: f64,
+    /// Extra pole refinements k (pole size D/(100 m k)) run on the middle density with the
+    /// first formulation and the base factor.
+    pub pole_refinements: Vec<f64>,
 }
 
 impl Ladder {
@@ -183,6 +222,11 @@ impl Ladder {
                 return Err(Error::invalid("--time-step-factors", s, "0 < factor <= 1"));
             }
         }
+        for &k in &self.pole_refinements {
+            if !(k.is_finite() && (1.0..=8.0).contains(&k)) {
+                return Err(Error::invalid("--pole-refinements", k, "1 <= k <= 8"));
+            }
+        }
         Ok(self)
     }
 
@@ -195,6 +239,7 @@ impl Ladder {
                     density,
                     element,
                     time_step_factor: self.base_factor,
+                    pole_refinement: 1.0,
                 });
             }
         }
@@ -204,6 +249,17 @@ impl Ladder {
                     density: self.densities[self.densities.len() / 2],
                     element: self.elements[0],
                     time_step_factor: s,
+                    pole_refinement: 1.0,
+                });
+            }
+        }
+        for &k in &self.pole_refinements {
+            if k != 1.0 {
+                out.push(Setting {
+                    density: self.densities[self.densities.len() / 2],
+                    element: self.elements[0],
+                    time_step_factor: self.base_factor,
+                    pole_refinement: k,
                 });
             }
         }
@@ -215,8 +271,8 @@ impl Ladder {
 pub fn scene_for(base: &Scene, toml: &str, dir: &Path, s: &Setting) -> Result<Scene> {
     let mut sets = Vec::new();
     for (k, b) in [(1, &base.ball1), (2, &base.ball2)] {
-        let size = b.diameter / (10.0 * s.density);
-        let pole = b.diameter / (100.0 * s.density);
+        let size = b.diameter * s.bulk_size_per_d();
+        let pole = b.diameter * s.pole_size_per_d();
         sets.push(Override::parse(&format!(
             "ball{k}.mesh={{size={size:e},pole_size={pole:e}}}"
         ))?);
@@ -312,7 +368,9 @@ pub fn references(runs: &[Measured], ladder: &Ladder, element: Formulation) -> R
     let mut l: Vec<&Measured> = runs
         .iter()
         .filter(|m| {
-            m.setting.element == element && m.setting.time_step_factor == ladder.base_factor
+            m.setting.element == element
+                && m.setting.time_step_factor == ladder.base_factor
+                && m.setting.on_ladder()
         })
         .collect();
     l.sort_by(|a, b| a.setting.density.total_cmp(&b.setting.density));
@@ -351,8 +409,8 @@ pub fn csv(runs: &[Measured], r: &References) -> String {
             "{},{},{:.6e},{:.6e},{},{},{},{:.4},{:.7e},{:.7e},{:.7e},{:.3e},{:.4e},{:.4e},{:.4e}",
             element_name(st.element),
             st.density,
-            0.1 / st.density,
-            0.01 / st.density,
+            st.bulk_size_per_d(),
+            st.pole_size_per_d(),
             st.time_step_factor,
             m.elements,
             m.element_cycles,
@@ -412,14 +470,16 @@ pub fn markdown(runs: &[Measured], refs: &[References]) -> String {
         "Errors below are against the {} references.\n",
         element_name(r.element)
     );
-    s.push_str("| element | m | time-step factor | elements | element-cycles | wall (s) | e | err e | err delta_max | err duration | energy err |\n|---|---|---|---|---|---|---|---|---|---|---|\n");
+    s.push_str("| element | m | bulk size / D | pole size / D | time-step factor | elements | element-cycles | wall (s) | e | err e | err delta_max | err duration | energy err |\n|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
     for m in runs {
         let st = &m.setting;
         let _ = writeln!(
             s,
-            "| {} | {:.3} | {} | {} | {:.3e} | {:.2} | {:.5} | {:.2} % | {:.2} % | {:.2} % | {:.1e} |",
+            "| {} | {:.3} | 1/{:.0} | 1/{:.0} | {} | {} | {:.3e} | {:.2} | {:.5} | {:.2} % | {:.2} % | {:.2} % | {:.1e} |",
             element_name(st.element),
             st.density,
+            1.0 / st.bulk_size_per_d(),
+            1.0 / st.pole_size_per_d(),
             st.time_step_factor,
             m.elements,
             m.element_cycles as f64,
@@ -452,18 +512,26 @@ pub fn markdown(runs: &[Measured], refs: &[References]) -> String {
 /// Errors: plotting failures.
 pub fn chart(runs: &[Measured], r: &References) -> Result<String> {
     let mut series = Vec::new();
-    let mut groups: Vec<(Formulation, f64)> = Vec::new();
+    let mut groups: Vec<(Formulation, f64, bool)> = Vec::new();
     for m in runs {
-        let g = (m.setting.element, m.setting.time_step_factor);
+        let g = (
+            m.setting.element,
+            m.setting.time_step_factor,
+            m.setting.on_ladder(),
+        );
         if !groups.contains(&g) {
             groups.push(g);
         }
     }
     for (q, name) in [(0, "e"), (1, "delta_max")] {
-        for &(el, f) in &groups {
+        for &(el, f, ladder) in &groups {
             let points = runs
                 .iter()
-                .filter(|m| m.setting.element == el && m.setting.time_step_factor == f)
+                .filter(|m| {
+                    m.setting.element == el
+                        && m.setting.time_step_factor == f
+                        && m.setting.on_ladder() == ladder
+                })
                 .map(|m| {
                     let err = if q == 0 {
                         rel(m.e, r.e.value)
@@ -474,7 +542,11 @@ pub fn chart(runs: &[Measured], r: &References) -> Result<String> {
                 })
                 .collect();
             series.push(Series {
-                label: format!("{name}: {} s={f}", element_name(el)),
+                label: format!(
+                    "{name}: {} s={f}{}",
+                    element_name(el),
+                    if ladder { "" } else { " finer pole" }
+                ),
                 points,
                 style: Style::Points,
             });
@@ -536,6 +608,7 @@ mod tests {
             elements: vec![Formulation::OnePoint],
             time_step_factors: vec![],
             base_factor: 0.9,
+            pole_refinements: vec![],
         };
         assert!(l.validated().is_err());
     }
