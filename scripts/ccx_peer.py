@@ -721,6 +721,10 @@ def main(argv=None):
         tb = json.loads(Path(a.twoball_results).read_text())
         keys = {"e": "e", "delta_max_m": "delta_max", "contact_duration_s": "contact_duration"}
         result["twoball"] = {k: tb.get(v) for k, v in keys.items()}
+        # twoball writes 3-vectors (scene frame); x is the line of centres.
+        for k in ("v1_after", "v2_after"):
+            v = tb.get(k)
+            result["twoball"][k + "_m_per_s"] = v[0] if isinstance(v, list) and v else v
         result["twoball"]["wall_time_s"] = tb.get("wall_time_s")
         if tb.get("wall_time_s"):
             result["wall_time_ratio_ccx_over_twoball"] = wall / tb["wall_time_s"]
