@@ -51,6 +51,12 @@ pub struct Settings {
     pub subcycling: Subcycling,
     /// Highest subcycling level: an element steps at most 2^level fine steps (1..=8; default 4).
     pub subcycle_max_level: u32,
+    /// Geometrically linear (small-displacement) elements: gradients, volumes and forces are
+    /// taken on the reference configuration instead of the current one (default false: large
+    /// displacements and rotations). For verification against linear-elastic closed forms such
+    /// as Hertz's, which neglect the change of geometry; contact still acts on the current
+    /// positions. Wrong for large rotations (a rigid rotation strains the elements).
+    pub linear_geometry: bool,
 }
 
 impl Default for Settings {
@@ -65,6 +71,7 @@ impl Default for Settings {
             energy_growth: 0.5,
             subcycling: Subcycling::Off,
             subcycle_max_level: 4,
+            linear_geometry: false,
         }
     }
 }
@@ -454,8 +461,12 @@ impl Solver {
 
     fn getforce_with(&mut self, sub: &mut Subcycler, dt: f64) -> Result<()> {
         sub.advance(dt);
-        let done =
-            sub.update_due_elements(&mut self.blocks, &self.x, &self.v, &mut self.elem_force);
+        let xg = if self.settings.linear_geometry {
+            &self.model.nodes
+        } else {
+            &self.x
+        };
+        let done = sub.update_due_elements(&mut self.blocks, xg, &self.v, &mut self.elem_force);
         self.updates += done.map_err(|(e, why)| self.element_error(e, why))?;
         self.profile.lap(Phase::Elements);
         // Critical steps: every element's latest Courant limit, and the interactions.
@@ -526,9 +537,15 @@ impl Solver {
     /// every interaction's external forces for the step about to be taken.
     fn getforce(&mut self, dt: f64) -> Result<()> {
         let mut best = (f64::INFINITY, usize::MAX);
+        // Element geometry: current positions, or the reference ones (linear geometry).
+        let xg = if self.settings.linear_geometry {
+            &self.model.nodes
+        } else {
+            &self.x
+        };
         for b in &mut self.blocks {
             let range = b.first..b.first + b.conn.len();
-            match b.update(&self.x, &self.v, dt, &mut self.elem_force[range]) {
+            match b.update(xg, &self.v, dt, &mut self.elem_force[range]) {
                 Ok(d) => {
                     if d.0 < best.0 {
                         best = d;
