@@ -58,7 +58,7 @@ pub fn main() -> i32 {
             return e.exit_code();
         }
     };
-    let result = match cli.command {
+    let dispatch = move || match cli.command {
         Command::Analytic(a) => analytic::run_analytic(a),
         Command::Materials(a) => analytic::run_materials(a),
         Command::Parametric(a) => analytic::run_parametric(a),
@@ -68,6 +68,14 @@ pub fn main() -> i32 {
         Command::Bench(a) => bench::run(a),
         Command::Report(a) => sweep::report(a),
         Command::Stress(a) => stress::run(a),
+    };
+    // The command runs on a worker of the thread pool: the solver's parallel loops (a dozen
+    // per time step) then fork and join inside the pool instead of handing work from the
+    // main thread to the pool and sleeping until it is done, which costs the operating
+    // system's thread wake-ups at every loop (about a quarter of a small model's run time).
+    let result = match rayon::ThreadPoolBuilder::new().build() {
+        Ok(pool) => pool.install(dispatch),
+        Err(_) => dispatch(),
     };
     match result {
         Ok(()) => 0,

@@ -179,14 +179,63 @@ pub struct Solver {
     f_open: Vec<[f64; 3]>,
     /// Subcycling: closing accelerations M⁻¹(f_ext − f_int) (`a` holds the opening ones).
     a_close: Vec<[f64; 3]>,
+    /// Number in the model given to [`Solver::new`] of each element (identity unless the
+    /// elements were renumbered by subcycling level), for messages.
+    original_element: Vec<usize>,
+    /// Subcycling: the nodes kicked at the last step (due then); every other node has zero
+    /// element force and acceleration, so the node loops visit only these.
+    kicked: Vec<u32>,
+    /// Subcycling: an interaction does not name its nodes, so every node is kicked (with its
+    /// external force) at every step.
+    every_node_kicked: bool,
 }
 
 impl Solver {
     /// Box 6.1 step 1-3: initial conditions and mass, first `getforce`, initial accelerations.
     ///
+    /// With subcycling, the elements of each part are renumbered by their update level
+    /// (finest first, mesh order within a level), so that every level is one contiguous run
+    /// of elements and the elements due at a fine step are a prefix of each part: the lane
+    /// kernel then works on full batches instead of short fragments. [`Solver::model`] is the
+    /// renumbered model (element outputs follow it); error messages name elements by their
+    /// number in the model given here.
+    ///
     /// Fails if settings are invalid, the model is empty, an element is inverted, or the
     /// initial forces are not finite.
     pub fn new(
+        model: Model,
+        interactions: Vec<Box<dyn Interaction>>,
+        settings: Settings,
+    ) -> Result<Self> {
+        let s = Self::assemble(model, interactions, settings)?;
+        let Some(order) = s.level_order() else {
+            return Ok(s);
+        };
+        let Solver {
+            mut model,
+            interactions,
+            ..
+        } = s;
+        model.hexes = order.iter().map(|&e| model.hexes[e]).collect();
+        let mut s = Self::assemble(model, interactions, settings)?;
+        s.original_element = order;
+        Ok(s)
+    }
+
+    /// With subcycling in use and elements not already in level order: the stable sort of
+    /// each part's elements by update level (entry = old global index). `None` otherwise.
+    fn level_order(&self) -> Option<Vec<usize>> {
+        let sub = self.sub.as_ref()?;
+        let mut order: Vec<usize> = (0..self.model.hexes.len()).collect();
+        for part in &self.model.parts {
+            order[part.elements.clone()].sort_by_key(|&e| sub.element_level(e));
+        }
+        let sorted = order.iter().enumerate().all(|(k, &e)| k == e);
+        (!sorted).then_some(order)
+    }
+
+    /// [`Solver::new`] without the level renumbering.
+    fn assemble(
         model: Model,
         interactions: Vec<Box<dyn Interaction>>,
         settings: Settings,
@@ -293,6 +342,9 @@ impl Solver {
             sub_report: SubcycleReport::default(),
             f_open: Vec::new(),
             a_close: Vec::new(),
+            original_element: (0..ne).collect(),
+            kicked: Vec::new(),
+            every_node_kicked: true,
             x,
             v,
             model,
@@ -329,8 +381,6 @@ impl Solver {
         let mut sub = Subcycler::new(
             &self.blocks,
             &self.x,
-            &self.inc_ptr,
-            &self.inc,
             &pinned,
             self.settings.safety,
             self.dt_next,
@@ -347,7 +397,15 @@ impl Solver {
         let n = self.x.len();
         self.f_open = vec![[0.0; 3]; n];
         self.a_close = vec![[0.0; 3]; n];
+        // Node loops may skip nodes not due only if every interaction names the nodes it
+        // acts on (those are held at level 0, so due at every step).
+        self.every_node_kicked = self
+            .interactions
+            .iter()
+            .any(|it| it.active_nodes().is_none());
+        self.kicked = (0..n as u32).collect();
         sub.gather_kicks(
+            &self.kicked,
             &self.inc_ptr,
             &self.inc,
             &self.elem_force,
@@ -404,26 +462,22 @@ impl Solver {
         // 4. Time update with the fine step.
         let dt = self.dt_next;
         let t_new = self.t + dt;
-        // 5. Opening half-kick: v^{n+1/2} = v^n + (Δt/2) M⁻¹(f_ext − Σ 2^{k_new} f_e)^n.
-        kick(&mut self.v, &self.a, 0.5 * dt);
-        // 6. Velocity boundary conditions.
-        apply_fixed(&mut self.v, &self.fixed);
-        let (p_int_old, p_ext_old) = self.power_with(&self.f_open);
-        // 7. Drift of every node: x^{n+1} = x^n + Δt v^{n+1/2}.
-        self.update_positions(dt);
+        // 5-7 in one pass over the nodes (the node arrays are read once per step, not four
+        // times): opening half-kick v^{n+1/2} = v^n + (Δt/2) M⁻¹(f_ext − Σ 2^{k_new} f_e)^n,
+        // velocity boundary conditions, power of the opening forces at v^{n+1/2}, drift of
+        // every node x^{n+1} = x^n + Δt v^{n+1/2}.
+        let (p_int_old, p_ext_old) = self.open_kick_and_drift(dt);
         self.t = t_new;
         self.profile.lap(Phase::Nodal);
         // 8. getforce: elements due now with their own steps, levels and fine step, interactions.
         self.getforce_subcycled(dt)?;
-        // 9. Closing and opening accelerations M⁻¹(f_ext − Σ 2^k f_e).
-        self.kick_accelerations()?;
+        // 9-10 and 11 (first half) in one pass: closing and opening accelerations
+        // M⁻¹(f_ext − Σ 2^k f_e), power of the closing forces at v^{n+1/2}, closing half-kick
+        // v^{n+1} = v^{n+1/2} + (Δt/2) M⁻¹(f_ext − Σ 2^{k_old} f_e)^{n+1}, boundary conditions.
+        let (p_int_new, p_ext_new) = self.accelerate_and_close_kick(dt)?;
         // 11 (first half). Work over the step: trapezoid of the closing and opening forces.
-        let (p_int_new, p_ext_new) = self.power_with(&self.f_int);
         self.w_int += 0.5 * dt * (p_int_old + p_int_new);
         self.w_ext += 0.5 * dt * (p_ext_old + p_ext_new);
-        // 10. Closing half-kick: v^{n+1} = v^{n+1/2} + (Δt/2) M⁻¹(f_ext − Σ 2^{k_old} f_e)^{n+1}.
-        kick(&mut self.v, &self.a_close, 0.5 * dt);
-        apply_fixed(&mut self.v, &self.fixed);
         self.step += 1;
         self.dt_prev = dt;
         // 11. Energy balance check.
@@ -487,8 +541,6 @@ impl Solver {
         let h = sub.choose_levels(
             &self.blocks,
             &self.x,
-            &self.inc_ptr,
-            &self.inc,
             self.settings.safety,
             dt,
             interaction_limit,
@@ -497,7 +549,21 @@ impl Solver {
         self.dt_next = h;
         self.check_collapse()?;
         self.profile.lap(Phase::StableStep);
+        // The nodes kicked last step go back to zero force and acceleration; the nodes due
+        // now (every node if an interaction may act anywhere) are gathered and kicked.
+        for &i in &self.kicked {
+            let i = i as usize;
+            self.f_int[i] = [0.0; 3];
+            self.f_open[i] = [0.0; 3];
+            self.a[i] = [0.0; 3];
+            self.a_close[i] = [0.0; 3];
+        }
+        if !self.every_node_kicked {
+            self.kicked.clear();
+            self.kicked.extend_from_slice(sub.due_nodes());
+        }
         sub.gather_kicks(
+            &self.kicked,
             &self.inc_ptr,
             &self.inc,
             &self.elem_force,
@@ -506,6 +572,68 @@ impl Solver {
         );
         self.profile.lap(Phase::Gather);
         self.external_forces()
+    }
+
+    /// Subcycling, Box 6.1 steps 5-7: v += (Δt/2) a (opening accelerations) and the
+    /// velocity constraints at the nodes kicked last step (elsewhere a = 0), the power (W)
+    /// of the opening internal forces `f_open` and of `f_ext` there (zero elsewhere), then
+    /// x += Δt v at every node. Returns (internal, external) power, summed in the order of
+    /// the kicked list (thread-count independent).
+    fn open_kick_and_drift(&mut self, dt: f64) -> (f64, f64) {
+        let h = 0.5 * dt;
+        let (mut pi, mut pe) = (0.0, 0.0);
+        for &n in &self.kicked {
+            let n = n as usize;
+            let v = &mut self.v[n];
+            let (a, fx) = (self.a[n], self.fixed[n]);
+            for d in 0..3 {
+                v[d] += h * a[d];
+                if fx & (1 << d) != 0 {
+                    v[d] = 0.0;
+                }
+            }
+            let (fi, fe) = (self.f_open[n], self.f_ext[n]);
+            pi += v[0] * fi[0] + v[1] * fi[1] + v[2] * fi[2];
+            pe += v[0] * fe[0] + v[1] * fe[1] + v[2] * fe[2];
+        }
+        self.update_positions(dt);
+        (pi, pe)
+    }
+
+    /// Subcycling, Box 6.1 steps 9-10 at the nodes due now (the kicked list): opening
+    /// accelerations M⁻¹(f_ext − f_open) into `a`, closing ones M⁻¹(f_ext − f_int) into
+    /// `a_close` (zero on constrained components), the power (W) of `f_int` and `f_ext` at
+    /// v^{n+1/2}, then v += (Δt/2) a_close. Returns (internal, external) power, or the error
+    /// for the first listed node with a non-finite acceleration.
+    fn accelerate_and_close_kick(&mut self, dt: f64) -> Result<(f64, f64)> {
+        let h = 0.5 * dt;
+        let (mut pi, mut pe) = (0.0, 0.0);
+        for &n in &self.kicked {
+            let n = n as usize;
+            let (fo, fi, fe) = (self.f_open[n], self.f_int[n], self.f_ext[n]);
+            let (r, fx) = (1.0 / self.mass[n], self.fixed[n]);
+            let (mut ao, mut ac) = ([0.0; 3], [0.0; 3]);
+            for d in 0..3 {
+                if fx & (1 << d) == 0 {
+                    ao[d] = (fe[d] - fo[d]) * r;
+                    ac[d] = (fe[d] - fi[d]) * r;
+                }
+            }
+            if !ao.iter().chain(&ac).all(|x| x.is_finite()) {
+                return Err(self.non_finite_error(n));
+            }
+            let v = &mut self.v[n];
+            pi += v[0] * fi[0] + v[1] * fi[1] + v[2] * fi[2];
+            pe += v[0] * fe[0] + v[1] * fe[1] + v[2] * fe[2];
+            for d in 0..3 {
+                v[d] += h * ac[d];
+                if fx & (1 << d) != 0 {
+                    v[d] = 0.0;
+                }
+            }
+            (self.a[n], self.a_close[n]) = (ao, ac);
+        }
+        Ok((pi, pe))
     }
 
     /// Subcycling: opening accelerations into `a`, closing ones into `a_close`.
@@ -577,8 +705,8 @@ impl Solver {
             ElementFailure::NonFinite => "non-finite internal force: instability".to_string(),
         };
         Error::Numerical(format!(
-            "element {e} (part {part}) at t = {:.6e} s, step {}: {cause}",
-            self.t, self.step
+            "element {} (part {part}) at t = {:.6e} s, step {}: {cause}",
+            self.original_element[e], self.t, self.step
         ))
     }
 
@@ -711,6 +839,7 @@ impl Solver {
         self.x
             .par_iter_mut()
             .zip(self.v.par_iter())
+            .with_min_len(NODE_CHUNK)
             .for_each(|(x, v)| {
                 x[0] += dt * v[0];
                 x[1] += dt * v[1];
@@ -1056,11 +1185,14 @@ fn accelerations_into(
 
 /// Half-kick v += h a, m/s.
 fn kick(v: &mut [[f64; 3]], a: &[[f64; 3]], h: f64) {
-    v.par_iter_mut().zip(a.par_iter()).for_each(|(v, a)| {
-        v[0] += h * a[0];
-        v[1] += h * a[1];
-        v[2] += h * a[2];
-    });
+    v.par_iter_mut()
+        .zip(a.par_iter())
+        .with_min_len(NODE_CHUNK)
+        .for_each(|(v, a)| {
+            v[0] += h * a[0];
+            v[1] += h * a[1];
+            v[2] += h * a[2];
+        });
 }
 
 fn apply_fixed(v: &mut [[f64; 3]], fixed: &[u8]) {

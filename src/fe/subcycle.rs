@@ -145,6 +145,11 @@ pub struct Subcycler {
     h_changed: Vec<bool>,
     /// Levels due at the current step (all: `u32::MAX`).
     thr: u32,
+    /// Every node, ordered by level (mesh order within a level): the nodes due at a fine
+    /// step are a prefix of it.
+    node_order: Vec<u32>,
+    /// Per level k: how many nodes have level ≤ k (the due prefix of `node_order`).
+    level_end: Vec<usize>,
     report: SubcycleReport,
 }
 
@@ -152,14 +157,12 @@ impl Subcycler {
     /// Levels for elements whose current Courant limits are in `blocks[..].dt_crit` (all
     /// evaluated at the same instant), stable-step safety factor `safety`, fine step `h` (s),
     /// highest level `cap`; `pinned_nodes[i]` marks nodes an interaction may act on (held at
-    /// level 0). `inc_ptr`/`inc` is the node → (element·8 + local node) incidence. The state
+    /// level 0). The state
     /// is a synchronisation: every node and element counts as just updated.
     #[allow(clippy::too_many_arguments)]
     pub fn new(
         blocks: &[ElementBlock],
         x: &[[f64; 3]],
-        inc_ptr: &[usize],
-        inc: &[u32],
         pinned_nodes: &[bool],
         safety: f64,
         h: f64,
@@ -186,6 +189,8 @@ impl Subcycler {
             planned: Vec::new(),
             h_changed: Vec::new(),
             thr: u32::MAX,
+            node_order: Vec::new(),
+            level_end: Vec::new(),
             report: SubcycleReport {
                 used: true,
                 max_level: cap,
@@ -193,7 +198,7 @@ impl Subcycler {
             },
         };
         // The first levels need no climbing margin: nothing has moved yet.
-        s.synchronise(blocks, safety, h, inc_ptr, inc, 0.0);
+        s.synchronise(blocks, safety, h, 0.0);
         s.open_intervals(x, h, h);
         for (w, &k) in s.w_open.iter_mut().zip(&s.node_level) {
             *w = (1u64 << k) as f64;
@@ -216,6 +221,21 @@ impl Subcycler {
     /// Level of node `i`.
     pub fn node_level(&self, i: usize) -> u32 {
         self.node_level[i] as u32
+    }
+
+    /// The nodes due at the current fine step (every node at a synchronisation), finest level
+    /// first: the only nodes whose element forces act now.
+    pub fn due_nodes(&self) -> &[u32] {
+        if self.thr == u32::MAX {
+            &self.node_order
+        } else {
+            &self.node_order[..self.level_end[self.thr.min(self.top) as usize]]
+        }
+    }
+
+    /// Whether node `i` is due at the current fine step.
+    fn due(&self, i: usize) -> bool {
+        self.thr == u32::MAX || self.node_level[i] as u32 <= self.thr
     }
 
     /// Elements per update level now (index = level).
@@ -296,41 +316,40 @@ impl Subcycler {
         &mut self,
         blocks: &[ElementBlock],
         x: &[[f64; 3]],
-        inc_ptr: &[usize],
-        inc: &[u32],
         safety: f64,
         h_taken: f64,
         interaction_limit: f64,
         choose_h: impl FnOnce(f64) -> f64,
     ) -> f64 {
-        let thr = self.thr;
-        for (i, &l) in self.node_level.iter().enumerate() {
-            let (l, due) = (l as usize, thr == u32::MAX || (l as u32) <= thr);
-            (self.w_close[i], self.w_corr[i]) = match (due, self.h_changed[l]) {
-                (false, _) => (0.0, 0.0),
-                (true, false) => ((1u64 << l) as f64, 0.0),
+        // Weights of the due nodes only (`gather_kicks` never reads the others').
+        let n_due = self.due_nodes().len();
+        for idx in 0..n_due {
+            let i = self.node_order[idx] as usize;
+            let l = self.node_level[i] as usize;
+            (self.w_close[i], self.w_corr[i]) = if self.h_changed[l] {
                 // Impulse ½ A (g_open + g_now) over the actual interval A: the opening kick
                 // gave ½ P g_open, so the closing one adds ½ (A − P) g_open.
-                (true, true) => (
+                (
                     self.span[l] / h_taken,
                     (self.span[l] - self.planned[l]) / h_taken,
-                ),
+                )
+            } else {
+                ((1u64 << l) as f64, 0.0)
             };
         }
         let h = if self.synchronising() {
             let h = choose_h(h_taken);
-            self.synchronise(blocks, safety, h, inc_ptr, inc, CLIMB_MARGIN);
+            self.synchronise(blocks, safety, h, CLIMB_MARGIN);
             self.report.synchronisations += 1;
             h
         } else {
-            self.drop_levels(blocks, inc_ptr, inc, safety, h_taken, interaction_limit)
+            self.drop_levels(blocks, safety, h_taken, interaction_limit)
         };
-        for i in 0..self.node_level.len() {
-            self.w_open[i] = if self.w_close[i] > 0.0 {
-                (1u64 << self.node_level[i]) as f64
-            } else {
-                0.0
-            };
+        // The due set is unchanged by level drops (only due nodes drop, and stay due); its
+        // order may have changed.
+        for idx in 0..n_due {
+            let i = self.node_order[idx] as usize;
+            self.w_open[i] = (1u64 << self.node_level[i]) as f64;
         }
         self.open_intervals(x, h_taken, h);
         h
@@ -357,78 +376,73 @@ impl Subcycler {
         }
     }
 
-    /// Level of node `i` for fine step `h`: the smallest over its elements of the largest k
-    /// with 2^k h (1 + `margin`) within the element's limit; 0 if pinned.
-    #[allow(clippy::too_many_arguments)]
-    fn fitting_level(
+    /// Per node, the smallest over its elements of the largest k with 2^k h (1 + `margin`)
+    /// within the element's limit (safety `safety`, fine step `h`); 0 if pinned. One pass
+    /// over the elements (each evaluates its level once) instead of a walk per node.
+    fn fitting_levels(
         &self,
         blocks: &[ElementBlock],
-        inc_ptr: &[usize],
-        inc: &[u32],
-        i: usize,
         safety: f64,
         h: f64,
         margin: f64,
-    ) -> u32 {
-        if self.pinned[i] {
-            return 0;
+    ) -> Vec<u32> {
+        let mut fit = vec![self.cap; self.node_level.len()];
+        for b in blocks {
+            for (c, &d) in b.conn.iter().zip(&b.dt_crit) {
+                let k = level_for(safety * d, h, margin, self.cap);
+                for &i in c {
+                    let f = &mut fit[i as usize];
+                    *f = (*f).min(k);
+                }
+            }
         }
-        inc[inc_ptr[i]..inc_ptr[i + 1]]
-            .iter()
-            .map(|&slot| {
-                let (b, k) = self.locate[slot as usize / 8];
-                level_for(safety * blocks[b].dt_crit[k], h, margin, self.cap)
-            })
-            .min()
-            .unwrap_or(0)
+        for (f, &p) in fit.iter_mut().zip(&self.pinned) {
+            if p {
+                *f = 0;
+            }
+        }
+        fit
     }
 
     /// All node levels afresh for fine step `h` (climbing only with `margin`); counter reset.
-    fn synchronise(
-        &mut self,
-        blocks: &[ElementBlock],
-        safety: f64,
-        h: f64,
-        inc_ptr: &[usize],
-        inc: &[u32],
-        margin: f64,
-    ) {
+    fn synchronise(&mut self, blocks: &[ElementBlock], safety: f64, h: f64, margin: f64) {
+        let climb = self.fitting_levels(blocks, safety, h, margin);
+        let fit = self.fitting_levels(blocks, safety, h, 0.0);
         for i in 0..self.node_level.len() {
             let cur = (self.node_level[i] as u32).min(self.cap);
-            let climb = self.fitting_level(blocks, inc_ptr, inc, i, safety, h, margin);
-            let fit = self.fitting_level(blocks, inc_ptr, inc, i, safety, h, 0.0);
-            self.node_level[i] = if climb > cur {
-                climb
+            self.node_level[i] = if climb[i] > cur {
+                climb[i]
             } else {
-                if fit < cur {
+                if fit[i] < cur {
                     self.report.level_drops += 1;
                 }
-                cur.min(fit)
+                cur.min(fit[i])
             } as u8;
         }
         self.j = 0;
         self.thr = u32::MAX;
-        self.levels_changed(blocks, inc_ptr, inc);
+        self.levels_changed(blocks);
     }
 
     /// Between synchronisations: h drops if a due node's elements or an interaction need it;
     /// due nodes whose elements no longer allow their step drop. Returns the fine step.
+    ///
+    /// The elements of the due nodes are exactly the elements updated now (an element is
+    /// updated when its finest node is due), so both checks run over the due runs: no
+    /// node-incidence walk.
     fn drop_levels(
         &mut self,
         blocks: &[ElementBlock],
-        inc_ptr: &[usize],
-        inc: &[u32],
         safety: f64,
         h_taken: f64,
         interaction_limit: f64,
     ) -> f64 {
-        // Every element of a due node was updated now, so its limit is current.
+        let last = self.top.min(self.thr) as usize;
         let mut need = interaction_limit;
-        for i in 0..self.node_level.len() {
-            if self.w_close[i] > 0.0 {
-                for &slot in &inc[inc_ptr[i]..inc_ptr[i + 1]] {
-                    let (b, k) = self.locate[slot as usize / 8];
-                    need = need.min(safety * blocks[b].dt_crit[k]);
+        for runs in &self.runs[..=last] {
+            for (b, r) in runs {
+                for &d in &blocks[*b].dt_crit[r.clone()] {
+                    need = need.min(safety * d);
                 }
             }
         }
@@ -438,28 +452,37 @@ impl Subcycler {
         } else {
             h_taken
         };
+        // A due node takes the smallest level its elements allow (the same as
+        // `fitting_level` over its elements, without the incidence walk).
         let mut changed = false;
-        for i in 0..self.node_level.len() {
-            if self.w_close[i] == 0.0 {
-                continue;
-            }
-            let cur = self.node_level[i] as u32;
-            let fit = self.fitting_level(blocks, inc_ptr, inc, i, safety, h, 0.0);
-            if fit < cur {
-                self.node_level[i] = fit as u8;
-                self.report.level_drops += 1;
-                changed = true;
+        for runs in &self.runs[..=last] {
+            for (b, r) in runs {
+                let blk = &blocks[*b];
+                for k in r.clone() {
+                    let fit = level_for(safety * blk.dt_crit[k], h, 0.0, self.cap);
+                    if fit >= self.top {
+                        continue;
+                    }
+                    for &i in &blk.conn[k] {
+                        let i = i as usize;
+                        if self.due(i) && (self.node_level[i] as u32) > fit {
+                            self.node_level[i] = fit as u8;
+                            self.report.level_drops += 1;
+                            changed = true;
+                        }
+                    }
+                }
             }
         }
         if changed {
-            self.levels_changed(blocks, inc_ptr, inc);
+            self.levels_changed(blocks);
         }
         h
     }
 
     /// Element update levels (smallest of their nodes'), runs, the highest level and the
     /// snapshot arrays after node levels changed.
-    fn levels_changed(&mut self, blocks: &[ElementBlock], _inc_ptr: &[usize], _inc: &[u32]) {
+    fn levels_changed(&mut self, blocks: &[ElementBlock]) {
         for b in blocks {
             for (k, c) in b.conn.iter().enumerate() {
                 self.elem_level[b.first + k] = c
@@ -471,6 +494,26 @@ impl Subcycler {
         }
         self.top = self.node_level.iter().copied().max().unwrap_or(0) as u32;
         let levels = self.top as usize + 1;
+        // Counting sort of the nodes by level.
+        self.level_end = vec![0; levels];
+        for &l in &self.node_level {
+            self.level_end[l as usize] += 1;
+        }
+        let mut next: Vec<usize> = std::iter::once(0)
+            .chain(self.level_end.iter().scan(0, |acc, &c| {
+                *acc += c;
+                Some(*acc)
+            }))
+            .take(levels)
+            .collect();
+        for k in 1..levels {
+            self.level_end[k] += self.level_end[k - 1];
+        }
+        self.node_order.resize(self.node_level.len(), 0);
+        for (i, &l) in self.node_level.iter().enumerate() {
+            self.node_order[next[l as usize]] = i as u32;
+            next[l as usize] += 1;
+        }
         let n = self.vbar.len();
         if self.snap.len() < levels {
             self.snap.resize(levels, Vec::new());
@@ -495,45 +538,46 @@ impl Subcycler {
         }
     }
 
-    /// The half-kick forces of the due nodes, N: with g_i = Σ_e f_e (every element of a due
-    /// node was updated now), `close` = 2^{L_old} g (closing the node's interval just ended,
-    /// to be multiplied by half the step just taken; with the actual interval and the
-    /// trapezoid correction if h changed during it) and `open` = 2^{L_new} g (opening the
-    /// next); zero at nodes not due. Sums run in element order (bitwise identical for any
-    /// thread count).
+    /// The half-kick forces of the nodes in `nodes`, N: at a due node, with g_i = Σ_e f_e
+    /// (every element of a due node was updated now), `close` = 2^{L_old} g (closing the
+    /// node's interval just ended, to be multiplied by half the step just taken; with the
+    /// actual interval and the trapezoid correction if h changed during it) and `open` =
+    /// 2^{L_new} g (opening the next); zero at the listed nodes not due. Entries of unlisted
+    /// nodes are left alone. Sums run in element order (bitwise identical for any thread
+    /// count).
     pub fn gather_kicks(
         &mut self,
+        nodes: &[u32],
         inc_ptr: &[usize],
         inc: &[u32],
         elem_force: &[[[f64; 3]; 8]],
         close: &mut [[f64; 3]],
         open: &mut [[f64; 3]],
     ) {
-        let (wc, wo, wr) = (&self.w_close, &self.w_open, &self.w_corr);
-        close
-            .par_chunks_mut(NODE_CHUNK)
-            .zip(open.par_chunks_mut(NODE_CHUNK))
-            .zip(self.g_last.par_chunks_mut(NODE_CHUNK))
-            .enumerate()
-            .for_each(|(c, ((fc, fo), gl))| {
-                for k in 0..fc.len() {
-                    let n = c * NODE_CHUNK + k;
-                    let mut g = [0.0; 3];
-                    if wc[n] > 0.0 {
-                        for &slot in &inc[inc_ptr[n]..inc_ptr[n + 1]] {
-                            let f = elem_force[slot as usize / 8][slot as usize % 8];
-                            g[0] += f[0];
-                            g[1] += f[1];
-                            g[2] += f[2];
-                        }
-                    }
-                    fc[k] = [0, 1, 2].map(|d| wc[n] * g[d] + wr[n] * gl[k][d]);
-                    fo[k] = g.map(|c| wo[n] * c);
-                    if wc[n] > 0.0 {
-                        gl[k] = g;
-                    }
-                }
-            });
+        for &n in nodes {
+            let n = n as usize;
+            if !self.due(n) {
+                close[n] = [0.0; 3];
+                open[n] = [0.0; 3];
+                continue;
+            }
+            let mut g = [0.0; 3];
+            for &slot in &inc[inc_ptr[n]..inc_ptr[n + 1]] {
+                let f = elem_force[slot as usize / 8][slot as usize % 8];
+                g[0] += f[0];
+                g[1] += f[1];
+                g[2] += f[2];
+            }
+            let (wc, wr, wo, gl) = (
+                self.w_close[n],
+                self.w_corr[n],
+                self.w_open[n],
+                self.g_last[n],
+            );
+            close[n] = [0, 1, 2].map(|d| wc * g[d] + wr * gl[d]);
+            open[n] = g.map(|c| wo * c);
+            self.g_last[n] = g;
+        }
     }
 }
 
