@@ -5,8 +5,13 @@
 //! not depend on the number of threads.
 
 use super::{
-    hex_bbar, hex_one_point::ElementOutput, hex_one_point_lanes as op, lanes::Lanes,
-    model::Formulation, plasticity::J2Material, tensor::Sym,
+    hex_bbar,
+    hex_one_point::ElementOutput,
+    hex_one_point_lanes as op,
+    lanes::{build, Lanes},
+    model::Formulation,
+    plasticity::J2Material,
+    tensor::Sym,
 };
 use rayon::prelude::*;
 
@@ -377,47 +382,73 @@ fn one_point_lanes<const W: usize>(
     let mut best = (f64::INFINITY, base);
     let mut k0 = 0;
     while k0 < n {
-        let idx: [usize; W] = std::array::from_fn(|l| (k0 + l).min(n - 1));
+        let idx: [usize; W] = build(|l| (k0 + l).min(n - 1));
         let live = (n - k0).min(W);
-        let gather = |p: &[[f64; 3]]| -> [[Lanes<W>; 3]; 8] {
-            std::array::from_fn(|i| {
-                std::array::from_fn(|c| {
-                    Lanes(std::array::from_fn(|l| {
-                        let node = b.conn[idx[l]][i] as usize;
-                        // SAFETY: update_range checked every node index of the range < len.
-                        unsafe { p.get_unchecked(node)[c] }
-                    }))
-                })
-            })
-        };
-        let xe = gather(x);
-        let ve = gather(v);
-        let lane = |f: &dyn Fn(usize) -> f64| Lanes(std::array::from_fn(|l| f(idx[l])));
+        // Gather nodal coordinates and velocities and the element state into lanes (plain
+        // loops: no closure or generic helper is left out of the AVX2 kernel).
+        let mut xe = [[Lanes::<W>::default(); 3]; 8];
+        let mut ve = [[Lanes::<W>::default(); 3]; 8];
         let mut st = op::State::<W> {
-            stress: std::array::from_fn(|c| lane(&|e| b.pts[e].stress[c])),
-            eps_p: lane(&|e| b.pts[e].eps_p),
-            hourglass: std::array::from_fn(|a| std::array::from_fn(|c| lane(&|e| b.hgq[e][a][c]))),
-            plastic_work: lane(&|e| b.wp[e]),
-            internal_energy: lane(&|e| b.ie[e]),
-            hourglass_energy: lane(&|e| b.ehg[e]),
+            stress: [Lanes::default(); 6],
+            eps_p: Lanes::default(),
+            hourglass: [[Lanes::default(); 3]; 4],
+            plastic_work: Lanes::default(),
+            internal_energy: Lanes::default(),
+            hourglass_energy: Lanes::default(),
         };
+        for (l, &e) in idx.iter().enumerate() {
+            let conn = &b.conn[e];
+            for i in 0..8 {
+                let node = conn[i] as usize;
+                // SAFETY: update_range checked every node index of the range < len.
+                let (p, q) = unsafe { (x.get_unchecked(node), v.get_unchecked(node)) };
+                for c in 0..3 {
+                    xe[i][c].0[l] = p[c];
+                    ve[i][c].0[l] = q[c];
+                }
+            }
+            let ip = &b.pts[e];
+            for c in 0..6 {
+                st.stress[c].0[l] = ip.stress[c];
+            }
+            st.eps_p.0[l] = ip.eps_p;
+            for a in 0..4 {
+                for c in 0..3 {
+                    st.hourglass[a][c].0[l] = b.hgq[e][a][c];
+                }
+            }
+            st.plastic_work.0[l] = b.wp[e];
+            st.internal_energy.0[l] = b.ie[e];
+            st.hourglass_energy.0[l] = b.ehg[e];
+        }
         let out = op::update(&xe, &ve, dt, mat, hg, &mut st);
         for l in 0..live {
             let k = k0 + l;
             let ip = &mut b.pts[k];
-            ip.stress = std::array::from_fn(|c| st.stress[c].0[l]);
+            for c in 0..6 {
+                ip.stress[c] = st.stress[c].0[l];
+            }
             ip.eps_p = st.eps_p.0[l];
             ip.volume = out.volume.0[l];
             b.wp[k] = st.plastic_work.0[l];
             b.ie[k] = st.internal_energy.0[l];
             b.ehg[k] = st.hourglass_energy.0[l];
-            b.hgq[k] = std::array::from_fn(|a| std::array::from_fn(|c| st.hourglass[a][c].0[l]));
-            let eo = ElementOutput {
-                force: std::array::from_fn(|i| std::array::from_fn(|c| out.force[i][c].0[l])),
+            for a in 0..4 {
+                for c in 0..3 {
+                    b.hgq[k][a][c] = st.hourglass[a][c].0[l];
+                }
+            }
+            let mut eo = ElementOutput {
+                force: [[0.0; 3]; 8],
                 volume: out.volume.0[l],
                 min_jacobian: out.volume.0[l],
                 dt_crit: out.dt_crit.0[l],
             };
+            for i in 0..8 {
+                for c in 0..3 {
+                    eo.force[i][c] = out.force[i][c].0[l];
+                }
+            }
             finish_element(&eo, b, k, base, &mut best)?;
         }
         k0 += W;

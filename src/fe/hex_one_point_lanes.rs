@@ -23,7 +23,7 @@
 //! less accurate, operation order; checked to 1e-12 relative in the tests).
 
 use super::{
-    lanes::{cross, dot, select, Lanes, Vec3},
+    lanes::{build, cross, dot, select, Lanes, Vec3},
     plasticity::J2Material,
 };
 use crate::mesh::topology::HEX_FACES;
@@ -100,12 +100,12 @@ pub fn volume_gradient<const W: usize>(a: &[Vec3<W>; 8]) -> (Lanes<W>, [Vec3<W>;
     let c51 = cross(&a[5], &a[1]);
     let c24 = cross(&a[2], &a[4]);
     let g: [Vec3<W>; 6] = [
-        std::array::from_fn(|k| 3.0 * c23[k] + c65[k]),
-        std::array::from_fn(|k| 3.0 * c31[k] + c46[k]),
-        std::array::from_fn(|k| 3.0 * c12[k] + c54[k]),
-        std::array::from_fn(|k| c62[k] + c35[k]),
-        std::array::from_fn(|k| c16[k] + c43[k]),
-        std::array::from_fn(|k| c51[k] + c24[k]),
+        build(|k| 3.0 * c23[k] + c65[k]),
+        build(|k| 3.0 * c31[k] + c46[k]),
+        build(|k| 3.0 * c12[k] + c54[k]),
+        build(|k| c62[k] + c35[k]),
+        build(|k| c16[k] + c43[k]),
+        build(|k| c51[k] + c24[k]),
     ];
     // 192 V = A₁·(3 A₂×A₃ + A₆×A₅) + A₆·(A₂×A₄) + A₅·(A₄×A₃).
     let v = dot(&a[1], &g[0]) + dot(&a[6], &c24) + dot(&a[5], &c43);
@@ -120,15 +120,17 @@ fn velocity_gradient<const W: usize>(
     g: &[Vec3<W>; 6],
     rv: Lanes<W>,
 ) -> [Vec3<W>; 3] {
-    std::array::from_fn(|i| {
-        std::array::from_fn(|j| {
+    let mut l = [[Lanes::default(); 3]; 3];
+    for i in 0..3 {
+        for j in 0..3 {
             let mut s = u[1][i] * g[0][j];
             for k in 2..7 {
                 s += u[k][i] * g[k - 1][j];
             }
-            s * rv
-        })
-    })
+            l[i][j] = s * rv;
+        }
+    }
+    l
 }
 
 /// The Hughes-Winget rotation increment for the spin increment with axial vector `w`
@@ -162,11 +164,20 @@ fn hughes_winget<const W: usize>(w: &Vec3<W>) -> [Vec3<W>; 3] {
 #[inline(always)]
 fn rotate_symmetric<const W: usize>(r: &[Vec3<W>; 3], s: &[Lanes<W>; 6]) -> [Lanes<W>; 6] {
     let m = [[s[0], s[3], s[5]], [s[3], s[1], s[4]], [s[5], s[4], s[2]]];
-    let t: [Vec3<W>; 3] = std::array::from_fn(|i| {
-        std::array::from_fn(|j| r[i][0] * m[0][j] + r[i][1] * m[1][j] + r[i][2] * m[2][j])
-    });
-    let e = |i: usize, j: usize| t[i][0] * r[j][0] + t[i][1] * r[j][1] + t[i][2] * r[j][2];
-    [e(0, 0), e(1, 1), e(2, 2), e(0, 1), e(1, 2), e(2, 0)]
+    let mut t = [[Lanes::default(); 3]; 3];
+    for i in 0..3 {
+        for j in 0..3 {
+            t[i][j] = r[i][0] * m[0][j] + r[i][1] * m[1][j] + r[i][2] * m[2][j];
+        }
+    }
+    let mut out = [Lanes::default(); 6];
+    for (o, (i, j)) in out
+        .iter_mut()
+        .zip([(0, 0), (1, 1), (2, 2), (0, 1), (1, 2), (2, 0)])
+    {
+        *o = t[i][0] * r[j][0] + t[i][1] * r[j][1] + t[i][2] * r[j][2];
+    }
+    out
 }
 
 /// a : b of two symmetric tensors (Voigt, tensor shears).
@@ -269,8 +280,7 @@ pub fn update<const W: usize>(
     let a1 = modes(x1);
     let u = modes(v);
     let half = 0.5 * dt;
-    let am: [Vec3<W>; 8] =
-        std::array::from_fn(|k| std::array::from_fn(|c| a1[k][c] - half * u[k][c]));
+    let am: [Vec3<W>; 8] = build(|k| build(|c| a1[k][c] - half * u[k][c]));
     let (vhm, gm) = volume_gradient(&am);
     let vm = vhm * (1.0 / 192.0);
     let l = velocity_gradient(&u, &gm, vhm.recip());
@@ -291,7 +301,7 @@ pub fn update<const W: usize>(
     st.stress = rotate_symmetric(&rot, &st.stress);
     for q in st.hourglass.iter_mut() {
         let r = *q;
-        *q = std::array::from_fn(|i| rot[i][0] * r[0] + rot[i][1] * r[1] + rot[i][2] * r[2]);
+        *q = build(|i| rot[i][0] * r[0] + rot[i][1] * r[1] + rot[i][2] * r[2]);
     }
     let before = st.stress;
     let dwp = j2_update(mat, &mut st.stress, &mut st.eps_p, &d);
@@ -304,7 +314,7 @@ pub fn update<const W: usize>(
     let s = st.stress;
     let sigma = [[s[0], s[3], s[5]], [s[3], s[1], s[4]], [s[5], s[4], s[2]]];
     // P = (V σ − M)/V̂ with M = (1/8) Σ_α Q_α ⊗ A_{α+4} (the hourglass part of −γ Q).
-    let mut p: [Vec3<W>; 3] = std::array::from_fn(|i| std::array::from_fn(|j| v1 * sigma[i][j]));
+    let mut p: [Vec3<W>; 3] = build(|i| build(|j| v1 * sigma[i][j]));
     let z = Lanes::splat(0.0);
     let mut fm = [[z; 3]; 8];
     if hg > 0.0 {
@@ -319,7 +329,7 @@ pub fn update<const W: usize>(
         let mut e = z;
         for (al, q) in st.hourglass.iter_mut().enumerate() {
             let ah = &a1[al + 4];
-            let rate: Vec3<W> = std::array::from_fn(|i| {
+            let rate: Vec3<W> = build(|i| {
                 0.125 * (u[al + 4][i] - (l1[i][0] * ah[0] + l1[i][1] * ah[1] + l1[i][2] * ah[2]))
             });
             let old = *q;
@@ -350,8 +360,8 @@ pub fn update<const W: usize>(
     // Characteristic length V / largest face area (area: half the cross product of diagonals).
     let mut a2 = z;
     for f in HEX_FACES {
-        let d1: Vec3<W> = std::array::from_fn(|c| x1[f[2]][c] - x1[f[0]][c]);
-        let d2: Vec3<W> = std::array::from_fn(|c| x1[f[3]][c] - x1[f[1]][c]);
+        let d1: Vec3<W> = build(|c| x1[f[2]][c] - x1[f[0]][c]);
+        let d2: Vec3<W> = build(|c| x1[f[3]][c] - x1[f[1]][c]);
         let cr = cross(&d1, &d2);
         a2 = a2.max(dot(&cr, &cr));
     }

@@ -15,6 +15,26 @@ use std::ops::{Add, AddAssign, Div, Mul, Neg, Sub, SubAssign};
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Lanes<const W: usize>(pub [f64; W]);
 
+impl<const W: usize> Default for Lanes<W> {
+    #[inline(always)]
+    fn default() -> Self {
+        Lanes([0.0; W])
+    }
+}
+
+/// `[f(0), f(1), ..., f(N − 1)]`, always inlined: `std::array::from_fn` and `array::map`
+/// are generic functions the compiler may leave out of line, and an out-of-line copy is
+/// compiled without the calling kernel's AVX2 target feature (scalar code). With this
+/// helper the closure body lands inside the kernel.
+#[inline(always)]
+pub fn build<T: Copy + Default, const N: usize>(mut f: impl FnMut(usize) -> T) -> [T; N] {
+    let mut a = [T::default(); N];
+    for (i, x) in a.iter_mut().enumerate() {
+        *x = f(i);
+    }
+    a
+}
+
 impl<const W: usize> Lanes<W> {
     /// Every lane equal to `v`.
     #[inline(always)]
@@ -25,7 +45,11 @@ impl<const W: usize> Lanes<W> {
     /// Lane-wise square root.
     #[inline(always)]
     pub fn sqrt(self) -> Self {
-        Lanes(self.0.map(f64::sqrt))
+        let mut r = self.0;
+        for x in &mut r {
+            *x = x.sqrt();
+        }
+        Lanes(r)
     }
 
     /// Lane-wise maximum (the `f64::max` rule: a NaN lane yields the other operand).
@@ -128,7 +152,11 @@ impl<const W: usize> Neg for Lanes<W> {
     type Output = Self;
     #[inline(always)]
     fn neg(self) -> Self {
-        Lanes(self.0.map(|v| -v))
+        let mut r = self.0;
+        for x in &mut r {
+            *x = -*x;
+        }
+        Lanes(r)
     }
 }
 
