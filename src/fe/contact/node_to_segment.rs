@@ -12,7 +12,7 @@ use super::law::{respond, stored_energy, Kinematics, NodeLaw};
 use super::output::{ContactOutput, ContactProbe, NodeContact, OutputBuilder, PressureSample};
 use super::penalty::{damping_constant, effective_mass, stable_step};
 use super::projection::{project, shape, Projection};
-use super::search::{bounding_box, BucketSearch};
+use super::search::{bounding_box, Aabb, BucketSearch};
 use super::surface::ContactSurface;
 use super::vec3::{add, dot, norm, scale, sub, tangential};
 use super::ContactParams;
@@ -36,6 +36,12 @@ struct Pass {
     partner: Vec<u32>,
     /// For each slave node, the smallest master mass it has touched (or its partner's), kg.
     partner_mass: Vec<f64>,
+    /// Index in `SurfacePair::nodes` of each slave node and of each master face's nodes.
+    slave_local: Vec<usize>,
+    face_local: Vec<[usize; 4]>,
+    /// Per master face: the box of its corners at the current step (kept for the faces of
+    /// the candidate lists only), m.
+    boxes: Vec<Aabb>,
 }
 
 /// Penalty frictional contact between two deformable surfaces.
@@ -45,9 +51,8 @@ pub struct SurfacePair {
     surfaces: [ContactSurface; 2],
     params: ContactParams,
     passes: Vec<Pass>,
-    /// Union of the nodes of both surfaces; `local` maps a global node to its index here.
+    /// Union of the nodes of both surfaces (each pass maps its nodes into it).
     nodes: Vec<u32>,
-    local: HashMap<u32, usize>,
     force: Vec<[f64; 3]>,
     prev_force: Vec<[f64; 3]>,
     dt_prev: Option<f64>,
@@ -61,6 +66,9 @@ pub struct SurfacePair {
     reach: f64,
     /// Steps on which the global bounding-box test found the surfaces apart.
     pub free_steps: usize,
+    /// The last stable step and the mass array it was computed for (address, length): it
+    /// changes only when a slave touches a lighter master node.
+    dt_cache: std::cell::Cell<Option<(f64, usize, usize)>>,
 }
 
 impl SurfacePair {
@@ -164,6 +172,13 @@ impl SurfacePair {
                         })
                         .collect(),
                     partner_mass: Vec::new(),
+                    slave_local: sf.nodes.iter().map(|g| local[g]).collect(),
+                    face_local: surfaces[m]
+                        .faces
+                        .iter()
+                        .map(|q| q.map(|g| local[&g]))
+                        .collect(),
+                    boxes: vec![Aabb::empty(); surfaces[m].faces.len()],
                 }
             })
             .collect();
@@ -175,7 +190,6 @@ impl SurfacePair {
             params,
             passes,
             nodes,
-            local,
             force: vec![[0.0; 3]; n],
             prev_force: vec![[0.0; 3]; n],
             dt_prev: None,
@@ -187,6 +201,7 @@ impl SurfacePair {
             friction_energy: 0.0,
             free_steps: 0,
             reach,
+            dt_cache: std::cell::Cell::new(None),
         })
     }
 
@@ -225,19 +240,40 @@ impl SurfacePair {
             }
         }
         self.ready = true;
+        self.dt_cache.set(None);
     }
 
     /// The closest candidate segment of slave node `s` (m), if any.
+    ///
+    /// Candidates are scanned in list order (ties between equally close segments go to the
+    /// first, or to an interior projection over an edge one), but a segment is projected
+    /// only if the box of its corners, which holds the whole bilinear segment, comes within
+    /// the distance to the segment whose box is nearest: the rest cannot be closer. On a
+    /// patch of small segments this leaves one or two projections per node instead of a
+    /// dozen.
     fn closest(
         x: &[[f64; 3]],
         faces: &[[u32; 4]],
+        boxes: &[Aabb],
         cands: &[u32],
         s: [f64; 3],
     ) -> Option<(usize, Projection)> {
+        let corners = |f: u32| faces[f as usize].map(|g| x[g as usize]);
+        let (f0, _) = cands
+            .iter()
+            .map(|&f| (f, box_distance2(&boxes[f as usize], s)))
+            .min_by(|a, b| a.1.total_cmp(&b.1))?;
+        let p0 = project(&corners(f0), s);
+        let cut = (p0.distance * (1.0 + 1e-8)).powi(2);
         let mut best: Option<(usize, Projection)> = None;
         for &f in cands {
-            let q = faces[f as usize];
-            let p = project(&q.map(|g| x[g as usize]), s);
+            let p = if f == f0 {
+                p0
+            } else if box_distance2(&boxes[f as usize], s) > cut {
+                continue;
+            } else {
+                project(&corners(f), s)
+            };
             let better = match &best {
                 None => true,
                 Some((_, b)) => {
@@ -253,6 +289,17 @@ impl SurfacePair {
         }
         best
     }
+}
+
+/// Squared distance (m²) from `s` to the box `b` of a segment's corners: a lower bound of
+/// the distance to the bilinear segment they span (it lies in their convex hull).
+fn box_distance2(b: &Aabb, s: [f64; 3]) -> f64 {
+    let mut d2 = 0.0;
+    for a in 0..3 {
+        let d = (b.min[a] - s[a]).max(s[a] - b.max[a]).max(0.0);
+        d2 += d * d;
+    }
+    d2
 }
 
 impl Interaction for SurfacePair {
@@ -281,12 +328,20 @@ impl Interaction for SurfacePair {
         } else {
             for p in &mut self.passes {
                 let (slave, master) = (&self.surfaces[p.slave], &self.surfaces[p.master]);
-                let cands = p
-                    .search
+                p.search
                     .candidates(ctx.x, &slave.nodes, &master.faces, &p.watched);
+                let cands = p.search.lists();
+                // Corner boxes of the candidate faces, once per step (not per node and face).
+                for &f in p.search.active_segments() {
+                    let mut b = Aabb::empty();
+                    master.faces[f as usize]
+                        .iter()
+                        .for_each(|&g| b.grow(ctx.x[g as usize]));
+                    p.boxes[f as usize] = b;
+                }
                 for (i, &g) in slave.nodes.iter().enumerate() {
                     let s = ctx.x[g as usize];
-                    let hit = Self::closest(ctx.x, &master.faces, &cands[i], s);
+                    let hit = Self::closest(ctx.x, &master.faces, &p.boxes, &cands[i], s);
                     let Some((fi, pr)) = hit.filter(|(_, pr)| pr.gap < 0.0) else {
                         p.stick[i] = StickState::default();
                         continue;
@@ -306,6 +361,7 @@ impl Interaction for SurfacePair {
                         .fold(f64::INFINITY, f64::min);
                     if mq < p.partner_mass[i] {
                         p.partner_mass[i] = mq;
+                        self.dt_cache.set(None);
                     }
                     let mut vm = [0.0; 3];
                     for a in 0..4 {
@@ -325,10 +381,10 @@ impl Interaction for SurfacePair {
                     self.friction_energy += r.friction;
                     stored += stored_energy(&p.laws[i], &p.stick[i], pr.gap);
                     let fs = r.force(n);
-                    let li = self.local[&g];
+                    let li = p.slave_local[i];
                     self.force[li] = add(self.force[li], fs);
                     for a in 0..4 {
-                        let la = self.local[&quad[a]];
+                        let la = p.face_local[fi][a];
                         self.force[la] = sub(self.force[la], scale(nsh[a], fs));
                     }
                     let area = p.weight * slave.area[i];
@@ -383,7 +439,14 @@ impl Interaction for SurfacePair {
     /// assumes the two surfaces have similar element sizes where they meet (as the graded
     /// balls do); the penetration guard in `add_forces` catches a violation.
     fn stable_time_step(&self, mass: &[f64]) -> Option<f64> {
-        self.passes
+        let key = (mass.as_ptr() as usize, mass.len());
+        if let Some((dt, p, n)) = self.dt_cache.get() {
+            if (p, n) == key {
+                return Some(dt);
+            }
+        }
+        let dt = self
+            .passes
             .iter()
             .flat_map(|p| {
                 self.surfaces[p.slave]
@@ -405,7 +468,9 @@ impl Interaction for SurfacePair {
                         )
                     })
             })
-            .min_by(f64::total_cmp)
+            .min_by(f64::total_cmp)?;
+        self.dt_cache.set(Some((dt, key.0, key.1)));
+        Some(dt)
     }
 
     fn energy(&self) -> InteractionEnergy {

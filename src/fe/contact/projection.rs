@@ -99,6 +99,9 @@ pub fn project(p: &[[f64; 3]; 4], s: [f64; 3]) -> Projection {
     let twist = scale(0.25, add(sub(p[0], p[1]), sub(p[2], p[3])));
     let mut xi = [0.0f64, 0.0];
     let mut converged = false;
+    // Whether the last Newton step used the full Hessian of ½|x(ξ) − s|², positive definite:
+    // then the converged point is a local minimum of the distance.
+    let mut definite = false;
     for _ in 0..20 {
         let (a, b) = tangents(p, xi);
         let r = sub(point_at(p, xi), s);
@@ -106,7 +109,8 @@ pub fn project(p: &[[f64; 3]; 4], s: [f64; 3]) -> Projection {
         let (haa, hbb) = (dot(a, a), dot(b, b));
         let mut hab = dot(a, b) + dot(twist, r);
         let mut det = haa * hbb - hab * hab;
-        if det <= 1e-12 * haa * hbb {
+        definite = det > 1e-12 * haa * hbb;
+        if !definite {
             // Indefinite: Gauss–Newton (drop the curvature term).
             hab = dot(a, b);
             det = haa * hbb - hab * hab;
@@ -132,14 +136,25 @@ pub fn project(p: &[[f64; 3]; 4], s: [f64; 3]) -> Projection {
         }
     }
     if converged && xi[0].abs() <= 1.0 + 1e-12 && xi[1].abs() <= 1.0 + 1e-12 {
-        best = Some(finish(
+        let interior = finish(
             p,
             s,
             [xi[0].clamp(-1.0, 1.0), xi[1].clamp(-1.0, 1.0)],
             false,
-        ));
+        );
+        // A local minimum inside the quad is the closest point when the squared distance is
+        // convex over the quad: its Hessian JᵀJ + (x − s)·x_ξη stays positive definite while
+        // |x − s| |x_ξη| is below the squared half-edges, i.e. for any node nearer than
+        // about the radius of curvature of the segment (contact candidates are). No edge
+        // can then be closer.
+        if definite {
+            return interior;
+        }
+        best = Some(interior);
     }
-    // Boundary candidates: exact projections on the four straight edges.
+    // Boundary candidates: exact projections on the four straight edges. Only the distance
+    // is needed to compare them; the normal is evaluated for the winner alone.
+    let mut edge: Option<([f64; 2], f64)> = None;
     for e in 0..4 {
         let (a, b) = (p[e], p[(e + 1) % 4]);
         let ab = sub(b, a);
@@ -156,11 +171,19 @@ pub fn project(p: &[[f64; 3]; 4], s: [f64; 3]) -> Projection {
             2 => [-u, 1.0],
             _ => [-1.0, -u],
         };
-        let q = finish(p, s, xi_e, true);
+        let distance = norm(sub(s, point_at(p, xi_e)));
+        let incumbent = match (edge, &best) {
+            (Some((_, d)), _) => Some(d),
+            (None, Some(b)) => Some(b.distance),
+            (None, None) => None,
+        };
         // Prefer the interior point on ties (it carries the smooth normal).
-        if best.is_none_or(|b| q.distance < b.distance * (1.0 - 1e-12) - 1e-300) {
-            best = Some(q);
+        if incumbent.is_none_or(|d| distance < d * (1.0 - 1e-12) - 1e-300) {
+            edge = Some((xi_e, distance));
         }
+    }
+    if let Some((xi_e, _)) = edge {
+        best = Some(finish(p, s, xi_e, true));
     }
     best.expect("four edge candidates always exist")
 }

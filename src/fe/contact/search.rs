@@ -7,7 +7,7 @@
 //! it. The lists stay valid until some node has moved half the margin since they were built
 //! (then no node and segment can have approached by more than the margin).
 
-use super::vec3::{norm, sub};
+use super::vec3::sub;
 
 /// Axis-aligned box.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -59,6 +59,8 @@ pub struct BucketSearch {
     built: bool,
     /// Extra inflation of each segment's box, m (how deep a node may be behind it).
     depth: Vec<f64>,
+    /// Every segment that appears in some candidate list (sorted, no repeats).
+    active: Vec<u32>,
     /// Number of rebuilds so far (for tests and reports).
     pub rebuilds: usize,
 }
@@ -84,6 +86,16 @@ impl BucketSearch {
         self.margin
     }
 
+    /// The current candidate lists (valid after [`BucketSearch::candidates`]).
+    pub fn lists(&self) -> &[Vec<u32>] {
+        &self.candidates
+    }
+
+    /// The segments of the current candidate lists (valid after [`BucketSearch::candidates`]).
+    pub fn active_segments(&self) -> &[u32] {
+        &self.active
+    }
+
     /// Forgets the lists (after a free-flight step they would be stale).
     pub fn invalidate(&mut self) {
         self.built = false;
@@ -101,10 +113,10 @@ impl BucketSearch {
         watched: &[u32],
     ) -> &[Vec<u32>] {
         let stale = !self.built
-            || watched
-                .iter()
-                .zip(&self.reference)
-                .any(|(&g, r)| norm(sub(x[g as usize], *r)) > 0.5 * self.margin);
+            || watched.iter().zip(&self.reference).any(|(&g, r)| {
+                let d = sub(x[g as usize], *r);
+                d[0] * d[0] + d[1] * d[1] + d[2] * d[2] > 0.25 * self.margin * self.margin
+            });
         if stale {
             self.rebuild(x, slave, faces, watched);
         }
@@ -182,6 +194,9 @@ impl BucketSearch {
                 }
             })
             .collect();
+        self.active = self.candidates.iter().flatten().copied().collect();
+        self.active.sort_unstable();
+        self.active.dedup();
         self.built = true;
     }
 }
