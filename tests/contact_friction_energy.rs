@@ -75,7 +75,7 @@ fn oblique(vn: f64, vt: f64, pole: f64, safety: f64) -> Run {
         friction_decreased |= o.friction_energy < friction;
         friction = o.friction_energy;
         energy_error = energy_error.max((s.energy().energy_ratio - 1.0).abs());
-        if o.active_nodes == 0 && probe.get().first_contact.is_some() {
+        if o.active_nodes == 0 && probe.touched() {
             let (v, _) = s.part_motion(0).unwrap();
             if v[0] < 0.0 {
                 break;

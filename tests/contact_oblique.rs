@@ -78,10 +78,7 @@ fn oblique(vn: f64, vt: f64) -> Oblique {
             energy_error = energy_error.max((s.energy().energy_ratio - 1.0).abs());
         }
         // Done once the ball moves away from the wall and no node touches it.
-        if o.active_nodes == 0
-            && probe.get().first_contact.is_some()
-            && s.step_count().is_multiple_of(20)
-        {
+        if o.active_nodes == 0 && probe.touched() && s.step_count().is_multiple_of(20) {
             let (v, _) = s.part_motion(0).unwrap();
             if v[0] < 0.0 {
                 break;

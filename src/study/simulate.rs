@@ -699,7 +699,7 @@ pub fn simulate(
             }
             if by_separation {
                 let separating = u[0][0] - u[1][0] < 0.0;
-                let touched = probe.get().first_contact.is_some();
+                let touched = probe.touched();
                 if touched && separating && force_free {
                     let since = *apart_since.get_or_insert(t);
                     if t - since >= hold {
@@ -732,10 +732,7 @@ pub fn simulate(
     let v_after = [to_scene(u[0], kin.v_cm), to_scene(u[1], kin.v_cm)];
     let w_after = [frame.to_global(w[0]), frame.to_global(w[1])];
     let data = probe.get();
-    let contact_duration = match (data.first_contact, data.last_contact) {
-        (Some(a), Some(b)) => b - a,
-        _ => 0.0,
-    };
+    let contact_duration = data.contact_duration();
     let delta_max = history.iter().map(|r| r.delta).fold(0.0, f64::max);
     let e_rel = -(u[0][0] - u[1][0]) / (kin.u[0][0] - kin.u[1][0]);
     let outcome = Outcome {

@@ -17,6 +17,7 @@ pub mod node_to_segment;
 pub mod output;
 pub mod penalty;
 pub mod projection;
+pub mod pulse;
 pub mod relaxation;
 pub mod rigid_plane;
 pub mod search;

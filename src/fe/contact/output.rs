@@ -204,6 +204,22 @@ pub struct ProbeData {
     pub last_contact: Option<f64>,
     /// Whether pressure samples are copied each step.
     pub record_pressures: bool,
+    /// The normal-force pulse: (time in s, normal force in N) of every step with a force.
+    pub pulse: Vec<(f64, f64)>,
+}
+
+impl ProbeData {
+    /// Contact duration, s: from the force pulse ([`super::pulse::pulse_duration`]), or
+    /// first to last step with contact when the pulse is too short to fit; 0 without
+    /// contact.
+    pub fn contact_duration(&self) -> f64 {
+        super::pulse::pulse_duration(&self.pulse).unwrap_or(
+            match (self.first_contact, self.last_contact) {
+                (Some(a), Some(b)) => b - a,
+                _ => 0.0,
+            },
+        )
+    }
 }
 
 /// A shared read handle on a contact pair's output, for callers that hand the pair to the
@@ -212,6 +228,14 @@ pub struct ProbeData {
 pub struct ContactProbe(std::sync::Arc<std::sync::Mutex<ProbeData>>);
 
 impl ContactProbe {
+    /// Whether any step so far had contact (cheaper than [`ContactProbe::get`]).
+    pub fn touched(&self) -> bool {
+        self.0
+            .lock()
+            .map(|d| d.first_contact.is_some())
+            .unwrap_or(false)
+    }
+
     /// A copy of the current data.
     pub fn get(&self) -> ProbeData {
         self.0.lock().map(|d| d.clone()).unwrap_or_default()
@@ -241,6 +265,9 @@ impl ContactProbe {
             if out.active_nodes > 0 {
                 d.first_contact.get_or_insert(out.time);
                 d.last_contact = Some(out.time);
+            }
+            if out.normal_force > 0.0 {
+                d.pulse.push((out.time, out.normal_force));
             }
         }
     }
