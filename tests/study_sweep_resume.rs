@@ -175,6 +175,7 @@ fn shards_partition_the_sweep() {
             shard: Shard::parse(&format!("{i}/3")).unwrap(),
             pace: Duration::ZERO,
             verbose: false,
+            mesh: None,
         };
         let before = case_files(&dir);
         let s = run_sweep(&spec, &opts, None).unwrap();
@@ -198,6 +199,7 @@ fn shards_partition_the_sweep() {
         shard: Shard::ALL,
         pace: Duration::ZERO,
         verbose: false,
+        mesh: None,
     };
     let s = run_sweep(&spec, &opts, None).unwrap();
     assert_eq!((s.skipped, s.ran, s.in_csv), (N_CASES, 0, N_CASES));
@@ -253,4 +255,37 @@ fn bad_sweep_flags_and_files_are_one_line_errors() {
         err.starts_with("error: ") && err.trim_end().lines().count() == 1,
         "{err}"
     );
+}
+
+/// `--mesh NAME` runs only that setting's cases; an unknown name is a one-line error that
+/// lists the settings.
+#[test]
+fn mesh_filter_runs_one_setting() {
+    let two = format!(
+        "{SWEEP}[[mesh]]\nname = \"fine\"\nsize_per_diameter = 0.1\npole_size_per_diameter = 0.05\n"
+    );
+    let spec = SweepSpec::from_toml(&two, "test").unwrap();
+    let dir = scratch("mesh-filter");
+    let opts = |mesh: &str| SweepOptions {
+        out: dir.clone(),
+        jobs: 2,
+        shard: Shard::ALL,
+        pace: Duration::ZERO,
+        verbose: false,
+        mesh: Some(mesh.to_string()),
+    };
+    let s = run_sweep(&spec, &opts("fine"), None).unwrap();
+    assert_eq!(
+        (s.total, s.in_shard, s.ran),
+        (2 * N_CASES, N_CASES, N_CASES)
+    );
+    assert!(case_files(&dir).keys().all(|k| k.contains("fine")));
+    let err = run_sweep(&spec, &opts("medium"), None)
+        .unwrap_err()
+        .to_string();
+    assert!(
+        err.contains("--mesh") && err.contains("coarse") && err.contains("fine"),
+        "{err}"
+    );
+    std::fs::remove_dir_all(&dir).unwrap();
 }

@@ -26,6 +26,9 @@ pub struct SweepArgs {
     /// Run the analytical model only, whatever the file says.
     #[arg(long)]
     pub analytic_only: bool,
+    /// Run only the cases of this mesh setting (a `name` of the file's `[[mesh]]` tables).
+    #[arg(long)]
+    pub mesh: Option<String>,
     /// Minimum wall time per case in ms (testing aid for kill-and-resume).
     #[arg(long, default_value_t = 0, hide = true)]
     pub pace_ms: u64,
@@ -49,6 +52,7 @@ pub fn run(a: SweepArgs) -> Result<()> {
         shard,
         pace: Duration::from_millis(a.pace_ms),
         verbose: std::io::stderr().is_terminal(),
+        mesh: a.mesh.clone(),
     };
     let fe: crate::study::sweep::FeRunner<'_> = &crate::study::simulate::sweep_case;
     let s = run_sweep(&spec, &opts, Some(fe))?;

@@ -607,177 +607,211 @@ pub fn simulate(
     let start_at_touch = scene.reduction.start_at_touch == Switch::Auto;
     let pre = if start_at_touch { 0.0 } else { touch.t_touch };
     let (model, interactions, probe) = build(scene, touch, red, &kin, elastic_only, mu, pre)?;
-    let elements = model.hexes.len();
-    let nodes = model.nodes.len();
-    let settings = Settings {
-        safety: scene.solver.time_step_factor,
-        subcycling: scene.solver.subcycling,
-        ..Settings::default()
-    };
-    let mut solver = Solver::new(model, interactions, settings)?;
-    let dt0 = solver.dt();
+    let model_elements = model.hexes.len();
+    let run = move || -> Result<Simulation> {
+        let elements = model.hexes.len();
+        let nodes = model.nodes.len();
+        let settings = Settings {
+            safety: scene.solver.time_step_factor,
+            subcycling: scene.solver.subcycling,
+            ..Settings::default()
+        };
+        let mut solver = Solver::new(model, interactions, settings)?;
+        let dt0 = solver.dt();
 
-    let duration = if expected_duration.is_finite() && expected_duration > 0.0 {
-        expected_duration
-    } else {
-        1e-4
-    };
-    let hold = scene.solver.hold_time.unwrap_or(0.1 * duration);
-    let by_separation =
-        scene.reduction.stop_at_separation == Switch::Auto && scene.solver.end_time.is_none();
-    let end_time = pre + scene.solver.end_time.unwrap_or(3.0 * duration);
-    let interval = scene
-        .output
-        .history_interval
-        .unwrap_or(duration / opts.history_rows.max(2) as f64)
-        .max(dt0);
-    let scale = 1.0 / red.fraction();
-    let frame = touch.frame;
-    let to_scene =
-        |v: [f64; 3], add: [f64; 3]| frame.to_global([v[0] + add[0], v[1] + add[1], v[2] + add[2]]);
-    let (_, _, d_start) = ball_states(&solver, red)?;
-    let approach_rate = kin.u[0][0] - kin.u[1][0];
-    let d_touch = d_start - approach_rate * pre;
+        let duration = if expected_duration.is_finite() && expected_duration > 0.0 {
+            expected_duration
+        } else {
+            1e-4
+        };
+        let hold = scene
+            .solver
+            .hold_time
+            .unwrap_or(DEFAULT_HOLD_FRACTION * duration);
+        let by_separation =
+            scene.reduction.stop_at_separation == Switch::Auto && scene.solver.end_time.is_none();
+        let end_time = pre + scene.solver.end_time.unwrap_or(3.0 * duration);
+        let interval = scene
+            .output
+            .history_interval
+            .unwrap_or(duration / opts.history_rows.max(2) as f64)
+            .max(dt0);
+        let scale = 1.0 / red.fraction();
+        let frame = touch.frame;
+        let to_scene = |v: [f64; 3], add: [f64; 3]| {
+            frame.to_global([v[0] + add[0], v[1] + add[1], v[2] + add[2]])
+        };
+        let (_, _, d_start) = ball_states(&solver, red)?;
+        let approach_rate = kin.u[0][0] - kin.u[1][0];
+        let d_touch = d_start - approach_rate * pre;
 
-    let mut history = Vec::new();
-    let e_start = solver.energy().total;
-    let mut drift: f64 = 0.0;
-    let mut next_row = 0.0;
-    let mut apart_since: Option<f64> = None;
-    let stop_reason;
-    let mut bar = super::progress::Bar::new(opts.progress, end_time.min(pre + 2.0 * duration));
-    let mut snapshots = match (&opts.snapshot_dir, scene.output.vtu_snapshots) {
-        (Some(dir), n) if n > 0 => Some(Snapshots::new(dir.clone(), n, pre, duration)),
-        _ => None,
-    };
-    loop {
-        if let Some(s) = &mut snapshots {
-            s.maybe_write(&solver, pre)?;
-        }
-        let t = solver.time();
-        let probe_now = probe.last();
-        let force_free = probe_now.active_nodes == 0 && probe_now.normal_force == 0.0;
-        let record = t >= next_row;
-        let check = solver.step_count() % 16 == 0;
-        if record || (by_separation && check) {
-            let (u, w, d) = ball_states(&solver, red)?;
-            if record {
-                let e = solver.energy();
-                let row = HistoryRow {
-                    t: t - pre,
-                    delta: d_touch - d,
-                    normal_force: probe_now.normal_force
-                        * match red {
-                            Reduction::Quarter => 4.0,
-                            Reduction::Half => 2.0,
-                            Reduction::Full => 1.0,
-                        },
-                    tangential_force: probe_now.tangential_force
-                        * if red == Reduction::Half { 2.0 } else { 1.0 },
-                    v: [to_scene(u[0], kin.v_cm), to_scene(u[1], kin.v_cm)],
-                    w: [frame.to_global(w[0]), frame.to_global(w[1])],
-                    kinetic: scale * e.kinetic,
-                    elastic: scale * e.elastic,
-                    plastic: scale * e.plastic,
-                    hourglass: scale * e.hourglass,
-                    contact_stored: scale * e.interaction_stored,
-                    contact_dissipated: scale * e.interaction_dissipated,
-                    total: scale * e.total,
-                };
-                if e_start > 0.0 {
-                    drift = drift.max((e.total - e_start).abs() / e_start);
-                }
-                if !row.is_finite() {
-                    return Err(Error::Numerical(format!(
+        let mut history = Vec::new();
+        let e_start = solver.energy().total;
+        let mut drift: f64 = 0.0;
+        let mut next_row = 0.0;
+        let mut apart_since: Option<f64> = None;
+        let stop_reason;
+        let mut bar = super::progress::Bar::new(opts.progress, end_time.min(pre + 2.0 * duration));
+        let mut snapshots = match (&opts.snapshot_dir, scene.output.vtu_snapshots) {
+            (Some(dir), n) if n > 0 => Some(Snapshots::new(dir.clone(), n, pre, duration)),
+            _ => None,
+        };
+        loop {
+            if let Some(s) = &mut snapshots {
+                s.maybe_write(&solver, pre)?;
+            }
+            let t = solver.time();
+            let probe_now = probe.last();
+            let force_free = probe_now.active_nodes == 0 && probe_now.normal_force == 0.0;
+            let record = t >= next_row;
+            let check = solver.step_count() % 16 == 0;
+            if record || (by_separation && check) {
+                let (u, w, d) = ball_states(&solver, red)?;
+                if record {
+                    let e = solver.energy();
+                    let row = HistoryRow {
+                        t: t - pre,
+                        delta: d_touch - d,
+                        normal_force: probe_now.normal_force
+                            * match red {
+                                Reduction::Quarter => 4.0,
+                                Reduction::Half => 2.0,
+                                Reduction::Full => 1.0,
+                            },
+                        tangential_force: probe_now.tangential_force
+                            * if red == Reduction::Half { 2.0 } else { 1.0 },
+                        v: [to_scene(u[0], kin.v_cm), to_scene(u[1], kin.v_cm)],
+                        w: [frame.to_global(w[0]), frame.to_global(w[1])],
+                        kinetic: scale * e.kinetic,
+                        elastic: scale * e.elastic,
+                        plastic: scale * e.plastic,
+                        hourglass: scale * e.hourglass,
+                        contact_stored: scale * e.interaction_stored,
+                        contact_dissipated: scale * e.interaction_dissipated,
+                        total: scale * e.total,
+                    };
+                    if e_start > 0.0 {
+                        drift = drift.max((e.total - e_start).abs() / e_start);
+                    }
+                    if !row.is_finite() {
+                        return Err(Error::Numerical(format!(
                         "non-finite state at t = {t:.6e} s (step {}): unstable run; lower solver.time_step_factor or contact.penalty_factor",
                         solver.step_count()
                     )));
-                }
-                history.push(row);
-                next_row = t + interval;
-                bar.update(t);
-            }
-            if by_separation {
-                let separating = u[0][0] - u[1][0] < 0.0;
-                let touched = probe.touched();
-                if touched && separating && force_free {
-                    let since = *apart_since.get_or_insert(t);
-                    if t - since >= hold {
-                        stop_reason = format!("separated: contact force zero for {hold:.3e} s");
-                        break;
                     }
-                } else {
-                    apart_since = None;
+                    history.push(row);
+                    next_row = t + interval;
+                    bar.update(t);
+                }
+                if by_separation {
+                    let separating = u[0][0] - u[1][0] < 0.0;
+                    let touched = probe.touched();
+                    if touched && separating && force_free {
+                        let since = *apart_since.get_or_insert(t);
+                        if t - since >= hold {
+                            stop_reason = format!("separated: contact force zero for {hold:.3e} s");
+                            break;
+                        }
+                    } else {
+                        apart_since = None;
+                    }
                 }
             }
-        }
-        if !by_separation && t >= end_time {
-            stop_reason = format!("end time {:.3e} s reached", end_time - pre);
-            break;
-        }
-        if solver.step_count() >= scene.solver.max_steps {
-            return Err(Error::Numerical(format!(
+            if !by_separation && t >= end_time {
+                stop_reason = format!("end time {:.3e} s reached", end_time - pre);
+                break;
+            }
+            if solver.step_count() >= scene.solver.max_steps {
+                return Err(Error::Numerical(format!(
                 "the balls had not separated after solver.max_steps = {} steps (t = {:.6e} s): raise solver.max_steps or set solver.end_time",
                 scene.solver.max_steps,
                 t - pre
             )));
+            }
+            solver.step()?;
         }
-        solver.step()?;
-    }
-    bar.finish();
-    if let Some(s) = &mut snapshots {
-        s.finish(&solver, pre)?;
-    }
-    let (u, w, _) = ball_states(&solver, red)?;
-    let v_after = [to_scene(u[0], kin.v_cm), to_scene(u[1], kin.v_cm)];
-    let w_after = [frame.to_global(w[0]), frame.to_global(w[1])];
-    let data = probe.get();
-    let contact_duration = data.contact_duration();
-    let delta_max = history.iter().map(|r| r.delta).fold(0.0, f64::max);
-    let e_rel = -(u[0][0] - u[1][0]) / (kin.u[0][0] - kin.u[1][0]);
-    let outcome = Outcome {
-        e: e_rel,
-        v1_after: v_after[0],
-        v2_after: v_after[1],
-        w1_after: w_after[0],
-        w2_after: w_after[1],
-        delta_max,
-        contact_duration,
-        eta: dissipation_factor(scene, v_after, w_after),
-    };
-    outcome.check_finite("FE model")?;
-    let report = solver.energy();
-    if e_start > 0.0 {
-        drift = drift.max((report.total - e_start).abs() / e_start);
-    }
-    let steps = solver.step_count();
-    Ok(Simulation {
-        outcome,
-        energy_error: drift.max(report.max_balance_error),
-        savings: Savings {
-            reduction: red,
-            reduction_reason: reason,
-            start_at_touch,
-            free_flight_time: touch.t_touch,
-            stop_rule: if by_separation {
-                "separation".into()
-            } else {
-                "end_time".into()
+        bar.finish();
+        if let Some(s) = &mut snapshots {
+            s.finish(&solver, pre)?;
+        }
+        let (u, w, _) = ball_states(&solver, red)?;
+        let v_after = [to_scene(u[0], kin.v_cm), to_scene(u[1], kin.v_cm)];
+        let w_after = [frame.to_global(w[0]), frame.to_global(w[1])];
+        let data = probe.get();
+        let contact_duration = data.contact_duration();
+        let delta_max = history.iter().map(|r| r.delta).fold(0.0, f64::max);
+        let e_rel = -(u[0][0] - u[1][0]) / (kin.u[0][0] - kin.u[1][0]);
+        let outcome = Outcome {
+            e: e_rel,
+            v1_after: v_after[0],
+            v2_after: v_after[1],
+            w1_after: w_after[0],
+            w2_after: w_after[1],
+            delta_max,
+            contact_duration,
+            eta: dissipation_factor(scene, v_after, w_after),
+        };
+        outcome.check_finite("FE model")?;
+        let report = solver.energy();
+        if e_start > 0.0 {
+            drift = drift.max((report.total - e_start).abs() / e_start);
+        }
+        let steps = solver.step_count();
+        Ok(Simulation {
+            outcome,
+            energy_error: drift.max(report.max_balance_error),
+            savings: Savings {
+                reduction: red,
+                reduction_reason: reason,
+                start_at_touch,
+                free_flight_time: touch.t_touch,
+                stop_rule: if by_separation {
+                    "separation".into()
+                } else {
+                    "end_time".into()
+                },
+                hold_time: hold,
+                elastic_only,
+                friction: red != Reduction::Quarter && mu > 0.0,
+                subcycling: solver.subcycling(),
             },
-            hold_time: hold,
-            elastic_only,
-            friction: red != Reduction::Quarter && mu > 0.0,
-            subcycling: solver.subcycling(),
-        },
-        elements,
-        nodes,
-        steps,
-        element_cycles: solver.element_updates(),
-        dt: dt0,
-        stop_reason,
-        wall_time_s: start.elapsed().as_secs_f64(),
-        history,
-    })
+            elements,
+            nodes,
+            steps,
+            element_cycles: solver.element_updates(),
+            dt: dt0,
+            stop_reason,
+            wall_time_s: start.elapsed().as_secs_f64(),
+            history,
+        })
+    };
+    with_threads_for(model_elements, run)
+}
+
+/// Default hold time after separation, as a fraction of the analytical contact duration:
+/// long enough to see that the force stays zero (the gap opens by a few µm, more than the
+/// pole's residual vibration), short enough not to integrate dead time.
+pub const DEFAULT_HOLD_FRACTION: f64 = 0.03;
+
+/// Models below this many elements run their time loop on one thread: a subcycled step of
+/// a small model updates a few hundred elements, and handing them to a second thread costs
+/// more than it saves (the results are the same on any thread count).
+pub const PARALLEL_MIN_ELEMENTS: usize = 5000;
+
+/// Runs `f` on the current thread pool, or on a one-thread pool for a model of fewer than
+/// [`PARALLEL_MIN_ELEMENTS`] elements.
+fn with_threads_for<T: Send>(elements: usize, f: impl FnOnce() -> T + Send) -> T {
+    if elements >= PARALLEL_MIN_ELEMENTS || rayon::current_num_threads() == 1 {
+        return f();
+    }
+    let Ok(pool) = rayon::ThreadPoolBuilder::new().num_threads(1).build() else {
+        return f();
+    };
+    // Wait on a plain thread: a pool worker (a sweep's) that waited inside `install` on
+    // another pool would meanwhile take more work from its own pool, and a sweep would start
+    // all its small cases at once.
+    std::thread::scope(|s| s.spawn(|| pool.install(f)).join())
+        .unwrap_or_else(|e| std::panic::resume_unwind(e))
 }
 
 /// The FE runner of a sweep case: analytical duration estimate, FE run, summary and δ(t).
