@@ -13,7 +13,7 @@ use super::{
     model::Model,
     plasticity::J2Material,
     profile::{Phase, Profile},
-    subcycle::{SubcycleReport, Subcycler, Subcycling, AUTO_MIN_SAVING},
+    subcycle::{node_force_sum, SubcycleReport, Subcycler, Subcycling, AUTO_MIN_SAVING},
     tensor::{cross, inverse, Sym},
     timestep::StableStep,
 };
@@ -795,15 +795,7 @@ impl Solver {
             .enumerate()
             .for_each(|(c, fs)| {
                 for (k, f) in fs.iter_mut().enumerate() {
-                    let n = c * NODE_CHUNK + k;
-                    let mut s = [0.0; 3];
-                    for &slot in &inc[ptr[n]..ptr[n + 1]] {
-                        let g = ef[slot as usize / 8][slot as usize % 8];
-                        s[0] += g[0];
-                        s[1] += g[1];
-                        s[2] += g[2];
-                    }
-                    *f = s;
+                    *f = node_force_sum(ptr, inc, ef, c * NODE_CHUNK + k);
                 }
             });
     }

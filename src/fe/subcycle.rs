@@ -561,13 +561,7 @@ impl Subcycler {
                 open[n] = [0.0; 3];
                 continue;
             }
-            let mut g = [0.0; 3];
-            for &slot in &inc[inc_ptr[n]..inc_ptr[n + 1]] {
-                let f = elem_force[slot as usize / 8][slot as usize % 8];
-                g[0] += f[0];
-                g[1] += f[1];
-                g[2] += f[2];
-            }
+            let g = node_force_sum(inc_ptr, inc, elem_force, n);
             let (wc, wr, wo, gl) = (
                 self.w_close[n],
                 self.w_corr[n],
@@ -634,6 +628,25 @@ impl Subcycler {
             })
             .collect()
     }
+}
+
+/// Σ of node `n`'s element force blocks (N), in element order (the incidence `inc_ptr`/`inc`
+/// lists element·8 + local node): the same bits for any thread count.
+#[inline]
+pub fn node_force_sum(
+    inc_ptr: &[usize],
+    inc: &[u32],
+    elem_force: &[[[f64; 3]; 8]],
+    n: usize,
+) -> [f64; 3] {
+    let mut g = [0.0; 3];
+    for &slot in &inc[inc_ptr[n]..inc_ptr[n + 1]] {
+        let f = elem_force[slot as usize / 8][slot as usize % 8];
+        g[0] += f[0];
+        g[1] += f[1];
+        g[2] += f[2];
+    }
+    g
 }
 
 /// (block, local index) of every global element.
