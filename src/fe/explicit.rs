@@ -462,18 +462,19 @@ impl Solver {
         // 4. Time update with the fine step.
         let dt = self.dt_next;
         let t_new = self.t + dt;
-        // 5-7 in one pass over the nodes (the node arrays are read once per step, not four
-        // times): opening half-kick v^{n+1/2} = v^n + (Δt/2) M⁻¹(f_ext − Σ 2^{k_new} f_e)^n,
-        // velocity boundary conditions, power of the opening forces at v^{n+1/2}, drift of
-        // every node x^{n+1} = x^n + Δt v^{n+1/2}.
+        // 5-7: opening half-kick v^{n+1/2} = v^n + (Δt/2) M⁻¹(f_ext − Σ 2^{k_new} f_e)^n,
+        // velocity boundary conditions and power of the opening forces, in one pass over the
+        // nodes kicked last step (elsewhere a = 0); then the drift of every node,
+        // x^{n+1} = x^n + Δt v^{n+1/2}.
         let (p_int_old, p_ext_old) = self.open_kick_and_drift(dt);
         self.t = t_new;
         self.profile.lap(Phase::Nodal);
         // 8. getforce: elements due now with their own steps, levels and fine step, interactions.
         self.getforce_subcycled(dt)?;
-        // 9-10 and 11 (first half) in one pass: closing and opening accelerations
-        // M⁻¹(f_ext − Σ 2^k f_e), power of the closing forces at v^{n+1/2}, closing half-kick
-        // v^{n+1} = v^{n+1/2} + (Δt/2) M⁻¹(f_ext − Σ 2^{k_old} f_e)^{n+1}, boundary conditions.
+        // 9-10 and 11 (first half) in one pass over the nodes due now: closing and opening
+        // accelerations M⁻¹(f_ext − Σ 2^k f_e), power of the closing forces at v^{n+1/2},
+        // closing half-kick v^{n+1} = v^{n+1/2} + (Δt/2) M⁻¹(f_ext − Σ 2^{k_old} f_e)^{n+1},
+        // boundary conditions.
         let (p_int_new, p_ext_new) = self.accelerate_and_close_kick(dt)?;
         // 11 (first half). Work over the step: trapezoid of the closing and opening forces.
         self.w_int += 0.5 * dt * (p_int_old + p_int_new);

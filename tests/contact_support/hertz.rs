@@ -265,7 +265,7 @@ pub fn impact_variant(
     let t_end = 1.3 * hertz_duration;
     let mut step = 0u64;
     while s.time() < t_end {
-        if let (Some(_), Some(l)) = (probe.get().first_contact, probe.get().last_contact) {
+        if let (Some(_), Some(l)) = probe.contact_span() {
             if s.time() > l + 0.05 * hertz_duration {
                 break;
             }

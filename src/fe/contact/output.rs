@@ -236,6 +236,15 @@ impl ContactProbe {
             .unwrap_or(false)
     }
 
+    /// Times (s) of the first and last steps with contact so far, without copying the
+    /// recorded pulse as [`ContactProbe::get`] does (for per-step checks).
+    pub fn contact_span(&self) -> (Option<f64>, Option<f64>) {
+        self.0
+            .lock()
+            .map(|d| (d.first_contact, d.last_contact))
+            .unwrap_or((None, None))
+    }
+
     /// A copy of the current data.
     pub fn get(&self) -> ProbeData {
         self.0.lock().map(|d| d.clone()).unwrap_or_default()
