@@ -175,8 +175,9 @@ def read_scene(path):
             base = Path(path).parent if path else Path(".")
             mesh_spec = {"file": str(base / mesh["file"])}
         else:
-            size = float(mesh.get("size", d / 10.0))
-            pole = float(mesh.get("pole_size", min(d / 100.0, size)))
+            # twoball's defaults (src/scene.rs: DEFAULT_SIZE_PER_D, DEFAULT_POLE_SIZE_PER_D).
+            size = float(mesh.get("size", d / 6.0))
+            pole = float(mesh.get("pole_size", min(d / 200.0, size)))
             mesh_spec = {"size": size, "pole_size": pole}
         if "position" in b:
             raise PeerError(f"{key}.position is not supported by the peer script: the balls start touching")
@@ -593,6 +594,27 @@ def collision_quantities(times, vels, masses, split, v0, gap):
     }
 
 
+def run_twoball(twoball, scene_path, scene, sets, out):
+    """Runs `twoball run` on the scene with the peer's mesh sizes; returns its results.json.
+    twoball's own wall time (results.json wall_time_s, the solve without start-up) is what the
+    ratio uses; the wall time of the whole process is printed beside it."""
+    cmd = [twoball, "run"] + ([str(scene_path)] if scene_path else [])
+    for i, b in enumerate(scene["balls"], start=1):
+        m = b["mesh"]
+        if "file" not in m:
+            cmd += ["--set", f"ball{i}.mesh={{size={m['size']!r},pole_size={m['pole_size']!r}}}"]
+    for s in sets:
+        cmd += ["--set", s]
+    cmd += ["--out", str(out)]
+    t0 = time.perf_counter()
+    r = subprocess.run(cmd, capture_output=True, text=True)
+    wall = time.perf_counter() - t0
+    if r.returncode != 0:
+        raise PeerError(f"`{' '.join(cmd)}` failed: {r.stderr.strip()}")
+    print(f"twoball run: {wall:.2f} s wall for the whole process ({' '.join(cmd[1:])})")
+    return out / "results.json"
+
+
 def find_twoball(arg):
     """The twoball binary: --twoball, PATH, or target/{release,debug} next to this script."""
     if arg:
@@ -630,9 +652,21 @@ def main(argv=None):
                     help="turn ball 2 by this angle (degrees) about the line of centres (0)")
     ap.add_argument("--threads", type=int, default=1, help="threads ccx may use (1)")
     ap.add_argument("--twoball-results", help="a twoball results.json of the same scene, to compare")
+    ap.add_argument("--run-twoball", action="store_true",
+                    help="run `twoball run` on the same scene and mesh first (its automatic reductions on, "
+                         "unless --twoball-set says otherwise) and compare with it")
+    ap.add_argument("--twoball-set", action="append", default=[], metavar="KEY=VALUE",
+                    help="extra `--set` for the twoball run (repeatable), e.g. 'solver.element=\"b-bar\"'")
+    ap.add_argument("--reference-e", type=float,
+                    help="converged e of the scene (e.g. 0.3190 for the default scene, docs/performance.md): "
+                         "errors in e of both codes are printed against it")
     ap.add_argument("--json", help="write the results here (JSON)")
     ap.add_argument("--keep", action="store_true", help="keep the ccx .dat output")
     a = ap.parse_args(argv)
+    if a.run_twoball and a.twoball_results:
+        raise PeerError("--run-twoball and --twoball-results exclude each other: give one")
+    if a.reference_e is not None and not (math.isfinite(a.reference_e) and 0 < a.reference_e <= 1):
+        raise PeerError(f"--reference-e = {a.reference_e}: allowed 0 < e <= 1")
     for name in ("gap", "end_factor", "size", "pole_size"):
         v = getattr(a, name)
         if v is not None and not (math.isfinite(v) and v > 0):
@@ -654,6 +688,10 @@ def main(argv=None):
     ana = analytic(twoball, scene)
     work = Path(a.work) if a.work else Path(tempfile.mkdtemp(prefix="ccx_peer_"))
     work.mkdir(parents=True, exist_ok=True)
+
+    twoball_results = a.twoball_results
+    if a.run_twoball:
+        twoball_results = run_twoball(twoball, a.scene, scene, a.twoball_set, work / "twoball")
 
     model = build_model(scene, twoball, work, a.gap, a.twist)
     (n1, n2), (h1, h2) = model["nodes"], model["hexes"]
@@ -717,8 +755,8 @@ def main(argv=None):
         "error_vs_analytic": {k: rel(q[k], ana[k]) for k in ("e", "delta_max_m", "contact_duration_s")},
         "history": history,
     }
-    if a.twoball_results:
-        tb = json.loads(Path(a.twoball_results).read_text())
+    if twoball_results:
+        tb = json.loads(Path(twoball_results).read_text())
         keys = {"e": "e", "delta_max_m": "delta_max", "contact_duration_s": "contact_duration"}
         result["twoball"] = {k: tb.get(v) for k, v in keys.items()}
         # twoball writes 3-vectors (scene frame); x is the line of centres.
@@ -726,6 +764,10 @@ def main(argv=None):
             v = tb.get(k)
             result["twoball"][k + "_m_per_s"] = v[0] if isinstance(v, list) and v else v
         result["twoball"]["wall_time_s"] = tb.get("wall_time_s")
+        result["twoball"]["model"] = tb.get("reduction")
+        result["twoball"]["elements"] = (tb.get("fe") or {}).get("elements")
+        result["twoball"]["element_updates"] = tb.get("element_cycles")
+        result["twoball"]["set"] = a.twoball_set
         if tb.get("wall_time_s"):
             result["wall_time_ratio_ccx_over_twoball"] = wall / tb["wall_time_s"]
 
@@ -738,7 +780,16 @@ def main(argv=None):
     for k in ("e", "delta_max_m", "contact_duration_s", "v1_after_m_per_s", "v2_after_m_per_s"):
         row = "".join(f"{(c.get(k) if c.get(k) is not None else float('nan')):>14.6g}" for _, c in cols)
         print(f"{k:<24}{row}{rel(q[k], ana[k]):>16.3%}")
+    if a.reference_e is not None:
+        result["reference_e"] = a.reference_e
+        result["error_in_e_vs_reference"] = {n: rel(c["e"], a.reference_e) for n, c in cols
+                                             if n != "analytic" and c.get("e") is not None}
+        print("error in e against the reference e = " + f"{a.reference_e:g}: " + ", ".join(
+            f"{n} {err:+.2%}" for n, err in result["error_in_e_vs_reference"].items()))
     if "wall_time_ratio_ccx_over_twoball" in result:
+        tb = result["twoball"]
+        print(f"twoball: {tb.get('model')}, {tb.get('elements')} elements, "
+              f"{tb.get('element_updates')} element updates, wall {tb['wall_time_s']:.2f} s")
         print(f"wall-time ratio ccx / twoball: {result['wall_time_ratio_ccx_over_twoball']:.1f}")
     if a.json:
         def clean(o):  # no NaN in output files

@@ -5,7 +5,7 @@
 //! not depend on the number of threads.
 
 use super::{
-    hex_bbar,
+    hex_bbar_lanes as bp,
     hex_one_point::ElementOutput,
     hex_one_point_lanes as op,
     lanes::{build, Lanes},
@@ -304,7 +304,8 @@ fn finish_element(
     Ok(())
 }
 
-/// The B-bar element loop of one batch (element by element).
+/// The B-bar element loop of one batch on the best lane width this CPU supports (the results
+/// are the same on every path: see [`super::lanes`]).
 fn bbar_batch(
     b: &mut Batch<'_>,
     x: &[[f64; 3]],
@@ -313,22 +314,128 @@ fn bbar_batch(
     mat: &J2Material,
     base: usize,
 ) -> BatchResult {
+    #[cfg(target_arch = "x86_64")]
+    {
+        if std::is_x86_feature_detected!("avx2") && std::is_x86_feature_detected!("fma") {
+            // SAFETY: the CPU has the features the function is compiled for.
+            return unsafe { bbar_batch_avx2(b, x, v, dt, mat, base) };
+        }
+    }
+    bbar_lanes::<4>(b, x, v, dt, mat, base)
+}
+
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2,fma")]
+unsafe fn bbar_batch_avx2(
+    b: &mut Batch<'_>,
+    x: &[[f64; 3]],
+    v: &[[f64; 3]],
+    dt: f64,
+    mat: &J2Material,
+    base: usize,
+) -> BatchResult {
+    bbar_lanes::<4>(b, x, v, dt, mat, base)
+}
+
+/// B-bar elements W at a time: gather nodes and the eight points' state into lanes, update
+/// ([`bp::update`]), scatter state and forces back. Lanes past the batch end repeat its last
+/// element and are discarded.
+#[inline(always)]
+fn bbar_lanes<const W: usize>(
+    b: &mut Batch<'_>,
+    x: &[[f64; 3]],
+    v: &[[f64; 3]],
+    dt: f64,
+    mat: &J2Material,
+    base: usize,
+) -> BatchResult {
+    let n = b.conn.len();
     let mut best = (f64::INFINITY, base);
-    for k in 0..b.conn.len() {
-        let c = &b.conn[k];
-        let xe: [[f64; 3]; 8] = std::array::from_fn(|i| x[c[i] as usize]);
-        let ve: [[f64; 3]; 8] = std::array::from_fn(|i| v[c[i] as usize]);
-        let st = ElementStateMut {
-            points: &mut b.pts[k * 8..(k + 1) * 8],
-            plastic_work: &mut b.wp[k],
-            internal_energy: &mut b.ie[k],
-            hourglass: &mut b.hgq[k],
-            hourglass_energy: &mut b.ehg[k],
+    let mut k0 = 0;
+    while k0 < n {
+        let idx: [usize; W] = build(|l| (k0 + l).min(n - 1));
+        let live = (n - k0).min(W);
+        let mut xe = [[Lanes::<W>::default(); 3]; 8];
+        let mut ve = [[Lanes::<W>::default(); 3]; 8];
+        gather_nodes(&idx, b.conn, x, v, &mut xe, &mut ve);
+        let mut st = bp::State::<W> {
+            stress: [[Lanes::default(); 6]; 8],
+            eps_p: [Lanes::default(); 8],
+            plastic_work: Lanes::default(),
+            internal_energy: Lanes::default(),
         };
-        let out = hex_bbar::update(&xe, &ve, dt, mat, st);
-        finish_element(&out, b, k, base, &mut best)?;
+        for (l, &e) in idx.iter().enumerate() {
+            for g in 0..8 {
+                let ip = &b.pts[8 * e + g];
+                for c in 0..6 {
+                    st.stress[g][c].0[l] = ip.stress[c];
+                }
+                st.eps_p[g].0[l] = ip.eps_p;
+            }
+            st.plastic_work.0[l] = b.wp[e];
+            st.internal_energy.0[l] = b.ie[e];
+        }
+        let out = bp::update(&xe, &ve, dt, mat, &mut st);
+        for l in 0..live {
+            let k = k0 + l;
+            for g in 0..8 {
+                let ip = &mut b.pts[8 * k + g];
+                for c in 0..6 {
+                    ip.stress[c] = st.stress[g][c].0[l];
+                }
+                ip.eps_p = st.eps_p[g].0[l];
+                ip.volume = out.point_volume[g].0[l];
+            }
+            b.wp[k] = st.plastic_work.0[l];
+            b.ie[k] = st.internal_energy.0[l];
+            let eo = ElementOutput {
+                force: lane_forces(&out.force, l),
+                volume: out.volume.0[l],
+                min_jacobian: out.min_jacobian.0[l],
+                dt_crit: out.dt_crit.0[l],
+            };
+            finish_element(&eo, b, k, base, &mut best)?;
+        }
+        k0 += W;
     }
     Ok(best)
+}
+
+/// Nodal coordinates and velocities of the elements `idx` (local indices into `conn`) into
+/// lanes (plain loops: nothing is left out of line, outside the AVX2 kernel).
+#[inline(always)]
+fn gather_nodes<const W: usize>(
+    idx: &[usize; W],
+    conn: &[[u32; 8]],
+    x: &[[f64; 3]],
+    v: &[[f64; 3]],
+    xe: &mut [[Lanes<W>; 3]; 8],
+    ve: &mut [[Lanes<W>; 3]; 8],
+) {
+    for (l, &e) in idx.iter().enumerate() {
+        let c = &conn[e];
+        for i in 0..8 {
+            let node = c[i] as usize;
+            // SAFETY: update_range checked every node index of the range < len.
+            let (p, q) = unsafe { (x.get_unchecked(node), v.get_unchecked(node)) };
+            for d in 0..3 {
+                xe[i][d].0[l] = p[d];
+                ve[i][d].0[l] = q[d];
+            }
+        }
+    }
+}
+
+/// Lane `l` of lane-wise nodal forces.
+#[inline(always)]
+fn lane_forces<const W: usize>(f: &[[Lanes<W>; 3]; 8], l: usize) -> [[f64; 3]; 8] {
+    let mut out = [[0.0; 3]; 8];
+    for i in 0..8 {
+        for c in 0..3 {
+            out[i][c] = f[i][c].0[l];
+        }
+    }
+    out
 }
 
 /// The one-point element loop of one batch on the best lane width this CPU supports (the
@@ -396,17 +503,8 @@ fn one_point_lanes<const W: usize>(
             internal_energy: Lanes::default(),
             hourglass_energy: Lanes::default(),
         };
+        gather_nodes(&idx, b.conn, x, v, &mut xe, &mut ve);
         for (l, &e) in idx.iter().enumerate() {
-            let conn = &b.conn[e];
-            for i in 0..8 {
-                let node = conn[i] as usize;
-                // SAFETY: update_range checked every node index of the range < len.
-                let (p, q) = unsafe { (x.get_unchecked(node), v.get_unchecked(node)) };
-                for c in 0..3 {
-                    xe[i][c].0[l] = p[c];
-                    ve[i][c].0[l] = q[c];
-                }
-            }
             let ip = &b.pts[e];
             for c in 0..6 {
                 st.stress[c].0[l] = ip.stress[c];
@@ -438,17 +536,12 @@ fn one_point_lanes<const W: usize>(
                     b.hgq[k][a][c] = st.hourglass[a][c].0[l];
                 }
             }
-            let mut eo = ElementOutput {
-                force: [[0.0; 3]; 8],
+            let eo = ElementOutput {
+                force: lane_forces(&out.force, l),
                 volume: out.volume.0[l],
                 min_jacobian: out.volume.0[l],
                 dt_crit: out.dt_crit.0[l],
             };
-            for i in 0..8 {
-                for c in 0..3 {
-                    eo.force[i][c] = out.force[i][c].0[l];
-                }
-            }
             finish_element(&eo, b, k, base, &mut best)?;
         }
         k0 += W;

@@ -136,7 +136,7 @@ fn velocity_gradient<const W: usize>(
 /// The Hughes-Winget rotation increment for the spin increment with axial vector `w`
 /// (lane-wise [`super::objective::hughes_winget`]).
 #[inline(always)]
-fn hughes_winget<const W: usize>(w: &Vec3<W>) -> [Vec3<W>; 3] {
+pub fn hughes_winget<const W: usize>(w: &Vec3<W>) -> [Vec3<W>; 3] {
     let a = [0.5 * w[0], 0.5 * w[1], 0.5 * w[2]];
     let aa = a[0] * a[0] + a[1] * a[1] + a[2] * a[2];
     let f = Lanes::splat(2.0) / (aa + 1.0);
@@ -162,7 +162,7 @@ fn hughes_winget<const W: usize>(w: &Vec3<W>) -> [Vec3<W>; 3] {
 
 /// R s Rᵀ for a symmetric tensor (Voigt [xx, yy, zz, xy, yz, zx]).
 #[inline(always)]
-fn rotate_symmetric<const W: usize>(r: &[Vec3<W>; 3], s: &[Lanes<W>; 6]) -> [Lanes<W>; 6] {
+pub fn rotate_symmetric<const W: usize>(r: &[Vec3<W>; 3], s: &[Lanes<W>; 6]) -> [Lanes<W>; 6] {
     let m = [[s[0], s[3], s[5]], [s[3], s[1], s[4]], [s[5], s[4], s[2]]];
     let mut t = [[Lanes::default(); 3]; 3];
     for i in 0..3 {
@@ -182,7 +182,7 @@ fn rotate_symmetric<const W: usize>(r: &[Vec3<W>; 3], s: &[Lanes<W>; 6]) -> [Lan
 
 /// a : b of two symmetric tensors (Voigt, tensor shears).
 #[inline(always)]
-fn ddot<const W: usize>(a: &[Lanes<W>; 6], b: &[Lanes<W>; 6]) -> Lanes<W> {
+pub fn ddot<const W: usize>(a: &[Lanes<W>; 6], b: &[Lanes<W>; 6]) -> Lanes<W> {
     a[0] * b[0] + a[1] * b[1] + a[2] * b[2] + 2.0 * (a[3] * b[3] + a[4] * b[4] + a[5] * b[5])
 }
 
@@ -357,8 +357,23 @@ pub fn update<const W: usize>(
         }
     }
     let force = nodes_from_modes(&fm);
-    // Characteristic length V / largest face area (area: half the cross product of diagonals).
-    let mut a2 = z;
+    Output {
+        force,
+        volume: v1,
+        dt_crit: critical_step(x1, v1, mat.wave_speed),
+    }
+}
+
+/// Courant limit L_e / c (s) with L_e = volume / largest face area (the lane-wise
+/// [`super::timestep::characteristic_length`]; a face's area is half the cross product of its
+/// diagonals), for nodal coordinates `x1` (m), element `volume` (m³) and `wave_speed` (m/s).
+#[inline(always)]
+pub fn critical_step<const W: usize>(
+    x1: &[Vec3<W>; 8],
+    volume: Lanes<W>,
+    wave_speed: f64,
+) -> Lanes<W> {
+    let mut a2 = Lanes::splat(0.0);
     for f in HEX_FACES {
         let d1: Vec3<W> = build(|c| x1[f[2]][c] - x1[f[0]][c]);
         let d2: Vec3<W> = build(|c| x1[f[3]][c] - x1[f[1]][c]);
@@ -366,16 +381,11 @@ pub fn update<const W: usize>(
         a2 = a2.max(dot(&cr, &cr));
     }
     let amax = 0.5 * a2.sqrt();
-    let dt_crit = v1 / amax * (1.0 / mat.wave_speed);
-    Output {
-        force,
-        volume: v1,
-        dt_crit,
-    }
+    volume / amax * (1.0 / wave_speed)
 }
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use super::*;
     use crate::fe::{
         elements::ElementStateMut,
@@ -385,14 +395,14 @@ mod tests {
     use crate::material::Material;
 
     /// A pseudo-random number in [-1, 1) (xorshift, fixed seed: reproducible).
-    fn rnd(s: &mut u64) -> f64 {
+    pub(crate) fn rnd(s: &mut u64) -> f64 {
         *s ^= *s << 13;
         *s ^= *s >> 7;
         *s ^= *s << 17;
         (*s >> 11) as f64 / (1u64 << 52) as f64 - 1.0
     }
 
-    fn distorted(s: &mut u64, h: f64) -> [[f64; 3]; 8] {
+    pub(crate) fn distorted(s: &mut u64, h: f64) -> [[f64; 3]; 8] {
         let rot = 0.7 * rnd(s);
         NODE_XI.map(|p| {
             let q = p.map(|c| 0.5 * h * (c + 1.0) + 0.15 * h * rnd(s));
@@ -404,7 +414,7 @@ mod tests {
         })
     }
 
-    fn lanes<const W: usize>(e: &[[[f64; 3]; 8]; W]) -> [Vec3<W>; 8] {
+    pub(crate) fn lanes<const W: usize>(e: &[[[f64; 3]; 8]; W]) -> [Vec3<W>; 8] {
         std::array::from_fn(|i| std::array::from_fn(|c| Lanes(std::array::from_fn(|l| e[l][i][c]))))
     }
 

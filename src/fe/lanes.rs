@@ -62,6 +62,16 @@ impl<const W: usize> Lanes<W> {
         Lanes(r)
     }
 
+    /// Lane-wise minimum (the `f64::min` rule: a NaN lane yields the other operand).
+    #[inline(always)]
+    pub fn min(self, o: Self) -> Self {
+        let mut r = self.0;
+        for l in 0..W {
+            r[l] = r[l].min(o.0[l]);
+        }
+        Lanes(r)
+    }
+
     /// Lane-wise reciprocal 1/x.
     #[inline(always)]
     pub fn recip(self) -> Self {

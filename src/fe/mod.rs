@@ -10,6 +10,7 @@ pub mod elements;
 pub mod energy;
 pub mod explicit;
 pub mod hex_bbar;
+pub mod hex_bbar_lanes;
 pub mod hex_one_point;
 pub mod hex_one_point_lanes;
 pub mod interaction;
