@@ -655,16 +655,17 @@ def main(argv=None):
     ap.add_argument("--run-twoball", action="store_true",
                     help="run `twoball run` on the same scene and mesh first (its automatic reductions on, "
                          "unless --twoball-set says otherwise) and compare with it")
-    ap.add_argument("--twoball-set", action="append", default=[], metavar="KEY=VALUE",
-                    help="extra `--set` for the twoball run (repeatable), e.g. 'solver.element=\"b-bar\"'")
+    ap.add_argument("--twoball-variant", action="append", default=[], metavar="LABEL=KEY=VALUE;KEY=VALUE",
+                    help="also run twoball with these `--set`s (';'-separated) and compare under LABEL "
+                         "(repeatable; implies --run-twoball), e.g. 'full=reduction.symmetry=\"off\"'")
     ap.add_argument("--reference-e", type=float,
                     help="converged e of the scene (e.g. 0.3190 for the default scene, docs/performance.md): "
                          "errors in e of both codes are printed against it")
     ap.add_argument("--json", help="write the results here (JSON)")
     ap.add_argument("--keep", action="store_true", help="keep the ccx .dat output")
     a = ap.parse_args(argv)
-    if a.run_twoball and a.twoball_results:
-        raise PeerError("--run-twoball and --twoball-results exclude each other: give one")
+    if (a.run_twoball or a.twoball_variant) and a.twoball_results:
+        raise PeerError("--run-twoball/--twoball-variant and --twoball-results exclude each other: give one")
     if a.reference_e is not None and not (math.isfinite(a.reference_e) and 0 < a.reference_e <= 1):
         raise PeerError(f"--reference-e = {a.reference_e}: allowed 0 < e <= 1")
     for name in ("gap", "end_factor", "size", "pole_size"):
@@ -689,9 +690,19 @@ def main(argv=None):
     work = Path(a.work) if a.work else Path(tempfile.mkdtemp(prefix="ccx_peer_"))
     work.mkdir(parents=True, exist_ok=True)
 
-    twoball_results = a.twoball_results
-    if a.run_twoball:
-        twoball_results = run_twoball(twoball, a.scene, scene, a.twoball_set, work / "twoball")
+    # twoball runs first (seconds), on the idle machine, then ccx.
+    variants = []  # (label, sets, results.json)
+    if a.twoball_results:
+        variants.append(("twoball", [], Path(a.twoball_results)))
+    elif a.run_twoball or a.twoball_variant:
+        variants.append(("twoball", [], run_twoball(twoball, a.scene, scene, [], work / "twoball")))
+    for spec in a.twoball_variant:
+        label, _, sets = spec.partition("=")
+        sets = [x.strip() for x in sets.split(";") if x.strip()]
+        if not label or not sets or not label.replace("-", "").replace("_", "").isalnum():
+            raise PeerError(f"--twoball-variant {spec!r}: expected LABEL=KEY=VALUE[;KEY=VALUE...] "
+                            "with a label of letters, digits, - or _")
+        variants.append((label, sets, run_twoball(twoball, a.scene, scene, sets, work / f"twoball-{label}")))
 
     model = build_model(scene, twoball, work, a.gap, a.twist)
     (n1, n2), (h1, h2) = model["nodes"], model["hexes"]
@@ -755,27 +766,34 @@ def main(argv=None):
         "error_vs_analytic": {k: rel(q[k], ana[k]) for k in ("e", "delta_max_m", "contact_duration_s")},
         "history": history,
     }
-    if twoball_results:
-        tb = json.loads(Path(twoball_results).read_text())
+    result["twoball_variants"] = []
+    for label, sets, path in variants:
+        tb = json.loads(Path(path).read_text())
         keys = {"e": "e", "delta_max_m": "delta_max", "contact_duration_s": "contact_duration"}
-        result["twoball"] = {k: tb.get(v) for k, v in keys.items()}
+        r = {k: tb.get(v) for k, v in keys.items()}
         # twoball writes 3-vectors (scene frame); x is the line of centres.
         for k in ("v1_after", "v2_after"):
             v = tb.get(k)
-            result["twoball"][k + "_m_per_s"] = v[0] if isinstance(v, list) and v else v
-        result["twoball"]["wall_time_s"] = tb.get("wall_time_s")
-        result["twoball"]["model"] = tb.get("reduction")
-        result["twoball"]["elements"] = (tb.get("fe") or {}).get("elements")
-        result["twoball"]["element_updates"] = tb.get("element_cycles")
-        result["twoball"]["set"] = a.twoball_set
+            r[k + "_m_per_s"] = v[0] if isinstance(v, list) and v else v
+        r["label"] = label
+        r["set"] = sets
+        r["wall_time_s"] = tb.get("wall_time_s")
+        r["model"] = tb.get("reduction")
+        r["elements"] = (tb.get("fe") or {}).get("elements")
+        r["element_updates"] = tb.get("element_cycles")
         if tb.get("wall_time_s"):
-            result["wall_time_ratio_ccx_over_twoball"] = wall / tb["wall_time_s"]
+            r["wall_time_ratio_ccx_over_twoball"] = wall / tb["wall_time_s"]
+        result["twoball_variants"].append(r)
+    if result["twoball_variants"]:
+        result["twoball"] = result["twoball_variants"][0]
+        if "wall_time_ratio_ccx_over_twoball" in result["twoball"]:
+            result["wall_time_ratio_ccx_over_twoball"] = result["twoball"]["wall_time_ratio_ccx_over_twoball"]
 
     print(f"CalculiX peer: {n_all} nodes, {len(h1) + len(h2)} {a.element}, dt = {dt:.3e} s, "
           f"{result['ccx']['increments']} increments, wall {wall:.2f} s, CPU {cpu:.2f} s ({a.threads} thread(s))")
     print(f"penalty K = {k_pen:.3e} Pa/m (FKN {fkn:g}, h = {h_pole:.3e} m), spring reduction "
           f"{result['ccx']['spring_stiffness_reduction']:.3g}")
-    cols = [("calculix", q), ("analytic", ana)] + ([("twoball", result["twoball"])] if "twoball" in result else [])
+    cols = [("calculix", q), ("analytic", ana)] + [(r["label"], r) for r in result["twoball_variants"]]
     print(f"{'quantity':<24}" + "".join(f"{n:>14}" for n, _ in cols) + f"{'ccx/analytic-1':>16}")
     for k in ("e", "delta_max_m", "contact_duration_s", "v1_after_m_per_s", "v2_after_m_per_s"):
         row = "".join(f"{(c.get(k) if c.get(k) is not None else float('nan')):>14.6g}" for _, c in cols)
@@ -786,11 +804,12 @@ def main(argv=None):
                                              if n != "analytic" and c.get("e") is not None}
         print("error in e against the reference e = " + f"{a.reference_e:g}: " + ", ".join(
             f"{n} {err:+.2%}" for n, err in result["error_in_e_vs_reference"].items()))
-    if "wall_time_ratio_ccx_over_twoball" in result:
-        tb = result["twoball"]
-        print(f"twoball: {tb.get('model')}, {tb.get('elements')} elements, "
-              f"{tb.get('element_updates')} element updates, wall {tb['wall_time_s']:.2f} s")
-        print(f"wall-time ratio ccx / twoball: {result['wall_time_ratio_ccx_over_twoball']:.1f}")
+    for tb in result["twoball_variants"]:
+        if "wall_time_ratio_ccx_over_twoball" in tb:
+            print(f"{tb['label']}: {tb.get('model')} model, {tb.get('elements')} elements, "
+                  f"{tb.get('element_updates')} element updates, wall {tb['wall_time_s']:.3f} s, "
+                  f"wall-time ratio ccx / {tb['label']}: {tb['wall_time_ratio_ccx_over_twoball']:.1f}"
+                  + (f" (set: {'; '.join(tb['set'])})" if tb["set"] else ""))
     if a.json:
         def clean(o):  # no NaN in output files
             if isinstance(o, float):

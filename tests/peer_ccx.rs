@@ -47,6 +47,8 @@ fn ccx_peer_tiny_default_scene() {
         .args(["--twoball", env!("CARGO_BIN_EXE_twoball")])
         .args(["--size", "0.01", "--pole-size", "0.01", "--element", "C3D8"])
         .args(["--end-factor", "0.5", "--samples", "60"])
+        .args(["--run-twoball", "--reference-e", "0.3190"])
+        .args(["--twoball-variant", "full=reduction.symmetry=\"off\""])
         .arg("--work")
         .arg(&dir)
         .arg("--json")
@@ -94,6 +96,29 @@ fn ccx_peer_tiny_default_scene() {
     );
     assert!(num(&["ccx", "wall_time_s"]) > 0.0);
     assert_eq!(r["ccx"]["element"], "C3D8");
+
+    // One command runs both codes: twoball's default (automatic reductions: a quarter ball
+    // here) and the full-model variant on the same mesh, each with its wall-time ratio.
+    let variants = r["twoball_variants"].as_array().expect("twoball variants");
+    assert_eq!(variants.len(), 2);
+    assert_eq!(variants[0]["label"], "twoball");
+    assert_eq!(variants[0]["model"], "quarter");
+    assert_eq!(variants[1]["label"], "full");
+    assert_eq!(variants[1]["model"], "full");
+    for v in variants {
+        let ratio = v["wall_time_ratio_ccx_over_twoball"].as_f64().unwrap();
+        assert!(ratio > 0.0 && ratio.is_finite(), "ratio {ratio}");
+        let e = v["e"].as_f64().unwrap();
+        assert!(e > 0.0 && e <= 1.0, "twoball e = {e}");
+    }
+    // The reductions are exact for this scene: quarter and full model agree on e.
+    let (eq, ef) = (
+        variants[0]["e"].as_f64().unwrap(),
+        variants[1]["e"].as_f64().unwrap(),
+    );
+    assert!((eq - ef).abs() < 0.01 * ef, "quarter e {eq}, full e {ef}");
+    assert!(num(&["error_in_e_vs_reference", "calculix"]).is_finite());
+    assert!(num(&["error_in_e_vs_reference", "full"]).is_finite());
 
     // The deck: one element-face line per contact quad of each ball (16 on this mesh).
     let deck = std::fs::read_to_string(dir.join("peer.inp")).unwrap();
