@@ -3,8 +3,8 @@
 count, ball diameter and impact speed, with fitted power-law exponents.
 
 Three series on the built-in default scene (copper-fe, equal balls, head-on, quarter model):
-- mesh: densities m (bulk size D/(10 m), pole size D/(100 m), the `twoball bench study`
-  ladder); explicit dynamics expects element-cycles ~ N x steps ~ N^(4/3) for uniform
+- mesh: densities m (bulk size D/(6 m), pole size D/(200 m): m = 1 is the default mesh,
+  src/scene.rs DEFAULT_SIZE_PER_D and DEFAULT_POLE_SIZE_PER_D); explicit dynamics expects element-cycles ~ N x steps ~ N^(4/3) for uniform
   refinement (the stable step shrinks with the element size, N ~ h^-3);
 - diameter: D = 5, 10, 20, 30 mm on the D-scaled default mesh (same N; the stable step and
   the contact duration both scale with D, so the cost should not change);
@@ -46,7 +46,7 @@ def run(twoball, out, name, sets):
 
 
 def mesh_sets(d, m):
-    size, pole = d / (10 * m), d / (100 * m)
+    size, pole = d / (6 * m), d / (200 * m)
     return [f"ball{k}.mesh={{size={size:e},pole_size={pole:e}}}" for k in (1, 2)]
 
 
