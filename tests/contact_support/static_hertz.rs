@@ -26,6 +26,8 @@ pub struct StaticHertz {
     pub elements: usize,
     /// Kinetic energy left at the end (J): how well the relaxation settled.
     pub final_kinetic: f64,
+    /// Largest penetration of a ball node into the plane at the end (the pole's), m.
+    pub max_penetration: f64,
 }
 
 /// Compresses by `depth` (m) over `t_load` (s), then relaxes for `t_hold` (s).
@@ -94,6 +96,7 @@ pub fn compress(
         elements,
     );
     out.final_kinetic = ke;
+    out.max_penetration = data.last.max_penetration;
     out
 }
 
@@ -143,5 +146,6 @@ pub fn finish(
         samples: rp,
         elements,
         final_kinetic: 0.0,
+        max_penetration: 0.0,
     }
 }
