@@ -425,28 +425,23 @@ impl Solver {
         // 4. Time update: t^{n+1} = t^n + Δt^{n+1/2}.
         let dt = self.dt_next;
         let t_new = self.t + dt;
-        // 5. First partial velocity update: v^{n+1/2} = v^n + (t^{n+1/2} − t^n) a^n.
-        self.partial_velocity_update(0.5 * dt);
-        // 6. Enforce velocity boundary conditions (symmetry planes).
-        apply_fixed(&mut self.v, &self.fixed);
-        let (p_int_old, p_ext_old) = self.power();
-        // 7. Displacement update: x^{n+1} = x^n + Δt^{n+1/2} v^{n+1/2}.
-        self.update_positions(dt);
+        // 5-7 in one pass over the nodes: first partial velocity update
+        // v^{n+1/2} = v^n + (t^{n+1/2} − t^n) a^n, velocity boundary conditions (symmetry
+        // planes), power of f^n at v^{n+1/2} (step 11's first trapezoid end), displacement
+        // update x^{n+1} = x^n + Δt^{n+1/2} v^{n+1/2}.
+        let (p_int_old, p_ext_old) = self.kick_and_drift(dt);
         self.t = t_new;
         self.profile.lap(Phase::Nodal);
         // 8. getforce: element loop, interactions, critical time step.
         self.getforce(dt)?;
         self.updates += self.model.hexes.len() as u64;
-        // 9. Accelerations a^{n+1} = M⁻¹(f_ext − f_int).
-        self.accelerations()?;
-        // 11 (first half). Work of internal and external forces over the step (trapezoid with
-        // v^{n+1/2}), needs v^{n+1/2}: before the second partial update.
-        let (p_int_new, p_ext_new) = self.power();
+        // 9-10 in one pass over the nodes: accelerations a^{n+1} = M⁻¹(f_ext − f_int), power of
+        // f^{n+1} at v^{n+1/2} (before the velocity moves on), second partial velocity update
+        // v^{n+1} = v^{n+1/2} + (t^{n+1} − t^{n+1/2}) a^{n+1}, velocity boundary conditions.
+        let (p_int_new, p_ext_new) = self.accelerate_and_kick(dt)?;
+        // 11 (first half). Work of internal and external forces over the step (trapezoid).
         self.w_int += 0.5 * dt * (p_int_old + p_int_new);
         self.w_ext += 0.5 * dt * (p_ext_old + p_ext_new);
-        // 10. Second partial velocity update: v^{n+1} = v^{n+1/2} + (t^{n+1} − t^{n+1/2}) a^{n+1}.
-        self.partial_velocity_update(0.5 * dt);
-        apply_fixed(&mut self.v, &self.fixed);
         self.step += 1;
         self.dt_prev = dt;
         // 11. Energy balance check.
@@ -824,8 +819,86 @@ impl Solver {
         ))
     }
 
-    fn partial_velocity_update(&mut self, h: f64) {
-        kick(&mut self.v, &self.a, h);
+    /// Box 6.1 steps 5-7 of a single-rate step, fused into one pass over the nodes (each
+    /// node's arithmetic is that of the separate steps): v += (Δt/2) a, zero constrained
+    /// velocity components, x += Δt v. Returns the power (W) of f_int and f_ext at the new
+    /// velocities, summed in fixed chunks (thread-count independent).
+    fn kick_and_drift(&mut self, dt: f64) -> (f64, f64) {
+        let h = 0.5 * dt;
+        let (a, fixed, f_int, f_ext) = (&self.a, &self.fixed, &self.f_int, &self.f_ext);
+        let parts: Vec<(f64, f64)> = self
+            .v
+            .par_chunks_mut(NODE_CHUNK)
+            .zip(self.x.par_chunks_mut(NODE_CHUNK))
+            .enumerate()
+            .map(|(c, (vs, xs))| {
+                let (mut pi, mut pe) = (0.0, 0.0);
+                for (k, (v, x)) in vs.iter_mut().zip(xs.iter_mut()).enumerate() {
+                    let n = c * NODE_CHUNK + k;
+                    for d in 0..3 {
+                        v[d] += h * a[n][d];
+                    }
+                    fix_node(v, fixed[n]);
+                    let (fi, fe) = (f_int[n], f_ext[n]);
+                    pi += v[0] * fi[0] + v[1] * fi[1] + v[2] * fi[2];
+                    pe += v[0] * fe[0] + v[1] * fe[1] + v[2] * fe[2];
+                    for d in 0..3 {
+                        x[d] += dt * v[d];
+                    }
+                }
+                (pi, pe)
+            })
+            .collect();
+        parts.iter().fold((0.0, 0.0), |s, p| (s.0 + p.0, s.1 + p.1))
+    }
+
+    /// Box 6.1 steps 9-10 of a single-rate step, fused into one pass over the nodes:
+    /// a = M⁻¹ (f_ext − f_int) (zero on constrained components), the power (W) of f_int and
+    /// f_ext at v^{n+1/2} (summed in fixed chunks), v += (Δt/2) a, constrained components
+    /// zeroed. Fails on the lowest node with a non-finite acceleration.
+    fn accelerate_and_kick(&mut self, dt: f64) -> Result<(f64, f64)> {
+        let h = 0.5 * dt;
+        let (m, fixed, f_int, f_ext) = (&self.mass, &self.fixed, &self.f_int, &self.f_ext);
+        let parts: Vec<std::result::Result<(f64, f64), usize>> = self
+            .a
+            .par_chunks_mut(NODE_CHUNK)
+            .zip(self.v.par_chunks_mut(NODE_CHUNK))
+            .enumerate()
+            .map(|(c, (acc, vs))| {
+                let (mut pi, mut pe) = (0.0, 0.0);
+                for (k, (a, v)) in acc.iter_mut().zip(vs.iter_mut()).enumerate() {
+                    let n = c * NODE_CHUNK + k;
+                    let (fi, fe) = (f_int[n], f_ext[n]);
+                    let r = 1.0 / m[n];
+                    for d in 0..3 {
+                        a[d] = if fixed[n] & (1 << d) != 0 {
+                            0.0
+                        } else {
+                            (fe[d] - fi[d]) * r
+                        };
+                    }
+                    if !a.iter().all(|c| c.is_finite()) {
+                        return Err(n);
+                    }
+                    pi += v[0] * fi[0] + v[1] * fi[1] + v[2] * fi[2];
+                    pe += v[0] * fe[0] + v[1] * fe[1] + v[2] * fe[2];
+                    for d in 0..3 {
+                        v[d] += h * a[d];
+                    }
+                    fix_node(v, fixed[n]);
+                }
+                Ok((pi, pe))
+            })
+            .collect();
+        let mut sum = (0.0, 0.0);
+        for p in parts {
+            match p {
+                Ok((pi, pe)) => sum = (sum.0 + pi, sum.1 + pe),
+                // Chunks are in node order: the first failing chunk holds the lowest node.
+                Err(n) => return Err(self.non_finite_error(n)),
+            }
+        }
+        Ok(sum)
     }
 
     fn update_positions(&mut self, dt: f64) {
@@ -838,35 +911,6 @@ impl Solver {
                 x[1] += dt * v[1];
                 x[2] += dt * v[2];
             });
-    }
-
-    /// Power of the internal and external forces with the current velocities, W:
-    /// (Σ v·f_int, Σ v·f_ext), summed in fixed chunks (thread-count independent).
-    fn power(&self) -> (f64, f64) {
-        self.power_with(&self.f_int)
-    }
-
-    /// Power (W) of internal forces `f_int` and of the external forces with the current
-    /// velocities, summed in fixed chunks.
-    fn power_with(&self, f_int: &[[f64; 3]]) -> (f64, f64) {
-        let f_ext = &self.f_ext;
-        let parts: Vec<(f64, f64)> = self
-            .v
-            .par_chunks(NODE_CHUNK)
-            .enumerate()
-            .map(|(c, vs)| {
-                let mut pi = 0.0;
-                let mut pe = 0.0;
-                for (k, v) in vs.iter().enumerate() {
-                    let n = c * NODE_CHUNK + k;
-                    let (fi, fe) = (f_int[n], f_ext[n]);
-                    pi += v[0] * fi[0] + v[1] * fi[1] + v[2] * fi[2];
-                    pe += v[0] * fe[0] + v[1] * fe[1] + v[2] * fe[2];
-                }
-                (pi, pe)
-            })
-            .collect();
-        parts.iter().fold((0.0, 0.0), |a, b| (a.0 + b.0, a.1 + b.1))
     }
 
     /// The stop message for energy created by the integration: names the fastest node (where
@@ -1176,25 +1220,19 @@ fn accelerations_into(
         )
 }
 
-/// Half-kick v += h a, m/s.
-fn kick(v: &mut [[f64; 3]], a: &[[f64; 3]], h: f64) {
-    v.par_iter_mut()
-        .zip(a.par_iter())
-        .with_min_len(NODE_CHUNK)
-        .for_each(|(v, a)| {
-            v[0] += h * a[0];
-            v[1] += h * a[1];
-            v[2] += h * a[2];
-        });
-}
-
 fn apply_fixed(v: &mut [[f64; 3]], fixed: &[u8]) {
     for (vi, &f) in v.iter_mut().zip(fixed) {
-        if f != 0 {
-            for (d, c) in vi.iter_mut().enumerate() {
-                if f & (1 << d) != 0 {
-                    *c = 0.0;
-                }
+        fix_node(vi, f);
+    }
+}
+
+/// Zeroes the velocity components of one node that its constraint bits `f` fix.
+#[inline(always)]
+fn fix_node(v: &mut [f64; 3], f: u8) {
+    if f != 0 {
+        for (d, c) in v.iter_mut().enumerate() {
+            if f & (1 << d) != 0 {
+                *c = 0.0;
             }
         }
     }
