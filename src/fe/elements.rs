@@ -211,10 +211,15 @@ impl ElementBlock {
                     dtc,
                     f,
                 };
-                match form {
-                    Formulation::OnePoint => one_point_batch(&mut batch, x, v, dt, &mat, hg, base),
-                    Formulation::BBar => bbar_batch(&mut batch, x, v, dt, &mat, base),
-                }
+                let inp = StepInput {
+                    x,
+                    v,
+                    dt,
+                    mat: &mat,
+                    hg,
+                    form,
+                };
+                element_batch(&mut batch, inp, base)
             })
             .reduce(
                 || Ok((f64::INFINITY, usize::MAX)),
@@ -302,39 +307,6 @@ fn finish_element(
         *best = (out.dt_crit, base + k);
     }
     Ok(())
-}
-
-/// The B-bar element loop of one batch on the best lane width this CPU supports (the results
-/// are the same on every path: see [`super::lanes`]).
-fn bbar_batch(
-    b: &mut Batch<'_>,
-    x: &[[f64; 3]],
-    v: &[[f64; 3]],
-    dt: f64,
-    mat: &J2Material,
-    base: usize,
-) -> BatchResult {
-    #[cfg(target_arch = "x86_64")]
-    {
-        if std::is_x86_feature_detected!("avx2") && std::is_x86_feature_detected!("fma") {
-            // SAFETY: the CPU has the features the function is compiled for.
-            return unsafe { bbar_batch_avx2(b, x, v, dt, mat, base) };
-        }
-    }
-    bbar_lanes::<4>(b, x, v, dt, mat, base)
-}
-
-#[cfg(target_arch = "x86_64")]
-#[target_feature(enable = "avx2,fma")]
-unsafe fn bbar_batch_avx2(
-    b: &mut Batch<'_>,
-    x: &[[f64; 3]],
-    v: &[[f64; 3]],
-    dt: f64,
-    mat: &J2Material,
-    base: usize,
-) -> BatchResult {
-    bbar_lanes::<4>(b, x, v, dt, mat, base)
 }
 
 /// B-bar elements W at a time: gather nodes and the eight points' state into lanes, update
@@ -438,39 +410,60 @@ fn lane_forces<const W: usize>(f: &[[Lanes<W>; 3]; 8], l: usize) -> [[f64; 3]; 8
     out
 }
 
-/// The one-point element loop of one batch on the best lane width this CPU supports (the
-/// results are the same on every path: see [`super::lanes`]).
-fn one_point_batch(
-    b: &mut Batch<'_>,
-    x: &[[f64; 3]],
-    v: &[[f64; 3]],
+/// What every element of a batch needs besides its own state.
+#[derive(Clone, Copy)]
+struct StepInput<'a> {
+    /// Nodal coordinates at t^{n+1}, m.
+    x: &'a [[f64; 3]],
+    /// Nodal velocities at t^{n+1/2}, m/s.
+    v: &'a [[f64; 3]],
+    /// Step, s.
     dt: f64,
-    mat: &J2Material,
+    mat: &'a J2Material,
+    /// Hourglass coefficient (one-point hex; 0 = off).
     hg: f64,
-    base: usize,
-) -> BatchResult {
+    form: Formulation,
+}
+
+/// One batch of elements on the best lane width this CPU supports: the AVX2 build of the
+/// lane kernels when the CPU has AVX2 and FMA, otherwise the same source as plain arrays
+/// (the results are the same on every path: see [`super::lanes`]).
+fn element_batch(b: &mut Batch<'_>, inp: StepInput<'_>, base: usize) -> BatchResult {
     #[cfg(target_arch = "x86_64")]
     {
         if std::is_x86_feature_detected!("avx2") && std::is_x86_feature_detected!("fma") {
             // SAFETY: the CPU has the features the function is compiled for.
-            return unsafe { one_point_batch_avx2(b, x, v, dt, mat, hg, base) };
+            return unsafe { element_batch_avx2(b, inp, base) };
         }
     }
-    one_point_lanes::<4>(b, x, v, dt, mat, hg, base)
+    element_lanes::<4>(b, inp, base)
 }
 
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx2,fma")]
-unsafe fn one_point_batch_avx2(
+unsafe fn element_batch_avx2(b: &mut Batch<'_>, inp: StepInput<'_>, base: usize) -> BatchResult {
+    element_lanes::<4>(b, inp, base)
+}
+
+/// The lane loop of the batch's formulation (both inline into the caller's target features).
+#[inline(always)]
+fn element_lanes<const W: usize>(
     b: &mut Batch<'_>,
-    x: &[[f64; 3]],
-    v: &[[f64; 3]],
-    dt: f64,
-    mat: &J2Material,
-    hg: f64,
+    inp: StepInput<'_>,
     base: usize,
 ) -> BatchResult {
-    one_point_lanes::<4>(b, x, v, dt, mat, hg, base)
+    let StepInput {
+        x,
+        v,
+        dt,
+        mat,
+        hg,
+        form,
+    } = inp;
+    match form {
+        Formulation::OnePoint => one_point_lanes::<W>(b, x, v, dt, mat, hg, base),
+        Formulation::BBar => bbar_lanes::<W>(b, x, v, dt, mat, base),
+    }
 }
 
 /// Gathers W elements (`idx`: local element per lane) into lanes, updates them, scatters

@@ -6,6 +6,7 @@
 //! the current frame; every array is allocated once in [`Solver::new`].
 
 use super::{
+    contact::vec3::dot,
     elements::{ElementBlock, ElementFailure},
     energy::{EnergyReport, PartEnergy},
     interaction::{Interaction, StepContext},
@@ -589,8 +590,8 @@ impl Solver {
                 }
             }
             let (fi, fe) = (self.f_open[n], self.f_ext[n]);
-            pi += v[0] * fi[0] + v[1] * fi[1] + v[2] * fi[2];
-            pe += v[0] * fe[0] + v[1] * fe[1] + v[2] * fe[2];
+            pi += dot(*v, fi);
+            pe += dot(*v, fe);
         }
         self.update_positions(dt);
         (pi, pe)
@@ -619,8 +620,8 @@ impl Solver {
                 return Err(self.non_finite_error(n));
             }
             let v = &mut self.v[n];
-            pi += v[0] * fi[0] + v[1] * fi[1] + v[2] * fi[2];
-            pe += v[0] * fe[0] + v[1] * fe[1] + v[2] * fe[2];
+            pi += dot(*v, fi);
+            pe += dot(*v, fe);
             for d in 0..3 {
                 v[d] += h * ac[d];
                 if fx & (1 << d) != 0 {
@@ -840,8 +841,8 @@ impl Solver {
                     }
                     fix_node(v, fixed[n]);
                     let (fi, fe) = (f_int[n], f_ext[n]);
-                    pi += v[0] * fi[0] + v[1] * fi[1] + v[2] * fi[2];
-                    pe += v[0] * fe[0] + v[1] * fe[1] + v[2] * fe[2];
+                    pi += dot(*v, fi);
+                    pe += dot(*v, fe);
                     for d in 0..3 {
                         x[d] += dt * v[d];
                     }
@@ -880,8 +881,8 @@ impl Solver {
                     if !a.iter().all(|c| c.is_finite()) {
                         return Err(n);
                     }
-                    pi += v[0] * fi[0] + v[1] * fi[1] + v[2] * fi[2];
-                    pe += v[0] * fe[0] + v[1] * fe[1] + v[2] * fe[2];
+                    pi += dot(*v, fi);
+                    pe += dot(*v, fe);
                     for d in 0..3 {
                         v[d] += h * a[d];
                     }

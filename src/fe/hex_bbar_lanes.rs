@@ -218,7 +218,7 @@ mod tests {
     use crate::fe::{
         elements::{ElementStateMut, IntegrationPoint},
         hex_bbar,
-        hex_one_point_lanes::tests::{distorted, lanes, rnd},
+        hex_one_point_lanes::tests::{four_elements, lanes},
     };
     use crate::material::Material;
 
@@ -228,25 +228,9 @@ mod tests {
     #[test]
     fn lanes_match_the_per_element_kernel() {
         let mat = J2Material::new(&Material::preset("copper-fe").unwrap(), false);
-        let mut s = 0x0bad_cafe_2468_1357;
         let h = 1e-3;
-        let xs: [[[f64; 3]; 8]; 4] = std::array::from_fn(|_| distorted(&mut s, h));
         // Lane 1 moves rigidly (spin, no strain); the others stretch hard and yield.
-        let vs: [[[f64; 3]; 8]; 4] = std::array::from_fn(|l| {
-            std::array::from_fn(|i| {
-                let x = xs[l][i];
-                if l == 1 {
-                    [1.0 - 300.0 * x[1], 2.0 + 300.0 * x[0], 0.5]
-                } else {
-                    let g = 50.0 * (l as f64 + 1.0);
-                    [
-                        g * x[0] + 4.0 * rnd(&mut s),
-                        -0.5 * g * x[1] + 2.0 * rnd(&mut s),
-                        3.0 * rnd(&mut s) - 0.3 * g * x[2],
-                    ]
-                }
-            })
-        });
+        let (xs, vs) = four_elements(0x0bad_cafe_2468_1357, h, 1, 50.0, [4.0, 2.0, 3.0], 0.3);
         let dt = 2e-8;
         let mut x = xs;
         let mut st = State::<4> {

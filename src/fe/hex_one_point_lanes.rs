@@ -414,6 +414,41 @@ pub(crate) mod tests {
         })
     }
 
+    /// Nodal vectors of one hexahedron, gmsh order.
+    pub(crate) type Hex = [[f64; 3]; 8];
+
+    /// Four distorted elements of size `h` (m) and nodal velocities (m/s), reproducible from
+    /// `seed`: lane `rigid` translates and spins without strain; lane l of the others
+    /// stretches along x at g = `gain` (l + 1) (1/s), contracts along y at g/2 and along z at
+    /// `squeeze` g, plus uniform noise of amplitude `noise` per component (m/s).
+    pub(crate) fn four_elements(
+        seed: u64,
+        h: f64,
+        rigid: usize,
+        gain: f64,
+        noise: [f64; 3],
+        squeeze: f64,
+    ) -> ([Hex; 4], [Hex; 4]) {
+        let mut s = seed;
+        let xs: [[[f64; 3]; 8]; 4] = std::array::from_fn(|_| distorted(&mut s, h));
+        let mut jitter = |a: f64| if a != 0.0 { a * rnd(&mut s) } else { 0.0 };
+        let vs = std::array::from_fn(|l| {
+            std::array::from_fn(|i| {
+                let x = xs[l][i];
+                if l == rigid {
+                    [1.0 - 300.0 * x[1], 2.0 + 300.0 * x[0], 0.5]
+                } else {
+                    let g = gain * (l as f64 + 1.0);
+                    let vx = g * x[0] + jitter(noise[0]);
+                    let vy = -0.5 * g * x[1] + jitter(noise[1]);
+                    let vz = jitter(noise[2]) - squeeze * g * x[2];
+                    [vx, vy, vz]
+                }
+            })
+        });
+        (xs, vs)
+    }
+
     pub(crate) fn lanes<const W: usize>(e: &[[[f64; 3]; 8]; W]) -> [Vec3<W>; 8] {
         std::array::from_fn(|i| std::array::from_fn(|c| Lanes(std::array::from_fn(|l| e[l][i][c]))))
     }
@@ -472,25 +507,9 @@ pub(crate) mod tests {
     #[test]
     fn lanes_match_the_per_element_kernel() {
         let mat = J2Material::new(&Material::preset("copper-fe").unwrap(), false);
-        let mut s = 0xdead_beef_1234_5678;
         let h = 1e-3;
-        let xs: [[[f64; 3]; 8]; 4] = std::array::from_fn(|_| distorted(&mut s, h));
         // Lane 2 moves rigidly (no yield); the others stretch hard (yield within a few steps).
-        let vs: [[[f64; 3]; 8]; 4] = std::array::from_fn(|l| {
-            std::array::from_fn(|i| {
-                let x = xs[l][i];
-                if l == 2 {
-                    [1.0 - 300.0 * x[1], 2.0 + 300.0 * x[0], 0.5]
-                } else {
-                    let g = 60.0 * (l as f64 + 1.0);
-                    [
-                        g * x[0] + 5.0 * rnd(&mut s),
-                        -0.5 * g * x[1],
-                        3.0 * rnd(&mut s),
-                    ]
-                }
-            })
-        });
+        let (xs, vs) = four_elements(0xdead_beef_1234_5678, h, 2, 60.0, [5.0, 0.0, 3.0], 0.0);
         let dt = 2e-8;
         let mut x = xs;
         let mut st = State::<4> {
