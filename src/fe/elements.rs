@@ -360,12 +360,7 @@ fn bbar_lanes<const W: usize>(
             }
             b.wp[k] = st.plastic_work.0[l];
             b.ie[k] = st.internal_energy.0[l];
-            let eo = ElementOutput {
-                force: lane_forces(&out.force, l),
-                volume: out.volume.0[l],
-                min_jacobian: out.min_jacobian.0[l],
-                dt_crit: out.dt_crit.0[l],
-            };
+            let eo = lane_output(&out.force, out.volume, out.min_jacobian, out.dt_crit, l);
             finish_element(&eo, b, k, base, &mut best)?;
         }
         k0 += W;
@@ -398,16 +393,28 @@ fn gather_nodes<const W: usize>(
     }
 }
 
-/// Lane `l` of lane-wise nodal forces.
+/// Lane `l` of a group's results as one element's output: nodal forces (N), volume (m³),
+/// smallest Jacobian (m³) and Courant limit (s).
 #[inline(always)]
-fn lane_forces<const W: usize>(f: &[[Lanes<W>; 3]; 8], l: usize) -> [[f64; 3]; 8] {
-    let mut out = [[0.0; 3]; 8];
+fn lane_output<const W: usize>(
+    force: &[[Lanes<W>; 3]; 8],
+    volume: Lanes<W>,
+    min_jacobian: Lanes<W>,
+    dt_crit: Lanes<W>,
+    l: usize,
+) -> ElementOutput {
+    let mut f = [[0.0; 3]; 8];
     for i in 0..8 {
         for c in 0..3 {
-            out[i][c] = f[i][c].0[l];
+            f[i][c] = force[i][c].0[l];
         }
     }
-    out
+    ElementOutput {
+        force: f,
+        volume: volume.0[l],
+        min_jacobian: min_jacobian.0[l],
+        dt_crit: dt_crit.0[l],
+    }
 }
 
 /// What every element of a batch needs besides its own state.
@@ -529,12 +536,8 @@ fn one_point_lanes<const W: usize>(
                     b.hgq[k][a][c] = st.hourglass[a][c].0[l];
                 }
             }
-            let eo = ElementOutput {
-                force: lane_forces(&out.force, l),
-                volume: out.volume.0[l],
-                min_jacobian: out.volume.0[l],
-                dt_crit: out.dt_crit.0[l],
-            };
+            // One point: the element volume is its only Jacobian.
+            let eo = lane_output(&out.force, out.volume, out.volume, out.dt_crit, l);
             finish_element(&eo, b, k, base, &mut best)?;
         }
         k0 += W;

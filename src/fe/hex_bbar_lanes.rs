@@ -218,7 +218,7 @@ mod tests {
     use crate::fe::{
         elements::{ElementStateMut, IntegrationPoint},
         hex_bbar,
-        hex_one_point_lanes::tests::{four_elements, lanes},
+        hex_one_point_lanes::tests::{assert_forces_match, four_elements, lanes},
     };
     use crate::material::Material;
 
@@ -268,21 +268,7 @@ mod tests {
                     },
                 );
                 let close = |a: f64, b: f64, scale: f64| (a - b).abs() <= 1e-11 * scale;
-                let fscale = o
-                    .force
-                    .iter()
-                    .flatten()
-                    .fold(1e-3 * mat.yield0 * h * h, |m, c| m.max(c.abs()));
-                for i in 0..8 {
-                    for c in 0..3 {
-                        assert!(
-                            close(out.force[i][c].0[l], o.force[i][c], fscale),
-                            "lane {l} force {} vs {} ({fscale})",
-                            out.force[i][c].0[l],
-                            o.force[i][c]
-                        );
-                    }
-                }
+                assert_forces_match(&out.force, l, &o.force, mat.yield0 * h * h);
                 for g in 0..8 {
                     let p = &r.0[g];
                     let sscale = p

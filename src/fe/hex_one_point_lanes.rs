@@ -449,6 +449,32 @@ pub(crate) mod tests {
         (xs, vs)
     }
 
+    /// Lane `l` of `lanes` against the per-element `reference` forces (N) to 1e-11 of the
+    /// largest force, floored at 1e-3 `face_yield_force` (a force of 0.1 % of yield on a face,
+    /// so the round-off noise of a rigidly moving lane is compared on a physical scale).
+    /// Returns the scale used.
+    pub(crate) fn assert_forces_match(
+        lanes: &[Vec3<4>; 8],
+        l: usize,
+        reference: &Hex,
+        face_yield_force: f64,
+    ) -> f64 {
+        let scale = reference
+            .iter()
+            .flatten()
+            .fold(1e-3 * face_yield_force, |m, c| m.max(c.abs()));
+        for i in 0..8 {
+            for c in 0..3 {
+                let (a, b) = (lanes[i][c].0[l], reference[i][c]);
+                assert!(
+                    (a - b).abs() <= 1e-11 * scale,
+                    "lane {l} node {i} force {a} vs {b} ({scale})"
+                );
+            }
+        }
+        scale
+    }
+
     pub(crate) fn lanes<const W: usize>(e: &[[[f64; 3]; 8]; W]) -> [Vec3<W>; 8] {
         std::array::from_fn(|i| std::array::from_fn(|c| Lanes(std::array::from_fn(|l| e[l][i][c]))))
     }
@@ -554,23 +580,7 @@ pub(crate) mod tests {
                     },
                 );
                 let close = |a: f64, b: f64, scale: f64| (a - b).abs() <= 1e-11 * scale;
-                // Floor: a force of 0.1 % of yield on a face, so round-off noise of the rigid
-                // lane (forces near zero) is compared on a physical scale.
-                let fscale = o
-                    .force
-                    .iter()
-                    .flatten()
-                    .fold(1e-3 * mat.yield0 * h * h, |m, c| m.max(c.abs()));
-                for i in 0..8 {
-                    for c in 0..3 {
-                        assert!(
-                            close(out.force[i][c].0[l], o.force[i][c], fscale),
-                            "lane {l} force {} vs {} ({fscale})",
-                            out.force[i][c].0[l],
-                            o.force[i][c]
-                        );
-                    }
-                }
+                let fscale = assert_forces_match(&out.force, l, &o.force, mat.yield0 * h * h);
                 let sscale = r.0[0]
                     .stress
                     .iter()
