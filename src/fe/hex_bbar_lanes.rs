@@ -21,9 +21,7 @@
 //! (checked to 1e-11 relative in the tests).
 
 use super::{
-    hex_one_point_lanes::{
-        critical_step, ddot, hughes_winget, j2_update, modes, nodes_from_modes, rotate_symmetric,
-    },
+    hex_one_point_lanes::{critical_step, modes, nodes_from_modes, point_update},
     lanes::{build, cross, dot, Lanes, Vec3},
     plasticity::J2Material,
     shape::{GAUSS2, NODE_XI},
@@ -135,26 +133,10 @@ pub fn update<const W: usize>(
     for g in 0..8 {
         let l = &ls[g];
         let shift = (div_mean - (l[0][0] + l[1][1] + l[2][2])) * (1.0 / 3.0);
-        let d = [
-            (l[0][0] + shift) * dt,
-            (l[1][1] + shift) * dt,
-            (l[2][2] + shift) * dt,
-            (0.5 * (l[0][1] + l[1][0])) * dt,
-            (0.5 * (l[1][2] + l[2][1])) * dt,
-            (0.5 * (l[2][0] + l[0][2])) * dt,
-        ];
-        let w = [
-            (0.5 * (l[2][1] - l[1][2])) * dt,
-            (0.5 * (l[0][2] - l[2][0])) * dt,
-            (0.5 * (l[1][0] - l[0][1])) * dt,
-        ];
-        let rot = hughes_winget(&w);
-        let stress = &mut st.stress[g];
-        *stress = rotate_symmetric(&rot, stress);
-        let before = *stress;
-        let dwp = j2_update(mat, stress, &mut st.eps_p[g], &d);
+        let (_, dwp, dw) =
+            point_update(mat, l, Some(shift), dt, &mut st.stress[g], &mut st.eps_p[g]);
         st.plastic_work += dwp * jm[g];
-        st.internal_energy += 0.5 * jm[g] * (ddot(&before, &d) + ddot(stress, &d));
+        st.internal_energy += 0.5 * jm[g] * dw;
     }
 
     // Forces on x^{n+1}: the pressure is averaged over the element (B-bar), the deviator is

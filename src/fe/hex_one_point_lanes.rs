@@ -234,6 +234,45 @@ pub fn j2_update<const W: usize>(
     dp * (sy + 0.5 * mat.hardening * dp)
 }
 
+/// One integration point over the step, lane-wise: strain increment D Δt and spin increment
+/// W Δt from the velocity gradient `l` (1/s; `shift`, 1/s, is added to the normal rates: the
+/// B-bar volumetric correction), Hughes-Winget rotation of `stress` (Pa), J2 update of
+/// `stress` and `eps_p`. Returns the rotation (to turn other objective quantities with the
+/// point), the plastic work per unit volume (J/m³) and σ:DΔt summed at the start and the end
+/// of the step (J/m³; half of it is the trapezoidal internal-energy increment per volume).
+#[inline(always)]
+pub fn point_update<const W: usize>(
+    mat: &J2Material,
+    l: &[Vec3<W>; 3],
+    shift: Option<Lanes<W>>,
+    dt: f64,
+    stress: &mut [Lanes<W>; 6],
+    eps_p: &mut Lanes<W>,
+) -> ([Vec3<W>; 3], Lanes<W>, Lanes<W>) {
+    let normal = |k: usize| match shift {
+        Some(sh) => (l[k][k] + sh) * dt,
+        None => l[k][k] * dt,
+    };
+    let d = [
+        normal(0),
+        normal(1),
+        normal(2),
+        (0.5 * (l[0][1] + l[1][0])) * dt,
+        (0.5 * (l[1][2] + l[2][1])) * dt,
+        (0.5 * (l[2][0] + l[0][2])) * dt,
+    ];
+    let w = [
+        (0.5 * (l[2][1] - l[1][2])) * dt,
+        (0.5 * (l[0][2] - l[2][0])) * dt,
+        (0.5 * (l[1][0] - l[0][1])) * dt,
+    ];
+    let rot = hughes_winget(&w);
+    *stress = rotate_symmetric(&rot, stress);
+    let before = *stress;
+    let dwp = j2_update(mat, stress, eps_p, &d);
+    (rot, dwp, ddot(&before, &d) + ddot(stress, &d))
+}
+
 /// The state of W one-point elements, lane-wise.
 #[derive(Debug, Clone, Copy)]
 pub struct State<const W: usize> {
@@ -284,29 +323,13 @@ pub fn update<const W: usize>(
     let (vhm, gm) = volume_gradient(&am);
     let vm = vhm * (1.0 / 192.0);
     let l = velocity_gradient(&u, &gm, vhm.recip());
-    let d = [
-        l[0][0] * dt,
-        l[1][1] * dt,
-        l[2][2] * dt,
-        (0.5 * (l[0][1] + l[1][0])) * dt,
-        (0.5 * (l[1][2] + l[2][1])) * dt,
-        (0.5 * (l[2][0] + l[0][2])) * dt,
-    ];
-    let w = [
-        (0.5 * (l[2][1] - l[1][2])) * dt,
-        (0.5 * (l[0][2] - l[2][0])) * dt,
-        (0.5 * (l[1][0] - l[0][1])) * dt,
-    ];
-    let rot = hughes_winget(&w);
-    st.stress = rotate_symmetric(&rot, &st.stress);
+    let (rot, dwp, dw) = point_update(mat, &l, None, dt, &mut st.stress, &mut st.eps_p);
     for q in st.hourglass.iter_mut() {
         let r = *q;
         *q = build(|i| rot[i][0] * r[0] + rot[i][1] * r[1] + rot[i][2] * r[2]);
     }
-    let before = st.stress;
-    let dwp = j2_update(mat, &mut st.stress, &mut st.eps_p, &d);
     st.plastic_work += dwp * vm;
-    st.internal_energy += 0.5 * vm * (ddot(&before, &d) + ddot(&st.stress, &d));
+    st.internal_energy += 0.5 * vm * dw;
 
     let (vh1, g1) = volume_gradient(&a1);
     let r1 = vh1.recip();
