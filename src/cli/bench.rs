@@ -3,6 +3,7 @@
 //! 50 000 elements, and a check that the results do not depend on the thread count.
 
 use crate::error::{Error, Result};
+use crate::fe::profile::{self, Totals};
 use crate::fe::{Formulation, Model, Settings, Solver};
 use crate::material::Material;
 use crate::mesh::ball::{ball, BallSpec, Cut};
@@ -45,6 +46,13 @@ pub struct KernelArgs {
     /// Thread count of the parallel run (default: all available).
     #[arg(long)]
     pub threads: Option<usize>,
+    /// Formulation to time: `one-point`, `b-bar` or `both`.
+    #[arg(long, default_value = "both", value_parser = ["one-point", "b-bar", "both"])]
+    pub element: String,
+    /// Also print where the one-thread step time goes (element phase, force gather, node
+    /// passes, stable step), from the solver's phase timer.
+    #[arg(long)]
+    pub phases: bool,
 }
 
 pub use super::bench_machine::MachineArgs;
@@ -60,25 +68,38 @@ pub fn run(a: BenchArgs) -> Result<()> {
     }
 }
 
-/// Median ns per element-step and the final nodal positions and velocities of one run.
+/// Median ns per element-step, the final nodal positions and velocities of one run, and the
+/// phase totals of the timed steps (all zero unless the phase timer was on).
 struct Timing {
     ns: f64,
     x: Vec<[f64; 3]>,
     v: Vec<[f64; 3]>,
+    phases: Totals,
 }
 
-/// One timed configuration on `threads` threads.
-fn time_one(model: &Model, threads: usize, steps: u64, repeats: usize) -> Result<Timing> {
+/// One timed configuration on `threads` threads; `phases` switches the solver's phase timer
+/// on (its clock reads cost a little, so the timings to quote come from runs without it).
+fn time_one(
+    model: &Model,
+    threads: usize,
+    steps: u64,
+    repeats: usize,
+    phases: bool,
+) -> Result<Timing> {
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(threads)
         .build()
         .map_err(|e| Error::External(format!("thread pool: {e}")))?;
     pool.install(|| {
-        let mut s = Solver::new(model.clone(), vec![], Settings::default())?;
+        profile::set_enabled(phases);
+        let made = Solver::new(model.clone(), vec![], Settings::default());
+        profile::set_enabled(false);
+        let mut s = made?;
         // Warm up (caches, page faults, first plastic steps).
         for _ in 0..5 {
             s.step()?;
         }
+        let warm = s.profile().totals();
         let ne = model.hexes.len() as f64;
         let mut samples = Vec::with_capacity(repeats);
         for _ in 0..repeats {
@@ -89,10 +110,17 @@ fn time_one(model: &Model, threads: usize, steps: u64, repeats: usize) -> Result
             samples.push(t.elapsed().as_secs_f64() * 1e9 / (steps as f64 * ne));
         }
         samples.sort_by(f64::total_cmp);
+        let mut timed = s.profile().totals();
+        for (t, w) in timed.seconds.iter_mut().zip(warm.seconds) {
+            *t -= w;
+        }
+        timed.steps -= warm.steps;
+        timed.element_cycles -= warm.element_cycles;
         Ok(Timing {
             ns: samples[samples.len() / 2],
             x: s.x().to_vec(),
             v: s.v().to_vec(),
+            phases: timed,
         })
     })
 }
@@ -133,7 +161,13 @@ fn kernel(a: KernelArgs) -> Result<()> {
         a.steps, a.repeats
     );
     println!("formulation,threads,ns_per_element_cycle,speedup,bitwise_identical");
-    for f in [Formulation::OnePoint, Formulation::BBar] {
+    let forms: &[Formulation] = match a.element.as_str() {
+        "one-point" => &[Formulation::OnePoint],
+        "b-bar" => &[Formulation::BBar],
+        _ => &[Formulation::OnePoint, Formulation::BBar],
+    };
+    let mut breakdowns = Vec::new();
+    for &f in forms {
         let mut model = Model::new();
         let p = model.add_part("ball", &mesh, Material::preset("copper-fe")?, f)?;
         // A strong quadrupole plus spin: plastic flow near the surface, rotation everywhere.
@@ -148,14 +182,19 @@ fn kernel(a: KernelArgs) -> Result<()> {
             ns: t1,
             x: x1,
             v: v1,
-        } = time_one(&model, 1, a.steps, a.repeats)?;
+            ..
+        } = time_one(&model, 1, a.steps, a.repeats, false)?;
         println!("{f:?},1,{t1:.1},1.00,-");
+        if a.phases {
+            breakdowns.push((f, time_one(&model, 1, a.steps, a.repeats, true)?.phases));
+        }
         if all > 1 {
             let Timing {
                 ns: tn,
                 x: xn,
                 v: vn,
-            } = time_one(&model, all, a.steps, a.repeats)?;
+                ..
+            } = time_one(&model, all, a.steps, a.repeats, false)?;
             let same = x1
                 .iter()
                 .zip(&xn)
@@ -167,6 +206,10 @@ fn kernel(a: KernelArgs) -> Result<()> {
                 if same { "yes" } else { "NO" }
             );
         }
+    }
+    for (f, t) in breakdowns {
+        println!("# {f:?}, 1 thread, phase timer on (its clock reads add a little):");
+        print!("{}", t.table());
     }
     Ok(())
 }
