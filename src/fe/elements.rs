@@ -5,10 +5,8 @@
 //! not depend on the number of threads.
 
 use super::{
-    hex_bbar_lanes as bp,
-    hex_one_point::ElementOutput,
-    hex_one_point_lanes as op,
-    lanes::{build, Lanes},
+    hex_bbar_lanes as bp, hex_one_point_lanes as op,
+    lanes::{build, Lanes, Vec3},
     model::Formulation,
     plasticity::J2Material,
     tensor::Sym,
@@ -22,8 +20,10 @@ pub const BATCH: usize = 64;
 /// one-point work): shorter ranges are not worth a fork-join.
 const MIN_BATCHES_PER_TASK: usize = 8;
 
-/// State at one integration point.
+/// State at one integration point (`repr(C)`: eight f64 in this order, so the lane kernels
+/// can gather a field of W points with one stride-8 index vector).
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
+#[repr(C)]
 pub struct IntegrationPoint {
     /// Cauchy stress, Pa (Voigt [xx, yy, zz, xy, yz, zx]).
     pub stress: Sym,
@@ -209,7 +209,7 @@ impl ElementBlock {
                     ehg,
                     vol,
                     dtc,
-                    f,
+                    f: Forces::Blocks(f),
                 };
                 let inp = StepInput {
                     x,
@@ -234,6 +234,61 @@ impl ElementBlock {
                 },
             );
         res
+    }
+
+    /// [`ElementBlock::update_range`] on the calling thread, adding each element's internal
+    /// forces (N) straight into the nodal array `f_int` (indexed like `x`, not cleared here)
+    /// instead of writing force blocks. Elements are visited in order, so every node receives
+    /// its elements' forces in element order: the same sums, bit for bit, as the force blocks
+    /// summed per node in element order, without writing and re-reading the blocks (384 bytes
+    /// per element and step). Panics if `f_int` is shorter than `x` (a programming error).
+    pub fn update_range_into_nodes(
+        &mut self,
+        range: std::ops::Range<usize>,
+        x: &[[f64; 3]],
+        v: &[[f64; 3]],
+        dt: f64,
+        f_int: &mut [[f64; 3]],
+    ) -> Result<(f64, usize), (usize, ElementFailure)> {
+        let npe = self.points_per_element();
+        let max_node = self.conn[range.clone()]
+            .iter()
+            .flatten()
+            .fold(0u32, |m, &n| m.max(n));
+        assert!(
+            range.is_empty() || (max_node as usize) < x.len().min(v.len()).min(f_int.len()),
+            "node index out of range of x/v/f_int"
+        );
+        let inp = StepInput {
+            x,
+            v,
+            dt,
+            mat: &self.material,
+            hg: self.hourglass_coeff,
+            form: self.formulation,
+        };
+        let mut best = (f64::INFINITY, usize::MAX);
+        let mut k = range.start;
+        while k < range.end {
+            let e = (k + BATCH).min(range.end);
+            let mut batch = Batch {
+                conn: &self.conn[k..e],
+                pts: &mut self.points[k * npe..e * npe],
+                wp: &mut self.plastic_work[k..e],
+                ie: &mut self.internal_energy[k..e],
+                hgq: &mut self.hourglass[k..e],
+                ehg: &mut self.hourglass_energy[k..e],
+                vol: &mut self.volume[k..e],
+                dtc: &mut self.dt_crit[k..e],
+                f: Forces::Nodes(&mut *f_int),
+            };
+            let d = element_batch(&mut batch, inp, self.first + k)?;
+            if d.0 < best.0 {
+                best = d;
+            }
+            k = e;
+        }
+        Ok(best)
     }
 
     /// Mean stress over the integration points of local element `k`, Pa.
@@ -279,32 +334,84 @@ struct Batch<'a> {
     ehg: &'a mut [f64],
     vol: &'a mut [f64],
     dtc: &'a mut [f64],
-    f: &'a mut [[[f64; 3]; 8]],
+    f: Forces<'a>,
+}
+
+/// Where a batch puts its elements' internal forces.
+enum Forces<'a> {
+    /// One 8-node force block per element of the batch (parallel loops: the blocks are
+    /// summed per node afterwards, in element order).
+    Blocks(&'a mut [[[f64; 3]; 8]]),
+    /// Added straight into the nodal force array (one thread, elements in order: the same
+    /// sums, in the same order, as the blocks summed per node).
+    Nodes(&'a mut [[f64; 3]]),
 }
 
 /// Result of a batch: smallest critical step and its element, or the first failing element.
 type BatchResult = Result<(f64, usize), (usize, ElementFailure)>;
 
-/// Checks one element's output, records it and updates the batch minimum.
+/// What a lane group's update hands back for every lane: nodal forces (N), volume (m³),
+/// smallest Jacobian (m³, ≤ 0 or NaN: inverted) and Courant limit (s).
+struct LaneResult<'r, const W: usize> {
+    force: &'r [Vec3<W>; 8],
+    volume: Lanes<W>,
+    min_jacobian: Lanes<W>,
+    dt_crit: Lanes<W>,
+}
+
+/// Checks the `live` lanes of a group starting at local element `k0`, records their volume,
+/// step and forces, and updates the batch minimum; fails on the first element (in order)
+/// that is inverted or has a non-finite force, as the per-element check would.
 #[inline(always)]
-fn finish_element(
-    out: &ElementOutput,
+fn finish_lanes<const W: usize>(
+    r: &LaneResult<'_, W>,
     b: &mut Batch<'_>,
-    k: usize,
+    k0: usize,
+    live: usize,
     base: usize,
     best: &mut (f64, usize),
 ) -> std::result::Result<(), (usize, ElementFailure)> {
-    if out.min_jacobian.is_nan() || out.min_jacobian <= 0.0 {
-        return Err((base + k, ElementFailure::Inverted(out.min_jacobian)));
+    // Σ 0·f over the 24 force components: ±0 when all are finite, NaN when one is ±∞ or NaN.
+    let mut nonfinite = Lanes::splat(0.0);
+    for fi in r.force {
+        for c in fi {
+            nonfinite += *c * 0.0;
+        }
     }
-    if !out.force.iter().flatten().all(|c| c.is_finite()) {
-        return Err((base + k, ElementFailure::NonFinite));
-    }
-    b.vol[k] = out.volume;
-    b.dtc[k] = out.dt_crit;
-    b.f[k] = out.force;
-    if out.dt_crit < best.0 {
-        *best = (out.dt_crit, base + k);
+    for l in 0..live {
+        let k = k0 + l;
+        let j = r.min_jacobian.0[l];
+        if j.is_nan() || j <= 0.0 {
+            return Err((base + k, ElementFailure::Inverted(j)));
+        }
+        if nonfinite.0[l].is_nan() {
+            return Err((base + k, ElementFailure::NonFinite));
+        }
+        b.vol[k] = r.volume.0[l];
+        b.dtc[k] = r.dt_crit.0[l];
+        match &mut b.f {
+            Forces::Blocks(f) => {
+                for (i, fi) in r.force.iter().enumerate() {
+                    for d in 0..3 {
+                        f[k][i][d] = fi[d].0[l];
+                    }
+                }
+            }
+            Forces::Nodes(f) => {
+                for (&n, fi) in b.conn[k].iter().zip(r.force) {
+                    // SAFETY: the caller checked every node index of the range < len of x,
+                    // and f has at least that length.
+                    let g = unsafe { f.get_unchecked_mut(n as usize) };
+                    for d in 0..3 {
+                        g[d] += fi[d].0[l];
+                    }
+                }
+            }
+        }
+        let dtc = r.dt_crit.0[l];
+        if dtc < best.0 {
+            *best = (dtc, base + k);
+        }
     }
     Ok(())
 }
@@ -360,9 +467,14 @@ fn bbar_lanes<const W: usize>(
             }
             b.wp[k] = st.plastic_work.0[l];
             b.ie[k] = st.internal_energy.0[l];
-            let eo = lane_output(&out.force, out.volume, out.min_jacobian, out.dt_crit, l);
-            finish_element(&eo, b, k, base, &mut best)?;
         }
+        let r = LaneResult {
+            force: &out.force,
+            volume: out.volume,
+            min_jacobian: out.min_jacobian,
+            dt_crit: out.dt_crit,
+        };
+        finish_lanes(&r, b, k0, live, base, &mut best)?;
         k0 += W;
     }
     Ok(best)
@@ -379,41 +491,19 @@ fn gather_nodes<const W: usize>(
     xe: &mut [[Lanes<W>; 3]; 8],
     ve: &mut [[Lanes<W>; 3]; 8],
 ) {
-    for (l, &e) in idx.iter().enumerate() {
-        let c = &conn[e];
-        for i in 0..8 {
-            let node = c[i] as usize;
-            // SAFETY: update_range checked every node index of the range < len.
-            let (p, q) = unsafe { (x.get_unchecked(node), v.get_unchecked(node)) };
-            for d in 0..3 {
-                xe[i][d].0[l] = p[d];
-                ve[i][d].0[l] = q[d];
+    let (xp, vp) = (x.as_ptr().cast::<f64>(), v.as_ptr().cast::<f64>());
+    for i in 0..8 {
+        let at: [i64; W] = build(|l| 3 * conn[idx[l]][i] as i64);
+        for d in 0..3 {
+            let o: [i64; W] = build(|l| at[l] + d as i64);
+            // SAFETY: update_range checked every node index of the range < len of x and v,
+            // so 3 node + d addresses an f64 of the flattened arrays; 8 lanes only run in
+            // the AVX-512 kernel.
+            unsafe {
+                xe[i][d] = Lanes::gather(xp, &o);
+                ve[i][d] = Lanes::gather(vp, &o);
             }
         }
-    }
-}
-
-/// Lane `l` of a group's results as one element's output: nodal forces (N), volume (m³),
-/// smallest Jacobian (m³) and Courant limit (s).
-#[inline(always)]
-fn lane_output<const W: usize>(
-    force: &[[Lanes<W>; 3]; 8],
-    volume: Lanes<W>,
-    min_jacobian: Lanes<W>,
-    dt_crit: Lanes<W>,
-    l: usize,
-) -> ElementOutput {
-    let mut f = [[0.0; 3]; 8];
-    for i in 0..8 {
-        for c in 0..3 {
-            f[i][c] = force[i][c].0[l];
-        }
-    }
-    ElementOutput {
-        force: f,
-        volume: volume.0[l],
-        min_jacobian: min_jacobian.0[l],
-        dt_crit: dt_crit.0[l],
     }
 }
 
@@ -438,12 +528,22 @@ struct StepInput<'a> {
 fn element_batch(b: &mut Batch<'_>, inp: StepInput<'_>, base: usize) -> BatchResult {
     #[cfg(target_arch = "x86_64")]
     {
+        if std::is_x86_feature_detected!("avx512f") {
+            // SAFETY: the CPU has the features the function is compiled for.
+            return unsafe { element_batch_avx512(b, inp, base) };
+        }
         if std::is_x86_feature_detected!("avx2") && std::is_x86_feature_detected!("fma") {
             // SAFETY: the CPU has the features the function is compiled for.
             return unsafe { element_batch_avx2(b, inp, base) };
         }
     }
     element_lanes::<4>(b, inp, base)
+}
+
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx512f,avx2,fma")]
+unsafe fn element_batch_avx512(b: &mut Batch<'_>, inp: StepInput<'_>, base: usize) -> BatchResult {
+    element_lanes::<8>(b, inp, base)
 }
 
 #[cfg(target_arch = "x86_64")]
@@ -504,20 +604,27 @@ fn one_point_lanes<const W: usize>(
             hourglass_energy: Lanes::default(),
         };
         gather_nodes(&idx, b.conn, x, v, &mut xe, &mut ve);
-        for (l, &e) in idx.iter().enumerate() {
-            let ip = &b.pts[e];
+        // The state by gathers (see Lanes::gather): every index is a local element < n of
+        // this batch's slices, whose lengths are n (points: one per element, eight f64 each,
+        // repr(C); hourglass: twelve f64 each).
+        let e: [i64; W] = build(|l| idx[l] as i64);
+        let at = |stride: i64, c: i64| -> [i64; W] { build(|l| stride * e[l] + c) };
+        debug_assert!(b.pts.len() == n && b.hgq.len() == n && b.wp.len() == n);
+        let (pp, hp) = (b.pts.as_ptr().cast::<f64>(), b.hgq.as_ptr().cast::<f64>());
+        // SAFETY: as above.
+        unsafe {
             for c in 0..6 {
-                st.stress[c].0[l] = ip.stress[c];
+                st.stress[c] = Lanes::gather(pp, &at(8, c as i64));
             }
-            st.eps_p.0[l] = ip.eps_p;
+            st.eps_p = Lanes::gather(pp, &at(8, 6));
             for a in 0..4 {
                 for c in 0..3 {
-                    st.hourglass[a][c].0[l] = b.hgq[e][a][c];
+                    st.hourglass[a][c] = Lanes::gather(hp, &at(12, (3 * a + c) as i64));
                 }
             }
-            st.plastic_work.0[l] = b.wp[e];
-            st.internal_energy.0[l] = b.ie[e];
-            st.hourglass_energy.0[l] = b.ehg[e];
+            st.plastic_work = Lanes::gather(b.wp.as_ptr(), &e);
+            st.internal_energy = Lanes::gather(b.ie.as_ptr(), &e);
+            st.hourglass_energy = Lanes::gather(b.ehg.as_ptr(), &e);
         }
         let out = op::update(&xe, &ve, dt, mat, hg, &mut st);
         for l in 0..live {
@@ -536,10 +643,15 @@ fn one_point_lanes<const W: usize>(
                     b.hgq[k][a][c] = st.hourglass[a][c].0[l];
                 }
             }
-            // One point: the element volume is its only Jacobian.
-            let eo = lane_output(&out.force, out.volume, out.volume, out.dt_crit, l);
-            finish_element(&eo, b, k, base, &mut best)?;
         }
+        // One point: the element volume is its only Jacobian.
+        let r = LaneResult {
+            force: &out.force,
+            volume: out.volume,
+            min_jacobian: out.volume,
+            dt_crit: out.dt_crit,
+        };
+        finish_lanes(&r, b, k0, live, base, &mut best)?;
         k0 += W;
     }
     Ok(best)
@@ -636,5 +748,166 @@ mod tests {
             blk.points.iter().any(|p| p.eps_p > 0.0),
             "must yield somewhere"
         );
+    }
+
+    /// A graded quarter-ball block of `form` elements and a yielding, spinning,
+    /// hourglass-exciting velocity field (the ragged tail exercises the repeated lanes).
+    fn yielding_block(form: Formulation) -> (ElementBlock, Vec<[f64; 3]>, Vec<[f64; 3]>) {
+        let mesh = ball(&BallSpec {
+            diameter: 0.02,
+            size: 0.004,
+            pole_size: Some(0.001),
+            cut: Cut::Quarter,
+        })
+        .unwrap();
+        let mat = J2Material::new(&Material::preset("copper-fe").unwrap(), false);
+        let blk = ElementBlock::new(0, 0, mesh.hexes.clone(), form, mat, 0.05);
+        let v = mesh
+            .nodes
+            .iter()
+            .enumerate()
+            .map(|(i, p)| {
+                let wob = ((i * 7919) % 13) as f64 / 13.0 - 0.5;
+                [
+                    6000.0 * p[0] - 400.0 * p[1] + 2.0 * wob,
+                    -3000.0 * p[1] + 400.0 * p[0],
+                    -wob,
+                ]
+            })
+            .collect();
+        (blk, mesh.nodes, v)
+    }
+
+    fn bits(b: &ElementBlock) -> Vec<u64> {
+        let mut out: Vec<u64> = b
+            .points
+            .iter()
+            .flat_map(|p| p.stress.iter().chain([&p.eps_p, &p.volume]))
+            .map(|c| c.to_bits())
+            .collect();
+        for a in [
+            &b.plastic_work,
+            &b.internal_energy,
+            &b.hourglass_energy,
+            &b.volume,
+            &b.dt_crit,
+        ] {
+            out.extend(a.iter().map(|c| c.to_bits()));
+        }
+        out.extend(b.hourglass.iter().flatten().flatten().map(|c| c.to_bits()));
+        out
+    }
+
+    /// One thread adding forces straight into the nodes gives the same bits as the force
+    /// blocks summed per node in element order (the multi-thread path), for both elements,
+    /// over steps in which elements yield.
+    #[test]
+    fn forces_added_into_nodes_equal_gathered_blocks_bit_for_bit() {
+        for form in [Formulation::OnePoint, Formulation::BBar] {
+            let (mut a, mut x, v) = yielding_block(form);
+            let mut b = a.clone();
+            let n = a.conn.len();
+            let mut blocks = vec![[[0.0; 3]; 8]; n];
+            let dt = 1e-8;
+            for _ in 0..20 {
+                for (p, u) in x.iter_mut().zip(&v) {
+                    for c in 0..3 {
+                        p[c] += dt * u[c];
+                    }
+                }
+                let da = a.update(&x, &v, dt, &mut blocks).unwrap();
+                let mut gathered = vec![[0.0; 3]; x.len()];
+                for (e, c) in a.conn.iter().enumerate() {
+                    for (i, &node) in c.iter().enumerate() {
+                        for d in 0..3 {
+                            gathered[node as usize][d] += blocks[e][i][d];
+                        }
+                    }
+                }
+                let mut direct = vec![[0.0; 3]; x.len()];
+                let db = b
+                    .update_range_into_nodes(0..n, &x, &v, dt, &mut direct)
+                    .unwrap();
+                assert_eq!(da.0.to_bits(), db.0.to_bits());
+                assert_eq!(da.1, db.1);
+                let fa: Vec<u64> = gathered.iter().flatten().map(|c| c.to_bits()).collect();
+                let fb: Vec<u64> = direct.iter().flatten().map(|c| c.to_bits()).collect();
+                assert_eq!(fa, fb, "{form:?}: nodal forces differ");
+                assert_eq!(bits(&a), bits(&b), "{form:?}: element state differs");
+            }
+            assert!(
+                a.points.iter().any(|p| p.eps_p > 0.0),
+                "{form:?} must yield"
+            );
+        }
+    }
+
+    /// The AVX-512 kernel (eight lanes) computes exactly what the AVX2 kernel (four lanes)
+    /// computes: same forces and state, bit for bit (run only where the CPU has both).
+    #[cfg(target_arch = "x86_64")]
+    #[test]
+    fn eight_lanes_equal_four_lanes_bit_for_bit() {
+        if !(std::is_x86_feature_detected!("avx512f")
+            && std::is_x86_feature_detected!("avx2")
+            && std::is_x86_feature_detected!("fma"))
+        {
+            eprintln!("skipped: this CPU lacks AVX-512F or AVX2/FMA");
+            return;
+        }
+        for form in [Formulation::OnePoint, Formulation::BBar] {
+            let (mut a, mut x, v) = yielding_block(form);
+            let mut b = a.clone();
+            let n = a.conn.len();
+            let dt = 1e-8;
+            let run = |blk: &mut ElementBlock, x: &[[f64; 3]], wide: bool| {
+                let mut f = vec![[[0.0; 3]; 8]; n];
+                let mut batch = Batch {
+                    conn: &blk.conn,
+                    pts: &mut blk.points,
+                    wp: &mut blk.plastic_work,
+                    ie: &mut blk.internal_energy,
+                    hgq: &mut blk.hourglass,
+                    ehg: &mut blk.hourglass_energy,
+                    vol: &mut blk.volume,
+                    dtc: &mut blk.dt_crit,
+                    f: Forces::Blocks(&mut f),
+                };
+                let inp = StepInput {
+                    x,
+                    v: &v,
+                    dt,
+                    mat: &blk.material,
+                    hg: blk.hourglass_coeff,
+                    form: blk.formulation,
+                };
+                // SAFETY: the CPU features were checked above; node indices are in range.
+                let r = unsafe {
+                    if wide {
+                        element_batch_avx512(&mut batch, inp, 0)
+                    } else {
+                        element_batch_avx2(&mut batch, inp, 0)
+                    }
+                };
+                (r.unwrap(), f)
+            };
+            for _ in 0..20 {
+                for (p, u) in x.iter_mut().zip(&v) {
+                    for c in 0..3 {
+                        p[c] += dt * u[c];
+                    }
+                }
+                let (ra, fa) = run(&mut a, &x, false);
+                let (rb, fb) = run(&mut b, &x, true);
+                assert_eq!((ra.0.to_bits(), ra.1), (rb.0.to_bits(), rb.1));
+                let fa: Vec<u64> = fa.iter().flatten().flatten().map(|c| c.to_bits()).collect();
+                let fb: Vec<u64> = fb.iter().flatten().flatten().map(|c| c.to_bits()).collect();
+                assert_eq!(fa, fb, "{form:?}: forces differ");
+                assert_eq!(bits(&a), bits(&b), "{form:?}: element state differs");
+            }
+            assert!(
+                a.points.iter().any(|p| p.eps_p > 0.0),
+                "{form:?} must yield"
+            );
+        }
     }
 }

@@ -668,9 +668,21 @@ impl Solver {
         } else {
             &self.x
         };
+        // On one thread the elements add their forces straight into f_int (same sums in the
+        // same order as the force blocks gathered per node, without the blocks' memory
+        // traffic); on more, each writes its block and the nodes gather them afterwards.
+        let direct = rayon::current_num_threads() == 1;
+        if direct {
+            self.f_int.fill([0.0; 3]);
+        }
         for b in &mut self.blocks {
             let range = b.first..b.first + b.conn.len();
-            match b.update(xg, &self.v, dt, &mut self.elem_force[range]) {
+            let done = if direct {
+                b.update_range_into_nodes(0..b.conn.len(), xg, &self.v, dt, &mut self.f_int)
+            } else {
+                b.update(xg, &self.v, dt, &mut self.elem_force[range])
+            };
+            match done {
                 Ok(d) => {
                     if d.0 < best.0 {
                         best = d;
@@ -680,7 +692,9 @@ impl Solver {
             }
         }
         self.profile.lap(Phase::Elements);
-        self.gather_internal_forces();
+        if !direct {
+            self.gather_internal_forces();
+        }
         self.profile.lap(Phase::Gather);
         // Critical time step: elements (Courant) and interactions.
         self.stable = self.stable_limit(best);

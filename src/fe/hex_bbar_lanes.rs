@@ -22,7 +22,7 @@
 
 use super::{
     hex_one_point_lanes::{critical_step, modes, nodes_from_modes, point_update},
-    lanes::{build, cross, dot, Lanes, Vec3},
+    lanes::{cross, dot, Lanes, Vec3},
     plasticity::J2Material,
     shape::{GAUSS2, NODE_XI},
 };
@@ -68,11 +68,15 @@ fn gauss_point(g: usize) -> [f64; 3] {
 fn natural_columns<const W: usize>(a: &[Vec3<W>; 8], q: [f64; 3]) -> [Vec3<W>; 3] {
     let [s, t, u] = q;
     let (tu, us, st) = (t * u, u * s, s * t);
-    [
-        build(|c| a[1][c] + u * a[5][c] + t * a[6][c] + tu * a[7][c]),
-        build(|c| a[2][c] + u * a[4][c] + s * a[6][c] + us * a[7][c]),
-        build(|c| a[3][c] + t * a[4][c] + s * a[5][c] + st * a[7][c]),
-    ]
+    // Plain loops, no closures: a closure the compiler leaves out of line would run its
+    // lane arithmetic as calls.
+    let mut col = [[Lanes::splat(0.0); 3]; 3];
+    for c in 0..3 {
+        col[0][c] = a[1][c] + u * a[5][c] + t * a[6][c] + tu * a[7][c];
+        col[1][c] = a[2][c] + u * a[4][c] + s * a[6][c] + us * a[7][c];
+        col[2][c] = a[3][c] + t * a[4][c] + s * a[5][c] + st * a[7][c];
+    }
+    col
 }
 
 /// The scaled cofactor rows n̂_d = ĉ_{d+1} × ĉ_{d+2} of the scaled Jacobian columns `c`
@@ -104,7 +108,12 @@ pub fn update<const W: usize>(
     let a1 = modes(x1);
     let u = modes(v);
     let half = 0.5 * dt;
-    let am: [Vec3<W>; 8] = build(|k| build(|c| a1[k][c] - half * u[k][c]));
+    let mut am = a1;
+    for (m, uk) in am.iter_mut().zip(&u) {
+        for c in 0..3 {
+            m[c] -= half * uk[c];
+        }
+    }
     let z = Lanes::splat(0.0);
 
     // Mid-step velocity gradients L_g = Σ_d (8 ∂v/∂ξ_d) ⊗ n̂_d / (512 det J) and their mean
@@ -167,7 +176,12 @@ pub fn update<const W: usize>(
             [s[3], s[1] + shift, s[4]],
             [s[5], s[4], s[2] + shift],
         ];
-        let p: [Vec3<W>; 3] = build(|d| build(|i| dot(&sig[i], &n1[g][d])));
+        let mut p = [[z; 3]; 3];
+        for d in 0..3 {
+            for i in 0..3 {
+                p[d][i] = dot(&sig[i], &n1[g][d]);
+            }
+        }
         let [xi, eta, zeta] = gauss_point(g);
         for i in 0..3 {
             fm[1][i] += p[0][i];

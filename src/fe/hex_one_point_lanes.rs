@@ -249,14 +249,17 @@ pub fn point_update<const W: usize>(
     stress: &mut [Lanes<W>; 6],
     eps_p: &mut Lanes<W>,
 ) -> ([Vec3<W>; 3], Lanes<W>, Lanes<W>) {
-    let normal = |k: usize| match shift {
-        Some(sh) => (l[k][k] + sh) * dt,
-        None => l[k][k] * dt,
-    };
+    // No closure here: one left out of line would run its lane arithmetic as calls.
+    let mut n = [l[0][0], l[1][1], l[2][2]];
+    if let Some(sh) = shift {
+        for x in &mut n {
+            *x += sh;
+        }
+    }
     let d = [
-        normal(0),
-        normal(1),
-        normal(2),
+        n[0] * dt,
+        n[1] * dt,
+        n[2] * dt,
         (0.5 * (l[0][1] + l[1][0])) * dt,
         (0.5 * (l[1][2] + l[2][1])) * dt,
         (0.5 * (l[2][0] + l[0][2])) * dt,

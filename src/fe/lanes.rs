@@ -13,7 +13,77 @@ use std::ops::{Add, AddAssign, Div, Mul, Neg, Sub, SubAssign};
 
 /// One f64 per lane.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[repr(transparent)]
 pub struct Lanes<const W: usize>(pub [f64; W]);
+
+/// Eight lanes as one AVX-512 register. The lane loops below compile to whatever vector width
+/// the compiler prefers for the calling kernel's target features, and for eight f64 lanes
+/// that was two 256-bit halves (twice the instructions, and register spills); these ops pin
+/// the 512-bit form. Only reached when W = 8, which only the AVX-512 kernel instantiates (the
+/// CPU check is made once, before the kernel is entered).
+#[cfg(target_arch = "x86_64")]
+mod avx512 {
+    use super::Lanes;
+    use std::arch::x86_64::*;
+
+    #[inline(always)]
+    pub(super) fn load<const W: usize>(a: Lanes<W>) -> __m512d {
+        debug_assert_eq!(W, 8);
+        // SAFETY: W == 8, so both are 64 bytes of f64; read unaligned.
+        unsafe { _mm512_loadu_pd(a.0.as_ptr()) }
+    }
+
+    #[inline(always)]
+    pub(super) fn store<const W: usize>(v: __m512d) -> Lanes<W> {
+        let mut r = Lanes([0.0; W]);
+        // SAFETY: W == 8: 64 bytes.
+        unsafe { _mm512_storeu_pd(r.0.as_mut_ptr(), v) };
+        r
+    }
+
+    macro_rules! bin {
+        ($name:ident, $intr:ident) => {
+            #[inline(always)]
+            pub(super) fn $name<const W: usize>(a: Lanes<W>, b: Lanes<W>) -> Lanes<W> {
+                // SAFETY: only called with W = 8 inside the AVX-512 kernel.
+                store(unsafe { $intr(load(a), load(b)) })
+            }
+        };
+    }
+    bin!(add, _mm512_add_pd);
+    bin!(sub, _mm512_sub_pd);
+    bin!(mul, _mm512_mul_pd);
+    bin!(div, _mm512_div_pd);
+
+    /// Lane l = `*base.add(idx[l])`, one gather instruction.
+    ///
+    /// # Safety
+    /// W = 8, the CPU has AVX-512F, and every `base.add(idx[l])` is in bounds of one
+    /// allocation of f64.
+    #[inline(always)]
+    pub(super) unsafe fn gather<const W: usize>(base: *const f64, idx: &[i64; W]) -> Lanes<W> {
+        let offsets = _mm512_loadu_si512(idx.as_ptr().cast());
+        store(_mm512_i64gather_pd::<8>(offsets, base))
+    }
+
+    /// −a by flipping the sign bit (exactly what scalar negation does, −0.0 included).
+    #[inline(always)]
+    pub(super) fn neg<const W: usize>(a: Lanes<W>) -> Lanes<W> {
+        // SAFETY: as above.
+        store(unsafe {
+            _mm512_castsi512_pd(_mm512_xor_si512(
+                _mm512_castpd_si512(load(a)),
+                _mm512_set1_epi64(i64::MIN),
+            ))
+        })
+    }
+
+    #[inline(always)]
+    pub(super) fn sqrt<const W: usize>(a: Lanes<W>) -> Lanes<W> {
+        // SAFETY: as above.
+        store(unsafe { _mm512_sqrt_pd(load(a)) })
+    }
+}
 
 impl<const W: usize> Default for Lanes<W> {
     #[inline(always)]
@@ -42,9 +112,34 @@ impl<const W: usize> Lanes<W> {
         Lanes([v; W])
     }
 
+    /// Lane l = `*base.add(idx[l])`: W loads from anywhere in one array, as one gather
+    /// instruction in the AVX-512 kernel (W = 8). Building a lane vector by W scalar stores
+    /// and reading it back as a vector would stall: the read cannot be forwarded from the
+    /// pending stores.
+    ///
+    /// # Safety
+    /// Every `base.add(idx[l])` must be in bounds of the one allocation `base` points into;
+    /// with W = 8 on x86-64 the CPU must have AVX-512F (only the AVX-512 kernel uses 8 lanes).
+    #[inline(always)]
+    pub unsafe fn gather(base: *const f64, idx: &[i64; W]) -> Self {
+        #[cfg(target_arch = "x86_64")]
+        if W == 8 {
+            return avx512::gather(base, idx);
+        }
+        let mut r = [0.0; W];
+        for l in 0..W {
+            r[l] = *base.offset(idx[l] as isize);
+        }
+        Lanes(r)
+    }
+
     /// Lane-wise square root.
     #[inline(always)]
     pub fn sqrt(self) -> Self {
+        #[cfg(target_arch = "x86_64")]
+        if W == 8 {
+            return avx512::sqrt(self);
+        }
         let mut r = self.0;
         for x in &mut r {
             *x = x.sqrt();
@@ -108,6 +203,10 @@ macro_rules! lane_op {
             #[inline(always)]
             #[allow(clippy::assign_op_pattern)]
             fn $f(self, o: Self) -> Self {
+                #[cfg(target_arch = "x86_64")]
+                if W == 8 {
+                    return avx512::$f(self, o);
+                }
                 let mut r = self.0;
                 for l in 0..W {
                     r[l] = r[l] $op o.0[l];
@@ -120,6 +219,10 @@ macro_rules! lane_op {
             #[inline(always)]
             #[allow(clippy::assign_op_pattern)]
             fn $f(self, o: f64) -> Self {
+                #[cfg(target_arch = "x86_64")]
+                if W == 8 {
+                    return avx512::$f(self, Lanes([o; W]));
+                }
                 let mut r = self.0;
                 for l in 0..W {
                     r[l] = r[l] $op o;
@@ -138,6 +241,10 @@ impl<const W: usize> Mul<Lanes<W>> for f64 {
     type Output = Lanes<W>;
     #[inline(always)]
     fn mul(self, o: Lanes<W>) -> Lanes<W> {
+        #[cfg(target_arch = "x86_64")]
+        if W == 8 {
+            return avx512::mul(Lanes([self; W]), o);
+        }
         let mut r = o.0;
         for l in 0..W {
             r[l] *= self;
@@ -150,6 +257,10 @@ impl<const W: usize> Add<Lanes<W>> for f64 {
     type Output = Lanes<W>;
     #[inline(always)]
     fn add(self, o: Lanes<W>) -> Lanes<W> {
+        #[cfg(target_arch = "x86_64")]
+        if W == 8 {
+            return avx512::add(Lanes([self; W]), o);
+        }
         let mut r = o.0;
         for l in 0..W {
             r[l] += self;
@@ -162,6 +273,10 @@ impl<const W: usize> Neg for Lanes<W> {
     type Output = Self;
     #[inline(always)]
     fn neg(self) -> Self {
+        #[cfg(target_arch = "x86_64")]
+        if W == 8 {
+            return avx512::neg(self);
+        }
         let mut r = self.0;
         for x in &mut r {
             *x = -*x;
