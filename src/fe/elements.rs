@@ -443,16 +443,26 @@ fn bbar_lanes<const W: usize>(
             plastic_work: Lanes::default(),
             internal_energy: Lanes::default(),
         };
-        for (l, &e) in idx.iter().enumerate() {
+        // The state by gathers (see Lanes::gather): every index is a local element < n of
+        // this batch's slices (points: eight per element, eight f64 each, repr(C)).
+        let e: [i64; W] = build(|l| idx[l] as i64);
+        debug_assert!(b.pts.len() == 8 * n && b.wp.len() == n && b.ie.len() == n);
+        let pp = b.pts.as_ptr().cast::<f64>();
+        // SAFETY: as above.
+        unsafe {
             for g in 0..8 {
-                let ip = &b.pts[8 * e + g];
-                for c in 0..6 {
-                    st.stress[g][c].0[l] = ip.stress[c];
+                for c in 0..7 {
+                    let o: [i64; W] = build(|l| 64 * e[l] + (8 * g + c) as i64);
+                    let f = Lanes::gather(pp, &o);
+                    if c < 6 {
+                        st.stress[g][c] = f;
+                    } else {
+                        st.eps_p[g] = f;
+                    }
                 }
-                st.eps_p[g].0[l] = ip.eps_p;
             }
-            st.plastic_work.0[l] = b.wp[e];
-            st.internal_energy.0[l] = b.ie[e];
+            st.plastic_work = Lanes::gather(b.wp.as_ptr(), &e);
+            st.internal_energy = Lanes::gather(b.ie.as_ptr(), &e);
         }
         let out = bp::update(&xe, &ve, dt, mat, &mut st);
         for l in 0..live {
