@@ -1,6 +1,6 @@
 //! `twoball bench machine`: the two ceilings of a roofline for this machine, measured with
 //! small kernels: floating-point throughput per core (independent FMA chains on 4-wide f64
-//! vectors, and separate multiply + add) and memory bandwidth (STREAM-style triad
+//! vectors, and 8-wide where the CPU has AVX-512, fused and as separate multiply + add) and memory bandwidth (STREAM-style triad
 //! a = b + s c on arrays sized for L2, L3 and main memory, 1 thread and all threads).
 
 use crate::error::{Error, Result};
@@ -79,6 +79,57 @@ unsafe fn fma_rounds_avx2(n: u64, fused: bool) -> f64 {
     sum
 }
 
+/// The same rounds on 8-wide AVX-512 registers (the width of the element kernels on a CPU
+/// with AVX-512F; they use separate multiply and add, never fused).
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx512f")]
+unsafe fn fma_rounds_avx512(n: u64, fused: bool) -> f64 {
+    use std::arch::x86_64::*;
+    let mut acc = [_mm512_set1_pd(1.0); CHAINS];
+    for (k, a) in acc.iter_mut().enumerate() {
+        *a = _mm512_add_pd(*a, _mm512_set1_pd(k as f64 * 1e-3));
+    }
+    let m = _mm512_set1_pd(black_box(0.999_999_9));
+    let c = _mm512_set1_pd(black_box(1e-7));
+    if fused {
+        for _ in 0..n {
+            for a in acc.iter_mut() {
+                *a = _mm512_fmadd_pd(*a, m, c);
+            }
+        }
+    } else {
+        for _ in 0..n {
+            for a in acc.iter_mut() {
+                *a = _mm512_add_pd(_mm512_mul_pd(*a, m), c);
+            }
+        }
+    }
+    let mut sum = 0.0;
+    for a in acc {
+        let mut lanes = [0.0f64; 8];
+        _mm512_storeu_pd(lanes.as_mut_ptr(), a);
+        sum += lanes.iter().sum::<f64>();
+    }
+    sum
+}
+
+/// Flops per second of one thread on 8-wide AVX-512 registers: (fused FMA, separate
+/// multiply + add); `None` when the CPU lacks AVX-512F.
+fn flops_512(rounds: u64) -> Option<(f64, f64)> {
+    #[cfg(target_arch = "x86_64")]
+    if std::is_x86_feature_detected!("avx512f") {
+        let run = |fused: bool| {
+            let t = Instant::now();
+            // SAFETY: the CPU supports the feature the function was compiled for.
+            black_box(unsafe { fma_rounds_avx512(rounds, fused) });
+            (rounds * CHAINS as u64 * 8 * 2) as f64 / t.elapsed().as_secs_f64()
+        };
+        return Some((run(true), run(false)));
+    }
+    let _ = rounds;
+    None
+}
+
 /// Flops per second of one thread: (fused FMA, separate multiply + add).
 fn flops(rounds: u64) -> (f64, f64) {
     let run = |fused: bool| {
@@ -137,9 +188,22 @@ pub fn machine(a: MachineArgs) -> Result<()> {
     println!("measure,threads,value,unit");
     println!("fma_throughput,1,{:.2},Gflop/s", fused * 1e-9);
     println!("mul_add_separate,1,{:.2},Gflop/s", sep * 1e-9);
+    let mut wide: Option<(f64, f64)> = None;
+    for _ in 0..a.repeats {
+        if let Some((f, s)) = flops_512(rounds) {
+            let w = wide.get_or_insert((0.0, 0.0));
+            *w = (w.0.max(f), w.1.max(s));
+        }
+    }
+    if let Some((f, s)) = wide {
+        println!("fma_throughput_avx512,1,{:.2},Gflop/s", f * 1e-9);
+        println!("mul_add_separate_avx512,1,{:.2},Gflop/s", s * 1e-9);
+    }
+    // 24 MB: about the working set of `bench kernel`'s default 55 000-element ball.
     for (label, bytes) in [
         ("triad_l2", 1usize << 19),
         ("triad_l3", 12 << 20),
+        ("triad_24mb", 24 << 20),
         ("triad_dram", 384 << 20),
     ] {
         let n = bytes / 24;
