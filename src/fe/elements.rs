@@ -443,40 +443,56 @@ fn bbar_lanes<const W: usize>(
             plastic_work: Lanes::default(),
             internal_energy: Lanes::default(),
         };
-        // The state by gathers (see Lanes::gather): every index is a local element < n of
-        // this batch's slices (points: eight per element, eight f64 each, repr(C)).
-        let e: [i64; W] = build(|l| idx[l] as i64);
+        // The state as rows of the point array transposed into lanes (Lanes::load_rows):
+        // every index is a local element < n of this batch's slices (points: eight per
+        // element, eight f64 each, repr(C): stress, eps_p, volume).
         debug_assert!(b.pts.len() == 8 * n && b.wp.len() == n && b.ie.len() == n);
-        let pp = b.pts.as_ptr().cast::<f64>();
-        // SAFETY: as above.
+        let pp = b.pts.as_mut_ptr().cast::<f64>();
+        // SAFETY: as above (rows of 8 f64 inside the slice).
         unsafe {
             for g in 0..8 {
-                for c in 0..7 {
-                    let o: [i64; W] = build(|l| 64 * e[l] + (8 * g + c) as i64);
-                    let f = Lanes::gather(pp, &o);
-                    if c < 6 {
-                        st.stress[g][c] = f;
-                    } else {
-                        st.eps_p[g] = f;
-                    }
-                }
+                let rows: [usize; W] = build(|l| 64 * idx[l] + 8 * g);
+                let f: [Lanes<W>; 7] = Lanes::load_rows(pp, &rows);
+                st.stress[g].copy_from_slice(&f[..6]);
+                st.eps_p[g] = f[6];
             }
-            st.plastic_work = Lanes::gather(b.wp.as_ptr(), &e);
-            st.internal_energy = Lanes::gather(b.ie.as_ptr(), &e);
         }
+        st.plastic_work = contiguous(b.wp, &idx);
+        st.internal_energy = contiguous(b.ie, &idx);
         let out = bp::update(&xe, &ve, dt, mat, &mut st);
-        for l in 0..live {
-            let k = k0 + l;
+        if live == W {
             for g in 0..8 {
-                let ip = &mut b.pts[8 * k + g];
-                for c in 0..6 {
-                    ip.stress[c] = st.stress[g][c].0[l];
-                }
-                ip.eps_p = st.eps_p[g].0[l];
-                ip.volume = out.point_volume[g].0[l];
+                let s = &st.stress[g];
+                let cols = [
+                    s[0],
+                    s[1],
+                    s[2],
+                    s[3],
+                    s[4],
+                    s[5],
+                    st.eps_p[g],
+                    out.point_volume[g],
+                ];
+                let rows: [usize; W] = build(|l| 64 * (k0 + l) + 8 * g);
+                // SAFETY: full group: W distinct elements k0.. < n, rows of 8 f64 in the slice.
+                unsafe { Lanes::store_rows(&cols, pp, &rows) };
             }
-            b.wp[k] = st.plastic_work.0[l];
-            b.ie[k] = st.internal_energy.0[l];
+            b.wp[k0..k0 + W].copy_from_slice(&st.plastic_work.0);
+            b.ie[k0..k0 + W].copy_from_slice(&st.internal_energy.0);
+        } else {
+            for l in 0..live {
+                let k = k0 + l;
+                for g in 0..8 {
+                    let ip = &mut b.pts[8 * k + g];
+                    for c in 0..6 {
+                        ip.stress[c] = st.stress[g][c].0[l];
+                    }
+                    ip.eps_p = st.eps_p[g].0[l];
+                    ip.volume = out.point_volume[g].0[l];
+                }
+                b.wp[k] = st.plastic_work.0[l];
+                b.ie[k] = st.internal_energy.0[l];
+            }
         }
         let r = LaneResult {
             force: &out.force,
@@ -488,6 +504,19 @@ fn bbar_lanes<const W: usize>(
         k0 += W;
     }
     Ok(best)
+}
+
+/// Lane l = `a[idx[l]]` for one f64 per element: a plain vector load when `idx` is a run
+/// of consecutive elements (every full group), else W loads.
+#[inline(always)]
+fn contiguous<const W: usize>(a: &[f64], idx: &[usize; W]) -> Lanes<W> {
+    let k0 = idx[0];
+    if idx[W - 1] == k0 + W - 1 {
+        let mut r = [0.0; W];
+        r.copy_from_slice(&a[k0..k0 + W]);
+        return Lanes(r);
+    }
+    Lanes(build(|l| a[idx[l]]))
 }
 
 /// Nodal coordinates and velocities of the elements `idx` (local indices into `conn`) into
@@ -614,43 +643,65 @@ fn one_point_lanes<const W: usize>(
             hourglass_energy: Lanes::default(),
         };
         gather_nodes(&idx, b.conn, x, v, &mut xe, &mut ve);
-        // The state by gathers (see Lanes::gather): every index is a local element < n of
-        // this batch's slices, whose lengths are n (points: one per element, eight f64 each,
-        // repr(C); hourglass: twelve f64 each).
-        let e: [i64; W] = build(|l| idx[l] as i64);
-        let at = |stride: i64, c: i64| -> [i64; W] { build(|l| stride * e[l] + c) };
+        // The state as rows transposed into lanes (Lanes::load_rows): every index is a local
+        // element < n of this batch's slices, whose lengths are n (points: eight f64 each,
+        // repr(C): stress, eps_p, volume; hourglass: twelve f64 each).
         debug_assert!(b.pts.len() == n && b.hgq.len() == n && b.wp.len() == n);
-        let (pp, hp) = (b.pts.as_ptr().cast::<f64>(), b.hgq.as_ptr().cast::<f64>());
-        // SAFETY: as above.
+        let (pp, hp) = (
+            b.pts.as_mut_ptr().cast::<f64>(),
+            b.hgq.as_mut_ptr().cast::<f64>(),
+        );
+        // SAFETY: as above (rows of 8 and 12 f64 inside their slices).
         unsafe {
-            for c in 0..6 {
-                st.stress[c] = Lanes::gather(pp, &at(8, c as i64));
-            }
-            st.eps_p = Lanes::gather(pp, &at(8, 6));
+            let f: [Lanes<W>; 7] = Lanes::load_rows(pp, &build(|l| 8 * idx[l]));
+            st.stress.copy_from_slice(&f[..6]);
+            st.eps_p = f[6];
+            let h0: [Lanes<W>; 8] = Lanes::load_rows(hp, &build(|l| 12 * idx[l]));
+            let h1: [Lanes<W>; 4] = Lanes::load_rows(hp, &build(|l| 12 * idx[l] + 8));
             for a in 0..4 {
                 for c in 0..3 {
-                    st.hourglass[a][c] = Lanes::gather(hp, &at(12, (3 * a + c) as i64));
+                    let q = 3 * a + c;
+                    st.hourglass[a][c] = if q < 8 { h0[q] } else { h1[q - 8] };
                 }
             }
-            st.plastic_work = Lanes::gather(b.wp.as_ptr(), &e);
-            st.internal_energy = Lanes::gather(b.ie.as_ptr(), &e);
-            st.hourglass_energy = Lanes::gather(b.ehg.as_ptr(), &e);
         }
+        st.plastic_work = contiguous(b.wp, &idx);
+        st.internal_energy = contiguous(b.ie, &idx);
+        st.hourglass_energy = contiguous(b.ehg, &idx);
         let out = op::update(&xe, &ve, dt, mat, hg, &mut st);
-        for l in 0..live {
-            let k = k0 + l;
-            let ip = &mut b.pts[k];
-            for c in 0..6 {
-                ip.stress[c] = st.stress[c].0[l];
+        if live == W {
+            let s = &st.stress;
+            let cols = [s[0], s[1], s[2], s[3], s[4], s[5], st.eps_p, out.volume];
+            let q = &st.hourglass;
+            let h0 = [
+                q[0][0], q[0][1], q[0][2], q[1][0], q[1][1], q[1][2], q[2][0], q[2][1],
+            ];
+            let h1 = [q[2][2], q[3][0], q[3][1], q[3][2]];
+            // SAFETY: full group: W distinct elements k0.. < n, rows inside the slices.
+            unsafe {
+                Lanes::store_rows(&cols, pp, &build(|l| 8 * (k0 + l)));
+                Lanes::store_rows(&h0, hp, &build(|l| 12 * (k0 + l)));
+                Lanes::store_rows(&h1, hp, &build(|l| 12 * (k0 + l) + 8));
             }
-            ip.eps_p = st.eps_p.0[l];
-            ip.volume = out.volume.0[l];
-            b.wp[k] = st.plastic_work.0[l];
-            b.ie[k] = st.internal_energy.0[l];
-            b.ehg[k] = st.hourglass_energy.0[l];
-            for a in 0..4 {
-                for c in 0..3 {
-                    b.hgq[k][a][c] = st.hourglass[a][c].0[l];
+            b.wp[k0..k0 + W].copy_from_slice(&st.plastic_work.0);
+            b.ie[k0..k0 + W].copy_from_slice(&st.internal_energy.0);
+            b.ehg[k0..k0 + W].copy_from_slice(&st.hourglass_energy.0);
+        } else {
+            for l in 0..live {
+                let k = k0 + l;
+                let ip = &mut b.pts[k];
+                for c in 0..6 {
+                    ip.stress[c] = st.stress[c].0[l];
+                }
+                ip.eps_p = st.eps_p.0[l];
+                ip.volume = out.volume.0[l];
+                b.wp[k] = st.plastic_work.0[l];
+                b.ie[k] = st.internal_energy.0[l];
+                b.ehg[k] = st.hourglass_energy.0[l];
+                for a in 0..4 {
+                    for c in 0..3 {
+                        b.hgq[k][a][c] = st.hourglass[a][c].0[l];
+                    }
                 }
             }
         }

@@ -66,6 +66,81 @@ mod avx512 {
         store(_mm512_i64gather_pd::<8>(offsets, base))
     }
 
+    /// The 8 x 8 transpose: `out[j]` lane i = `r[i]` lane j (three stages: pairs, 128-bit
+    /// blocks, 256-bit halves; 24 shuffles).
+    #[inline(always)]
+    unsafe fn transpose8(r: [__m512d; 8]) -> [__m512d; 8] {
+        let t0 = _mm512_unpacklo_pd(r[0], r[1]);
+        let t1 = _mm512_unpackhi_pd(r[0], r[1]);
+        let t2 = _mm512_unpacklo_pd(r[2], r[3]);
+        let t3 = _mm512_unpackhi_pd(r[2], r[3]);
+        let t4 = _mm512_unpacklo_pd(r[4], r[5]);
+        let t5 = _mm512_unpackhi_pd(r[4], r[5]);
+        let t6 = _mm512_unpacklo_pd(r[6], r[7]);
+        let t7 = _mm512_unpackhi_pd(r[6], r[7]);
+        let u0 = _mm512_shuffle_f64x2::<0x88>(t0, t2);
+        let u1 = _mm512_shuffle_f64x2::<0xDD>(t0, t2);
+        let u2 = _mm512_shuffle_f64x2::<0x88>(t1, t3);
+        let u3 = _mm512_shuffle_f64x2::<0xDD>(t1, t3);
+        let u4 = _mm512_shuffle_f64x2::<0x88>(t4, t6);
+        let u5 = _mm512_shuffle_f64x2::<0xDD>(t4, t6);
+        let u6 = _mm512_shuffle_f64x2::<0x88>(t5, t7);
+        let u7 = _mm512_shuffle_f64x2::<0xDD>(t5, t7);
+        [
+            _mm512_shuffle_f64x2::<0x88>(u0, u4),
+            _mm512_shuffle_f64x2::<0x88>(u2, u6),
+            _mm512_shuffle_f64x2::<0x88>(u1, u5),
+            _mm512_shuffle_f64x2::<0x88>(u3, u7),
+            _mm512_shuffle_f64x2::<0xDD>(u0, u4),
+            _mm512_shuffle_f64x2::<0xDD>(u2, u6),
+            _mm512_shuffle_f64x2::<0xDD>(u1, u5),
+            _mm512_shuffle_f64x2::<0xDD>(u3, u7),
+        ]
+    }
+
+    /// Columns 0..C (C ≤ 8) of eight rows starting at `base.add(rows[l])`.
+    ///
+    /// # Safety
+    /// W = 8, AVX-512F, and `base.add(rows[l] + c)` in bounds for every l and c < C.
+    #[inline(always)]
+    pub(super) unsafe fn load_rows<const W: usize, const C: usize>(
+        base: *const f64,
+        rows: &[usize; W],
+    ) -> [Lanes<W>; C] {
+        let mask = ((1u32 << C) - 1) as __mmask8;
+        let mut r = [_mm512_setzero_pd(); 8];
+        for (l, x) in r.iter_mut().enumerate() {
+            *x = _mm512_maskz_loadu_pd(mask, base.add(rows[l]));
+        }
+        let t = transpose8(r);
+        let mut out = [Lanes([0.0; W]); C];
+        for (c, o) in out.iter_mut().enumerate() {
+            *o = store(t[c]);
+        }
+        out
+    }
+
+    /// Writes columns `cols` (C ≤ 8) into eight rows starting at `base.add(rows[l])`.
+    ///
+    /// # Safety
+    /// As [`load_rows`], for writing; the rows must not overlap.
+    #[inline(always)]
+    pub(super) unsafe fn store_rows<const W: usize, const C: usize>(
+        cols: &[Lanes<W>; C],
+        base: *mut f64,
+        rows: &[usize; W],
+    ) {
+        let mask = ((1u32 << C) - 1) as __mmask8;
+        let mut c8 = [_mm512_setzero_pd(); 8];
+        for (c, x) in cols.iter().enumerate() {
+            c8[c] = load(*x);
+        }
+        let t = transpose8(c8);
+        for (l, x) in t.iter().enumerate() {
+            _mm512_mask_storeu_pd(base.add(rows[l]), mask, *x);
+        }
+    }
+
     /// −a by flipping the sign bit (exactly what scalar negation does, −0.0 included).
     #[inline(always)]
     pub(super) fn neg<const W: usize>(a: Lanes<W>) -> Lanes<W> {
@@ -131,6 +206,45 @@ impl<const W: usize> Lanes<W> {
             r[l] = *base.offset(idx[l] as isize);
         }
         Lanes(r)
+    }
+
+    /// Columns 0..C of W rows of f64: lane l of column c = `*base.add(rows[l] + c)`. With
+    /// eight lanes (AVX-512) the rows are read as vectors and transposed in registers, the
+    /// cheap way to turn an array of structures (a field per row) into lanes.
+    ///
+    /// # Safety
+    /// Every `base.add(rows[l] + c)`, c < C ≤ 8, must be in bounds of the allocation `base`
+    /// points into; with W = 8 on x86-64 the CPU must have AVX-512F.
+    #[inline(always)]
+    pub unsafe fn load_rows<const C: usize>(base: *const f64, rows: &[usize; W]) -> [Self; C] {
+        #[cfg(target_arch = "x86_64")]
+        if W == 8 && C <= 8 {
+            return avx512::load_rows(base, rows);
+        }
+        let mut out = [Lanes([0.0; W]); C];
+        for (c, o) in out.iter_mut().enumerate() {
+            for l in 0..W {
+                o.0[l] = *base.add(rows[l] + c);
+            }
+        }
+        out
+    }
+
+    /// The inverse of [`Lanes::load_rows`]: `*base.add(rows[l] + c)` = lane l of `cols[c]`.
+    ///
+    /// # Safety
+    /// As [`Lanes::load_rows`], for writing; the W rows must not overlap (no repeated row).
+    #[inline(always)]
+    pub unsafe fn store_rows<const C: usize>(cols: &[Self; C], base: *mut f64, rows: &[usize; W]) {
+        #[cfg(target_arch = "x86_64")]
+        if W == 8 && C <= 8 {
+            return avx512::store_rows(cols, base, rows);
+        }
+        for (c, col) in cols.iter().enumerate() {
+            for l in 0..W {
+                *base.add(rows[l] + c) = col.0[l];
+            }
+        }
     }
 
     /// Lane-wise square root.
@@ -322,6 +436,13 @@ pub fn dot<const W: usize>(a: &Vec3<W>, b: &Vec3<W>) -> Lanes<W> {
 mod tests {
     use super::*;
 
+    fn is_avx512() -> bool {
+        #[cfg(target_arch = "x86_64")]
+        return std::is_x86_feature_detected!("avx512f");
+        #[cfg(not(target_arch = "x86_64"))]
+        return false;
+    }
+
     #[test]
     fn lanes_compute_what_scalars_compute() {
         let a = Lanes([1.5, -2.0, 3.25, 0.1]);
@@ -334,6 +455,38 @@ mod tests {
         let m = a.gt(b);
         assert_eq!(m, [true, false, true, false]);
         assert_eq!(select(m, a, b).0, [1.5, 4.0, 3.25, 7.0]);
+        // Rows to lanes and back, eight lanes (the AVX-512 transpose where the CPU has it)
+        // and four (scalar), with a partial row width.
+        let data: Vec<f64> = (0..100).map(|i| i as f64 * 1.5 - 7.0).collect();
+        let rows8 = [3, 17, 40, 41, 60, 9, 90, 0];
+        let wide = is_avx512();
+        if wide {
+            // SAFETY: AVX-512F present; every row + c < 100.
+            let cols: [Lanes<8>; 7] = unsafe { Lanes::load_rows(data.as_ptr(), &rows8) };
+            for (c, col) in cols.iter().enumerate() {
+                for l in 0..8 {
+                    assert_eq!(col.0[l], data[rows8[l] + c], "column {c} lane {l}");
+                }
+            }
+            let mut back = vec![0.0; 100];
+            let rows_disjoint = [0, 10, 20, 30, 40, 50, 60, 70];
+            // SAFETY: as above, rows do not overlap.
+            unsafe { Lanes::store_rows(&cols, back.as_mut_ptr(), &rows_disjoint) };
+            for l in 0..8 {
+                for c in 0..10 {
+                    let want = if c < 7 { data[rows8[l] + c] } else { 0.0 };
+                    assert_eq!(back[rows_disjoint[l] + c], want, "row {l} column {c}");
+                }
+            }
+        }
+        let rows4 = [5, 1, 33, 2];
+        // SAFETY: every row + c < 100.
+        let cols: [Lanes<4>; 3] = unsafe { Lanes::load_rows(data.as_ptr(), &rows4) };
+        for (c, col) in cols.iter().enumerate() {
+            for l in 0..4 {
+                assert_eq!(col.0[l], data[rows4[l] + c]);
+            }
+        }
         let c = cross(
             &[Lanes([1.0]), Lanes([0.0]), Lanes([0.0])],
             &[Lanes([0.0]), Lanes([1.0]), Lanes([0.0])],
