@@ -44,74 +44,70 @@ fn fma_rounds(n: u64, fused: bool) -> f64 {
     acc.iter().flatten().sum()
 }
 
-/// The same rounds written with AVX2/FMA intrinsics: LLVM does not keep the portable version's
-/// 12 x 4 accumulators in vector registers (it scalarises and spills them), which measured
-/// one scalar FMA per cycle instead of the machine's vector throughput.
-#[cfg(target_arch = "x86_64")]
-#[target_feature(enable = "avx2,fma")]
-unsafe fn fma_rounds_avx2(n: u64, fused: bool) -> f64 {
-    use std::arch::x86_64::*;
-    let mut acc = [_mm256_set1_pd(1.0); CHAINS];
-    for (k, a) in acc.iter_mut().enumerate() {
-        *a = _mm256_add_pd(*a, _mm256_set_pd(0.0, 0.0, 0.0, k as f64 * 1e-3));
-    }
-    let m = _mm256_set1_pd(black_box(0.999_999_9));
-    let c = _mm256_set1_pd(black_box(1e-7));
-    if fused {
-        for _ in 0..n {
-            for a in acc.iter_mut() {
-                *a = _mm256_fmadd_pd(*a, m, c);
+/// `n` rounds of acc = acc·m + c on CHAINS vector registers of one x86 width, fused or as a
+/// separate multiply and add; returns a checksum. Written with intrinsics because LLVM does
+/// not keep the portable version's 12 x 4 accumulators in vector registers (it scalarises
+/// and spills them), which measured one scalar FMA per cycle instead of the machine's
+/// vector throughput.
+macro_rules! simd_rounds {
+    ($name:ident, $feature:literal, $lanes:literal, $set1:ident, $add:ident, $mul:ident,
+     $fmadd:ident, $storeu:ident) => {
+        #[cfg(target_arch = "x86_64")]
+        #[target_feature(enable = $feature)]
+        unsafe fn $name(n: u64, fused: bool) -> f64 {
+            use std::arch::x86_64::*;
+            let mut acc = [$set1(1.0); CHAINS];
+            for (k, a) in acc.iter_mut().enumerate() {
+                *a = $add(*a, $set1(k as f64 * 1e-3));
             }
-        }
-    } else {
-        for _ in 0..n {
-            for a in acc.iter_mut() {
-                *a = _mm256_add_pd(_mm256_mul_pd(*a, m), c);
+            let m = $set1(black_box(0.999_999_9));
+            let c = $set1(black_box(1e-7));
+            if fused {
+                for _ in 0..n {
+                    for a in acc.iter_mut() {
+                        *a = $fmadd(*a, m, c);
+                    }
+                }
+            } else {
+                for _ in 0..n {
+                    for a in acc.iter_mut() {
+                        *a = $add($mul(*a, m), c);
+                    }
+                }
             }
+            let mut sum = 0.0;
+            for a in acc {
+                let mut lanes = [0.0f64; $lanes];
+                $storeu(lanes.as_mut_ptr(), a);
+                sum += lanes.iter().sum::<f64>();
+            }
+            sum
         }
-    }
-    let mut sum = 0.0;
-    for a in acc {
-        let mut lanes = [0.0f64; 4];
-        _mm256_storeu_pd(lanes.as_mut_ptr(), a);
-        sum += lanes.iter().sum::<f64>();
-    }
-    sum
+    };
 }
 
-/// The same rounds on 8-wide AVX-512 registers (the width of the element kernels on a CPU
-/// with AVX-512F; they use separate multiply and add, never fused).
-#[cfg(target_arch = "x86_64")]
-#[target_feature(enable = "avx512f")]
-unsafe fn fma_rounds_avx512(n: u64, fused: bool) -> f64 {
-    use std::arch::x86_64::*;
-    let mut acc = [_mm512_set1_pd(1.0); CHAINS];
-    for (k, a) in acc.iter_mut().enumerate() {
-        *a = _mm512_add_pd(*a, _mm512_set1_pd(k as f64 * 1e-3));
-    }
-    let m = _mm512_set1_pd(black_box(0.999_999_9));
-    let c = _mm512_set1_pd(black_box(1e-7));
-    if fused {
-        for _ in 0..n {
-            for a in acc.iter_mut() {
-                *a = _mm512_fmadd_pd(*a, m, c);
-            }
-        }
-    } else {
-        for _ in 0..n {
-            for a in acc.iter_mut() {
-                *a = _mm512_add_pd(_mm512_mul_pd(*a, m), c);
-            }
-        }
-    }
-    let mut sum = 0.0;
-    for a in acc {
-        let mut lanes = [0.0f64; 8];
-        _mm512_storeu_pd(lanes.as_mut_ptr(), a);
-        sum += lanes.iter().sum::<f64>();
-    }
-    sum
-}
+simd_rounds!(
+    fma_rounds_avx2,
+    "avx2,fma",
+    4,
+    _mm256_set1_pd,
+    _mm256_add_pd,
+    _mm256_mul_pd,
+    _mm256_fmadd_pd,
+    _mm256_storeu_pd
+);
+// The same rounds on 8-wide AVX-512 registers (the width of the element kernels on a CPU with
+// AVX-512F; they use separate multiply and add, never fused).
+simd_rounds!(
+    fma_rounds_avx512,
+    "avx512f",
+    8,
+    _mm512_set1_pd,
+    _mm512_add_pd,
+    _mm512_mul_pd,
+    _mm512_fmadd_pd,
+    _mm512_storeu_pd
+);
 
 /// Flops per second of one thread on 8-wide AVX-512 registers: (fused FMA, separate
 /// multiply + add); `None` when the CPU lacks AVX-512F.

@@ -729,42 +729,19 @@ mod tests {
     /// ball mesh with a yielding, spinning, hourglass-exciting velocity field, several steps.
     #[test]
     fn lane_loop_matches_per_element_kernel_on_a_ball_mesh() {
-        let mesh = ball(&BallSpec {
-            diameter: 0.02,
-            size: 0.004,
-            pole_size: Some(0.001),
-            cut: Cut::Quarter,
-        })
-        .unwrap();
-        let mat = J2Material::new(&Material::preset("copper-fe").unwrap(), false);
-        let n = mesh.hexes.len();
+        let (mut blk, x0, v) = yielding_block(Formulation::OnePoint, 3000.0);
+        let mat = blk.material;
+        let n = blk.conn.len();
         assert!(
             !n.is_multiple_of(4) || !n.is_multiple_of(BATCH),
             "want a ragged tail"
         );
-        let mut blk = ElementBlock::new(0, 0, mesh.hexes.clone(), Formulation::OnePoint, mat, 0.05);
         let mut refb = blk.clone();
-        let mut x = mesh.nodes.clone();
-        let v: Vec<[f64; 3]> = x
-            .iter()
-            .enumerate()
-            .map(|(i, p)| {
-                let wob = ((i * 7919) % 13) as f64 / 13.0 - 0.5;
-                [
-                    3000.0 * p[0] - 400.0 * p[1] + 2.0 * wob,
-                    -1500.0 * p[1] + 400.0 * p[0],
-                    -wob,
-                ]
-            })
-            .collect();
+        let mut x = x0;
         let dt = 1e-8;
         let mut f = vec![[[0.0; 3]; 8]; n];
         for step in 0..30 {
-            for (p, u) in x.iter_mut().zip(&v) {
-                for c in 0..3 {
-                    p[c] += dt * u[c];
-                }
-            }
+            advance(&mut x, &v, dt);
             let (dmin, _) = blk.update(&x, &v, dt, &mut f).unwrap();
             let mut rmin = f64::INFINITY;
             for k in 0..n {
@@ -811,9 +788,22 @@ mod tests {
         );
     }
 
-    /// A graded quarter-ball block of `form` elements and a yielding, spinning,
-    /// hourglass-exciting velocity field (the ragged tail exercises the repeated lanes).
-    fn yielding_block(form: Formulation) -> (ElementBlock, Vec<[f64; 3]>, Vec<[f64; 3]>) {
+    /// x += dt v for every node.
+    fn advance(x: &mut [[f64; 3]], v: &[[f64; 3]], dt: f64) {
+        for (p, u) in x.iter_mut().zip(v) {
+            for c in 0..3 {
+                p[c] += dt * u[c];
+            }
+        }
+    }
+
+    /// A graded quarter-ball block of `form` elements (its ragged tail exercises the repeated
+    /// lanes), its nodes (m) and a yielding, spinning, hourglass-exciting velocity field
+    /// (m/s) stretching along x at `gain` (1/s).
+    fn yielding_block(
+        form: Formulation,
+        gain: f64,
+    ) -> (ElementBlock, Vec<[f64; 3]>, Vec<[f64; 3]>) {
         let mesh = ball(&BallSpec {
             diameter: 0.02,
             size: 0.004,
@@ -830,8 +820,8 @@ mod tests {
             .map(|(i, p)| {
                 let wob = ((i * 7919) % 13) as f64 / 13.0 - 0.5;
                 [
-                    6000.0 * p[0] - 400.0 * p[1] + 2.0 * wob,
-                    -3000.0 * p[1] + 400.0 * p[0],
+                    gain * p[0] - 400.0 * p[1] + 2.0 * wob,
+                    -0.5 * gain * p[1] + 400.0 * p[0],
                     -wob,
                 ]
             })
@@ -865,17 +855,13 @@ mod tests {
     #[test]
     fn forces_added_into_nodes_equal_gathered_blocks_bit_for_bit() {
         for form in [Formulation::OnePoint, Formulation::BBar] {
-            let (mut a, mut x, v) = yielding_block(form);
+            let (mut a, mut x, v) = yielding_block(form, 6000.0);
             let mut b = a.clone();
             let n = a.conn.len();
             let mut blocks = vec![[[0.0; 3]; 8]; n];
             let dt = 1e-8;
             for _ in 0..20 {
-                for (p, u) in x.iter_mut().zip(&v) {
-                    for c in 0..3 {
-                        p[c] += dt * u[c];
-                    }
-                }
+                advance(&mut x, &v, dt);
                 let da = a.update(&x, &v, dt, &mut blocks).unwrap();
                 let mut gathered = vec![[0.0; 3]; x.len()];
                 for (e, c) in a.conn.iter().enumerate() {
@@ -916,7 +902,7 @@ mod tests {
             return;
         }
         for form in [Formulation::OnePoint, Formulation::BBar] {
-            let (mut a, mut x, v) = yielding_block(form);
+            let (mut a, mut x, v) = yielding_block(form, 6000.0);
             let mut b = a.clone();
             let n = a.conn.len();
             let dt = 1e-8;
@@ -952,11 +938,7 @@ mod tests {
                 (r.unwrap(), f)
             };
             for _ in 0..20 {
-                for (p, u) in x.iter_mut().zip(&v) {
-                    for c in 0..3 {
-                        p[c] += dt * u[c];
-                    }
-                }
+                advance(&mut x, &v, dt);
                 let (ra, fa) = run(&mut a, &x, false);
                 let (rb, fb) = run(&mut b, &x, true);
                 assert_eq!((ra.0.to_bits(), ra.1), (rb.0.to_bits(), rb.1));
