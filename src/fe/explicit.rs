@@ -189,6 +189,9 @@ pub struct Solver {
     /// Subcycling: an interaction does not name its nodes, so every node is kicked (with its
     /// external force) at every step.
     every_node_kicked: bool,
+    /// The element force blocks must be written by `getforce` (false once the solver is set
+    /// up: the set-up of subcycling reads the first blocks, the single-rate steps do not).
+    need_force_blocks: bool,
 }
 
 impl Solver {
@@ -346,6 +349,7 @@ impl Solver {
             original_element: (0..ne).collect(),
             kicked: Vec::new(),
             every_node_kicked: true,
+            need_force_blocks: true,
             x,
             v,
             model,
@@ -357,6 +361,7 @@ impl Solver {
         s.accelerations()?;
         // Multi-time-step integration, if asked for and worth it: levels from the limits now.
         s.start_subcycling()?;
+        s.need_force_blocks = false;
         s.e0 = s.energy().total;
         Ok(s)
     }
@@ -670,8 +675,9 @@ impl Solver {
         };
         // On one thread the elements add their forces straight into f_int (same sums in the
         // same order as the force blocks gathered per node, without the blocks' memory
-        // traffic); on more, each writes its block and the nodes gather them afterwards.
-        let direct = rayon::current_num_threads() == 1;
+        // traffic); on more, each writes its block and the nodes gather them afterwards. The
+        // first call, in `new`, always writes the blocks: subcycling's set-up reads them.
+        let direct = rayon::current_num_threads() == 1 && !self.need_force_blocks;
         if direct {
             self.f_int.fill([0.0; 3]);
         }

@@ -19,8 +19,12 @@ pub struct Lanes<const W: usize>(pub [f64; W]);
 /// Eight lanes as one AVX-512 register. The lane loops below compile to whatever vector width
 /// the compiler prefers for the calling kernel's target features, and for eight f64 lanes
 /// that was two 256-bit halves (twice the instructions, and register spills); these ops pin
-/// the 512-bit form. Only reached when W = 8, which only the AVX-512 kernel instantiates (the
-/// CPU check is made once, before the kernel is entered).
+/// the 512-bit form. Only reached when W = 8.
+///
+/// The crate's contract (this module and the lane kernels are crate-private so that no
+/// outside code can break it): `Lanes<8>` arithmetic runs only inside the AVX-512 element
+/// kernel, entered after the CPU check, or in tests that make the same check first. On
+/// x86-64 without AVX-512F, eight-lane arithmetic would execute instructions the CPU lacks.
 #[cfg(target_arch = "x86_64")]
 mod avx512 {
     use super::Lanes;
@@ -35,6 +39,7 @@ mod avx512 {
 
     #[inline(always)]
     pub(super) fn store<const W: usize>(v: __m512d) -> Lanes<W> {
+        debug_assert_eq!(W, 8);
         let mut r = Lanes([0.0; W]);
         // SAFETY: W == 8: 64 bytes.
         unsafe { _mm512_storeu_pd(r.0.as_mut_ptr(), v) };
