@@ -7,7 +7,7 @@ use crate::fe::profile::{self, Totals};
 use crate::fe::{Formulation, Model, Settings, Solver};
 use crate::material::Material;
 use crate::mesh::ball::{ball, BallSpec, Cut};
-use clap::{Args, Subcommand};
+use clap::{Args, Subcommand, ValueEnum};
 use std::time::Instant;
 
 /// Arguments of `twoball bench`.
@@ -46,13 +46,35 @@ pub struct KernelArgs {
     /// Thread count of the parallel run (default: all available).
     #[arg(long)]
     pub threads: Option<usize>,
-    /// Formulation to time: `one-point`, `b-bar` or `both`.
-    #[arg(long, default_value = "both", value_parser = ["one-point", "b-bar", "both"])]
-    pub element: String,
+    /// Formulation to time.
+    #[arg(long, value_enum, default_value_t = ElementChoice::Both)]
+    pub element: ElementChoice,
     /// Also print where the one-thread step time goes (element phase, force gather, node
     /// passes, stable step), from the solver's phase timer.
     #[arg(long)]
     pub phases: bool,
+}
+
+/// Which hex formulations `bench kernel` times.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum ElementChoice {
+    /// The one-point hex with hourglass control.
+    OnePoint,
+    /// The 2x2x2 B-bar hex.
+    BBar,
+    /// Both, one after the other.
+    Both,
+}
+
+impl ElementChoice {
+    /// The formulations chosen.
+    fn formulations(self) -> &'static [Formulation] {
+        match self {
+            ElementChoice::OnePoint => &[Formulation::OnePoint],
+            ElementChoice::BBar => &[Formulation::BBar],
+            ElementChoice::Both => &[Formulation::OnePoint, Formulation::BBar],
+        }
+    }
 }
 
 pub use super::bench_machine::MachineArgs;
@@ -161,13 +183,8 @@ fn kernel(a: KernelArgs) -> Result<()> {
         a.steps, a.repeats
     );
     println!("formulation,threads,ns_per_element_cycle,speedup,bitwise_identical");
-    let forms: &[Formulation] = match a.element.as_str() {
-        "one-point" => &[Formulation::OnePoint],
-        "b-bar" => &[Formulation::BBar],
-        _ => &[Formulation::OnePoint, Formulation::BBar],
-    };
     let mut breakdowns = Vec::new();
-    for &f in forms {
+    for &f in a.element.formulations() {
         let mut model = Model::new();
         let p = model.add_part("ball", &mesh, Material::preset("copper-fe")?, f)?;
         // A strong quadrupole plus spin: plastic flow near the surface, rotation everywhere.

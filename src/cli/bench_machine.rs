@@ -1,7 +1,8 @@
 //! `twoball bench machine`: the two ceilings of a roofline for this machine, measured with
-//! small kernels: floating-point throughput per core (independent FMA chains on 4-wide f64
-//! vectors, and 8-wide where the CPU has AVX-512, fused and as separate multiply + add) and memory bandwidth (STREAM-style triad
-//! a = b + s c on arrays sized for L2, L3 and main memory, 1 thread and all threads).
+//! small kernels: floating-point throughput per core (independent chains on 4-wide f64
+//! vectors, and on 8-wide ones where the CPU has AVX-512, fused and as separate multiply +
+//! add) and memory bandwidth (STREAM-style triad a = b + s c on arrays sized for L2, L3, the
+//! working set of `bench kernel` and main memory, 1 thread and all threads).
 
 use crate::error::{Error, Result};
 use clap::Args;

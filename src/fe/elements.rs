@@ -21,7 +21,7 @@ pub const BATCH: usize = 64;
 const MIN_BATCHES_PER_TASK: usize = 8;
 
 /// State at one integration point (`repr(C)`: eight f64 in this order, so the lane kernels
-/// can gather a field of W points with one stride-8 index vector).
+/// read W points as W rows of eight f64 and transpose them into lanes, `Lanes::load_rows`).
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 #[repr(C)]
 pub struct IntegrationPoint {
@@ -170,16 +170,7 @@ impl ElementBlock {
         let first = self.first + range.start;
         let r = range.clone();
         let rp = range.start * npe..range.end * npe;
-        // Every node index of the range must address x and v: checked once here, so the
-        // gathers in the hot loop need no bounds checks.
-        let max_node = self.conn[r.clone()]
-            .iter()
-            .flatten()
-            .fold(0u32, |m, &n| m.max(n));
-        assert!(
-            r.is_empty() || (max_node as usize) < x.len().min(v.len()),
-            "node index out of range of x/v"
-        );
+        self.assert_nodes_below(r.clone(), x.len().min(v.len()));
         let res = (
             self.conn[r.clone()].par_chunks(BATCH),
             self.points[rp].par_chunks_mut(BATCH * npe),
@@ -236,6 +227,20 @@ impl ElementBlock {
         res
     }
 
+    /// Panics unless every node index of the local elements `range` is below `len` (the
+    /// length of every nodal array the element loop reads or writes): checked once per call,
+    /// so the gathers and scatters of the hot loop need no bounds checks.
+    fn assert_nodes_below(&self, range: std::ops::Range<usize>, len: usize) {
+        let max_node = self.conn[range.clone()]
+            .iter()
+            .flatten()
+            .fold(0u32, |m, &n| m.max(n));
+        assert!(
+            range.is_empty() || (max_node as usize) < len,
+            "node index out of range of the nodal arrays"
+        );
+    }
+
     /// [`ElementBlock::update_range`] on the calling thread, adding each element's internal
     /// forces (N) straight into the nodal array `f_int` (indexed like `x`, not cleared here)
     /// instead of writing force blocks. Elements are visited in order, so every node receives
@@ -254,14 +259,7 @@ impl ElementBlock {
         f_int: &mut [[f64; 3]],
     ) -> Result<(f64, usize), (usize, ElementFailure)> {
         let npe = self.points_per_element();
-        let max_node = self.conn[range.clone()]
-            .iter()
-            .flatten()
-            .fold(0u32, |m, &n| m.max(n));
-        assert!(
-            range.is_empty() || (max_node as usize) < x.len().min(v.len()).min(f_int.len()),
-            "node index out of range of x/v/f_int"
-        );
+        self.assert_nodes_below(range.clone(), x.len().min(v.len()).min(f_int.len()));
         let inp = StepInput {
             x,
             v,
@@ -523,7 +521,7 @@ fn contiguous<const W: usize>(a: &[f64], idx: &[usize; W]) -> Lanes<W> {
 }
 
 /// Nodal coordinates and velocities of the elements `idx` (local indices into `conn`) into
-/// lanes (plain loops: nothing is left out of line, outside the AVX2 kernel).
+/// lanes, by [`Lanes::gather`] (one gather instruction per field on eight lanes).
 #[inline(always)]
 fn gather_nodes<const W: usize>(
     idx: &[usize; W],
