@@ -80,3 +80,58 @@ fn ladder_without_constant_ratio_is_refused() {
         "{err}"
     );
 }
+
+/// `bench kernel --phases` prints, per formulation, the element phase and the kernel's
+/// arithmetic alone; the arithmetic is part of the element phase, so it cannot take longer
+/// (a probe timing something else, or a kernel whose helpers fell out of line in one of its
+/// two instantiations, would break that; 1.5x leaves room for timer noise on a small ball).
+#[test]
+fn kernel_phases_report_arithmetic_within_the_element_phase() {
+    let out = twoball()
+        .args([
+            "bench",
+            "kernel",
+            "--size-per-d",
+            "0.2",
+            "--steps",
+            "3",
+            "--repeats",
+            "1",
+            "--threads",
+            "1",
+            "--phases",
+        ])
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let text = String::from_utf8(out.stdout).unwrap();
+    let last_number = |line: &str| -> f64 {
+        line.split_whitespace()
+            .rev()
+            .find_map(|w| w.parse::<f64>().ok())
+            .unwrap_or_else(|| panic!("no number in {line:?}"))
+    };
+    let phases: Vec<f64> = text
+        .lines()
+        .filter(|l| l.starts_with("element forces"))
+        .map(last_number)
+        .collect();
+    let alone: Vec<f64> = text
+        .lines()
+        .filter(|l| l.starts_with("kernel arithmetic alone"))
+        .map(|l| last_number(l.trim_end_matches("ns/el-cyc")))
+        .collect();
+    assert_eq!(phases.len(), 2, "{text}");
+    assert_eq!(alone.len(), 2, "{text}");
+    for (p, a) in phases.iter().zip(&alone) {
+        assert!(*a > 0.0 && a.is_finite(), "{text}");
+        assert!(
+            *a < 1.5 * p,
+            "arithmetic alone {a} ns above the element phase {p} ns:\n{text}"
+        );
+    }
+}

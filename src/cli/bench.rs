@@ -97,6 +97,8 @@ struct Timing {
     x: Vec<[f64; 3]>,
     v: Vec<[f64; 3]>,
     phases: Totals,
+    /// The kernel arithmetic alone (phase-timer runs only), ns per element.
+    arithmetic: Option<f64>,
 }
 
 /// One timed configuration on `threads` threads; `phases` switches the solver's phase timer
@@ -138,11 +140,21 @@ fn time_one(
         }
         timed.steps -= warm.steps;
         timed.element_cycles -= warm.element_cycles;
+        // The first lane group of the ball in its current state, its arithmetic repeated in
+        // registers and L1: median of five runs of 20 000 updates.
+        let arithmetic = phases.then(|| {
+            let mut t: Vec<f64> = (0..5)
+                .map(|_| s.blocks()[0].time_arithmetic_alone(s.x(), s.v(), s.dt(), 20_000))
+                .collect();
+            t.sort_by(f64::total_cmp);
+            t[2]
+        });
         Ok(Timing {
             ns: samples[samples.len() / 2],
             x: s.x().to_vec(),
             v: s.v().to_vec(),
             phases: timed,
+            arithmetic,
         })
     })
 }
@@ -203,7 +215,8 @@ fn kernel(a: KernelArgs) -> Result<()> {
         } = time_one(&model, 1, a.steps, a.repeats, false)?;
         println!("{f:?},1,{t1:.1},1.00,-");
         if a.phases {
-            breakdowns.push((f, time_one(&model, 1, a.steps, a.repeats, true)?.phases));
+            let t = time_one(&model, 1, a.steps, a.repeats, true)?;
+            breakdowns.push((f, t.phases, t.arithmetic));
         }
         if all > 1 {
             let Timing {
@@ -224,9 +237,14 @@ fn kernel(a: KernelArgs) -> Result<()> {
             );
         }
     }
-    for (f, t) in breakdowns {
+    for (f, t, arithmetic) in breakdowns {
         println!("# {f:?}, 1 thread, phase timer on (its clock reads add a little):");
         print!("{}", t.table());
+        if let Some(ns) = arithmetic {
+            println!(
+                "kernel arithmetic alone (one lane group kept in registers and L1)   {ns:6.1} ns/el-cyc"
+            );
+        }
     }
     Ok(())
 }

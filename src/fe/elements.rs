@@ -507,6 +507,141 @@ fn bbar_lanes<const W: usize>(
     Ok(best)
 }
 
+impl ElementBlock {
+    /// Time of the lane kernel's arithmetic alone, ns per element: the block's first lane
+    /// group (eight elements on AVX-512, four otherwise) with its nodes `x` (m), `v` (m/s)
+    /// and state loaded once, then updated `repeats` times with step `dt` (s) while every
+    /// input stays in registers and L1 (the state is restored every 64 updates so that it
+    /// stays near the block's own). No node gathers, state loads or stores, checks or force
+    /// scatter: the element phase of a step minus this is the cost of the data movement
+    /// around the arithmetic. The block is not changed. Panics if the block is empty or a
+    /// node index is out of range of `x` or `v` (programming errors).
+    pub fn time_arithmetic_alone(
+        &self,
+        x: &[[f64; 3]],
+        v: &[[f64; 3]],
+        dt: f64,
+        repeats: u32,
+    ) -> f64 {
+        assert!(!self.conn.is_empty(), "empty element block");
+        let lanes = self.conn.len().min(8);
+        self.assert_nodes_below(0..lanes, x.len().min(v.len()));
+        #[cfg(target_arch = "x86_64")]
+        {
+            if std::is_x86_feature_detected!("avx512f")
+                && std::is_x86_feature_detected!("avx2")
+                && std::is_x86_feature_detected!("fma")
+            {
+                // SAFETY: the CPU has the features the function is compiled for.
+                return unsafe { arithmetic_avx512(self, x, v, dt, repeats) };
+            }
+            if std::is_x86_feature_detected!("avx2") && std::is_x86_feature_detected!("fma") {
+                // SAFETY: as above.
+                return unsafe { arithmetic_avx2(self, x, v, dt, repeats) };
+            }
+        }
+        arithmetic_lanes::<4>(self, x, v, dt, repeats)
+    }
+}
+
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx512f,avx2,fma")]
+unsafe fn arithmetic_avx512(
+    b: &ElementBlock,
+    x: &[[f64; 3]],
+    v: &[[f64; 3]],
+    dt: f64,
+    repeats: u32,
+) -> f64 {
+    arithmetic_lanes::<8>(b, x, v, dt, repeats)
+}
+
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2,fma")]
+unsafe fn arithmetic_avx2(
+    b: &ElementBlock,
+    x: &[[f64; 3]],
+    v: &[[f64; 3]],
+    dt: f64,
+    repeats: u32,
+) -> f64 {
+    arithmetic_lanes::<4>(b, x, v, dt, repeats)
+}
+
+/// [`ElementBlock::time_arithmetic_alone`] on W lanes (inlined into its caller's target
+/// features, as the element loop is).
+#[inline(always)]
+fn arithmetic_lanes<const W: usize>(
+    b: &ElementBlock,
+    x: &[[f64; 3]],
+    v: &[[f64; 3]],
+    dt: f64,
+    repeats: u32,
+) -> f64 {
+    use std::hint::black_box;
+    let n = b.conn.len();
+    // Set-up by plain scalar loops: sharing a helper of the element loop (or one of its
+    // closures) would give it a second caller, and the compiler could then leave it out of
+    // line in the element loop too.
+    let idx: [usize; W] = std::array::from_fn(|l| l.min(n - 1));
+    let lane = |f: &dyn Fn(usize) -> f64| Lanes::<W>(std::array::from_fn(f));
+    let xe: [Vec3<W>; 8] = std::array::from_fn(|i| {
+        std::array::from_fn(|d| lane(&|l| x[b.conn[idx[l]][i] as usize][d]))
+    });
+    let ve: [Vec3<W>; 8] = std::array::from_fn(|i| {
+        std::array::from_fn(|d| lane(&|l| v[b.conn[idx[l]][i] as usize][d]))
+    });
+    let mat = &b.material;
+    // Every update's output goes through black_box (to the stack, as the element loop's
+    // forces do), so none of the arithmetic can be optimised out.
+    let elapsed = match b.formulation {
+        Formulation::OnePoint => {
+            let st0 = op::State::<W> {
+                stress: std::array::from_fn(|c| lane(&|l| b.points[idx[l]].stress[c])),
+                eps_p: lane(&|l| b.points[idx[l]].eps_p),
+                hourglass: std::array::from_fn(|a| {
+                    std::array::from_fn(|c| lane(&|l| b.hourglass[idx[l]][a][c]))
+                }),
+                plastic_work: lane(&|l| b.plastic_work[idx[l]]),
+                internal_energy: lane(&|l| b.internal_energy[idx[l]]),
+                hourglass_energy: lane(&|l| b.hourglass_energy[idx[l]]),
+            };
+            let mut st = st0;
+            let start = std::time::Instant::now();
+            for r in 0..repeats {
+                if r % 64 == 0 {
+                    st = st0;
+                }
+                let (xr, vr) = (black_box(&xe), black_box(&ve));
+                black_box(&op::update(xr, vr, dt, mat, b.hourglass_coeff, &mut st));
+            }
+            start.elapsed()
+        }
+        Formulation::BBar => {
+            let pt = |l: usize, g: usize| &b.points[8 * idx[l] + g];
+            let st0 = bp::State::<W> {
+                stress: std::array::from_fn(|g| {
+                    std::array::from_fn(|c| lane(&|l| pt(l, g).stress[c]))
+                }),
+                eps_p: std::array::from_fn(|g| lane(&|l| pt(l, g).eps_p)),
+                plastic_work: lane(&|l| b.plastic_work[idx[l]]),
+                internal_energy: lane(&|l| b.internal_energy[idx[l]]),
+            };
+            let mut st = st0;
+            let start = std::time::Instant::now();
+            for r in 0..repeats {
+                if r % 64 == 0 {
+                    st = st0;
+                }
+                let (xr, vr) = (black_box(&xe), black_box(&ve));
+                black_box(&bp::update(xr, vr, dt, mat, &mut st));
+            }
+            start.elapsed()
+        }
+    };
+    elapsed.as_secs_f64() * 1e9 / (f64::from(repeats) * W as f64)
+}
+
 /// Lane l = `a[idx[l]]` for one f64 per element: a plain vector load when `idx` is a run
 /// of consecutive elements (every full group), else W loads.
 #[inline(always)]

@@ -23,7 +23,7 @@
 //! less accurate, operation order; checked to 1e-12 relative in the tests).
 
 use super::{
-    lanes::{build, cross, dot, select, Lanes, Vec3},
+    lanes::{cross, dot, select, Lanes, Vec3},
     plasticity::J2Material,
 };
 use crate::mesh::topology::HEX_FACES;
@@ -99,14 +99,17 @@ pub fn volume_gradient<const W: usize>(a: &[Vec3<W>; 8]) -> (Lanes<W>, [Vec3<W>;
     let c43 = cross(&a[4], &a[3]);
     let c51 = cross(&a[5], &a[1]);
     let c24 = cross(&a[2], &a[4]);
-    let g: [Vec3<W>; 6] = [
-        build(|k| 3.0 * c23[k] + c65[k]),
-        build(|k| 3.0 * c31[k] + c46[k]),
-        build(|k| 3.0 * c12[k] + c54[k]),
-        build(|k| c62[k] + c35[k]),
-        build(|k| c16[k] + c43[k]),
-        build(|k| c51[k] + c24[k]),
-    ];
+    // Plain loops, no closures: a closure the compiler leaves out of line (it may, once the
+    // kernel is instantiated in more than one place) runs its lane arithmetic as calls.
+    let mut g = [[Lanes::default(); 3]; 6];
+    for k in 0..3 {
+        g[0][k] = 3.0 * c23[k] + c65[k];
+        g[1][k] = 3.0 * c31[k] + c46[k];
+        g[2][k] = 3.0 * c12[k] + c54[k];
+        g[3][k] = c62[k] + c35[k];
+        g[4][k] = c16[k] + c43[k];
+        g[5][k] = c51[k] + c24[k];
+    }
     // 192 V = A₁·(3 A₂×A₃ + A₆×A₅) + A₆·(A₂×A₄) + A₅·(A₄×A₃).
     let v = dot(&a[1], &g[0]) + dot(&a[6], &c24) + dot(&a[5], &c43);
     (v, g)
@@ -322,14 +325,21 @@ pub fn update<const W: usize>(
     let a1 = modes(x1);
     let u = modes(v);
     let half = 0.5 * dt;
-    let am: [Vec3<W>; 8] = build(|k| build(|c| a1[k][c] - half * u[k][c]));
+    let mut am = [[Lanes::default(); 3]; 8];
+    for k in 0..8 {
+        for c in 0..3 {
+            am[k][c] = a1[k][c] - half * u[k][c];
+        }
+    }
     let (vhm, gm) = volume_gradient(&am);
     let vm = vhm * (1.0 / 192.0);
     let l = velocity_gradient(&u, &gm, vhm.recip());
     let (rot, dwp, dw) = point_update(mat, &l, None, dt, &mut st.stress, &mut st.eps_p);
     for q in st.hourglass.iter_mut() {
         let r = *q;
-        *q = build(|i| rot[i][0] * r[0] + rot[i][1] * r[1] + rot[i][2] * r[2]);
+        for i in 0..3 {
+            q[i] = rot[i][0] * r[0] + rot[i][1] * r[1] + rot[i][2] * r[2];
+        }
     }
     st.plastic_work += dwp * vm;
     st.internal_energy += 0.5 * vm * dw;
@@ -340,7 +350,12 @@ pub fn update<const W: usize>(
     let s = st.stress;
     let sigma = [[s[0], s[3], s[5]], [s[3], s[1], s[4]], [s[5], s[4], s[2]]];
     // P = (V σ − M)/V̂ with M = (1/8) Σ_α Q_α ⊗ A_{α+4} (the hourglass part of −γ Q).
-    let mut p: [Vec3<W>; 3] = build(|i| build(|j| v1 * sigma[i][j]));
+    let mut p = [[Lanes::default(); 3]; 3];
+    for i in 0..3 {
+        for j in 0..3 {
+            p[i][j] = v1 * sigma[i][j];
+        }
+    }
     let z = Lanes::splat(0.0);
     let mut fm = [[z; 3]; 8];
     if hg > 0.0 {
@@ -355,9 +370,11 @@ pub fn update<const W: usize>(
         let mut e = z;
         for (al, q) in st.hourglass.iter_mut().enumerate() {
             let ah = &a1[al + 4];
-            let rate: Vec3<W> = build(|i| {
-                0.125 * (u[al + 4][i] - (l1[i][0] * ah[0] + l1[i][1] * ah[1] + l1[i][2] * ah[2]))
-            });
+            let mut rate = [z; 3];
+            for i in 0..3 {
+                let la = l1[i][0] * ah[0] + l1[i][1] * ah[1] + l1[i][2] * ah[2];
+                rate[i] = 0.125 * (u[al + 4][i] - la);
+            }
             let old = *q;
             for c in 0..3 {
                 q[c] += kdt * rate[c];
@@ -401,8 +418,12 @@ pub fn critical_step<const W: usize>(
 ) -> Lanes<W> {
     let mut a2 = Lanes::splat(0.0);
     for f in HEX_FACES {
-        let d1: Vec3<W> = build(|c| x1[f[2]][c] - x1[f[0]][c]);
-        let d2: Vec3<W> = build(|c| x1[f[3]][c] - x1[f[1]][c]);
+        let mut d1 = [Lanes::default(); 3];
+        let mut d2 = [Lanes::default(); 3];
+        for c in 0..3 {
+            d1[c] = x1[f[2]][c] - x1[f[0]][c];
+            d2[c] = x1[f[3]][c] - x1[f[1]][c];
+        }
         let cr = cross(&d1, &d2);
         a2 = a2.max(dot(&cr, &cr));
     }
