@@ -3,6 +3,7 @@
 //! 50 000 elements, and a check that the results do not depend on the thread count.
 
 use crate::error::{Error, Result};
+use crate::fe::elements::{kernel_path, limit_kernel_path, KernelPath};
 use crate::fe::profile::{self, Totals};
 use crate::fe::{Formulation, Model, Settings, Solver};
 use crate::material::Material;
@@ -53,6 +54,32 @@ pub struct KernelArgs {
     /// passes, stable step), from the solver's phase timer.
     #[arg(long)]
     pub phases: bool,
+    /// Widest element kernel to use: `avx512` (the default: the widest this CPU supports),
+    /// `avx2` (four lanes, the path of a CPU without AVX-512) or `portable` (plain arrays,
+    /// any CPU). Same results on every path.
+    #[arg(long, value_enum, default_value_t = KernelChoice::Avx512)]
+    pub kernel: KernelChoice,
+}
+
+/// The `--kernel` choice of `bench kernel`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum KernelChoice {
+    /// The widest kernel this CPU supports (eight AVX-512 lanes where it can).
+    Avx512,
+    /// At most the four-lane AVX2 kernel.
+    Avx2,
+    /// The portable kernel (four lanes as plain arrays).
+    Portable,
+}
+
+impl From<KernelChoice> for KernelPath {
+    fn from(c: KernelChoice) -> Self {
+        match c {
+            KernelChoice::Avx512 => KernelPath::Avx512,
+            KernelChoice::Avx2 => KernelPath::Avx2,
+            KernelChoice::Portable => KernelPath::Portable,
+        }
+    }
 }
 
 /// Which hex formulations `bench kernel` times.
@@ -178,6 +205,7 @@ fn kernel(a: KernelArgs) -> Result<()> {
     if all == 0 {
         return Err(Error::invalid("--threads", 0, "at least 1"));
     }
+    limit_kernel_path(a.kernel.into());
     let d = 0.02;
     let mesh = ball(&BallSpec {
         diameter: d,
@@ -191,8 +219,11 @@ fn kernel(a: KernelArgs) -> Result<()> {
         mesh.nodes.len()
     );
     println!(
-        "# {} timed steps x {} repeats (median), ns per element-cycle = step time / elements",
-        a.steps, a.repeats
+        "# {} timed steps x {} repeats (median), ns per element-cycle = step time / elements, kernel {:?} ({} lanes)",
+        a.steps,
+        a.repeats,
+        kernel_path(),
+        kernel_path().lanes()
     );
     println!("formulation,threads,ns_per_element_cycle,speedup,bitwise_identical");
     let mut breakdowns = Vec::new();

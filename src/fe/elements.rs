@@ -509,7 +509,7 @@ fn bbar_lanes<const W: usize>(
 
 impl ElementBlock {
     /// Time of the lane kernel's arithmetic alone, ns per element: the block's first lane
-    /// group (eight elements on AVX-512, four otherwise) with its nodes `x` (m), `v` (m/s)
+    /// group (eight elements on the AVX-512 path, four on the others: [`kernel_path`]) with its nodes `x` (m), `v` (m/s)
     /// and state loaded once, then updated `repeats` times with step `dt` (s) while every
     /// input stays in registers and L1 (the state is restored every 64 updates so that it
     /// stays near the block's own). No node gathers, state loads or stores, checks or force
@@ -526,21 +526,16 @@ impl ElementBlock {
         assert!(!self.conn.is_empty(), "empty element block");
         let lanes = self.conn.len().min(8);
         self.assert_nodes_below(0..lanes, x.len().min(v.len()));
-        #[cfg(target_arch = "x86_64")]
-        {
-            if std::is_x86_feature_detected!("avx512f")
-                && std::is_x86_feature_detected!("avx2")
-                && std::is_x86_feature_detected!("fma")
-            {
-                // SAFETY: the CPU has the features the function is compiled for.
-                return unsafe { arithmetic_avx512(self, x, v, dt, repeats) };
-            }
-            if std::is_x86_feature_detected!("avx2") && std::is_x86_feature_detected!("fma") {
-                // SAFETY: as above.
-                return unsafe { arithmetic_avx2(self, x, v, dt, repeats) };
-            }
+        match kernel_path() {
+            // SAFETY: kernel_path returns Avx512 only when the CPU has the features the
+            // function is compiled for.
+            #[cfg(target_arch = "x86_64")]
+            KernelPath::Avx512 => unsafe { arithmetic_avx512(self, x, v, dt, repeats) },
+            // SAFETY: as above, Avx2 only with AVX2 and FMA.
+            #[cfg(target_arch = "x86_64")]
+            KernelPath::Avx2 => unsafe { arithmetic_avx2(self, x, v, dt, repeats) },
+            _ => arithmetic_lanes::<4>(self, x, v, dt, repeats),
         }
-        arithmetic_lanes::<4>(self, x, v, dt, repeats)
     }
 }
 
@@ -697,25 +692,75 @@ struct StepInput<'a> {
     form: Formulation,
 }
 
-/// One batch of elements on the best lane width this CPU supports: the AVX2 build of the
-/// lane kernels when the CPU has AVX2 and FMA, otherwise the same source as plain arrays
-/// (the results are the same on every path: see [`super::lanes`]).
-fn element_batch(b: &mut Batch<'_>, inp: StepInput<'_>, base: usize) -> BatchResult {
-    #[cfg(target_arch = "x86_64")]
-    {
-        if std::is_x86_feature_detected!("avx512f")
-            && std::is_x86_feature_detected!("avx2")
-            && std::is_x86_feature_detected!("fma")
-        {
-            // SAFETY: the CPU has the features the function is compiled for.
-            return unsafe { element_batch_avx512(b, inp, base) };
-        }
-        if std::is_x86_feature_detected!("avx2") && std::is_x86_feature_detected!("fma") {
-            // SAFETY: the CPU has the features the function is compiled for.
-            return unsafe { element_batch_avx2(b, inp, base) };
+/// Which build of the lane kernels an element loop runs. Results are the same bits on every
+/// path (see [`super::lanes`]); only the speed differs.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum KernelPath {
+    /// Eight lanes, AVX-512 (x86-64 with AVX-512F, AVX2 and FMA).
+    Avx512,
+    /// Four lanes, AVX2 (x86-64 with AVX2 and FMA).
+    Avx2,
+    /// Four lanes as plain arrays, compiled for the baseline target (any CPU).
+    Portable,
+}
+
+impl KernelPath {
+    /// Elements per lane group.
+    pub fn lanes(self) -> usize {
+        match self {
+            KernelPath::Avx512 => 8,
+            KernelPath::Avx2 | KernelPath::Portable => 4,
         }
     }
-    element_lanes::<4>(b, inp, base)
+}
+
+/// The narrowest-allowed cap on [`kernel_path`], process-wide (0: none, 1: AVX2, 2:
+/// portable); set by [`limit_kernel_path`].
+static PATH_LIMIT: std::sync::atomic::AtomicU8 = std::sync::atomic::AtomicU8::new(0);
+
+/// Caps the kernel every element loop of this process uses at `widest` (the CPU still has
+/// to support it): to measure and test, on one machine, the paths other CPUs take
+/// (`twoball bench kernel --kernel`). [`KernelPath::Avx512`] removes the cap.
+pub fn limit_kernel_path(widest: KernelPath) {
+    let code = match widest {
+        KernelPath::Avx512 => 0,
+        KernelPath::Avx2 => 1,
+        KernelPath::Portable => 2,
+    };
+    PATH_LIMIT.store(code, std::sync::atomic::Ordering::Relaxed);
+}
+
+/// The kernel the element loop runs: the widest this CPU supports, within the cap of
+/// [`limit_kernel_path`].
+pub fn kernel_path() -> KernelPath {
+    let limit = PATH_LIMIT.load(std::sync::atomic::Ordering::Relaxed);
+    #[cfg(target_arch = "x86_64")]
+    {
+        let avx2 = std::is_x86_feature_detected!("avx2") && std::is_x86_feature_detected!("fma");
+        if limit == 0 && avx2 && std::is_x86_feature_detected!("avx512f") {
+            return KernelPath::Avx512;
+        }
+        if limit <= 1 && avx2 {
+            return KernelPath::Avx2;
+        }
+    }
+    let _ = limit;
+    KernelPath::Portable
+}
+
+/// One batch of elements on the kernel [`kernel_path`] chooses: the AVX-512 build of the
+/// lane kernels (eight lanes), the AVX2 build (four), or the same source as plain arrays.
+fn element_batch(b: &mut Batch<'_>, inp: StepInput<'_>, base: usize) -> BatchResult {
+    match kernel_path() {
+        // SAFETY: kernel_path returns Avx512 only when the CPU has the features the
+        // function is compiled for.
+        #[cfg(target_arch = "x86_64")]
+        KernelPath::Avx512 => unsafe { element_batch_avx512(b, inp, base) },
+        // SAFETY: as above, Avx2 only with AVX2 and FMA.
+        #[cfg(target_arch = "x86_64")]
+        KernelPath::Avx2 => unsafe { element_batch_avx2(b, inp, base) },
+        _ => element_lanes::<4>(b, inp, base),
+    }
 }
 
 #[cfg(target_arch = "x86_64")]
@@ -1032,11 +1077,12 @@ mod tests {
         }
     }
 
-    /// The AVX-512 kernel (eight lanes) computes exactly what the AVX2 kernel (four lanes)
-    /// computes: same forces and state, bit for bit (run only where the CPU has both).
+    /// The AVX-512 kernel (eight lanes), the AVX2 kernel (four) and the portable one (four,
+    /// plain arrays) compute the same forces and state, bit for bit (run only where the CPU
+    /// has AVX-512 and AVX2).
     #[cfg(target_arch = "x86_64")]
     #[test]
-    fn eight_lanes_equal_four_lanes_bit_for_bit() {
+    fn every_kernel_path_gives_the_same_bits() {
         if !(std::is_x86_feature_detected!("avx512f")
             && std::is_x86_feature_detected!("avx2")
             && std::is_x86_feature_detected!("fma"))
@@ -1047,9 +1093,10 @@ mod tests {
         for form in [Formulation::OnePoint, Formulation::BBar] {
             let (mut a, mut x, v) = yielding_block(form, 6000.0);
             let mut b = a.clone();
+            let mut c = a.clone();
             let n = a.conn.len();
             let dt = 1e-8;
-            let run = |blk: &mut ElementBlock, x: &[[f64; 3]], wide: bool| {
+            let run = |blk: &mut ElementBlock, x: &[[f64; 3]], path: KernelPath| {
                 let mut f = vec![[[0.0; 3]; 8]; n];
                 let mut batch = Batch {
                     conn: &blk.conn,
@@ -1071,24 +1118,26 @@ mod tests {
                     form: blk.formulation,
                 };
                 // SAFETY: the CPU features were checked above; node indices are in range.
-                let r = unsafe {
-                    if wide {
-                        element_batch_avx512(&mut batch, inp, 0)
-                    } else {
-                        element_batch_avx2(&mut batch, inp, 0)
-                    }
+                let r = match path {
+                    KernelPath::Avx512 => unsafe { element_batch_avx512(&mut batch, inp, 0) },
+                    KernelPath::Avx2 => unsafe { element_batch_avx2(&mut batch, inp, 0) },
+                    KernelPath::Portable => element_lanes::<4>(&mut batch, inp, 0),
                 };
                 (r.unwrap(), f)
             };
             for _ in 0..20 {
                 advance(&mut x, &v, dt);
-                let (ra, fa) = run(&mut a, &x, false);
-                let (rb, fb) = run(&mut b, &x, true);
-                assert_eq!((ra.0.to_bits(), ra.1), (rb.0.to_bits(), rb.1));
-                let fa: Vec<u64> = fa.iter().flatten().flatten().map(|c| c.to_bits()).collect();
-                let fb: Vec<u64> = fb.iter().flatten().flatten().map(|c| c.to_bits()).collect();
-                assert_eq!(fa, fb, "{form:?}: forces differ");
-                assert_eq!(bits(&a), bits(&b), "{form:?}: element state differs");
+                let (ra, fa) = run(&mut a, &x, KernelPath::Avx2);
+                let (rb, fb) = run(&mut b, &x, KernelPath::Avx512);
+                let (rc, fc) = run(&mut c, &x, KernelPath::Portable);
+                let fbits = |f: &[[[f64; 3]; 8]]| -> Vec<u64> {
+                    f.iter().flatten().flatten().map(|c| c.to_bits()).collect()
+                };
+                for (r, f, blk, path) in [(rb, &fb, &b, "AVX-512"), (rc, &fc, &c, "portable")] {
+                    assert_eq!((ra.0.to_bits(), ra.1), (r.0.to_bits(), r.1), "{path}");
+                    assert_eq!(fbits(&fa), fbits(f), "{form:?}, {path}: forces differ");
+                    assert_eq!(bits(&a), bits(blk), "{form:?}, {path}: state differs");
+                }
             }
             assert!(
                 a.points.iter().any(|p| p.eps_p > 0.0),
