@@ -54,10 +54,11 @@ pub struct KernelArgs {
     /// passes, stable step), from the solver's phase timer.
     #[arg(long)]
     pub phases: bool,
-    /// Widest element kernel to use: `avx512` (the default: the widest this CPU supports),
-    /// `avx2` (four lanes, the path of a CPU without AVX-512) or `portable` (plain arrays,
-    /// any CPU). Same results on every path.
-    #[arg(long, value_enum, default_value_t = KernelChoice::Avx512)]
+    /// Widest element kernel to use: `widest` (the default: eight AVX-512 lanes where the CPU
+    /// has them, else four AVX2 lanes, else portable), `avx2` (four lanes, the path of a CPU
+    /// without AVX-512) or `portable` (plain arrays, any CPU). The header line names the path
+    /// used. Same results on every path.
+    #[arg(long, value_enum, default_value_t = KernelChoice::Widest)]
     pub kernel: KernelChoice,
 }
 
@@ -65,7 +66,7 @@ pub struct KernelArgs {
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
 pub enum KernelChoice {
     /// The widest kernel this CPU supports (eight AVX-512 lanes where it can).
-    Avx512,
+    Widest,
     /// At most the four-lane AVX2 kernel.
     Avx2,
     /// The portable kernel (four lanes as plain arrays).
@@ -75,7 +76,7 @@ pub enum KernelChoice {
 impl From<KernelChoice> for KernelPath {
     fn from(c: KernelChoice) -> Self {
         match c {
-            KernelChoice::Avx512 => KernelPath::Avx512,
+            KernelChoice::Widest => KernelPath::Avx512,
             KernelChoice::Avx2 => KernelPath::Avx2,
             KernelChoice::Portable => KernelPath::Portable,
         }
@@ -218,12 +219,13 @@ fn kernel(a: KernelArgs) -> Result<()> {
         mesh.hexes.len(),
         mesh.nodes.len()
     );
+    let path = kernel_path();
     println!(
         "# {} timed steps x {} repeats (median), ns per element-cycle = step time / elements, kernel {:?} ({} lanes)",
         a.steps,
         a.repeats,
-        kernel_path(),
-        kernel_path().lanes()
+        path,
+        path.lanes()
     );
     println!("formulation,threads,ns_per_element_cycle,speedup,bitwise_identical");
     let mut breakdowns = Vec::new();

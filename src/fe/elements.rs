@@ -514,8 +514,8 @@ impl ElementBlock {
     /// input stays in registers and L1 (the state is restored every 64 updates so that it
     /// stays near the block's own). No node gathers, state loads or stores, checks or force
     /// scatter: the element phase of a step minus this is the cost of the data movement
-    /// around the arithmetic. The block is not changed. Panics if the block is empty or a
-    /// node index is out of range of `x` or `v` (programming errors).
+    /// around the arithmetic. The block is not changed. Panics if the block is empty,
+    /// `repeats` is zero or a node index is out of range of `x` or `v` (programming errors).
     pub fn time_arithmetic_alone(
         &self,
         x: &[[f64; 3]],
@@ -524,6 +524,7 @@ impl ElementBlock {
         repeats: u32,
     ) -> f64 {
         assert!(!self.conn.is_empty(), "empty element block");
+        assert!(repeats > 0, "no repeats to time");
         let lanes = self.conn.len().min(8);
         self.assert_nodes_below(0..lanes, x.len().min(v.len()));
         match kernel_path() {
@@ -575,9 +576,9 @@ fn arithmetic_lanes<const W: usize>(
 ) -> f64 {
     use std::hint::black_box;
     let n = b.conn.len();
-    // Set-up by plain scalar loops: sharing a helper of the element loop (or one of its
-    // closures) would give it a second caller, and the compiler could then leave it out of
-    // line in the element loop too.
+    // Set-up by local closures and plain indexing, none shared with the element loop: a
+    // shared helper (or one of its closures) would get a second caller, and the compiler
+    // could then leave it out of line in the element loop too.
     let idx: [usize; W] = std::array::from_fn(|l| l.min(n - 1));
     let lane = |f: &dyn Fn(usize) -> f64| Lanes::<W>(std::array::from_fn(f));
     let xe: [Vec3<W>; 8] = std::array::from_fn(|i| {
@@ -714,13 +715,14 @@ impl KernelPath {
     }
 }
 
-/// The narrowest-allowed cap on [`kernel_path`], process-wide (0: none, 1: AVX2, 2:
-/// portable); set by [`limit_kernel_path`].
+/// The widest kernel path allowed (the cap on [`kernel_path`]), process-wide (0: no cap,
+/// 1: at most AVX2, 2: portable); set by [`limit_kernel_path`].
 static PATH_LIMIT: std::sync::atomic::AtomicU8 = std::sync::atomic::AtomicU8::new(0);
 
 /// Caps the kernel every element loop of this process uses at `widest` (the CPU still has
 /// to support it): to measure and test, on one machine, the paths other CPUs take
-/// (`twoball bench kernel --kernel`). [`KernelPath::Avx512`] removes the cap.
+/// (`twoball bench kernel --kernel`). [`KernelPath::Avx512`] removes the cap. Process-wide:
+/// it slows every solver of the process that runs after it (results stay the same bits).
 pub fn limit_kernel_path(widest: KernelPath) {
     let code = match widest {
         KernelPath::Avx512 => 0,
@@ -737,15 +739,26 @@ pub fn kernel_path() -> KernelPath {
     #[cfg(target_arch = "x86_64")]
     {
         let avx2 = std::is_x86_feature_detected!("avx2") && std::is_x86_feature_detected!("fma");
-        if limit == 0 && avx2 && std::is_x86_feature_detected!("avx512f") {
-            return KernelPath::Avx512;
-        }
-        if limit <= 1 && avx2 {
-            return KernelPath::Avx2;
-        }
+        choose_path(
+            limit,
+            avx2,
+            avx2 && std::is_x86_feature_detected!("avx512f"),
+        )
     }
-    let _ = limit;
-    KernelPath::Portable
+    #[cfg(not(target_arch = "x86_64"))]
+    choose_path(limit, false, false)
+}
+
+/// The kernel path for cap `limit` (as stored in `PATH_LIMIT`) on a CPU with (`avx2`:
+/// AVX2 and FMA) and (`avx512`: also AVX-512F).
+fn choose_path(limit: u8, avx2: bool, avx512: bool) -> KernelPath {
+    if limit == 0 && avx512 {
+        KernelPath::Avx512
+    } else if limit <= 1 && avx2 {
+        KernelPath::Avx2
+    } else {
+        KernelPath::Portable
+    }
 }
 
 /// One batch of elements on the kernel [`kernel_path`] chooses: the AVX-512 build of the
@@ -1077,17 +1090,38 @@ mod tests {
         }
     }
 
+    /// The cap of `limit_kernel_path` only narrows the path, and never past what the CPU has.
+    #[test]
+    fn kernel_path_choice_respects_cap_and_cpu() {
+        use KernelPath::*;
+        for (limit, avx2, avx512, want) in [
+            (0, true, true, Avx512),
+            (0, true, false, Avx2),
+            (0, false, false, Portable),
+            (1, true, true, Avx2),
+            (1, false, false, Portable),
+            (2, true, true, Portable),
+            (2, true, false, Portable),
+        ] {
+            assert_eq!(
+                choose_path(limit, avx2, avx512),
+                want,
+                "{limit} {avx2} {avx512}"
+            );
+        }
+    }
+
     /// The AVX-512 kernel (eight lanes), the AVX2 kernel (four) and the portable one (four,
-    /// plain arrays) compute the same forces and state, bit for bit (run only where the CPU
-    /// has AVX-512 and AVX2).
+    /// plain arrays) compute the same forces and state, bit for bit: AVX2 against portable
+    /// wherever the CPU has AVX2 and FMA, and AVX-512 against both where it also has
+    /// AVX-512F.
     #[cfg(target_arch = "x86_64")]
     #[test]
     fn every_kernel_path_gives_the_same_bits() {
-        if !(std::is_x86_feature_detected!("avx512f")
-            && std::is_x86_feature_detected!("avx2")
-            && std::is_x86_feature_detected!("fma"))
-        {
-            eprintln!("skipped: this CPU lacks AVX-512F or AVX2/FMA");
+        let avx2 = std::is_x86_feature_detected!("avx2") && std::is_x86_feature_detected!("fma");
+        let avx512 = avx2 && std::is_x86_feature_detected!("avx512f");
+        if !avx2 {
+            eprintln!("skipped: this CPU lacks AVX2/FMA");
             return;
         }
         for form in [Formulation::OnePoint, Formulation::BBar] {
@@ -1128,7 +1162,13 @@ mod tests {
             for _ in 0..20 {
                 advance(&mut x, &v, dt);
                 let (ra, fa) = run(&mut a, &x, KernelPath::Avx2);
-                let (rb, fb) = run(&mut b, &x, KernelPath::Avx512);
+                // Without AVX-512 the second copy runs the portable path again.
+                let wide = if avx512 {
+                    KernelPath::Avx512
+                } else {
+                    KernelPath::Portable
+                };
+                let (rb, fb) = run(&mut b, &x, wide);
                 let (rc, fc) = run(&mut c, &x, KernelPath::Portable);
                 let fbits = |f: &[[[f64; 3]; 8]]| -> Vec<u64> {
                     f.iter().flatten().flatten().map(|c| c.to_bits()).collect()
