@@ -158,7 +158,8 @@ fn refined_hertz_0_1_m_s() {
 }
 
 /// Mesh ladder at 2 m/s refining the pole and the far field together (docs/contact-penalty.md).
-/// Acceptance 1 asks the errors to shrink monotonically to under 1 %: NOT MET. Measured:
+/// Acceptance 1 asks the errors against Hertz to shrink monotonically to under 1 %: NOT MET
+/// (against the finite-ball reference δ_max and t_c do, see the end of the test). Measured:
 /// 200 µm / 4 mm: δ_max +2.91 %, t_c +1.43 %, force +1.23 %; 100 µm / 2 mm: +0.14 %, −0.30 %,
 /// +1.43 %; 70 µm / 1.4 mm: −0.44 %, −0.69 %, +1.58 % (the converged FE pulse is slightly
 /// stiffer and more peaked than Hertz's). What this test holds: every run conserves energy and
@@ -167,6 +168,7 @@ fn refined_hertz_0_1_m_s() {
 #[test]
 #[ignore]
 fn convergence_table_2_m_s() {
+    let mut finite = Vec::new();
     for (k, (pole, size)) in [(2e-4, 4e-3), (1e-4, 2e-3), (7e-5, 1.4e-3)]
         .into_iter()
         .enumerate()
@@ -185,7 +187,22 @@ fn convergence_table_2_m_s() {
                 "pole {pole}: delta {ed}, duration {et}, force {ef}"
             );
         }
+        finite.push(r.finite_ball_errors());
     }
+    // Against the finite-ball reference (measured 2026-11-25: δ_max +3.74 / +0.95 / +0.36 %,
+    // t_c +2.37 / +0.70 / +0.18 %, F_peak −0.03 / +0.17 / +0.32 %): δ_max and t_c shrink
+    // monotonically, and the finest mesh is within 1 % in all three.
+    for w in finite.windows(2) {
+        assert!(
+            w[1].0.abs() < w[0].0.abs() && w[1].1.abs() < w[0].1.abs(),
+            "not shrinking against the finite-ball reference: {finite:?}"
+        );
+    }
+    let last = finite[finite.len() - 1];
+    assert!(
+        last.0.abs() < 0.01 && last.1.abs() < 0.01 && last.2.abs() < 0.01,
+        "finest mesh against the finite-ball reference: {last:?}"
+    );
 }
 
 /// The reference pulse the peak force is compared with reproduces Hertz's closed forms, and the
