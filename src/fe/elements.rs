@@ -527,41 +527,9 @@ impl ElementBlock {
         assert!(repeats > 0, "no repeats to time");
         let lanes = self.conn.len().min(8);
         self.assert_nodes_below(0..lanes, x.len().min(v.len()));
-        match kernel_path() {
-            // SAFETY: kernel_path returns Avx512 only when the CPU has the features the
-            // function is compiled for.
-            #[cfg(target_arch = "x86_64")]
-            KernelPath::Avx512 => unsafe { arithmetic_avx512(self, x, v, dt, repeats) },
-            // SAFETY: as above, Avx2 only with AVX2 and FMA.
-            #[cfg(target_arch = "x86_64")]
-            KernelPath::Avx2 => unsafe { arithmetic_avx2(self, x, v, dt, repeats) },
-            _ => arithmetic_lanes::<4>(self, x, v, dt, repeats),
-        }
+        // SAFETY: kernel_path returns only paths this CPU supports.
+        unsafe { arithmetic_on(kernel_path(), self, x, v, dt, repeats) }
     }
-}
-
-#[cfg(target_arch = "x86_64")]
-#[target_feature(enable = "avx512f,avx2,fma")]
-unsafe fn arithmetic_avx512(
-    b: &ElementBlock,
-    x: &[[f64; 3]],
-    v: &[[f64; 3]],
-    dt: f64,
-    repeats: u32,
-) -> f64 {
-    arithmetic_lanes::<8>(b, x, v, dt, repeats)
-}
-
-#[cfg(target_arch = "x86_64")]
-#[target_feature(enable = "avx2,fma")]
-unsafe fn arithmetic_avx2(
-    b: &ElementBlock,
-    x: &[[f64; 3]],
-    v: &[[f64; 3]],
-    dt: f64,
-    repeats: u32,
-) -> f64 {
-    arithmetic_lanes::<4>(b, x, v, dt, repeats)
 }
 
 /// [`ElementBlock::time_arithmetic_alone`] on W lanes (inlined into its caller's target
@@ -761,31 +729,56 @@ fn choose_path(limit: u8, avx2: bool, avx512: bool) -> KernelPath {
     }
 }
 
-/// One batch of elements on the kernel [`kernel_path`] chooses: the AVX-512 build of the
-/// lane kernels (eight lanes), the AVX2 build (four), or the same source as plain arrays.
+/// Defines `unsafe fn $name(path: KernelPath, args…) -> $ret`, which runs the lane-generic
+/// `$inner::<W>(args…)` on `path`: eight lanes compiled for AVX-512, four for AVX2, or four
+/// as plain arrays. One place for the target-feature entry points of every lane loop, so
+/// each is compiled (and `$inner` inlined) for exactly the features its path checked.
+///
+/// Safety of the generated function: the CPU must support `path` ([`kernel_path`] only
+/// returns paths it supports).
+macro_rules! on_kernel_path {
+    ($(#[$doc:meta])* fn $name:ident($($arg:ident: $ty:ty),*) -> $ret:ty => $inner:ident) => {
+        $(#[$doc])*
+        unsafe fn $name(path: KernelPath, $($arg: $ty),*) -> $ret {
+            #[cfg(target_arch = "x86_64")]
+            {
+                #[target_feature(enable = "avx512f,avx2,fma")]
+                unsafe fn avx512($($arg: $ty),*) -> $ret {
+                    $inner::<8>($($arg),*)
+                }
+                #[target_feature(enable = "avx2,fma")]
+                unsafe fn avx2($($arg: $ty),*) -> $ret {
+                    $inner::<4>($($arg),*)
+                }
+                match path {
+                    // SAFETY: the caller guarantees the CPU supports `path`.
+                    KernelPath::Avx512 => return avx512($($arg),*),
+                    KernelPath::Avx2 => return avx2($($arg),*),
+                    KernelPath::Portable => {}
+                }
+            }
+            let _ = path;
+            $inner::<4>($($arg),*)
+        }
+    };
+}
+
+on_kernel_path! {
+    /// One batch of elements on kernel `path` ([`element_lanes`]).
+    fn element_batch_on(b: &mut Batch<'_>, inp: StepInput<'_>, base: usize) -> BatchResult
+        => element_lanes
+}
+
+on_kernel_path! {
+    /// [`ElementBlock::time_arithmetic_alone`] on kernel `path` ([`arithmetic_lanes`]).
+    fn arithmetic_on(b: &ElementBlock, x: &[[f64; 3]], v: &[[f64; 3]], dt: f64, repeats: u32)
+        -> f64 => arithmetic_lanes
+}
+
+/// One batch of elements on the kernel [`kernel_path`] chooses.
 fn element_batch(b: &mut Batch<'_>, inp: StepInput<'_>, base: usize) -> BatchResult {
-    match kernel_path() {
-        // SAFETY: kernel_path returns Avx512 only when the CPU has the features the
-        // function is compiled for.
-        #[cfg(target_arch = "x86_64")]
-        KernelPath::Avx512 => unsafe { element_batch_avx512(b, inp, base) },
-        // SAFETY: as above, Avx2 only with AVX2 and FMA.
-        #[cfg(target_arch = "x86_64")]
-        KernelPath::Avx2 => unsafe { element_batch_avx2(b, inp, base) },
-        _ => element_lanes::<4>(b, inp, base),
-    }
-}
-
-#[cfg(target_arch = "x86_64")]
-#[target_feature(enable = "avx512f,avx2,fma")]
-unsafe fn element_batch_avx512(b: &mut Batch<'_>, inp: StepInput<'_>, base: usize) -> BatchResult {
-    element_lanes::<8>(b, inp, base)
-}
-
-#[cfg(target_arch = "x86_64")]
-#[target_feature(enable = "avx2,fma")]
-unsafe fn element_batch_avx2(b: &mut Batch<'_>, inp: StepInput<'_>, base: usize) -> BatchResult {
-    element_lanes::<4>(b, inp, base)
+    // SAFETY: kernel_path returns only paths this CPU supports.
+    unsafe { element_batch_on(kernel_path(), b, inp, base) }
 }
 
 /// The lane loop of the batch's formulation (both inline into the caller's target features).
@@ -1152,11 +1145,7 @@ mod tests {
                     form: blk.formulation,
                 };
                 // SAFETY: the CPU features were checked above; node indices are in range.
-                let r = match path {
-                    KernelPath::Avx512 => unsafe { element_batch_avx512(&mut batch, inp, 0) },
-                    KernelPath::Avx2 => unsafe { element_batch_avx2(&mut batch, inp, 0) },
-                    KernelPath::Portable => element_lanes::<4>(&mut batch, inp, 0),
-                };
+                let r = unsafe { element_batch_on(path, &mut batch, inp, 0) };
                 (r.unwrap(), f)
             };
             for _ in 0..20 {
