@@ -244,7 +244,7 @@ fn stiffened_pulse_scales_as_the_closed_forms() {
     let v = 2.0;
     let (d, f, tc) = hertz_at(v);
     let s = 0.05;
-    let p = stiffened_pulse(v, d, f, s, 0.0, 200_000);
+    let (p, _) = stiffened_pulse(v, d, f, s, 0.0, 200_000);
     let duration = p.last().unwrap().0;
     let peak = p.iter().map(|x| x.1).fold(0.0, f64::max);
     let k = (1.0f64 + s).powf(0.4);

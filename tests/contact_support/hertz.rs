@@ -110,7 +110,7 @@ pub fn windowed_peak(history: &[(f64, f64)], w: f64) -> f64 {
 /// impact is ξ'' = −(5/4) ξ^{3/2}, ξ(0) = 0, ξ'(0) = 1 (energy: ½ m* v² = (2/5) F_max δ_max), and
 /// F = F_max ξ^{3/2}. Integrated with velocity Verlet (error O(1/n²)).
 pub fn hertz_pulse(v: f64, delta_max: f64, f_max: f64, n: usize) -> Vec<(f64, f64)> {
-    stiffened_pulse(v, delta_max, f_max, 0.0, 0.0, n)
+    stiffened_pulse(v, delta_max, f_max, 0.0, 0.0, n).0
 }
 
 /// The finite ball's stiffening of Hertz's force at fixed approach, F/F_H − 1 = S0 + S1 a/R,
@@ -126,7 +126,8 @@ pub const FINITE_BALL_S1: f64 = 0.589;
 /// of radius `radius` (m) at relative speed `v` (m/s) with Hertz's own maximum approach
 /// `delta_h` (m) and peak force `f_h` (N): ξ'' = −(5/4) ξ^{3/2} (1 + s0 + β √ξ), ξ = δ/δ_h,
 /// τ = t v/δ_h, with β = s1 √(δ_h / (2R)) (a = √(R δ/2) for the pair: each ball's own
-/// approach is δ/2), F = f_h ξ^{3/2} (1 + s0 + β √ξ). s0 = s1 = 0 is Hertz's pulse.
+/// approach is δ/2), F = f_h ξ^{3/2} (1 + s0 + β √ξ). s0 = s1 = 0 is Hertz's pulse. Returns
+/// the pulse and its largest approach (m).
 pub fn stiffened_pulse(
     v: f64,
     delta_h: f64,
@@ -134,7 +135,7 @@ pub fn stiffened_pulse(
     s0: f64,
     beta: f64,
     n: usize,
-) -> Vec<(f64, f64)> {
+) -> (Vec<(f64, f64)>, f64) {
     let dtau = 3.5 / n as f64;
     let (mut x, mut u, mut tau) = (0.0f64, 1.0f64, 0.0f64);
     let law = |x: f64| {
@@ -143,6 +144,7 @@ pub fn stiffened_pulse(
     };
     let mut a = -1.25 * law(x);
     let mut out = vec![(0.0, 0.0)];
+    let mut x_max = 0.0f64;
     loop {
         u += 0.5 * dtau * a;
         x += dtau * u;
@@ -152,9 +154,10 @@ pub fn stiffened_pulse(
         if x <= 0.0 {
             break;
         }
+        x_max = x_max.max(x);
         out.push((tau * delta_h / v, f_h * law(x)));
     }
-    out
+    (out, x_max * delta_h)
 }
 
 /// The finite-ball reference of an impact at relative speed `v` (m/s) of two balls of radius
@@ -168,22 +171,9 @@ pub fn finite_ball_reference(
     f_h: f64,
 ) -> (f64, f64, Vec<(f64, f64)>) {
     let beta = FINITE_BALL_S1 * (delta_h / (2.0 * radius)).sqrt();
-    let pulse = stiffened_pulse(v, delta_h, f_h, FINITE_BALL_S0, beta, 200_000);
-    // Invert F = f_h ξ^{3/2}(1 + s0 + β √ξ) at the pulse's largest force for the approach
-    // (monotone in ξ; bisection to round-off).
-    let f_max = pulse.iter().fold(0.0f64, |m, p| m.max(p.1));
-    let (mut lo, mut hi) = (0.0f64, 2.0f64);
-    for _ in 0..100 {
-        let mid = 0.5 * (lo + hi);
-        let f = f_h * mid.powf(1.5) * (1.0 + FINITE_BALL_S0 + beta * mid.sqrt());
-        if f < f_max {
-            lo = mid;
-        } else {
-            hi = mid;
-        }
-    }
+    let (pulse, delta_max) = stiffened_pulse(v, delta_h, f_h, FINITE_BALL_S0, beta, 200_000);
     let duration = pulse.last().map_or(0.0, |p| p.0);
-    (0.5 * (lo + hi) * delta_h, duration, pulse)
+    (delta_max, duration, pulse)
 }
 
 /// A quarter ball (y ≥ 0, z ≥ 0) of the given pole and far-field element sizes.
