@@ -174,8 +174,10 @@ impl<const W: usize> Default for Lanes<W> {
 
 /// `[f(0), f(1), ..., f(N − 1)]`, always inlined: `std::array::from_fn` and `array::map`
 /// are generic functions the compiler may leave out of line, and an out-of-line copy is
-/// compiled without the calling kernel's AVX2 target feature (scalar code). With this
-/// helper the closure body lands inside the kernel.
+/// compiled without the calling kernel's target features (scalar code). The closure `f`
+/// itself is still a function of its own, which the compiler may leave out of line once
+/// its caller is instantiated in more than one place; so the lane kernels use plain loops,
+/// and `build` serves the element loop's small index arrays.
 #[inline(always)]
 pub fn build<T: Copy + Default, const N: usize>(mut f: impl FnMut(usize) -> T) -> [T; N] {
     let mut a = [T::default(); N];
