@@ -591,6 +591,9 @@ fn arithmetic_lanes<const W: usize>(
                 plastic_work: lane(&|l| b.plastic_work[idx[l]]),
                 internal_energy: lane(&|l| b.internal_energy[idx[l]]),
             };
+            // The one-point loop again, written out: a helper taking the kernel call as a
+            // closure could see that closure compiled out of line, without the target
+            // features, and time the wrong code.
             let mut st = st0;
             let start = std::time::Instant::now();
             for r in 0..repeats {
