@@ -81,6 +81,17 @@ fn ladder_without_constant_ratio_is_refused() {
     );
 }
 
+/// Runs `twoball` with `args`, asserts it succeeded, returns its standard output.
+fn stdout_of(args: &[&str]) -> String {
+    let out = twoball().args(args).output().unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    String::from_utf8(out.stdout).unwrap()
+}
+
 /// `bench kernel --phases` prints, per formulation, the element phase and the kernel's
 /// arithmetic alone; the arithmetic is part of the element phase, so it cannot take longer
 /// (1.5x leaves room for timer noise on a small ball), and it is most of it (measured 0.5-0.7
@@ -89,28 +100,14 @@ fn ladder_without_constant_ratio_is_refused() {
 /// path on two threads with the same bits as one.
 #[test]
 fn kernel_phases_report_arithmetic_within_the_element_phase() {
-    let out = twoball()
-        .args([
-            "bench",
-            "kernel",
-            "--size-per-d",
-            "0.2",
-            "--steps",
-            "3",
-            "--repeats",
-            "1",
-            "--threads",
-            "1",
-            "--phases",
-        ])
-        .output()
-        .unwrap();
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
+    let small = ["bench", "kernel", "--size-per-d", "0.2", "--steps", "3"];
+    let text = stdout_of(
+        &[
+            &small[..],
+            &["--repeats", "1", "--threads", "1", "--phases"],
+        ]
+        .concat(),
     );
-    let text = String::from_utf8(out.stdout).unwrap();
     let last_number = |line: &str| -> f64 {
         line.split_whitespace()
             .rev()
@@ -130,10 +127,30 @@ fn kernel_phases_report_arithmetic_within_the_element_phase() {
     assert_eq!(phases.len(), 2, "{text}");
     assert_eq!(alone.len(), 2, "{text}");
     for (p, a) in phases.iter().zip(&alone) {
-        assert!(*a > 0.0 && a.is_finite(), "{text}");
+        assert!(a.is_finite(), "{text}");
+        assert!(
+            *a > 0.1 * p,
+            "arithmetic alone {a} ns under a tenth of the element phase {p} ns:\n{text}"
+        );
         assert!(
             *a < 1.5 * p,
             "arithmetic alone {a} ns above the element phase {p} ns:\n{text}"
+        );
+    }
+    let text = stdout_of(
+        &[
+            &small[..],
+            &["--repeats", "1", "--threads", "2", "--kernel", "portable"],
+        ]
+        .concat(),
+    );
+    assert!(text.contains("kernel Portable"), "{text}");
+    let two_threads: Vec<&str> = text.lines().filter(|l| l.contains(",2,")).collect();
+    assert_eq!(two_threads.len(), 2, "{text}");
+    for l in two_threads {
+        assert!(
+            l.ends_with(",yes"),
+            "two threads differ from one on the portable path: {l}"
         );
     }
 }
