@@ -556,8 +556,27 @@ fn arithmetic_lanes<const W: usize>(
         std::array::from_fn(|d| lane(&|l| v[b.conn[idx[l]][i] as usize][d]))
     });
     let mat = &b.material;
-    // Every update's output goes through black_box (to the stack, as the element loop's
-    // forces do), so none of the arithmetic can be optimised out.
+    // The timing loop, as a macro so that it expands in place: a helper taking the kernel
+    // call as a closure could see that closure compiled out of line, without the target
+    // features, and time the wrong code. Every update's output goes through black_box (to
+    // the stack, as the element loop's forces do), so none of the arithmetic can be
+    // optimised out; the state restarts every 64 updates, so it does not drift far from the
+    // state of a real step.
+    macro_rules! time_updates {
+        ($st0:expr, |$st:ident, $xr:ident, $vr:ident| $update:expr) => {{
+            let st0 = $st0;
+            let mut $st = st0;
+            let start = std::time::Instant::now();
+            for r in 0..repeats {
+                if r % 64 == 0 {
+                    $st = st0;
+                }
+                let ($xr, $vr) = (black_box(&xe), black_box(&ve));
+                black_box(&$update);
+            }
+            start.elapsed()
+        }};
+    }
     let elapsed = match b.formulation {
         Formulation::OnePoint => {
             let st0 = op::State::<W> {
@@ -570,16 +589,14 @@ fn arithmetic_lanes<const W: usize>(
                 internal_energy: lane(&|l| b.internal_energy[idx[l]]),
                 hourglass_energy: lane(&|l| b.hourglass_energy[idx[l]]),
             };
-            let mut st = st0;
-            let start = std::time::Instant::now();
-            for r in 0..repeats {
-                if r % 64 == 0 {
-                    st = st0;
-                }
-                let (xr, vr) = (black_box(&xe), black_box(&ve));
-                black_box(&op::update(xr, vr, dt, mat, b.hourglass_coeff, &mut st));
-            }
-            start.elapsed()
+            time_updates!(st0, |st, xr, vr| op::update(
+                xr,
+                vr,
+                dt,
+                mat,
+                b.hourglass_coeff,
+                &mut st
+            ))
         }
         Formulation::BBar => {
             let pt = |l: usize, g: usize| &b.points[8 * idx[l] + g];
@@ -591,19 +608,7 @@ fn arithmetic_lanes<const W: usize>(
                 plastic_work: lane(&|l| b.plastic_work[idx[l]]),
                 internal_energy: lane(&|l| b.internal_energy[idx[l]]),
             };
-            // The one-point loop again, written out: a helper taking the kernel call as a
-            // closure could see that closure compiled out of line, without the target
-            // features, and time the wrong code.
-            let mut st = st0;
-            let start = std::time::Instant::now();
-            for r in 0..repeats {
-                if r % 64 == 0 {
-                    st = st0;
-                }
-                let (xr, vr) = (black_box(&xe), black_box(&ve));
-                black_box(&bp::update(xr, vr, dt, mat, &mut st));
-            }
-            start.elapsed()
+            time_updates!(st0, |st, xr, vr| bp::update(xr, vr, dt, mat, &mut st))
         }
     };
     elapsed.as_secs_f64() * 1e9 / (f64::from(repeats) * W as f64)
