@@ -243,8 +243,8 @@ impl ElementBlock {
     }
 
     /// [`ElementBlock::update_range`] on the calling thread, adding each element's internal
-    /// forces (N) straight into the nodal array `f_int` (indexed like `x`, not cleared here)
-    /// instead of writing force blocks. Elements are visited in order, so every node receives
+    /// forces (N) straight into the nodal array `f_int` (indexed like `x`, rows [x, y, z, 0],
+    /// not cleared here) instead of writing force blocks. Elements are visited in order, so every node receives
     /// its elements' forces in element order: the same sums, bit for bit, as the force blocks
     /// summed per node in element order, without writing and re-reading the blocks (384 bytes
     /// per element and step). Panics if `f_int` is shorter than `x` (a programming error).
@@ -257,7 +257,7 @@ impl ElementBlock {
         x: &[[f64; 3]],
         v: &[[f64; 3]],
         dt: f64,
-        f_int: &mut [[f64; 3]],
+        f_int: &mut [[f64; 4]],
     ) -> Result<(f64, usize), (usize, ElementFailure)> {
         let npe = self.points_per_element();
         self.assert_nodes_below(range.clone(), x.len().min(v.len()).min(f_int.len()));
@@ -344,9 +344,10 @@ enum Forces<'a> {
     /// One 8-node force block per element of the batch (parallel loops: the blocks are
     /// summed per node afterwards, in element order).
     Blocks(&'a mut [[[f64; 3]; 8]]),
-    /// Added straight into the nodal force array (one thread, elements in order: the same
-    /// sums, in the same order, as the blocks summed per node).
-    Nodes(&'a mut [[f64; 3]]),
+    /// Added straight into the nodal force array, rows [x, y, z, 0] (one thread, elements in
+    /// order: the same sums, in the same order, as the blocks summed per node; the padding
+    /// lets a full lane group add each node's force as one 256-bit row).
+    Nodes(&'a mut [[f64; 4]]),
 }
 
 /// Result of a batch: smallest critical step and its element, or the first failing element.
@@ -363,7 +364,8 @@ struct LaneResult<'r, const W: usize> {
 
 /// Checks the `live` lanes of a group starting at local element `k0`, records their volume,
 /// step and forces, and updates the batch minimum; fails on the first element (in order)
-/// that is inverted or has a non-finite force, as the per-element check would.
+/// that is inverted or has a non-finite force, as the per-element check would (a failing
+/// group's forces are then not all written: the solver stops anyway).
 #[inline(always)]
 fn finish_lanes<const W: usize>(
     r: &LaneResult<'_, W>,
@@ -392,6 +394,7 @@ fn finish_lanes<const W: usize>(
         b.vol[k] = r.volume.0[l];
         b.dtc[k] = r.dt_crit.0[l];
         match &mut b.f {
+            Forces::Blocks(_) if live == W => {}
             Forces::Blocks(f) => {
                 for (i, fi) in r.force.iter().enumerate() {
                     for d in 0..3 {
@@ -399,6 +402,7 @@ fn finish_lanes<const W: usize>(
                     }
                 }
             }
+            Forces::Nodes(_) if live == W => {}
             Forces::Nodes(f) => {
                 for (&n, fi) in b.conn[k].iter().zip(r.force) {
                     // SAFETY: the caller checked every node index of the range < len of x,
@@ -413,6 +417,28 @@ fn finish_lanes<const W: usize>(
         let dtc = r.dt_crit.0[l];
         if dtc < best.0 {
             *best = (dtc, base + k);
+        }
+    }
+    // A full group's forces leave as rows: transposed in registers, then one row per node
+    // (added into padded nodal rows) or three 512-bit rows per element (its force block),
+    // instead of 24 scalar stores or read-add-writes per element.
+    if live == W {
+        match &mut b.f {
+            // SAFETY: the caller checked every node index of the range < len of f.
+            Forces::Nodes(f) => unsafe {
+                Lanes::add_node_rows(r.force, f.as_mut_ptr(), &b.conn[k0..k0 + W])
+            },
+            Forces::Blocks(f) => {
+                let c: [Lanes<W>; 24] = build(|q| r.force[q / 3][q % 3]);
+                let p = f[k0..k0 + W].as_mut_ptr().cast::<f64>();
+                let rows: [usize; W] = build(|l| 24 * l);
+                // SAFETY: W blocks of 24 f64 from element k0 (a full group inside the batch).
+                unsafe {
+                    Lanes::store_rows::<8>(c[..8].try_into().unwrap(), p, &rows);
+                    Lanes::store_rows::<8>(c[8..16].try_into().unwrap(), p.add(8), &rows);
+                    Lanes::store_rows::<8>(c[16..].try_into().unwrap(), p.add(16), &rows);
+                }
+            }
         }
     }
     Ok(())
@@ -1061,7 +1087,7 @@ mod tests {
 
     /// One thread adding forces straight into the nodes gives the same bits as the force
     /// blocks summed per node in element order (the multi-thread path), for both elements,
-    /// over steps in which elements yield.
+    /// over steps in which elements yield (the pad component included: it stays +0).
     #[test]
     fn forces_added_into_nodes_equal_gathered_blocks_bit_for_bit() {
         for form in [Formulation::OnePoint, Formulation::BBar] {
@@ -1073,7 +1099,7 @@ mod tests {
             for _ in 0..20 {
                 advance(&mut x, &v, dt);
                 let da = a.update(&x, &v, dt, &mut blocks).unwrap();
-                let mut gathered = vec![[0.0; 3]; x.len()];
+                let mut gathered = vec![[0.0; 4]; x.len()];
                 for (e, c) in a.conn.iter().enumerate() {
                     for (i, &node) in c.iter().enumerate() {
                         for d in 0..3 {
@@ -1081,7 +1107,8 @@ mod tests {
                         }
                     }
                 }
-                let mut direct = vec![[0.0; 3]; x.len()];
+                // Padded rows [x, y, z, 0], as the solver's f_int.
+                let mut direct = vec![[0.0; 4]; x.len()];
                 let db = b
                     .update_range_into_nodes(0..n, &x, &v, dt, &mut direct)
                     .unwrap();

@@ -156,7 +156,11 @@ pub struct Solver {
     x: Vec<[f64; 3]>,
     v: Vec<[f64; 3]>,
     a: Vec<[f64; 3]>,
-    f_int: Vec<[f64; 3]>,
+    /// Internal nodal forces f_int, N, as [x, y, z, 0]: padded to four components so that
+    /// the one-thread element loop adds each node's force with one 256-bit load, add and
+    /// store (src/fe/lanes.rs `add_node_rows`; the fourth component only ever gets −0.0 added
+    /// and stays 0).
+    f_int: Vec<[f64; 4]>,
     f_ext: Vec<[f64; 3]>,
     mass: Vec<f64>,
     /// Per node: bit k set when velocity component k is held at zero.
@@ -329,7 +333,7 @@ impl Solver {
                 interaction: None,
             },
             a: vec![[0.0; 3]; n],
-            f_int: vec![[0.0; 3]; n],
+            f_int: vec![[0.0; 4]; n],
             f_ext: vec![[0.0; 3]; n],
             mass,
             fixed,
@@ -555,7 +559,7 @@ impl Solver {
         // now (every node if an interaction may act anywhere) are gathered and kicked.
         for &i in &self.kicked {
             let i = i as usize;
-            self.f_int[i] = [0.0; 3];
+            self.f_int[i] = [0.0; 4];
             self.f_open[i] = [0.0; 3];
             self.a[i] = [0.0; 3];
             self.a_close[i] = [0.0; 3];
@@ -612,7 +616,7 @@ impl Solver {
         let (mut pi, mut pe) = (0.0, 0.0);
         for &n in &self.kicked {
             let n = n as usize;
-            let (fo, fi, fe) = (self.f_open[n], self.f_int[n], self.f_ext[n]);
+            let (fo, fi, fe) = (self.f_open[n], xyz(self.f_int[n]), self.f_ext[n]);
             let (r, fx) = (1.0 / self.mass[n], self.fixed[n]);
             let (mut ao, mut ac) = ([0.0; 3], [0.0; 3]);
             for d in 0..3 {
@@ -679,7 +683,7 @@ impl Solver {
         // first call, in `new`, always writes the blocks: subcycling's set-up reads them.
         let direct = rayon::current_num_threads() == 1 && !self.need_force_blocks;
         if direct {
-            self.f_int.fill([0.0; 3]);
+            self.f_int.fill([0.0; 4]);
         }
         for b in &mut self.blocks {
             let range = b.first..b.first + b.conn.len();
@@ -812,7 +816,8 @@ impl Solver {
             .enumerate()
             .for_each(|(c, fs)| {
                 for (k, f) in fs.iter_mut().enumerate() {
-                    *f = node_force_sum(ptr, inc, ef, c * NODE_CHUNK + k);
+                    let g = node_force_sum(ptr, inc, ef, c * NODE_CHUNK + k);
+                    *f = [g[0], g[1], g[2], 0.0];
                 }
             });
     }
@@ -860,7 +865,7 @@ impl Solver {
                         v[d] += h * a[n][d];
                     }
                     fix_node(v, fixed[n]);
-                    let (fi, fe) = (f_int[n], f_ext[n]);
+                    let (fi, fe) = (xyz(f_int[n]), f_ext[n]);
                     pi += dot(*v, fi);
                     pe += dot(*v, fe);
                     for d in 0..3 {
@@ -889,7 +894,7 @@ impl Solver {
                 let (mut pi, mut pe) = (0.0, 0.0);
                 for (k, (a, v)) in acc.iter_mut().zip(vs.iter_mut()).enumerate() {
                     let n = c * NODE_CHUNK + k;
-                    let (fi, fe) = (f_int[n], f_ext[n]);
+                    let (fi, fe) = (xyz(f_int[n]), f_ext[n]);
                     let r = 1.0 / m[n];
                     for d in 0..3 {
                         a[d] = if fixed[n] & (1 << d) != 0 {
@@ -1153,8 +1158,8 @@ impl Solver {
     pub fn mass(&self) -> &[f64] {
         &self.mass
     }
-    /// Internal nodal forces at t^n, N.
-    pub fn internal_forces(&self) -> &[[f64; 3]] {
+    /// Internal nodal forces at t^n, N, as [x, y, z, 0] per node (padded, see the field).
+    pub fn internal_forces(&self) -> &[[f64; 4]] {
         &self.f_int
     }
     /// The model.
@@ -1205,9 +1210,9 @@ impl Solver {
 
 /// a = M⁻¹ (f_ext − f_int) into `out`, zero on constrained components; returns the lowest
 /// node with a non-finite value, if any.
-fn accelerations_into(
+fn accelerations_into<const N: usize>(
     out: &mut [[f64; 3]],
-    fi: &[[f64; 3]],
+    fi: &[[f64; N]],
     fe: &[[f64; 3]],
     m: &[f64],
     fx: &[u8],
@@ -1257,4 +1262,10 @@ fn fix_node(v: &mut [f64; 3], f: u8) {
             }
         }
     }
+}
+
+/// The x, y, z components of a padded nodal vector ([`Solver`]'s `f_int` rows).
+#[inline(always)]
+fn xyz(p: [f64; 4]) -> [f64; 3] {
+    [p[0], p[1], p[2]]
 }

@@ -125,6 +125,60 @@ mod avx512 {
         out
     }
 
+    /// Adds the three force columns of each of eight nodes to the padded nodal rows
+    /// `f4[conn[l][i]]`, lane (element) by lane in order, nodes in order within a lane: each
+    /// row gets one 256-bit load, add and store (the pad component gets −0.0, which leaves
+    /// every value, ±0 included, as it was).
+    ///
+    /// # Safety
+    /// W = 8, AVX-512F, every `conn[l][i]` < the length of `f4`.
+    #[inline(always)]
+    pub(super) unsafe fn add_node_rows<const W: usize>(
+        force: &[[Lanes<W>; 3]; 8],
+        f4: *mut [f64; 4],
+        conn: &[[u32; 8]],
+    ) {
+        let nz = _mm512_set1_pd(-0.0);
+        // rows[i][q], q = 0..4: node i's rows [x, y, z, −0] of lanes (0, 2), (1, 3), (4, 6),
+        // (5, 7) as low and high 256-bit halves: two unpacks pair x with y and z with −0,
+        // one two-source permute per pair of rows (8 shuffles per node).
+        let lo = _mm512_set_epi64(11, 10, 3, 2, 9, 8, 1, 0);
+        let hi = _mm512_set_epi64(15, 14, 7, 6, 13, 12, 5, 4);
+        let mut rows = [[_mm512_setzero_pd(); 4]; 8];
+        for i in 0..8 {
+            let (x, y, z) = (load(force[i][0]), load(force[i][1]), load(force[i][2]));
+            let t0 = _mm512_unpacklo_pd(x, y); // X0 Y0 X2 Y2 X4 Y4 X6 Y6
+            let t1 = _mm512_unpackhi_pd(x, y); // X1 Y1 X3 Y3 ...
+            let t2 = _mm512_unpacklo_pd(z, nz); // Z0 N  Z2 N ...
+            let t3 = _mm512_unpackhi_pd(z, nz);
+            rows[i][0] = _mm512_permutex2var_pd(t0, lo, t2); // lanes 0, 2
+            rows[i][1] = _mm512_permutex2var_pd(t1, lo, t3); // lanes 1, 3
+            rows[i][2] = _mm512_permutex2var_pd(t0, hi, t2); // lanes 4, 6
+            rows[i][3] = _mm512_permutex2var_pd(t1, hi, t3); // lanes 5, 7
+        }
+        for (l, c) in conn.iter().enumerate().take(8) {
+            let (p, h) = match l {
+                0 => (0, false),
+                1 => (1, false),
+                2 => (0, true),
+                3 => (1, true),
+                4 => (2, false),
+                5 => (3, false),
+                6 => (2, true),
+                _ => (3, true),
+            };
+            for i in 0..8 {
+                let r = if h {
+                    _mm512_extractf64x4_pd::<1>(rows[i][p])
+                } else {
+                    _mm512_castpd512_pd256(rows[i][p])
+                };
+                let g = f4.add(c[i] as usize).cast::<f64>();
+                _mm256_storeu_pd(g, _mm256_add_pd(_mm256_loadu_pd(g), r));
+            }
+        }
+    }
+
     /// Writes columns `cols` (C ≤ 8) into eight rows starting at `base.add(rows[l])`.
     ///
     /// # Safety
@@ -235,6 +289,29 @@ impl<const W: usize> Lanes<W> {
             }
         }
         out
+    }
+
+    /// Adds the nodal forces of a full group (W elements `conn`) into the padded nodal array
+    /// `f4`, element by element in lane order, nodes in order: the same additions as the
+    /// scalar `f4[n][d] += force[i][d].0[l]` loop, in the same order.
+    ///
+    /// # Safety
+    /// Every node of `conn` (at least W rows) < `f4.len()`-equivalent allocation of `f4`;
+    /// with W = 8 on x86-64 the CPU must have AVX-512F.
+    #[inline(always)]
+    pub unsafe fn add_node_rows(force: &[Vec3<W>; 8], f4: *mut [f64; 4], conn: &[[u32; 8]]) {
+        #[cfg(target_arch = "x86_64")]
+        if W == 8 {
+            return avx512::add_node_rows(force, f4, conn);
+        }
+        for (l, c) in conn.iter().enumerate().take(W) {
+            for (i, fi) in force.iter().enumerate() {
+                let g = &mut *f4.add(c[i] as usize);
+                for d in 0..3 {
+                    g[d] += fi[d].0[l];
+                }
+            }
+        }
     }
 
     /// The inverse of [`Lanes::load_rows`]: `*base.add(rows[l] + c)` = lane l of `cols[c]`.
@@ -499,5 +576,83 @@ mod tests {
             &[Lanes([0.0]), Lanes([1.0]), Lanes([0.0])],
         );
         assert_eq!(c.map(|v| v.0[0]), [0.0, 0.0, 1.0]);
+    }
+
+    /// The scalar loop `add_node_rows` must reproduce: element (lane) by element, nodes in
+    /// order, component by component.
+    fn add_in_order<const W: usize>(force: &[Vec3<W>; 8], f4: &mut [[f64; 4]], conn: &[[u32; 8]]) {
+        for (l, c) in conn.iter().enumerate().take(W) {
+            for (i, fi) in force.iter().enumerate() {
+                for d in 0..3 {
+                    f4[c[i] as usize][d] += fi[d].0[l];
+                }
+            }
+        }
+    }
+
+    /// Forces whose sums depend on their order (1e16 + 1 − 1e16 ≠ 1e16 − 1e16 + 1) and signed
+    /// zeros, on nodes shared by several lanes, as a lane group of neighbouring elements has.
+    fn order_sensitive_group<const W: usize>() -> ([Vec3<W>; 8], Vec<[u32; 8]>) {
+        let vals = [1e16, 1.0, -1e16, -0.0, 0.5, -3.25, 0.0, 7e-300];
+        let mut force = [[Lanes([0.0; W]); 3]; 8];
+        for (i, fi) in force.iter_mut().enumerate() {
+            for (d, c) in fi.iter_mut().enumerate() {
+                for l in 0..W {
+                    c.0[l] = vals[(3 * i + 5 * d + 3 * l) % vals.len()];
+                }
+            }
+        }
+        // Node 0 in every element at a different local index; nodes 1..=3 shared by pairs.
+        let conn = (0..W as u32)
+            .map(|l| {
+                let mut c = [0u32; 8];
+                for (i, n) in c.iter_mut().enumerate() {
+                    *n = if i as u32 == l % 8 {
+                        0
+                    } else {
+                        1 + (l / 2 + i as u32) % 9
+                    };
+                }
+                c
+            })
+            .collect();
+        (force, conn)
+    }
+
+    #[test]
+    fn node_rows_add_in_element_order_bit_for_bit() {
+        fn check<const W: usize>() {
+            let (force, conn) = order_sensitive_group::<W>();
+            let start: Vec<[f64; 4]> = (0..12)
+                .map(|n| [n as f64 - 6.0, -0.0, 0.25 * n as f64, 0.0])
+                .collect();
+            let mut want = start.clone();
+            add_in_order(&force, &mut want, &conn);
+            let mut got = start;
+            // SAFETY: W = 8 only with AVX-512F (checked by the caller); nodes < 12.
+            unsafe { Lanes::add_node_rows(&force, got.as_mut_ptr(), &conn) };
+            let bits =
+                |f: &[[f64; 4]]| -> Vec<u64> { f.iter().flatten().map(|c| c.to_bits()).collect() };
+            assert_eq!(bits(&got), bits(&want), "{W} lanes");
+            assert!(got.iter().all(|g| g[3].to_bits() == 0), "the pad stays +0");
+        }
+        check::<4>();
+        if is_avx512() {
+            check::<8>();
+        }
+        // The test data must make the order matter, or the test could not fail.
+        let (force, conn) = order_sensitive_group::<4>();
+        let mut fwd = vec![[0.0; 4]; 12];
+        add_in_order(&force, &mut fwd, &conn);
+        let mut rev = vec![[0.0; 4]; 12];
+        let rconn: Vec<[u32; 8]> = conn.iter().rev().copied().collect();
+        let mut rforce = force;
+        for fi in &mut rforce {
+            for c in fi {
+                c.0.reverse();
+            }
+        }
+        add_in_order(&rforce, &mut rev, &rconn);
+        assert_ne!(fwd, rev, "the test forces must be order sensitive");
     }
 }

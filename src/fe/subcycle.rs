@@ -544,20 +544,20 @@ impl Subcycler {
     /// actual interval and the trapezoid correction if h changed during it) and `open` =
     /// 2^{L_new} g (opening the next); zero at the listed nodes not due. Entries of unlisted
     /// nodes are left alone. Sums run in element order (bitwise identical for any thread
-    /// count).
+    /// count). `close` rows are [x, y, z, 0], the padded layout of the solver's `f_int`.
     pub fn gather_kicks(
         &mut self,
         nodes: &[u32],
         inc_ptr: &[usize],
         inc: &[u32],
         elem_force: &[[[f64; 3]; 8]],
-        close: &mut [[f64; 3]],
+        close: &mut [[f64; 4]],
         open: &mut [[f64; 3]],
     ) {
         for &n in nodes {
             let n = n as usize;
             if !self.due(n) {
-                close[n] = [0.0; 3];
+                close[n] = [0.0; 4];
                 open[n] = [0.0; 3];
                 continue;
             }
@@ -568,7 +568,7 @@ impl Subcycler {
                 self.w_open[n],
                 self.g_last[n],
             );
-            close[n] = [0, 1, 2].map(|d| wc * g[d] + wr * gl[d]);
+            close[n] = [0, 1, 2, 3].map(|d| if d < 3 { wc * g[d] + wr * gl[d] } else { 0.0 });
             open[n] = g.map(|c| wo * c);
             self.g_last[n] = g;
         }
