@@ -2,7 +2,8 @@
 //! small kernels: floating-point throughput per core (independent chains on 4-wide f64
 //! vectors, and on 8-wide ones where the CPU has AVX-512, fused and as separate multiply +
 //! add) and memory bandwidth (STREAM-style triad a = b + s c on arrays sized for L2, L3, the
-//! working set of `bench kernel` and main memory, 1 thread and all threads).
+//! working set of `bench kernel` and main memory, 1 thread and all threads), and the
+//! throughput of the eight-lane gather instruction the element loop loads its nodes with.
 
 use crate::error::{Error, Result};
 use clap::Args;
@@ -146,6 +147,67 @@ fn flops(rounds: u64) -> (f64, f64) {
     (run(true), run(false))
 }
 
+/// Node-like data for the gather ceiling: 1 000 nodes of three f64 (24 KB, in L1 as a lane
+/// group's nodes mostly are) and 4 096 pseudo-random node offsets 3n, as i64.
+fn gather_data() -> (Vec<f64>, Vec<i64>) {
+    let nodes = 1000usize;
+    let data: Vec<f64> = (0..3 * nodes).map(|i| i as f64 * 0.25).collect();
+    let mut state = 12_345u64;
+    let idx = (0..4096)
+        .map(|_| {
+            state = state
+                .wrapping_mul(6_364_136_223_846_793_005)
+                .wrapping_add(1_442_695_040_888_963_407);
+            3 * ((state >> 33) % nodes as u64) as i64
+        })
+        .collect();
+    (data, idx)
+}
+
+/// Σ over `reps` passes of `data[idx[k]]`, gathered eight at a time (`vgatherqpd`, the
+/// instruction the eight-lane element loop loads its nodes with) into four independent
+/// accumulators.
+///
+/// # Safety
+/// The CPU has AVX-512F; every `idx[k]` is in bounds of `data`; `idx.len()` is a multiple
+/// of 32.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx512f")]
+unsafe fn gather_rounds_avx512(data: &[f64], idx: &[i64], reps: usize) -> f64 {
+    use std::arch::x86_64::*;
+    let mut acc = [_mm512_setzero_pd(); 4];
+    for _ in 0..reps {
+        for c in idx.chunks_exact(32) {
+            for (j, a) in acc.iter_mut().enumerate() {
+                let o = _mm512_loadu_si512(c[8 * j..].as_ptr().cast());
+                *a = _mm512_add_pd(*a, _mm512_i64gather_pd::<8>(o, data.as_ptr()));
+            }
+        }
+    }
+    let mut sum = 0.0;
+    for a in acc {
+        let mut lanes = [0.0f64; 8];
+        _mm512_storeu_pd(lanes.as_mut_ptr(), a);
+        sum += lanes.iter().sum::<f64>();
+    }
+    sum
+}
+
+/// Seconds per eight-lane gather instruction (one lane vector of one node field for eight
+/// elements), one thread, data in L1; `None` when the CPU lacks AVX-512F.
+fn gather_512(reps: usize) -> Option<f64> {
+    #[cfg(target_arch = "x86_64")]
+    if std::is_x86_feature_detected!("avx512f") {
+        let (data, idx) = gather_data();
+        let t = Instant::now();
+        // SAFETY: AVX-512F checked; offsets 3n + 0 < data.len(); 4096 = 128 x 32.
+        black_box(unsafe { gather_rounds_avx512(&data, &idx, reps) });
+        return Some(t.elapsed().as_secs_f64() / (reps * idx.len() / 8) as f64);
+    }
+    let _ = reps;
+    None
+}
+
 /// Triad bandwidth (bytes/s counted as STREAM does: 3 x 8 B per element) over arrays of `n`
 /// doubles, on the current thread pool with chunks of `chunk` elements.
 fn triad(n: usize, chunk: usize, passes: usize) -> f64 {
@@ -196,6 +258,12 @@ pub fn machine(a: MachineArgs) -> Result<()> {
         println!("fma_throughput_avx512,1,{:.2},Gflop/s", f * 1e-9);
         println!("mul_add_separate_avx512,1,{:.2},Gflop/s", s * 1e-9);
     }
+    let gather = (0..a.repeats)
+        .filter_map(|_| gather_512(20_000))
+        .reduce(f64::min);
+    if let Some(g) = gather {
+        println!("gather_avx512,1,{:.3},ns per 8-lane gather", g * 1e9);
+    }
     // 24 MB: about the working set of `bench kernel`'s default 55 000-element ball.
     for (label, bytes) in [
         ("triad_l2", 1usize << 19),
@@ -222,4 +290,25 @@ pub fn machine(a: MachineArgs) -> Result<()> {
         }
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The gather kernel sums what it is asked to (a timing of the wrong loads would be no
+    /// ceiling at all).
+    #[test]
+    fn gather_rounds_sum_the_indexed_values() {
+        #[cfg(target_arch = "x86_64")]
+        if std::is_x86_feature_detected!("avx512f") {
+            let (data, idx) = gather_data();
+            let want: f64 = 3.0 * idx.iter().map(|&k| data[k as usize]).sum::<f64>();
+            // SAFETY: AVX-512F checked; offsets in bounds; 4096 is a multiple of 32.
+            let got = unsafe { gather_rounds_avx512(&data, &idx, 3) };
+            assert!((got - want).abs() <= 1e-12 * want, "{got} vs {want}");
+            return;
+        }
+        eprintln!("skipped: this CPU lacks AVX-512F");
+    }
 }
