@@ -73,22 +73,32 @@ class CheckError(Exception):
 # ----------------------------------------------------------------------------- meshing
 
 
-def gmsh_ball(work, radius, h_contact, h_far, fine_radius, growth, order, gmsh="gmsh"):
+def gmsh_ball(work, radius, h_contact, h_far, fine_radius, growth, order, gmsh="gmsh", full=False):
     """Meshes the ball's quarter-disc cross-section (centre at the origin, pole at
-    (0, -R), equator on y = 0) with quadrilaterals: nodes (n, 2), elements (e, 4 or 8),
-    0-based, counter-clockwise, gmsh / CalculiX node order (corners, then mid-edges)."""
+    (0, -R), equator on y = 0), or with `full` its half-disc (up to the north pole (0, R)),
+    with quadrilaterals: nodes (n, 2), elements (e, 4 or 8), 0-based, counter-clockwise,
+    gmsh / CalculiX node order (corners, then mid-edges)."""
     # gmsh halves every edge in the final all-quad subdivision: ask for twice the sizes.
     s_c, s_f = 2.0 * h_contact, 2.0 * h_far
     dist_max = fine_radius + (s_f - s_c) / growth
-    geo = f"""// hemisphere cross-section for ccx_static_hertz.py (SI units)
+    if full:
+        outline = f"""Point(4) = {{0, R, 0, {s_f!r}}};
+Line(1) = {{1, 2}};
+Circle(2) = {{2, 1, 3}};
+Circle(3) = {{3, 1, 4}};
+Line(4) = {{4, 1}};
+Curve Loop(1) = {{1, 2, 3, 4}};"""
+    else:
+        outline = """Line(1) = {1, 2};
+Circle(2) = {2, 1, 3};
+Line(3) = {3, 1};
+Curve Loop(1) = {1, 2, 3};"""
+    geo = f"""// ball cross-section for ccx_static_hertz.py (SI units)
 R = {radius!r};
 Point(1) = {{0, 0, 0, {s_f!r}}};
 Point(2) = {{0, -R, 0, {s_c!r}}};
 Point(3) = {{R, 0, 0, {s_f!r}}};
-Line(1) = {{1, 2}};
-Circle(2) = {{2, 1, 3}};
-Line(3) = {{3, 1}};
-Curve Loop(1) = {{1, 2, 3}};
+{outline}
 Plane Surface(1) = {{1}};
 Physical Surface("ball") = {{1}};
 Field[1] = Distance;
@@ -215,7 +225,7 @@ def write_deck(path, model, mat, depth, k_pen, element, n_inc, contact="surface"
         ids = [int(i) + 1 for i in ids]
         out += [", ".join(str(i) for i in ids[k:k + 12]) for k in range(0, len(ids), 12)]
     out += ["*MATERIAL, NAME=BODYMAT", "*ELASTIC", f"{mat['E']:.12e}, {mat['nu']:.12e}",
-            "*SOLID SECTION, ELSET=BODY, MATERIAL=BODYMAT"]
+            "*DENSITY", f"{mat['rho']:.12e}", "*SOLID SECTION, ELSET=BODY, MATERIAL=BODYMAT"]
     if model["slave"]:
         for name, faces in (("SLAVE", model["slave"]), ("MASTER", model["master"])):
             out.append(f"*SURFACE, NAME={name}, TYPE=ELEMENT")
@@ -231,11 +241,14 @@ def write_deck(path, model, mat, depth, k_pen, element, n_inc, contact="surface"
     out += [f"{s}, {d}, {d}, 0.0" for s, d in model["fixed"]]
     out += [f"*STEP, INC=1000", "*STATIC", f"{1.0 / n_inc:.6e}, 1.0, {1e-4 / n_inc:.6e}, {1.0 / n_inc:.6e}",
             "*BOUNDARY"] + (["PLANEN, 1, 1, 0.0"] if model["slave"] else []) + [
-            f"PLANEN, 2, 2, {depth:.12e}",
+            f"PLANEN, 2, 2, {depth:.12e}"] + (
+            # The free ball's body force: uniform, towards the plane (-y), m/s^2.
+            ["*DLOAD", f"BODY, GRAV, {model['gravity']:.12e}, 0., -1., 0."] if model.get("gravity") else []) + [
             "*NODE PRINT, NSET=PLANEN, TOTALS=ONLY", "RF",
             "*NODE PRINT, NSET=SURFN", "U",
-            "*NODE PRINT, NSET=PROBE", "U",
-            "*END STEP", ""]
+            "*NODE PRINT, NSET=PROBE", "U"] + (
+            ["*NODE PRINT, NSET=NORTH, TOTALS=ONLY", "RF", "*NODE PRINT, NSET=BODYN", "U"]
+            if "NORTH" in model["nsets"] else []) + ["*END STEP", ""]
     Path(path).write_text("\n".join(out))
 
 
@@ -295,23 +308,47 @@ def assemble(body_nodes, body_elems, plane_nodes, plane_elems):
     return nodes, np.vstack([body_elems, plane_elems + off]), off
 
 
-def ball_model(radius, depth, h_contact, h_far, fine_zone, growth, order, work, gmsh):
-    """The hemisphere (gmsh mesh) above the rigid plane, which touches the pole at y = -R:
-    node sets, the slave (ball surface out to 3 a_H) and master (plane top) faces."""
+def ball_model(radius, depth, h_contact, h_far, fine_zone, growth, order, work, gmsh, support="held"):
+    """The hemisphere (held: roller at the equator) or the whole ball (free: only its north
+    pole held axially, to fix the rigid-body mode; loaded by a body force) above the rigid
+    plane, which touches the pole at y = -R: node sets, the slave (ball surface out to 3 a_H)
+    and master (plane top) faces."""
     a_h = math.sqrt(radius * depth)
-    bn, be = gmsh_ball(work, radius, h_contact, h_far, fine_zone * a_h, growth, order, gmsh)
+    free = support == "free"
+    bn, be = gmsh_ball(work, radius, h_contact, h_far, fine_zone * a_h, growth, order, gmsh, full=free)
     reach = min(3.0 * a_h, 0.5 * radius)  # slave surface: the ball's surface out to here
     pn, pe = plane_part(1.3 * reach, -radius, h_contact * 4.0, order)
     nodes, elems, off = assemble(bn, be, pn, pe)
     tol = 1e-9 * radius
     nb = len(bn)
-    on_sphere = lambda p: abs(math.hypot(p[0], p[1]) - radius) < 1e-7 * radius and p[0] <= reach
+    # The southern cap only (the free ball's northern cap has small radii too).
+    on_sphere = lambda p: abs(math.hypot(p[0], p[1]) - radius) < 1e-7 * radius and p[0] <= reach and p[1] < 0
     slave = edge_faces(bn, be, on_sphere)
     master = [(len(be) + e, f) for e, f in edge_faces(pn, pe, lambda p: abs(p[1] + radius) < tol)]
-    surf = [k for k in range(nb) if abs(math.hypot(*bn[k]) - radius) < 1e-7 * radius and bn[k][0] <= reach]
+    surf = [k for k in range(nb) if on_sphere(bn[k])]
     pole = int(np.argmin(np.hypot(bn[:, 0], bn[:, 1] + radius)))
     if np.hypot(bn[pole, 0], bn[pole, 1] + radius) > tol:
         raise CheckError("no mesh node at the pole")
+    if free:
+        north = int(np.argmin(np.hypot(bn[:, 0], bn[:, 1] - radius)))
+        if np.hypot(bn[north, 0], bn[north, 1] - radius) > tol:
+            raise CheckError("no mesh node at the north pole")
+        return {
+            "title": f"free ball R = {radius} m, depth = {depth} m",
+            "nodes": nodes, "elems": elems,
+            "body_elems": range(len(be)), "plane_elems": range(len(be), len(elems)),
+            "nsets": {
+                "AXIS": [k for k in range(nb) if abs(bn[k][0]) < tol],
+                "NORTH": [north],
+                "BODYN": list(range(nb)),
+                "PLANEN": list(range(off, len(nodes))),
+                "SURFN": sorted(surf, key=lambda k: bn[k][0]),
+                "PROBE": [pole],
+            },
+            "fixed": [("AXIS", 1), ("NORTH", 2)],
+            "slave": slave, "master": master,
+            "n_body_elems": len(be), "pole": pole,
+        }
     return {
         "title": f"hemisphere R = {radius} m, depth = {depth} m",
         "nodes": nodes, "elems": elems,
@@ -437,6 +474,52 @@ def centre_penetration(xy, u, plane_y, a_h, h_c):
     return float(c[1])
 
 
+def serendipity(xi, eta):
+    """Shape functions (8) and their xi, eta derivatives of the 8-node quadrilateral, in
+    CalculiX's node order (corners counter-clockwise from (-1, -1), then mid-edges)."""
+    cx = np.array([-1, 1, 1, -1]); cy = np.array([-1, -1, 1, 1])
+    n = np.empty(8); dx = np.empty(8); dy = np.empty(8)
+    for k in range(4):
+        a, b = cx[k], cy[k]
+        n[k] = 0.25 * (1 + a * xi) * (1 + b * eta) * (a * xi + b * eta - 1)
+        dx[k] = 0.25 * a * (1 + b * eta) * (2 * a * xi + b * eta)
+        dy[k] = 0.25 * b * (1 + a * xi) * (a * xi + 2 * b * eta)
+    for k, (a, b) in enumerate(((0, -1), (1, 0), (0, 1), (-1, 0))):
+        if a == 0:
+            n[4 + k] = 0.5 * (1 - xi * xi) * (1 + b * eta)
+            dx[4 + k] = -xi * (1 + b * eta)
+            dy[4 + k] = 0.5 * b * (1 - xi * xi)
+        else:
+            n[4 + k] = 0.5 * (1 + a * xi) * (1 - eta * eta)
+            dx[4 + k] = 0.5 * a * (1 - eta * eta)
+            dy[4 + k] = -eta * (1 + a * xi)
+    return n, dx, dy
+
+
+def centre_of_mass_shift(nodes, elems, u):
+    """Axial displacement of the centre of mass of a solid of revolution (m) and its volume
+    (m^3, full ring): the 3 x 3 Gauss integrals of u_y 2 pi r and 2 pi r over the cross-section,
+    with the elements' own shape functions (8-node serendipity, or bilinear for 4 nodes)."""
+    g = np.sqrt(0.6)
+    pts = [(-g, 5 / 9), (0.0, 8 / 9), (g, 5 / 9)]
+    num = vol = 0.0
+    for el in elems:
+        x, uy = nodes[el], u[el, 1]
+        for xi, wx in pts:
+            for eta, wy in pts:
+                if len(el) == 8:
+                    n, dx, dy = serendipity(xi, eta)
+                else:
+                    n = 0.25 * np.array([(1 - xi) * (1 - eta), (1 + xi) * (1 - eta), (1 + xi) * (1 + eta), (1 - xi) * (1 + eta)])
+                    dx = 0.25 * np.array([-(1 - eta), 1 - eta, 1 + eta, -(1 + eta)])
+                    dy = 0.25 * np.array([-(1 - xi), -(1 + xi), 1 + xi, 1 - xi])
+                jac = np.array([[dx @ x[:, 0], dx @ x[:, 1]], [dy @ x[:, 0], dy @ x[:, 1]]])
+                w = wx * wy * abs(np.linalg.det(jac)) * 2 * math.pi * (n @ x[:, 0])
+                num += w * (n @ uy)
+                vol += w
+    return num / vol, vol
+
+
 def ball_case(a, mat, work, depth, per_a, factor):
     radius = a.radius
     h_c = math.sqrt(radius * depth) / per_a
@@ -444,17 +527,57 @@ def ball_case(a, mat, work, depth, per_a, factor):
     sub = Path(work) / job
     sub.mkdir(parents=True, exist_ok=True)
     model = ball_model(radius, depth, h_c, a.far_size * radius, a.fine_zone, a.growth,
-                       2 if a.element == "CAX8" else 1, sub, a.gmsh)
+                       2 if a.element == "CAX8" else 1, sub, a.gmsh, a.support)
     k_pen = a.penalty * mat["E"] / h_c
-    write_deck(sub / "job.inp", model, mat, depth, k_pen, a.element, a.increments, a.contact)
-    wall, _ = run_ccx(a.ccx, sub, "job")
-    dat = sub / "job.dat"
-    rf = last_block(dat, "total force")[0]
-    xy, u = surface_displacements(dat, model)
     plane_y = -radius + depth
+    free = a.support == "free"
+    if free:
+        # The body force B = rho g V that the contact force F balances: start from Hertz's
+        # force at the travel, then solve F(B) - B = 0 by secant steps (F depends on B: the
+        # lower half's weight presses on the plane) until the north pole carries less than
+        # 1e-4 of F; its constraint then only fixes the rigid-body mode.
+        volume = 4.0 / 3.0 * math.pi * radius ** 3
+        model["gravity"] = hertz(mat, radius, depth)[0] / (mat["rho"] * volume)
+    wall, tried = 0.0, []
+    for it in range(8):
+        write_deck(sub / "job.inp", model, mat, depth, k_pen, a.element, a.increments, a.contact)
+        w, _ = run_ccx(a.ccx, sub, "job")
+        wall += w
+        dat = sub / "job.dat"
+        force = factor * last_block(dat, "total force (fx,fy,fz) for set PLANEN")[0][1]
+        if not free:
+            break
+        north = factor * last_block(dat, "total force (fx,fy,fz) for set NORTH")[0][1]
+        if abs(north) < 1e-4 * abs(force):
+            break
+        b = model["gravity"] * mat["rho"] * volume
+        tried.append((b, force - b))
+        if len(tried) == 1:
+            b_next = force
+        else:
+            (b0, r0), (b1, r1) = tried[-2], tried[-1]
+            b_next = b1 - r1 * (b1 - b0) / (r1 - r0)
+        model["gravity"] = b_next / (mat["rho"] * volume)
+    else:
+        raise CheckError(f"free ball at {depth * 1e6:g} um: the north-pole reaction did not vanish "
+                         f"({north:.3e} N of {force:.3e} N after 8 runs)")
+    xy, u = surface_displacements(dat, model)
     pen = centre_penetration(xy, u, plane_y, math.sqrt(radius * depth), h_c)
-    delta_e = depth - pen
-    force = factor * rf[1]
+    extra = {}
+    if free:
+        # The approach that an impact's momentum sees: plane travel minus the axial shift
+        # of the ball's centre of mass (not the pole's, which the contact indents).
+        nb = model["n_body_elems"]
+        body = model["elems"][:nb]
+        rows = last_block(dat, "displacements (vx,vy,vz) for set BODYN")
+        u_all = np.zeros((len(model["nodes"]), 2))
+        u_all[rows[:, 0].astype(int) - 1] = rows[:, 1:3]
+        shift, vol = centre_of_mass_shift(model["nodes"], body, u_all)
+        delta_e = depth - shift
+        extra = {"com_shift": shift, "volume_error": vol / (4.0 / 3.0 * math.pi * radius ** 3) - 1.0,
+                 "north": north, "gravity": model["gravity"], "runs": it + 1}
+    else:
+        delta_e = depth - pen
     f_h, a_h = hertz(mat, radius, delta_e)
     a_c = contact_radius(xy, u, plane_y)
     if not a.keep:
@@ -465,7 +588,7 @@ def ball_case(a, mat, work, depth, per_a, factor):
         "depth": depth, "per_a": per_a, "h_c": h_c, "elements": model["n_body_elems"],
         "delta_e": delta_e, "F": force, "F_H": f_h, "ratio": force / f_h - 1.0,
         "a_c": a_c, "a_H": a_h, "a_ratio": a_c / a_h - 1.0, "penetration": pen,
-        "pole_node_u": float(u[0, 1]), "wall": wall, "k_pen": k_pen,
+        "pole_node_u": float(u[0, 1]), "wall": wall, "k_pen": k_pen, **extra,
     }
 
 
@@ -482,6 +605,14 @@ def main(argv=None):
     ap.add_argument("--radius", type=float, default=0.01, help="ball radius R, m (0.01)")
     ap.add_argument("--E", type=float, default=120e9, help="Young's modulus, Pa (120e9)")
     ap.add_argument("--nu", type=float, default=0.33, help="Poisson's ratio (0.33)")
+    ap.add_argument("--rho", type=float, default=8900.0,
+                    help="density, kg/m^3 (8900; only the free ball's body force uses it, and its "
+                         "result does not depend on it)")
+    ap.add_argument("--support", default="held", choices=["held", "free"],
+                    help="held: hemisphere on a roller at its equator (default); free: the whole ball, "
+                         "loaded by the uniform body force that balances the contact force (the "
+                         "quasi-static image of an impact's deceleration), approach measured at the "
+                         "centre of mass")
     ap.add_argument("--far-size", type=float, default=0.05, help="element size far from the pole, as a fraction of R (0.05)")
     ap.add_argument("--fine-zone", type=float, default=1.5,
                     help="radius of the zone meshed at h_c around the pole, in units of a_H (1.5)")
@@ -518,7 +649,9 @@ def main(argv=None):
         raise CheckError(f"--nu = {a.nu}: allowed -1 < nu < 0.5")
     if max(depths) > 0.05 * a.radius:
         raise CheckError("depths above 5 % of R are outside the small-strain check")
-    mat = {"E": a.E, "nu": a.nu}
+    if not (math.isfinite(a.rho) and a.rho > 0):
+        raise CheckError(f"--rho = {a.rho}: must be a finite number > 0")
+    mat = {"E": a.E, "nu": a.nu, "rho": a.rho}
 
     work = Path(a.work) if a.work else Path(tempfile.mkdtemp(prefix="ccx_hertz_"))
     work.mkdir(parents=True, exist_ok=True)
@@ -532,9 +665,12 @@ def main(argv=None):
             for p in per_a:
                 r = ball_case(a, mat, work, d, p, factor)
                 rows.append(r)
+                free = (f"   centre-of-mass shift {r['com_shift']:.4e} m, volume {r['volume_error']:+.1e}, "
+                        f"north-pole force {r['north'] / r['F']:+.1e} F, g = {r['gravity']:.5e} m/s^2, "
+                        f"{r['runs']} ccx runs") if a.support == "free" else ""
                 print(f"{d * 1e6:>8g} {r['a_H'] / a.radius:>6.4f} {'a/' + format(p, 'g'):>6} {r['elements']:>6d} "
                       f"{r['delta_e']:>11.5e} {r['F']:>11.5e} {r['F_H']:>11.5e} {r['ratio']:>+8.3%} "
-                      f"{r['a_ratio']:>+9.2%} {r['penetration'] / r['delta_e']:>9.2e} {r['wall']:>7.1f}",
+                      f"{r['a_ratio']:>+9.2%} {r['penetration'] / r['delta_e']:>9.2e} {r['wall']:>7.1f}{free}",
                       flush=True)
         finest = [r for r in rows if r["per_a"] == max(per_a)]
         if len(finest) >= 2:
