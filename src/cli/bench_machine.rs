@@ -3,7 +3,8 @@
 //! vectors, and on 8-wide ones where the CPU has AVX-512, fused and as separate multiply +
 //! add) and memory bandwidth (STREAM-style triad a = b + s c on arrays sized for L2, L3, the
 //! working set of `bench kernel` and main memory, 1 thread and all threads), and the
-//! throughput of the eight-lane gather instruction the element loop loads its nodes with.
+//! throughput of two ways to load eight elements' node fields into eight lanes: the gather
+//! instruction, and row loads transposed in registers (what the element loop uses).
 
 use crate::error::{Error, Result};
 use clap::Args;
@@ -164,9 +165,8 @@ fn gather_data() -> (Vec<f64>, Vec<i64>) {
     (data, idx)
 }
 
-/// Σ over `reps` passes of `data[idx[k]]`, gathered eight at a time (`vgatherqpd`, the
-/// instruction the eight-lane element loop loads its nodes with) into four independent
-/// accumulators.
+/// Σ over `reps` passes of `data[idx[k]]`, gathered eight at a time (`vgatherqpd`) into four
+/// independent accumulators.
 ///
 /// # Safety
 /// The CPU has AVX-512F; every `idx[k]` is in bounds of `data`; `idx.len()` is a multiple
@@ -203,6 +203,50 @@ fn gather_512(reps: usize) -> Option<f64> {
         // SAFETY: AVX-512F checked; offsets 3n + 0 < data.len(); 4096 = 128 x 32.
         black_box(unsafe { gather_rounds_avx512(&data, &idx, reps) });
         return Some(t.elapsed().as_secs_f64() / (reps * idx.len() / 8) as f64);
+    }
+    let _ = reps;
+    None
+}
+
+/// Σ over `reps` passes of x + y + z of the nodes `idx[k] / 3` of `data` (rows of three
+/// f64), eight nodes at a time by [`Lanes::load_vec3`] (row loads and a register transpose:
+/// the element loop's node loads), into four independent accumulators.
+///
+/// # Safety
+/// The CPU has AVX-512F; every `idx[k] / 3` is a node of `data`; `idx.len()` is a multiple
+/// of 32.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx512f,avx2,fma")]
+unsafe fn row_rounds_avx512(data: &[f64], idx: &[i64], reps: usize) -> f64 {
+    use crate::fe::lanes::Lanes;
+    let rows = data.as_ptr().cast::<[f64; 3]>();
+    let nodes: Vec<u32> = idx.iter().map(|&k| (k / 3) as u32).collect();
+    let mut acc = [Lanes::<8>::splat(0.0); 4];
+    for _ in 0..reps {
+        for c in nodes.chunks_exact(32) {
+            for (j, a) in acc.iter_mut().enumerate() {
+                let n: &[u32; 8] = c[8 * j..8 * j + 8].try_into().unwrap();
+                let [x, y, z] = Lanes::load_vec3(rows, n);
+                *a += x + y + z;
+            }
+        }
+    }
+    acc.iter().flat_map(|a| a.0).sum()
+}
+
+/// Seconds per eight-lane vector of a node field loaded as rows and transposed (a third of a
+/// [`Lanes::load_vec3`] call), one thread, data in L1; `None` without AVX-512F.
+fn rows_512(reps: usize) -> Option<f64> {
+    #[cfg(target_arch = "x86_64")]
+    if std::is_x86_feature_detected!("avx512f")
+        && std::is_x86_feature_detected!("avx2")
+        && std::is_x86_feature_detected!("fma")
+    {
+        let (data, idx) = gather_data();
+        let t = Instant::now();
+        // SAFETY: features checked; nodes idx / 3 < 1000; 4096 = 128 x 32.
+        black_box(unsafe { row_rounds_avx512(&data, &idx, reps) });
+        return Some(t.elapsed().as_secs_f64() / (reps * idx.len() / 8 * 3) as f64);
     }
     let _ = reps;
     None
@@ -264,6 +308,12 @@ pub fn machine(a: MachineArgs) -> Result<()> {
     if let Some(g) = gather {
         println!("gather_avx512,1,{:.3},ns per 8-lane gather", g * 1e9);
     }
+    let rows = (0..a.repeats)
+        .filter_map(|_| rows_512(20_000))
+        .reduce(f64::min);
+    if let Some(r) = rows {
+        println!("node_rows_avx512,1,{:.3},ns per 8-lane vector", r * 1e9);
+    }
     // 24 MB: about the working set of `bench kernel`'s default 55 000-element ball.
     for (label, bytes) in [
         ("triad_l2", 1usize << 19),
@@ -307,6 +357,17 @@ mod tests {
             // SAFETY: AVX-512F checked; offsets in bounds; 4096 is a multiple of 32.
             let got = unsafe { gather_rounds_avx512(&data, &idx, 3) };
             assert!((got - want).abs() <= 1e-12 * want, "{got} vs {want}");
+            // The row loads see whole nodes: x + y + z of each.
+            let want: f64 = 3.0
+                * idx
+                    .iter()
+                    .map(|&k| data[k as usize..k as usize + 3].iter().sum::<f64>())
+                    .sum::<f64>();
+            if std::is_x86_feature_detected!("avx2") && std::is_x86_feature_detected!("fma") {
+                // SAFETY: features checked; nodes in bounds; 4096 is a multiple of 32.
+                let got = unsafe { row_rounds_avx512(&data, &idx, 3) };
+                assert!((got - want).abs() <= 1e-12 * want, "{got} vs {want}");
+            }
             return;
         }
         eprintln!("skipped: this CPU lacks AVX-512F");

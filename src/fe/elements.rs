@@ -654,9 +654,9 @@ fn contiguous<const W: usize>(a: &[f64], idx: &[usize; W]) -> Lanes<W> {
 }
 
 /// Nodal coordinates and velocities of the elements `idx` (local indices into `conn`) into
-/// lanes, by [`Lanes::gather`] (one gather instruction per field on eight lanes). Writes
-/// every slot of `xe` and `ve` and returns them initialised: the caller's arrays need no
-/// zero fill first (it was a 1.5 KB `memset` call per lane group).
+/// lanes, by [`Lanes::load_vec3`] (on eight lanes: node rows loaded and transposed in
+/// registers). Writes every slot of `xe` and `ve` and returns them initialised: the
+/// caller's arrays need no zero fill first (it was a 1.5 KB `memset` call per lane group).
 #[inline(always)]
 fn gather_nodes<'e, const W: usize>(
     idx: &[usize; W],
@@ -666,26 +666,21 @@ fn gather_nodes<'e, const W: usize>(
     xe: &'e mut MaybeUninit<[[Lanes<W>; 3]; 8]>,
     ve: &'e mut MaybeUninit<[[Lanes<W>; 3]; 8]>,
 ) -> (&'e [[Lanes<W>; 3]; 8], &'e [[Lanes<W>; 3]; 8]) {
-    let (xp, vp) = (x.as_ptr().cast::<f64>(), v.as_ptr().cast::<f64>());
     let (xq, vq) = (
-        xe.as_mut_ptr().cast::<Lanes<W>>(),
-        ve.as_mut_ptr().cast::<Lanes<W>>(),
+        xe.as_mut_ptr().cast::<Vec3<W>>(),
+        ve.as_mut_ptr().cast::<Vec3<W>>(),
     );
     for i in 0..8 {
-        let at: [i64; W] = build(|l| 3 * conn[idx[l]][i] as i64);
-        for d in 0..3 {
-            let o: [i64; W] = build(|l| at[l] + d as i64);
-            // SAFETY: update_range checked every node index of the range < len of x and v,
-            // so 3 node + d addresses an f64 of the flattened arrays; 8 lanes only run in
-            // the AVX-512 kernel. Slot 3 i + d < 24 of the [[Lanes; 3]; 8] arrays (arrays
-            // have no padding), each written once.
-            unsafe {
-                xq.add(3 * i + d).write(Lanes::gather(xp, &o));
-                vq.add(3 * i + d).write(Lanes::gather(vp, &o));
-            }
+        let nodes: [u32; W] = build(|l| conn[idx[l]][i]);
+        // SAFETY: update_range checked every node index of the range < len of x and v; 8
+        // lanes only run in the AVX-512 kernel. Slot i < 8 of the [Vec3; 8] arrays, each
+        // written once.
+        unsafe {
+            xq.add(i).write(Lanes::load_vec3(x.as_ptr(), &nodes));
+            vq.add(i).write(Lanes::load_vec3(v.as_ptr(), &nodes));
         }
     }
-    // SAFETY: all 24 slots of both arrays were written above.
+    // SAFETY: all eight slots of both arrays were written above.
     unsafe { (xe.assume_init_ref(), ve.assume_init_ref()) }
 }
 

@@ -60,15 +60,42 @@ mod avx512 {
     bin!(mul, _mm512_mul_pd);
     bin!(div, _mm512_div_pd);
 
-    /// Lane l = `*base.add(idx[l])`, one gather instruction.
+    /// The x, y and z lanes of eight 3-vectors `base[nodes[l]]`, l = 0..8, by row loads and
+    /// a register transpose (no gather instruction: on some AVX-512 cores, AMD's Zen 4 among
+    /// them, one eight-lane gather costs as much as a dozen shuffles). Each 512-bit register
+    /// holds two rows, as a masked load of three f64 into its low half and one into its high
+    /// half (the high half's load starts four f64 before the row, with those four masked off:
+    /// masked-off elements are never read); two unpacks and three 128-bit block shuffles per
+    /// pair of registers then leave x, y and z of the eight rows in lane order.
     ///
     /// # Safety
-    /// W = 8, the CPU has AVX-512F, and every `base.add(idx[l])` is in bounds of one
-    /// allocation of f64.
+    /// W = 8, AVX-512F, and every `base.add(nodes[l])` in bounds of one allocation.
     #[inline(always)]
-    pub(super) unsafe fn gather<const W: usize>(base: *const f64, idx: &[i64; W]) -> Lanes<W> {
-        let offsets = _mm512_loadu_si512(idx.as_ptr().cast());
-        store(_mm512_i64gather_pd::<8>(offsets, base))
+    pub(super) unsafe fn load_vec3<const W: usize>(
+        base: *const [f64; 3],
+        nodes: &[u32; W],
+    ) -> [Lanes<W>; 3] {
+        // A register holds rows (p, q) in its low and high half: A = (0, 2), B = (1, 3),
+        // C = (4, 6), D = (5, 7), so that the block shuffles below put lane l in place l.
+        // (A macro, not a closure: a closure can be compiled out of line, without AVX-512.)
+        macro_rules! pair {
+            ($p:expr, $q:expr) => {{
+                let lo = _mm512_maskz_loadu_pd(0x07, base.add(nodes[$p] as usize).cast());
+                let hi = base.add(nodes[$q] as usize).cast::<f64>().wrapping_sub(4);
+                _mm512_mask_loadu_pd(lo, 0x70, hi)
+            }};
+        }
+        let (a, b, c, d) = (pair!(0, 2), pair!(1, 3), pair!(4, 6), pair!(5, 7));
+        // t0 = x0 x1 z0 z1 | x2 x3 z2 z3, t1 = y0 y1 . . | y2 y3 . ., t2, t3 the same for 4..8.
+        let t0 = _mm512_unpacklo_pd(a, b);
+        let t1 = _mm512_unpackhi_pd(a, b);
+        let t2 = _mm512_unpacklo_pd(c, d);
+        let t3 = _mm512_unpackhi_pd(c, d);
+        [
+            store(_mm512_shuffle_f64x2::<0x88>(t0, t2)),
+            store(_mm512_shuffle_f64x2::<0x88>(t1, t3)),
+            store(_mm512_shuffle_f64x2::<0xDD>(t0, t2)),
+        ]
     }
 
     /// The 8 x 8 transpose: `out[j]` lane i = `r[i]` lane j (three stages: pairs, 128-bit
@@ -248,25 +275,26 @@ impl<const W: usize> Lanes<W> {
         Lanes([v; W])
     }
 
-    /// Lane l = `*base.add(idx[l])`: W loads from anywhere in one array, as one gather
-    /// instruction in the AVX-512 kernel (W = 8). Building a lane vector by W scalar stores
-    /// and reading it back as a vector would stall: the read cannot be forwarded from the
-    /// pending stores.
+    /// The x, y and z lanes of W 3-vectors `base[nodes[l]]` (nodal coordinates or velocities
+    /// of one node of W elements). Eight lanes (AVX-512) load rows and transpose them in
+    /// registers; other widths load the W values of each component.
     ///
     /// # Safety
-    /// Every `base.add(idx[l])` must be in bounds of the one allocation `base` points into;
-    /// with W = 8 on x86-64 the CPU must have AVX-512F (only the AVX-512 kernel uses 8 lanes).
+    /// Every `base.add(nodes[l])` must be in bounds of the allocation `base` points into;
+    /// with W = 8 on x86-64 the CPU must have AVX-512F.
     #[inline(always)]
-    pub unsafe fn gather(base: *const f64, idx: &[i64; W]) -> Self {
+    pub unsafe fn load_vec3(base: *const [f64; 3], nodes: &[u32; W]) -> Vec3<W> {
         #[cfg(target_arch = "x86_64")]
         if W == 8 {
-            return avx512::gather(base, idx);
+            return avx512::load_vec3(base, nodes);
         }
-        let mut r = [0.0; W];
-        for l in 0..W {
-            r[l] = *base.offset(idx[l] as isize);
+        let mut out = [Lanes([0.0; W]); 3];
+        for (d, o) in out.iter_mut().enumerate() {
+            for l in 0..W {
+                o.0[l] = (*base.add(nodes[l] as usize))[d];
+            }
         }
-        Lanes(r)
+        out
     }
 
     /// Columns 0..C of W rows of f64: lane l of column c = `*base.add(rows[l] + c)`. With
@@ -576,6 +604,35 @@ mod tests {
             &[Lanes([0.0]), Lanes([1.0]), Lanes([0.0])],
         );
         assert_eq!(c.map(|v| v.0[0]), [0.0, 0.0, 1.0]);
+    }
+
+    /// Node rows to lanes: every lane of x, y, z equals the node's component, for nodes at
+    /// both ends of the array (the high half's masked load starts before node 0; node 0 and
+    /// the last node are where a read past the rows would leave the allocation).
+    #[test]
+    fn node_rows_load_into_lanes() {
+        let nodes: Vec<[f64; 3]> = (0..37)
+            .map(|n| [n as f64 + 0.25, -(n as f64) * 3.0, 1e-300 * n as f64])
+            .collect();
+        fn check<const W: usize>(nodes: &[[f64; 3]], pick: &[u32; W]) {
+            // SAFETY: every index < nodes.len(); W = 8 only with AVX-512F (checked below).
+            let got = unsafe { Lanes::load_vec3(nodes.as_ptr(), pick) };
+            for (d, lane) in got.iter().enumerate() {
+                for l in 0..W {
+                    let want = nodes[pick[l] as usize][d];
+                    assert_eq!(
+                        lane.0[l].to_bits(),
+                        want.to_bits(),
+                        "lane {l} component {d}"
+                    );
+                }
+            }
+        }
+        check::<4>(&nodes, &[36, 0, 5, 36]);
+        if is_avx512() {
+            check::<8>(&nodes, &[0, 36, 1, 35, 7, 0, 36, 19]);
+            check::<8>(&nodes, &[36, 0, 36, 0, 2, 3, 4, 5]);
+        }
     }
 
     /// The scalar loop `add_node_rows` must reproduce: element (lane) by element, nodes in
