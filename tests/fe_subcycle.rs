@@ -465,3 +465,60 @@ fn runs_are_bitwise_identical_on_one_and_two_threads() {
         assert!(bits(&a.1) == bits(&b.1), "{sub:?}: velocities differ");
     }
 }
+
+/// Records every call of `add_forces`: (t, Δt about to be taken), s.
+struct CallLog(std::sync::Arc<std::sync::Mutex<Vec<(f64, f64)>>>);
+
+impl Interaction for CallLog {
+    fn name(&self) -> &str {
+        "call log"
+    }
+    fn add_forces(&mut self, ctx: &StepContext<'_>, _f: &mut [[f64; 3]]) -> twoball::Result<()> {
+        self.0.lock().unwrap().push((ctx.t, ctx.dt));
+        Ok(())
+    }
+    fn stable_time_step(&self, _mass: &[f64]) -> Option<f64> {
+        None
+    }
+    fn energy(&self) -> InteractionEnergy {
+        InteractionEnergy::default()
+    }
+    fn active_nodes(&self) -> Option<&[u32]> {
+        Some(&[])
+    }
+}
+
+/// With subcycling, `Solver::new` renumbers the elements by level (here: a graded bar given
+/// coarse end first); the interactions are still asked for their forces once per step, t = 0
+/// included, and the step they are told of is the step the solver takes.
+#[test]
+fn renumbered_solver_calls_each_interaction_once_per_step() {
+    let mut model = graded_bar(40, 0.5e-3, 8.0, 4e-3);
+    model.hexes.reverse();
+    let given = model.hexes.clone();
+    let log = std::sync::Arc::new(std::sync::Mutex::new(Vec::new()));
+    let mut s = Solver::new(
+        model,
+        vec![Box::new(CallLog(log.clone()))],
+        settings(Subcycling::On),
+    )
+    .unwrap();
+    assert!(s.subcycling().used, "the test needs subcycling");
+    assert_ne!(s.model().hexes, given, "the test needs a renumbering");
+    assert_eq!(log.lock().unwrap().len(), 1, "one call at t = 0");
+    let mut taken = Vec::new();
+    for _ in 0..5 {
+        let t0 = s.time();
+        s.step().unwrap();
+        taken.push(s.time() - t0);
+    }
+    let calls = log.lock().unwrap().clone();
+    assert_eq!(calls.len(), 6, "one call per step: {calls:?}");
+    for (k, (call, dt)) in calls.iter().zip(&taken).enumerate() {
+        assert!(
+            (call.1 - dt).abs() <= 1e-12 * dt,
+            "call {k}: told {} s, took {dt} s",
+            call.1
+        );
+    }
+}

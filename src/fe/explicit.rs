@@ -198,6 +198,14 @@ pub struct Solver {
     need_force_blocks: bool,
 }
 
+/// What a solver's set-up computed at t = 0 that a renumbered copy of it reuses.
+struct Start {
+    /// The interactions' nodal forces at t = 0, N.
+    f_ext: Vec<[f64; 3]>,
+    /// The first step, the one the interactions were told of, s.
+    dt: f64,
+}
+
 impl Solver {
     /// Box 6.1 step 1-3: initial conditions and mass, first `getforce`, initial accelerations.
     ///
@@ -215,17 +223,25 @@ impl Solver {
         interactions: Vec<Box<dyn Interaction>>,
         settings: Settings,
     ) -> Result<Self> {
-        let s = Self::assemble(model, interactions, settings)?;
+        let s = Self::assemble(model, interactions, settings, None)?;
         let Some(order) = s.level_order() else {
             return Ok(s);
         };
+        // The renumbered solver starts from the same positions and velocities, so the
+        // interactions' forces at t = 0, and the first step they were told of, are those
+        // just computed: they are handed over instead of asking every interaction again,
+        // which would advance its history (friction, work, force record) by a second step
+        // at t = 0.
         let Solver {
             mut model,
             interactions,
+            f_ext,
+            dt_next,
             ..
         } = s;
         model.hexes = order.iter().map(|&e| model.hexes[e]).collect();
-        let mut s = Self::assemble(model, interactions, settings)?;
+        let start = Start { f_ext, dt: dt_next };
+        let mut s = Self::assemble(model, interactions, settings, Some(start))?;
         s.original_element = order;
         Ok(s)
     }
@@ -242,11 +258,14 @@ impl Solver {
         (!sorted).then_some(order)
     }
 
-    /// [`Solver::new`] without the level renumbering.
+    /// [`Solver::new`] without the level renumbering. `start`: the interactions' forces at
+    /// t = 0 and the first step, if already computed for this state (the interactions are
+    /// then not called); `None` computes them.
     fn assemble(
         model: Model,
         interactions: Vec<Box<dyn Interaction>>,
         settings: Settings,
+        start: Option<Start>,
     ) -> Result<Self> {
         let settings = settings.validated()?;
         if model.hexes.is_empty() {
@@ -359,7 +378,13 @@ impl Solver {
             model,
         };
         // 2. getforce at t = 0 (evaluation only, Δt = 0).
-        s.getforce(0.0)?;
+        match start {
+            None => s.getforce(0.0)?,
+            Some(Start { f_ext, dt }) => {
+                s.internal_forces_and_step(0.0)?;
+                (s.f_ext, s.dt_next) = (f_ext, dt);
+            }
+        }
         s.dt_initial = s.dt_next;
         // 3. Accelerations a⁰ = M⁻¹(f_ext − f_int).
         s.accelerations()?;
@@ -670,6 +695,14 @@ impl Solver {
     /// deformation, constitutive update, internal forces, scatter), critical time step, then
     /// every interaction's external forces for the step about to be taken.
     fn getforce(&mut self, dt: f64) -> Result<()> {
+        self.internal_forces_and_step(dt)?;
+        // External forces from interactions (contact, walls) at t^{n+1}.
+        self.external_forces()
+    }
+
+    /// `getforce` without the interactions' forces: element loop, internal nodal forces and
+    /// the stable step for the next step.
+    fn internal_forces_and_step(&mut self, dt: f64) -> Result<()> {
         let mut best = (f64::INFINITY, usize::MAX);
         // Element geometry: current positions, or the reference ones (linear geometry).
         let xg = if self.settings.linear_geometry {
@@ -711,8 +744,7 @@ impl Solver {
         self.dt_next = self.next_step(self.dt_next, self.stable.dt);
         self.check_collapse()?;
         self.profile.lap(Phase::StableStep);
-        // External forces from interactions (contact, walls) at t^{n+1}.
-        self.external_forces()
+        Ok(())
     }
 
     /// The error for a failed element `e` (global index).
