@@ -301,7 +301,20 @@ impl Interaction for StepLimit {
 /// inside their limit. The coarse part is squeezed towards its middle at `speed` (m/s): its
 /// elements shorten, so their nodes must drop a level.
 fn squeezed_bar(speed: f64, sub: Subcycling) -> Solver {
-    let (fine, coarse, b, lc) = (10usize, 10usize, 5e-3, 3.03e-3);
+    let c = Material::preset("steel").unwrap().dilatational_wave_speed();
+    let limit = StepLimit(0.75 * 1e-3 / c);
+    squeezed_bar_with(speed, sub, 3.03e-3, vec![Box::new(limit)])
+}
+
+/// [`squeezed_bar`] with coarse elements `lc` (m) long and the interactions `its` (none: the
+/// elements' own limits set the fine step).
+fn squeezed_bar_with(
+    speed: f64,
+    sub: Subcycling,
+    lc: f64,
+    its: Vec<Box<dyn Interaction>>,
+) -> Solver {
+    let (fine, coarse, b) = (10usize, 10usize, 5e-3);
     let mut mesh = block([1.0, b, b], [fine + coarse, 1, 1]);
     let pos = |k: usize| {
         if k <= fine {
@@ -334,8 +347,36 @@ fn squeezed_bar(speed: f64, sub: Subcycling) -> Solver {
             }
         })
         .unwrap();
-    let limit = StepLimit(0.75 * 1e-3 / mat.dilatational_wave_speed());
-    Solver::new(model, vec![Box::new(limit)], settings(sub)).unwrap()
+    Solver::new(model, its, settings(sub)).unwrap()
+}
+
+/// The subcycled solver keeps the smallest Courant limit per level (updated with the level's
+/// elements) instead of scanning every element each fine step: the controlling element and
+/// the stable step must be exactly those of a full scan in element order, at every step,
+/// also after levels have dropped. The fine elements set the fine step h; the 2.02 mm coarse
+/// elements take 2 h, 1 % inside their limit, until the squeeze shortens them.
+#[test]
+fn subcycled_stable_step_is_the_full_scan_minimum() {
+    let mut s = squeezed_bar_with(200.0, Subcycling::On, 2.02e-3, Vec::new());
+    let safety = s.settings().safety;
+    while s.step_count() < 1500 {
+        s.step().unwrap();
+        let mut best = (f64::INFINITY, usize::MAX);
+        for b in s.blocks() {
+            for (k, &d) in b.dt_crit.iter().enumerate() {
+                if d < best.0 {
+                    best = (d, b.first + k);
+                }
+            }
+        }
+        let st = s.stable_step();
+        let n = s.step_count();
+        assert_eq!(st.interaction, None, "step {n}");
+        assert_eq!(st.element, Some(best.1), "step {n}");
+        assert_eq!(st.dt.to_bits(), (safety * best.0).to_bits(), "step {n}");
+    }
+    let r = s.subcycling();
+    assert!(r.level_drops > 0, "no level dropped: {r:?}");
 }
 
 #[test]

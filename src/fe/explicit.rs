@@ -555,14 +555,7 @@ impl Solver {
         self.updates += done.map_err(|(e, why)| self.element_error(e, why))?;
         self.profile.lap(Phase::Elements);
         // Critical steps: every element's latest Courant limit, and the interactions.
-        let mut best = (f64::INFINITY, usize::MAX);
-        for b in &self.blocks {
-            for (k, &d) in b.dt_crit.iter().enumerate() {
-                if d < best.0 {
-                    best = (d, b.first + k);
-                }
-            }
-        }
+        let best = sub.smallest_limit(&self.blocks);
         self.stable = self.stable_limit(best);
         let interaction_limit = match self.stable.interaction {
             Some(_) => self.stable.dt,

@@ -35,12 +35,8 @@
 //! fine node once per coarse step, is absent because a fine node only ever sees fresh forces.
 
 use super::elements::{ElementBlock, ElementFailure};
-use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 use std::ops::Range;
-
-/// Nodes per chunk of the node loops (fixed: results never depend on the thread count).
-const NODE_CHUNK: usize = 4096;
 
 /// Whether element groups advance with their own time steps.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
@@ -150,6 +146,12 @@ pub struct Subcycler {
     node_order: Vec<u32>,
     /// Per level k: how many nodes have level ≤ k (the due prefix of `node_order`).
     level_end: Vec<usize>,
+    /// Per level k ≥ 1: the nodes of its elements, ascending: the only nodes whose snapshot
+    /// `snap[k]` and mean velocity over the level's interval are ever read.
+    level_nodes: Vec<Vec<u32>>,
+    /// Per level: the smallest Courant limit (s) of its elements and the lowest global
+    /// element that has it, from their last update; `None` after the levels changed.
+    level_min: Option<Vec<(f64, usize)>>,
     report: SubcycleReport,
 }
 
@@ -191,6 +193,8 @@ impl Subcycler {
             thr: u32::MAX,
             node_order: Vec::new(),
             level_end: Vec::new(),
+            level_nodes: Vec::new(),
+            level_min: None,
             report: SubcycleReport {
                 used: true,
                 max_level: cap,
@@ -289,7 +293,7 @@ impl Subcycler {
             let vk: &[[f64; 3]] = if k == 0 {
                 v
             } else {
-                mean_velocity(x, &self.snap[k], big, &mut self.vbar);
+                mean_velocity(x, &self.snap[k], big, &self.level_nodes[k], &mut self.vbar);
                 &self.vbar
             };
             for (b, r) in &self.runs[k] {
@@ -298,9 +302,31 @@ impl Subcycler {
                 blk.update_range(r.clone(), x, vk, big, &mut elem_force[g])?;
                 count += r.len() as u64;
             }
+            if let Some(m) = &mut self.level_min {
+                m[k] = smallest_limit(blocks, &self.runs[k]);
+            }
         }
         self.report.element_updates += count;
         Ok(count)
+    }
+
+    /// The smallest current Courant limit (s) of all elements and the lowest global element
+    /// that has it ((∞, `usize::MAX`) if no limit is below ∞): the same as a scan of every element's limit in element order, from the per-level
+    /// minima that [`Subcycler::update_due_elements`] keeps (an element's limit changes only
+    /// when it is updated, and all elements of a level are updated together), so a fine step
+    /// costs a scan of the elements it updated, not of all.
+    pub fn smallest_limit(&mut self, blocks: &[ElementBlock]) -> (f64, usize) {
+        let runs = &self.runs;
+        let m = self
+            .level_min
+            .get_or_insert_with(|| runs.iter().map(|r| smallest_limit(blocks, r)).collect());
+        let mut best = (f64::INFINITY, usize::MAX);
+        for &(d, e) in m.iter() {
+            if d < best.0 || (d == best.0 && e < best.1) {
+                best = (d, e);
+            }
+        }
+        best
     }
 
     /// Chooses the levels for the coming intervals and the fine step, after the due
@@ -364,8 +390,8 @@ impl Subcycler {
         self.h_changed.resize(levels, false);
         for k in 0..levels {
             if self.j.is_multiple_of(1u64 << k) {
-                if k > 0 {
-                    self.snap[k].copy_from_slice(x);
+                for &i in self.level_nodes.get(k).map_or(&[][..], |l| &l[..]) {
+                    self.snap[k][i as usize] = x[i as usize];
                 }
                 self.span[k] = 0.0;
                 self.planned[k] = (1u64 << k) as f64 * h;
@@ -377,40 +403,44 @@ impl Subcycler {
     }
 
     /// Per node, the smallest over its elements of the largest k with 2^k h (1 + `margin`)
-    /// within the element's limit (safety `safety`, fine step `h`); 0 if pinned. One pass
-    /// over the elements (each evaluates its level once) instead of a walk per node.
+    /// within the element's limit (safety `safety`, fine step `h`), and the same without the
+    /// margin; 0 if pinned. One pass over the elements (each evaluates its two levels once)
+    /// instead of a walk per node.
     fn fitting_levels(
         &self,
         blocks: &[ElementBlock],
         safety: f64,
         h: f64,
         margin: f64,
-    ) -> Vec<u32> {
-        let mut fit = vec![self.cap; self.node_level.len()];
+    ) -> (Vec<u32>, Vec<u32>) {
+        let n = self.node_level.len();
+        let (mut climb, mut fit) = (vec![self.cap; n], vec![self.cap; n]);
         for b in blocks {
             for (c, &d) in b.conn.iter().zip(&b.dt_crit) {
-                let k = level_for(safety * d, h, margin, self.cap);
+                let kc = level_for(safety * d, h, margin, self.cap);
+                let kf = level_for(safety * d, h, 0.0, self.cap);
                 for &i in c {
-                    let f = &mut fit[i as usize];
-                    *f = (*f).min(k);
+                    let i = i as usize;
+                    climb[i] = climb[i].min(kc);
+                    fit[i] = fit[i].min(kf);
                 }
             }
         }
-        for (f, &p) in fit.iter_mut().zip(&self.pinned) {
+        for (i, &p) in self.pinned.iter().enumerate() {
             if p {
-                *f = 0;
+                (climb[i], fit[i]) = (0, 0);
             }
         }
-        fit
+        (climb, fit)
     }
 
     /// All node levels afresh for fine step `h` (climbing only with `margin`); counter reset.
     fn synchronise(&mut self, blocks: &[ElementBlock], safety: f64, h: f64, margin: f64) {
-        let climb = self.fitting_levels(blocks, safety, h, margin);
-        let fit = self.fitting_levels(blocks, safety, h, 0.0);
+        let (climb, fit) = self.fitting_levels(blocks, safety, h, margin);
+        let mut changed = self.runs.is_empty();
         for i in 0..self.node_level.len() {
             let cur = (self.node_level[i] as u32).min(self.cap);
-            self.node_level[i] = if climb[i] > cur {
+            let new = if climb[i] > cur {
                 climb[i]
             } else {
                 if fit[i] < cur {
@@ -418,10 +448,16 @@ impl Subcycler {
                 }
                 cur.min(fit[i])
             } as u8;
+            changed |= new != self.node_level[i];
+            self.node_level[i] = new;
         }
         self.j = 0;
         self.thr = u32::MAX;
-        self.levels_changed(blocks);
+        // Most synchronisations keep every level: the element levels, runs and node lists
+        // derived from them then stand.
+        if changed {
+            self.levels_changed(blocks);
+        }
     }
 
     /// Between synchronisations: h drops if a due node's elements or an interaction need it;
@@ -453,13 +489,22 @@ impl Subcycler {
             h_taken
         };
         // A due node takes the smallest level its elements allow (the same as
-        // `fitting_level` over its elements, without the incidence walk).
+        // `fitting_level` over its elements, without the incidence walk). Due nodes have
+        // levels ≤ `cut`, so only an element that fits less than 2^cut h can drop one; since
+        // 2^k h grows with k, it fits at least that when 2^cut h is within its limit (the
+        // comparison `level_for` makes at its step k = cut − 1, where its factor 1 + 0 is
+        // exact), and most elements are settled by that one comparison.
+        let cut = self.thr.min(self.top);
         let mut changed = false;
         for runs in &self.runs[..=last] {
             for (b, r) in runs {
                 let blk = &blocks[*b];
                 for k in r.clone() {
-                    let fit = level_for(safety * blk.dt_crit[k], h, 0.0, self.cap);
+                    let limit = safety * blk.dt_crit[k];
+                    if cut == 0 || (1u64 << cut) as f64 * h <= limit {
+                        continue;
+                    }
+                    let fit = level_for(limit, h, 0.0, self.cap);
                     if fit >= self.top {
                         continue;
                     }
@@ -523,6 +568,30 @@ impl Subcycler {
                 *s = vec![[0.0; 3]; n];
             }
         }
+        // The nodes of each level's elements (level 0 needs none: its elements use v).
+        let mut seen = vec![u8::MAX; n];
+        self.level_nodes = vec![Vec::new(); levels];
+        for b in blocks {
+            for (k, c) in b.conn.iter().enumerate() {
+                let l = self.elem_level[b.first + k];
+                if l == 0 {
+                    continue;
+                }
+                for &i in c {
+                    if seen[i as usize] != l {
+                        // A node can belong to elements of several levels; `seen` only
+                        // filters repeats of the same level, the sort below the rest.
+                        seen[i as usize] = l;
+                        self.level_nodes[l as usize].push(i);
+                    }
+                }
+            }
+        }
+        for list in &mut self.level_nodes {
+            list.sort_unstable();
+            list.dedup();
+        }
+        self.level_min = None;
         self.runs = vec![Vec::new(); levels];
         for (bi, b) in blocks.iter().enumerate() {
             let mut start = 0;
@@ -660,19 +729,39 @@ fn element_locations(blocks: &[ElementBlock]) -> Vec<(usize, usize)> {
     loc
 }
 
-/// v̄ = (x − x_start) / big, the mean nodal velocity over an element interval of `big` s.
-fn mean_velocity(x: &[[f64; 3]], start: &[[f64; 3]], big: f64, out: &mut [[f64; 3]]) {
+/// v̄ = (x − x_start) / big at the nodes `nodes`: the mean nodal velocity over an element
+/// interval of `big` s. Other entries of `out` are left alone.
+fn mean_velocity(
+    x: &[[f64; 3]],
+    start: &[[f64; 3]],
+    big: f64,
+    nodes: &[u32],
+    out: &mut [[f64; 3]],
+) {
     let r = if big > 0.0 { 1.0 / big } else { 0.0 };
-    out.par_chunks_mut(NODE_CHUNK)
-        .enumerate()
-        .for_each(|(c, o)| {
-            for (k, ok) in o.iter_mut().enumerate() {
-                let n = c * NODE_CHUNK + k;
-                for d in 0..3 {
-                    ok[d] = (x[n][d] - start[n][d]) * r;
-                }
+    for &n in nodes {
+        let n = n as usize;
+        for d in 0..3 {
+            out[n][d] = (x[n][d] - start[n][d]) * r;
+        }
+    }
+}
+
+/// The smallest Courant limit (s) of the elements in `runs` (block, local range) and the
+/// lowest global element with it, scanning in element order with a strict comparison, as
+/// the single-step solver does; (∞, `usize::MAX`) if none is below ∞.
+fn smallest_limit(blocks: &[ElementBlock], runs: &[(usize, Range<usize>)]) -> (f64, usize) {
+    let mut best = (f64::INFINITY, usize::MAX);
+    for (b, r) in runs {
+        let blk = &blocks[*b];
+        for k in r.clone() {
+            let d = blk.dt_crit[k];
+            if d < best.0 {
+                best = (d, blk.first + k);
             }
-        });
+        }
+    }
+    best
 }
 
 #[cfg(test)]
