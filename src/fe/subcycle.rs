@@ -311,10 +311,11 @@ impl Subcycler {
     }
 
     /// The smallest current Courant limit (s) of all elements and the lowest global element
-    /// that has it ((∞, `usize::MAX`) if no limit is below ∞): the same as a scan of every element's limit in element order, from the per-level
-    /// minima that [`Subcycler::update_due_elements`] keeps (an element's limit changes only
-    /// when it is updated, and all elements of a level are updated together), so a fine step
-    /// costs a scan of the elements it updated, not of all.
+    /// that has it ((∞, `usize::MAX`) if no limit is below ∞): the same as a scan of every
+    /// element's limit in element order, but from the per-level minima that
+    /// [`Subcycler::update_due_elements`] keeps (an element's limit changes only when it is
+    /// updated, and all elements of a level are updated together), so a fine step costs a
+    /// scan of the elements it updated, not of all.
     pub fn smallest_limit(&mut self, blocks: &[ElementBlock]) -> (f64, usize) {
         let runs = &self.runs;
         let m = self
