@@ -551,7 +551,8 @@ impl Solver {
         } else {
             &self.x
         };
-        let done = sub.update_due_elements(&mut self.blocks, xg, &self.v, &mut self.elem_force);
+        let done =
+            sub.update_due_elements(&mut self.blocks, xg, &self.x, &self.v, &mut self.elem_force);
         self.updates += done.map_err(|(e, why)| self.element_error(e, why))?;
         self.profile.lap(Phase::Elements);
         // Critical steps: every element's latest Courant limit, and the interactions.

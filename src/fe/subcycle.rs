@@ -271,15 +271,18 @@ impl Subcycler {
         self.thr == u32::MAX
     }
 
-    /// Updates the elements due now, each with its own step (the time since its level's
+    /// Updates the elements due now on the nodal coordinates `x` (m; the reference ones for
+    /// geometrically linear elements), each with its own step (the time since its level's
     /// interval opened: 2^k h while h holds) and the mean velocities of its nodes over that
-    /// step (`v` itself at level 0); writes their force blocks into `elem_force` (global
+    /// step (`v` itself at level 0; else from the current positions `x_now`, m, which the
+    /// level snapshots are taken of); writes their force blocks into `elem_force` (global
     /// element index). Returns the number of element updates, or the lowest failing element
     /// (global) and why.
     pub fn update_due_elements(
         &mut self,
         blocks: &mut [ElementBlock],
         x: &[[f64; 3]],
+        x_now: &[[f64; 3]],
         v: &[[f64; 3]],
         elem_force: &mut [[[f64; 3]; 8]],
     ) -> Result<u64, (usize, ElementFailure)> {
@@ -293,7 +296,13 @@ impl Subcycler {
             let vk: &[[f64; 3]] = if k == 0 {
                 v
             } else {
-                mean_velocity(x, &self.snap[k], big, &self.level_nodes[k], &mut self.vbar);
+                mean_velocity(
+                    x_now,
+                    &self.snap[k],
+                    big,
+                    &self.level_nodes[k],
+                    &mut self.vbar,
+                );
                 &self.vbar
             };
             for (b, r) in &self.runs[k] {
@@ -315,7 +324,7 @@ impl Subcycler {
     /// element's limit in element order, but from the per-level minima that
     /// [`Subcycler::update_due_elements`] keeps (an element's limit changes only when it is
     /// updated, and all elements of a level are updated together), so a fine step costs a
-    /// scan of the elements it updated, not of all.
+    /// scan of the elements it updated, not of all (after a level change, one full scan).
     pub fn smallest_limit(&mut self, blocks: &[ElementBlock]) -> (f64, usize) {
         let runs = &self.runs;
         let m = self

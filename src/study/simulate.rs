@@ -615,12 +615,7 @@ pub fn simulate(
         subcycling: scene.solver.subcycling,
         ..Settings::default()
     };
-    // Built on the caller's threads (the results are the same on any thread count), so that
-    // the time loop's thread count can follow the work of one step.
-    let solver = Solver::new(model, interactions, settings)?;
-    let work = elements_per_step(elements, &solver.subcycling());
-    let run = move || -> Result<Simulation> {
-        let mut solver = solver;
+    let run = move |mut solver: Solver| -> Result<Simulation> {
         let dt0 = solver.dt();
 
         let duration = if expected_duration.is_finite() && expected_duration > 0.0 {
@@ -789,7 +784,17 @@ pub fn simulate(
             history,
         })
     };
-    with_threads_for(work, run)
+    // A small model is built and run on one thread, away from any caller's pool (a sweep's).
+    // A large one is built on the caller's threads (the results are the same on any thread
+    // count), and its time loop then runs on one thread if a step updates few elements.
+    if elements < PARALLEL_MIN_ELEMENTS {
+        return with_threads_for(elements, move || {
+            run(Solver::new(model, interactions, settings)?)
+        });
+    }
+    let solver = Solver::new(model, interactions, settings)?;
+    let work = elements_per_step(elements, &solver.subcycling());
+    with_threads_for(work, move || run(solver))
 }
 
 /// Element updates in one step of a model of `elements` elements, on average: all of them
