@@ -663,7 +663,7 @@ pub fn simulate(
             let probe_now = probe.last();
             let force_free = probe_now.active_nodes == 0 && probe_now.normal_force == 0.0;
             let record = t >= next_row;
-            let check = solver.step_count() % 16 == 0;
+            let check = solver.step_count().is_multiple_of(16);
             if record || (by_separation && check) {
                 let (u, w, d) = ball_states(&solver, red)?;
                 if record {
