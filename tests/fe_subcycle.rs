@@ -353,6 +353,20 @@ fn squeezed_bar_with(
     Solver::new(model, its, settings).unwrap()
 }
 
+/// The smallest Courant limit (s) of all elements and the lowest global element with it: the
+/// scan of every element, in order, that the subcycled solver's per-level minima must reproduce.
+fn full_scan_minimum(s: &Solver) -> (f64, usize) {
+    let mut best = (f64::INFINITY, usize::MAX);
+    for b in s.blocks() {
+        for (k, &d) in b.dt_crit.iter().enumerate() {
+            if d < best.0 {
+                best = (d, b.first + k);
+            }
+        }
+    }
+    best
+}
+
 /// The subcycled solver keeps the smallest Courant limit per level (updated with the level's
 /// elements) instead of scanning every element each fine step: the controlling element and
 /// the stable step must be exactly those of a full scan in element order, at every step,
@@ -364,14 +378,7 @@ fn subcycled_stable_step_is_the_full_scan_minimum() {
     let safety = s.settings().safety;
     while s.step_count() < 1500 {
         s.step().unwrap();
-        let mut best = (f64::INFINITY, usize::MAX);
-        for b in s.blocks() {
-            for (k, &d) in b.dt_crit.iter().enumerate() {
-                if d < best.0 {
-                    best = (d, b.first + k);
-                }
-            }
-        }
+        let best = full_scan_minimum(&s);
         let st = s.stable_step();
         let n = s.step_count();
         assert_eq!(st.interaction, None, "step {n}");
@@ -436,14 +443,7 @@ fn stable_step_is_the_full_scan_minimum_above_level_zero() {
         if st.interaction.is_some() {
             continue;
         }
-        let mut best = (f64::INFINITY, usize::MAX);
-        for b in s.blocks() {
-            for (k, &d) in b.dt_crit.iter().enumerate() {
-                if d < best.0 {
-                    best = (d, b.first + k);
-                }
-            }
-        }
+        let best = full_scan_minimum(&s);
         let n = s.step_count();
         assert_eq!(st.element, Some(best.1), "step {n}");
         assert_eq!(st.dt.to_bits(), (safety * best.0).to_bits(), "step {n}");
