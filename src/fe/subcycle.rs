@@ -400,7 +400,7 @@ impl Subcycler {
         self.h_changed.resize(levels, false);
         for k in 0..levels {
             if self.j.is_multiple_of(1u64 << k) {
-                for &i in self.level_nodes.get(k).map_or(&[][..], |l| &l[..]) {
+                for &i in &self.level_nodes[k] {
                     self.snap[k][i as usize] = x[i as usize];
                 }
                 self.span[k] = 0.0;
@@ -579,21 +579,12 @@ impl Subcycler {
             }
         }
         // The nodes of each level's elements (level 0 needs none: its elements use v).
-        let mut seen = vec![u8::MAX; n];
         self.level_nodes = vec![Vec::new(); levels];
         for b in blocks {
             for (k, c) in b.conn.iter().enumerate() {
-                let l = self.elem_level[b.first + k];
-                if l == 0 {
-                    continue;
-                }
-                for &i in c {
-                    if seen[i as usize] != l {
-                        // A node can belong to elements of several levels; `seen` only
-                        // filters repeats of the same level, the sort below the rest.
-                        seen[i as usize] = l;
-                        self.level_nodes[l as usize].push(i);
-                    }
+                let l = self.elem_level[b.first + k] as usize;
+                if l > 0 {
+                    self.level_nodes[l].extend_from_slice(c);
                 }
             }
         }
