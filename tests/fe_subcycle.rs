@@ -275,18 +275,41 @@ fn wave_crosses_a_graded_bar_as_with_one_step() {
     );
 }
 
-/// Holds the fine step: a stable-step limit (s) acting on no node.
-struct StepLimit(f64);
+/// Holds the fine step: a stable-step limit `dt` (s) acting on no node, until the time
+/// `until` (s), when it lifts (it learns the time from its force calls, which come after the
+/// limit is read in a step).
+struct StepLimit {
+    dt: f64,
+    until: f64,
+    on: bool,
+}
+
+impl StepLimit {
+    /// A limit `dt` (s) that never lifts.
+    fn holding(dt: f64) -> Self {
+        Self::until(dt, f64::INFINITY)
+    }
+
+    /// A limit `dt` (s) that lifts at the time `until` (s).
+    fn until(dt: f64, until: f64) -> Self {
+        StepLimit {
+            dt,
+            until,
+            on: true,
+        }
+    }
+}
 
 impl Interaction for StepLimit {
     fn name(&self) -> &str {
         "step limit"
     }
-    fn add_forces(&mut self, _ctx: &StepContext<'_>, _f: &mut [[f64; 3]]) -> twoball::Result<()> {
+    fn add_forces(&mut self, ctx: &StepContext<'_>, _f: &mut [[f64; 3]]) -> twoball::Result<()> {
+        self.on = ctx.t < self.until;
         Ok(())
     }
     fn stable_time_step(&self, _mass: &[f64]) -> Option<f64> {
-        Some(self.0)
+        self.on.then_some(self.dt)
     }
     fn energy(&self) -> InteractionEnergy {
         InteractionEnergy::default()
@@ -302,7 +325,7 @@ impl Interaction for StepLimit {
 /// elements shorten, so their nodes must drop a level.
 fn squeezed_bar(speed: f64, sub: Subcycling) -> Solver {
     let c = Material::preset("steel").unwrap().dilatational_wave_speed();
-    let limit = StepLimit(0.75 * 1e-3 / c);
+    let limit = StepLimit::holding(0.75 * 1e-3 / c);
     squeezed_bar_with(speed, 0.0, settings(sub), 3.03e-3, vec![Box::new(limit)])
 }
 
@@ -389,33 +412,6 @@ fn subcycled_stable_step_is_the_full_scan_minimum() {
     assert!(r.level_drops > 0, "no level dropped: {r:?}");
 }
 
-/// A stable-step limit (s) that holds until the time `until` (s), then lifts (it learns the
-/// time from its force calls, which come after the limit is read in a step).
-struct LiftedLimit {
-    dt: f64,
-    until: f64,
-    on: bool,
-}
-
-impl Interaction for LiftedLimit {
-    fn name(&self) -> &str {
-        "lifted limit"
-    }
-    fn add_forces(&mut self, ctx: &StepContext<'_>, _f: &mut [[f64; 3]]) -> twoball::Result<()> {
-        self.on = ctx.t < self.until;
-        Ok(())
-    }
-    fn stable_time_step(&self, _mass: &[f64]) -> Option<f64> {
-        self.on.then_some(self.dt)
-    }
-    fn energy(&self) -> InteractionEnergy {
-        InteractionEnergy::default()
-    }
-    fn active_nodes(&self) -> Option<&[u32]> {
-        Some(&[])
-    }
-}
-
 /// The per-level Courant minima when the smallest limit lies at a level above 0: a limit of
 /// a fifth of the fine elements' Courant step holds h small, so every element runs at level
 /// 2 or more; when it lifts, the elements control the step (their minimum, held in a level-2
@@ -428,11 +424,7 @@ impl Interaction for LiftedLimit {
 fn stable_step_is_the_full_scan_minimum_above_level_zero() {
     let c = Material::preset("steel").unwrap().dilatational_wave_speed();
     let h = 0.2 * 1e-3 / c;
-    let lifted = LiftedLimit {
-        dt: h,
-        until: 60.0 * h,
-        on: true,
-    };
+    let lifted = StepLimit::until(h, 60.0 * h);
     let on = settings(Subcycling::On);
     let mut s = squeezed_bar_with(0.0, 300.0, on, 2.02e-3, vec![Box::new(lifted)]);
     let safety = s.settings().safety;
@@ -657,7 +649,7 @@ fn linear_geometry_subcycled_follows_large_geometry() {
             linear_geometry,
             ..Settings::default()
         };
-        let limit = StepLimit(0.75 * 1e-3 / c);
+        let limit = StepLimit::holding(0.75 * 1e-3 / c);
         let mut s = squeezed_bar_with(0.0, 300.0, set, 3.03e-3, vec![Box::new(limit)]);
         while s.step_count() < 400 {
             s.step().unwrap();
