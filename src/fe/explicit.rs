@@ -14,6 +14,7 @@ use super::{
     model::Model,
     plasticity::J2Material,
     profile::{Phase, Profile},
+    rows::Rows4,
     subcycle::{node_force_sum, SubcycleReport, Subcycler, Subcycling, AUTO_MIN_SAVING},
     tensor::{cross, inverse, Sym},
     timestep::StableStep,
@@ -160,7 +161,7 @@ pub struct Solver {
     /// the one-thread element loop adds each node's force with one 256-bit load, add and
     /// store (src/fe/lanes.rs `add_node_rows`; the fourth component only ever gets −0.0 added
     /// and stays 0).
-    f_int: Vec<[f64; 4]>,
+    f_int: Rows4,
     f_ext: Vec<[f64; 3]>,
     mass: Vec<f64>,
     /// Per node: bit k set when velocity component k is held at zero.
@@ -352,7 +353,7 @@ impl Solver {
                 interaction: None,
             },
             a: vec![[0.0; 3]; n],
-            f_int: vec![[0.0; 4]; n],
+            f_int: Rows4::zeros(n),
             f_ext: vec![[0.0; 3]; n],
             mass,
             fixed,

@@ -22,6 +22,7 @@ pub mod model;
 pub mod objective;
 pub mod plasticity;
 pub mod profile;
+pub mod rows;
 pub mod shape;
 pub mod subcycle;
 pub mod tensor;
