@@ -4,7 +4,9 @@
 //! add) and memory bandwidth (STREAM-style triad a = b + s c on arrays sized for L2, L3, the
 //! working set of `bench kernel` and main memory, 1 thread and all threads), and the
 //! throughput of two ways to load eight elements' node fields into eight lanes: the gather
-//! instruction, and row loads transposed in registers (what the element loop uses).
+//! instruction, and row loads transposed in registers (what the element loop uses); and the
+//! cost of a 64-byte row (an integration point's state) updated in place when it is one
+//! cache line and when it straddles two (why the point array is 64-byte aligned).
 
 use crate::error::{Error, Result};
 use clap::Args;
@@ -252,6 +254,46 @@ fn rows_512(reps: usize) -> Option<f64> {
     None
 }
 
+/// `reps` passes of row += 1 over `rows` rows of eight f64 starting at `base`, one 512-bit
+/// load, add and store per row (the element state's point rows, read and written once per
+/// step).
+///
+/// # Safety
+/// The CPU has AVX-512F; `base..base + 8 rows` is writable.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx512f")]
+unsafe fn row_update_rounds_avx512(base: *mut f64, rows: usize, reps: usize) {
+    use std::arch::x86_64::*;
+    let one = _mm512_set1_pd(1.0);
+    for _ in 0..reps {
+        for r in 0..rows {
+            let p = base.add(8 * r);
+            _mm512_storeu_pd(p, _mm512_add_pd(_mm512_loadu_pd(p), one));
+        }
+    }
+}
+
+/// Seconds per 64-byte row updated in place (512-bit load, add, store), one thread, 4 096
+/// rows (256 KB, in L2), with the rows starting `offset` bytes (a multiple of 8) past a
+/// 64-byte boundary: at 0 each row is one cache line, otherwise every row straddles two.
+/// `None` without AVX-512F.
+fn row_update_512(offset: usize, reps: usize) -> Option<f64> {
+    #[cfg(target_arch = "x86_64")]
+    if std::is_x86_feature_detected!("avx512f") {
+        let rows = 4096;
+        let mut buf = vec![0.0f64; 8 * rows + 16];
+        let skew = (64 - buf.as_ptr() as usize % 64) % 64 + offset;
+        let base = buf[skew / 8..].as_mut_ptr();
+        let t = Instant::now();
+        // SAFETY: AVX-512F checked; skew / 8 + 8 rows ≤ the buffer's 8 rows + 16 f64.
+        unsafe { row_update_rounds_avx512(base, rows, reps) };
+        black_box(&buf);
+        return Some(t.elapsed().as_secs_f64() / (rows * reps) as f64);
+    }
+    let _ = (offset, reps);
+    None
+}
+
 /// Triad bandwidth (bytes/s counted as STREAM does: 3 x 8 B per element) over arrays of `n`
 /// doubles, on the current thread pool with chunks of `chunk` elements.
 fn triad(n: usize, chunk: usize, passes: usize) -> f64 {
@@ -313,6 +355,17 @@ pub fn machine(a: MachineArgs) -> Result<()> {
         .reduce(f64::min);
     if let Some(r) = rows {
         println!("node_rows_avx512,1,{:.3},ns per 8-lane vector", r * 1e9);
+    }
+    for offset in [0, 16] {
+        let t = (0..a.repeats)
+            .filter_map(|_| row_update_512(offset, 200))
+            .reduce(f64::min);
+        if let Some(t) = t {
+            println!(
+                "row_update_512_offset_{offset}b,1,{:.3},ns per 64-byte row",
+                t * 1e9
+            );
+        }
     }
     // 24 MB: about the working set of `bench kernel`'s default 55 000-element ball.
     for (label, bytes) in [
