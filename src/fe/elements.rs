@@ -473,19 +473,25 @@ fn bbar_lanes<const W: usize>(
         // from them directly, with no zero fill first (a 3.7 KB `memset` call per group).
         debug_assert!(b.pts.len() == 8 * n && b.wp.len() == n && b.ie.len() == n);
         let pp = b.pts.as_mut_ptr().cast::<f64>();
-        let f: [[Lanes<W>; 7]; 8] = std::array::from_fn(|g| {
-            let rows: [usize; W] = build(|l| 64 * idx[l] + 8 * g);
-            // SAFETY: as above (rows of 8 f64 inside the slice).
-            unsafe { Lanes::load_rows(pp, &rows) }
-        });
-        let mut st = bp::State::<W> {
-            stress: std::array::from_fn(|g| [f[g][0], f[g][1], f[g][2], f[g][3], f[g][4], f[g][5]]),
-            eps_p: std::array::from_fn(|g| f[g][6]),
-            plastic_work: contiguous(b.wp, &idx),
-            internal_energy: contiguous(b.ie, &idx),
+        let mut st = MaybeUninit::<bp::State<W>>::uninit();
+        let sp = st.as_mut_ptr();
+        // SAFETY: as above (rows of 8 f64 inside the slice); every field of `st` is written
+        // once, through raw pointers to its own storage, before it is read.
+        let st = unsafe {
+            for g in 0..8 {
+                let rows: [usize; W] = build(|l| 64 * idx[l] + 8 * g);
+                let f: [Lanes<W>; 7] = Lanes::load_rows(pp, &rows);
+                let stress = std::ptr::addr_of_mut!((*sp).stress).cast::<[Lanes<W>; 6]>();
+                stress.add(g).write([f[0], f[1], f[2], f[3], f[4], f[5]]);
+                let eps_p = std::ptr::addr_of_mut!((*sp).eps_p).cast::<Lanes<W>>();
+                eps_p.add(g).write(f[6]);
+            }
+            std::ptr::addr_of_mut!((*sp).plastic_work).write(contiguous(b.wp, &idx));
+            std::ptr::addr_of_mut!((*sp).internal_energy).write(contiguous(b.ie, &idx));
+            st.assume_init_mut()
         };
         prefetch_ahead(b.pts.as_ptr(), 8 * (k0 + 2 * W), 8 * W);
-        let out = bp::update(xe, ve, dt, mat, &mut st);
+        let out = bp::update(xe, ve, dt, mat, st);
         if live == W {
             for g in 0..8 {
                 let s = &st.stress[g];
@@ -897,30 +903,28 @@ fn one_point_lanes<const W: usize>(
             b.pts.as_mut_ptr().cast::<f64>(),
             b.hgq.as_mut_ptr().cast::<f64>(),
         );
-        // SAFETY: as above (rows of 8 and 12 f64 inside their slices).
-        let (f, h0, h1): ([Lanes<W>; 7], [Lanes<W>; 8], [Lanes<W>; 4]) = unsafe {
-            (
-                Lanes::load_rows(pp, &build(|l| 8 * idx[l])),
-                Lanes::load_rows(hp, &build(|l| 12 * idx[l])),
-                Lanes::load_rows(hp, &build(|l| 12 * idx[l] + 8)),
-            )
-        };
-        let mut st = op::State::<W> {
-            stress: [f[0], f[1], f[2], f[3], f[4], f[5]],
-            eps_p: f[6],
-            hourglass: [
-                [h0[0], h0[1], h0[2]],
-                [h0[3], h0[4], h0[5]],
-                [h0[6], h0[7], h1[0]],
-                [h1[1], h1[2], h1[3]],
-            ],
-            plastic_work: contiguous(b.wp, &idx),
-            internal_energy: contiguous(b.ie, &idx),
-            hourglass_energy: contiguous(b.ehg, &idx),
+        let mut st = MaybeUninit::<op::State<W>>::uninit();
+        let sp = st.as_mut_ptr();
+        // SAFETY: as above (rows of 8 and 12 f64 inside their slices); every field of `st`
+        // is written once, through raw pointers to its own storage, before it is read.
+        let st = unsafe {
+            let f: [Lanes<W>; 7] = Lanes::load_rows(pp, &build(|l| 8 * idx[l]));
+            std::ptr::addr_of_mut!((*sp).stress).write([f[0], f[1], f[2], f[3], f[4], f[5]]);
+            std::ptr::addr_of_mut!((*sp).eps_p).write(f[6]);
+            let h0: [Lanes<W>; 8] = Lanes::load_rows(hp, &build(|l| 12 * idx[l]));
+            let h1: [Lanes<W>; 4] = Lanes::load_rows(hp, &build(|l| 12 * idx[l] + 8));
+            let q = std::ptr::addr_of_mut!((*sp).hourglass).cast::<Lanes<W>>();
+            for (k, h) in h0.iter().chain(&h1).enumerate() {
+                q.add(k).write(*h);
+            }
+            std::ptr::addr_of_mut!((*sp).plastic_work).write(contiguous(b.wp, &idx));
+            std::ptr::addr_of_mut!((*sp).internal_energy).write(contiguous(b.ie, &idx));
+            std::ptr::addr_of_mut!((*sp).hourglass_energy).write(contiguous(b.ehg, &idx));
+            st.assume_init_mut()
         };
         prefetch_ahead(b.pts.as_ptr(), k0 + 2 * W, W);
         prefetch_ahead(b.hgq.as_ptr(), k0 + 2 * W, W);
-        let out = op::update(xe, ve, dt, mat, hg, &mut st);
+        let out = op::update(xe, ve, dt, mat, hg, st);
         if live == W {
             let s = &st.stress;
             let cols = [s[0], s[1], s[2], s[3], s[4], s[5], st.eps_p, out.volume];
