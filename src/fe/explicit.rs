@@ -164,6 +164,9 @@ pub struct Solver {
     f_int: Rows4,
     f_ext: Vec<[f64; 3]>,
     mass: Vec<f64>,
+    /// 1/mass per node, 1/kg: the node passes multiply by it (the same value they divided
+    /// out at every step before, so the same bits).
+    inv_mass: Vec<f64>,
     /// Per node: bit k set when velocity component k is held at zero.
     fixed: Vec<u8>,
     elem_force: Vec<[[f64; 3]; 8]>,
@@ -355,6 +358,7 @@ impl Solver {
             a: vec![[0.0; 3]; n],
             f_int: Rows4::zeros(n),
             f_ext: vec![[0.0; 3]; n],
+            inv_mass: mass.iter().map(|m| 1.0 / m).collect(),
             mass,
             fixed,
             elem_force: vec![[[0.0; 3]; 8]; ne],
@@ -637,7 +641,7 @@ impl Solver {
         for &n in &self.kicked {
             let n = n as usize;
             let (fo, fi, fe) = (self.f_open[n], xyz(self.f_int[n]), self.f_ext[n]);
-            let (r, fx) = (1.0 / self.mass[n], self.fixed[n]);
+            let (r, fx) = (self.inv_mass[n], self.fixed[n]);
             let (mut ao, mut ac) = ([0.0; 3], [0.0; 3]);
             for d in 0..3 {
                 if fx & (1 << d) == 0 {
@@ -664,7 +668,7 @@ impl Solver {
 
     /// Subcycling: opening accelerations into `a`, closing ones into `a_close`.
     fn kick_accelerations(&mut self) -> Result<()> {
-        let (fe, m, fx) = (&self.f_ext, &self.mass, &self.fixed);
+        let (fe, m, fx) = (&self.f_ext, &self.inv_mass, &self.fixed);
         let bad = accelerations_into(&mut self.a, &self.f_open, fe, m, fx).or(accelerations_into(
             &mut self.a_close,
             &self.f_int,
@@ -855,7 +859,7 @@ impl Solver {
             &mut self.a,
             &self.f_int,
             &self.f_ext,
-            &self.mass,
+            &self.inv_mass,
             &self.fixed,
         );
         match bad {
@@ -883,18 +887,20 @@ impl Solver {
             .v
             .par_chunks_mut(NODE_CHUNK)
             .zip(self.x.par_chunks_mut(NODE_CHUNK))
-            .enumerate()
-            .map(|(c, (vs, xs))| {
+            .zip(a.par_chunks(NODE_CHUNK))
+            .zip(fixed.par_chunks(NODE_CHUNK))
+            .zip(f_int.par_chunks(NODE_CHUNK))
+            .zip(f_ext.par_chunks(NODE_CHUNK))
+            .map(|(((((vs, xs), acc), fxs), fis), fes)| {
                 let (mut pi, mut pe) = (0.0, 0.0);
-                for (k, (v, x)) in vs.iter_mut().zip(xs.iter_mut()).enumerate() {
-                    let n = c * NODE_CHUNK + k;
+                let nodes = vs.iter_mut().zip(xs.iter_mut()).zip(acc).zip(fxs);
+                for ((((v, x), a), &fx), (fi, fe)) in nodes.zip(fis.iter().zip(fes)) {
                     for d in 0..3 {
-                        v[d] += h * a[n][d];
+                        v[d] += h * a[d];
                     }
-                    fix_node(v, fixed[n]);
-                    let (fi, fe) = (xyz(f_int[n]), f_ext[n]);
-                    pi += dot(*v, fi);
-                    pe += dot(*v, fe);
+                    fix_node(v, fx);
+                    pi += dot(*v, xyz(*fi));
+                    pe += dot(*v, *fe);
                     for d in 0..3 {
                         x[d] += dt * v[d];
                     }
@@ -911,34 +917,39 @@ impl Solver {
     /// zeroed. Fails on the lowest node with a non-finite acceleration.
     fn accelerate_and_kick(&mut self, dt: f64) -> Result<(f64, f64)> {
         let h = 0.5 * dt;
-        let (m, fixed, f_int, f_ext) = (&self.mass, &self.fixed, &self.f_int, &self.f_ext);
+        let (inv_m, fixed, f_int, f_ext) = (&self.inv_mass, &self.fixed, &self.f_int, &self.f_ext);
         let parts: Vec<std::result::Result<(f64, f64), usize>> = self
             .a
             .par_chunks_mut(NODE_CHUNK)
             .zip(self.v.par_chunks_mut(NODE_CHUNK))
+            .zip(inv_m.par_chunks(NODE_CHUNK))
+            .zip(fixed.par_chunks(NODE_CHUNK))
+            .zip(f_int.par_chunks(NODE_CHUNK))
+            .zip(f_ext.par_chunks(NODE_CHUNK))
             .enumerate()
-            .map(|(c, (acc, vs))| {
+            .map(|(c, (((((acc, vs), rs), fxs), fis), fes))| {
                 let (mut pi, mut pe) = (0.0, 0.0);
-                for (k, (a, v)) in acc.iter_mut().zip(vs.iter_mut()).enumerate() {
-                    let n = c * NODE_CHUNK + k;
-                    let (fi, fe) = (xyz(f_int[n]), f_ext[n]);
-                    let r = 1.0 / m[n];
+                let nodes = acc.iter_mut().zip(vs.iter_mut()).zip(rs).zip(fxs);
+                for (k, ((((a, v), &r), &fx), (fi, fe))) in
+                    nodes.zip(fis.iter().zip(fes)).enumerate()
+                {
+                    let fi = xyz(*fi);
                     for d in 0..3 {
-                        a[d] = if fixed[n] & (1 << d) != 0 {
+                        a[d] = if fx & (1 << d) != 0 {
                             0.0
                         } else {
                             (fe[d] - fi[d]) * r
                         };
                     }
                     if !a.iter().all(|c| c.is_finite()) {
-                        return Err(n);
+                        return Err(c * NODE_CHUNK + k);
                     }
                     pi += dot(*v, fi);
-                    pe += dot(*v, fe);
+                    pe += dot(*v, *fe);
                     for d in 0..3 {
                         v[d] += h * a[d];
                     }
-                    fix_node(v, fixed[n]);
+                    fix_node(v, fx);
                 }
                 Ok((pi, pe))
             })
@@ -1235,13 +1246,13 @@ impl Solver {
     }
 }
 
-/// a = M⁻¹ (f_ext − f_int) into `out`, zero on constrained components; returns the lowest
-/// node with a non-finite value, if any.
+/// a = M⁻¹ (f_ext − f_int) into `out` (`inv_m`: 1/mass per node, 1/kg), zero on constrained
+/// components; returns the lowest node with a non-finite value, if any.
 fn accelerations_into<const N: usize>(
     out: &mut [[f64; 3]],
     fi: &[[f64; N]],
     fe: &[[f64; 3]],
-    m: &[f64],
+    inv_m: &[f64],
     fx: &[u8],
 ) -> Option<usize> {
     out.par_chunks_mut(NODE_CHUNK)
@@ -1249,7 +1260,7 @@ fn accelerations_into<const N: usize>(
         .map(|(c, a)| {
             for (k, ak) in a.iter_mut().enumerate() {
                 let n = c * NODE_CHUNK + k;
-                let r = 1.0 / m[n];
+                let r = inv_m[n];
                 for d in 0..3 {
                     ak[d] = if fx[n] & (1 << d) != 0 {
                         0.0
