@@ -235,10 +235,7 @@ impl ElementBlock {
     /// length of every nodal array the element loop reads or writes): checked once per call,
     /// so the gathers and scatters of the hot loop need no bounds checks.
     fn assert_nodes_below(&self, range: std::ops::Range<usize>, len: usize) {
-        let max_node = self.conn[range.clone()]
-            .iter()
-            .flatten()
-            .fold(0u32, |m, &n| m.max(n));
+        let max_node = max_index(self.conn[range.clone()].as_flattened());
         assert!(
             range.is_empty() || (max_node as usize) < len,
             "node index out of range of the nodal arrays"
@@ -643,6 +640,28 @@ fn arithmetic_lanes<const W: usize>(
         }
     };
     elapsed.as_secs_f64() * 1e9 / (f64::from(repeats) * W as f64)
+}
+
+/// The largest of `a` (0 if empty). The baseline x86-64 target has no unsigned 32-bit vector
+/// maximum, so the loop is compiled for AVX2 where the CPU has it (eight lanes per
+/// instruction instead of a compare-and-blend emulation: 1.5 % of a one-point step).
+fn max_index(a: &[u32]) -> u32 {
+    #[inline(always)]
+    fn fold(a: &[u32]) -> u32 {
+        a.iter().fold(0, |m, &n| m.max(n))
+    }
+    #[cfg(target_arch = "x86_64")]
+    {
+        #[target_feature(enable = "avx2")]
+        unsafe fn fold_avx2(a: &[u32]) -> u32 {
+            fold(a)
+        }
+        if std::is_x86_feature_detected!("avx2") {
+            // SAFETY: the CPU has AVX2.
+            return unsafe { fold_avx2(a) };
+        }
+    }
+    fold(a)
 }
 
 /// Lane l = `a[idx[l]]` for one f64 per element: a plain vector load when `idx` is a run
