@@ -668,14 +668,10 @@ impl Solver {
 
     /// Subcycling: opening accelerations into `a`, closing ones into `a_close`.
     fn kick_accelerations(&mut self) -> Result<()> {
-        let (fe, m, fx) = (&self.f_ext, &self.inv_mass, &self.fixed);
-        let bad = accelerations_into(&mut self.a, &self.f_open, fe, m, fx).or(accelerations_into(
-            &mut self.a_close,
-            &self.f_int,
-            fe,
-            m,
-            fx,
-        ));
+        let (fe, inv_m, fx) = (&self.f_ext, &self.inv_mass, &self.fixed);
+        let bad = accelerations_into(&mut self.a, &self.f_open, fe, inv_m, fx).or(
+            accelerations_into(&mut self.a_close, &self.f_int, fe, inv_m, fx),
+        );
         match bad {
             Some(n) => Err(self.non_finite_error(n)),
             None => Ok(()),
