@@ -836,6 +836,13 @@ macro_rules! on_kernel_path {
                 }
                 #[target_feature(enable = "avx2,fma")]
                 unsafe fn avx2($($arg: $ty),*) -> $ret {
+                    // A 32-byte-aligned local on the stack makes the compiler realign this
+                    // frame, so that its 256-bit stack slots are aligned wherever the caller's
+                    // stack pointer is (the AVX-512 entry realigns by itself).
+                    #[repr(align(32))]
+                    struct Aligned32(u8);
+                    let frame = Aligned32(std::hint::black_box(0));
+                    std::hint::black_box(&frame.0);
                     $inner::<4>($($arg),*)
                 }
                 match path {
