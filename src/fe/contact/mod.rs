@@ -21,6 +21,7 @@ pub mod pulse;
 pub mod relaxation;
 pub mod rigid_plane;
 pub mod search;
+pub mod step_cache;
 pub mod surface;
 pub mod vec3;
 

@@ -13,6 +13,7 @@ use super::output::{ContactOutput, ContactProbe, NodeContact, OutputBuilder, Pre
 use super::penalty::{damping_constant, effective_mass, stable_step};
 use super::projection::{project, shape, Projection};
 use super::search::{bounding_box, Aabb, BucketSearch};
+use super::step_cache::StepCache;
 use super::surface::ContactSurface;
 use super::vec3::{add, dot, norm, scale, sub, tangential};
 use super::ContactParams;
@@ -72,9 +73,8 @@ pub struct SurfacePair {
     reach: f64,
     /// Steps on which the global bounding-box test found the surfaces apart.
     pub free_steps: usize,
-    /// The last stable step and the mass array it was computed for (address, length): it
-    /// changes only when a slave touches a lighter master node.
-    dt_cache: std::cell::Cell<Option<(f64, usize, usize)>>,
+    /// The stable step: it changes only when a slave touches a lighter master node.
+    dt_cache: StepCache,
 }
 
 impl SurfacePair {
@@ -209,7 +209,7 @@ impl SurfacePair {
             friction_energy: 0.0,
             free_steps: 0,
             reach,
-            dt_cache: std::cell::Cell::new(None),
+            dt_cache: StepCache::default(),
         })
     }
 
@@ -248,7 +248,7 @@ impl SurfacePair {
             }
         }
         self.ready = true;
-        self.dt_cache.set(None);
+        self.dt_cache.clear();
     }
 
     /// The closest candidate segment of slave node `s` (m), if any.
@@ -393,7 +393,7 @@ impl Interaction for SurfacePair {
                         .fold(f64::INFINITY, f64::min);
                     if mq < p.partner_mass[i] {
                         p.partner_mass[i] = mq;
-                        self.dt_cache.set(None);
+                        self.dt_cache.clear();
                     }
                     let mut vm = [0.0; 3];
                     for a in 0..4 {
@@ -471,38 +471,31 @@ impl Interaction for SurfacePair {
     /// assumes the two surfaces have similar element sizes where they meet (as the graded
     /// balls do); the penetration guard in `add_forces` catches a violation.
     fn stable_time_step(&self, mass: &[f64]) -> Option<f64> {
-        let key = (mass.as_ptr() as usize, mass.len());
-        if let Some((dt, p, n)) = self.dt_cache.get() {
-            if (p, n) == key {
-                return Some(dt);
-            }
-        }
-        let dt = self
-            .passes
-            .iter()
-            .flat_map(|p| {
-                self.surfaces[p.slave]
-                    .nodes
-                    .iter()
-                    .zip(&p.laws)
-                    .enumerate()
-                    .map(move |(i, (&g, l))| {
-                        let mp = p
-                            .partner_mass
-                            .get(i)
-                            .copied()
-                            .unwrap_or(mass[p.partner[i] as usize]);
-                        // Both passes can load a node pair: take the full (unweighted) spring.
-                        stable_step(
-                            l.k / p.weight * self.params.coupling(),
-                            effective_mass(mass[g as usize], mp),
-                            l.omega_elem,
-                        )
-                    })
-            })
-            .min_by(f64::total_cmp)?;
-        self.dt_cache.set(Some((dt, key.0, key.1)));
-        Some(dt)
+        self.dt_cache.get_or(mass, || {
+            self.passes
+                .iter()
+                .flat_map(|p| {
+                    self.surfaces[p.slave]
+                        .nodes
+                        .iter()
+                        .zip(&p.laws)
+                        .enumerate()
+                        .map(move |(i, (&g, l))| {
+                            let mp = p
+                                .partner_mass
+                                .get(i)
+                                .copied()
+                                .unwrap_or(mass[p.partner[i] as usize]);
+                            // Both passes can load a node pair: take the full (unweighted) spring.
+                            stable_step(
+                                l.k / p.weight * self.params.coupling(),
+                                effective_mass(mass[g as usize], mp),
+                                l.omega_elem,
+                            )
+                        })
+                })
+                .min_by(f64::total_cmp)
+        })
     }
 
     fn energy(&self) -> InteractionEnergy {

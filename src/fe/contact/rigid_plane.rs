@@ -5,6 +5,7 @@ use super::friction::StickState;
 use super::law::{respond, stored_energy, Kinematics, NodeLaw};
 use super::output::{ContactOutput, ContactProbe, NodeContact, OutputBuilder, PressureSample};
 use super::penalty::{damping_constant, stable_step};
+use super::step_cache::StepCache;
 use super::surface::ContactSurface;
 use super::vec3::{add_into, axpy, dot, norm, scale, sub, tangential};
 use super::ContactParams;
@@ -38,10 +39,8 @@ pub struct RigidPlane {
     samples: Vec<PressureSample>,
     probe: ContactProbe,
     friction_energy: f64,
-    /// The last stable step and the mass array it was computed for (address, length): the
-    /// node laws change only in `prepare`, so the limit is a constant of the run after it
-    /// (recomputing it at every step was 1.7 % of a default-scene run).
-    dt_cache: std::cell::Cell<Option<(f64, usize, usize)>>,
+    /// The stable step: the node laws change only in `prepare`, which clears it.
+    dt_cache: StepCache,
 }
 
 impl RigidPlane {
@@ -116,7 +115,7 @@ impl RigidPlane {
             samples: Vec::new(),
             probe: ContactProbe::default(),
             friction_energy: 0.0,
-            dt_cache: std::cell::Cell::new(None),
+            dt_cache: StepCache::default(),
         })
     }
 
@@ -165,6 +164,19 @@ impl RigidPlane {
         (self.youngs, self.bulk)
     }
 
+    /// The smallest `penalty::stable_step` of the node springs as the laws are now, for nodal
+    /// masses `mass` (kg): s, `None` for an empty surface.
+    fn stiffest_spring_step(&self, mass: &[f64]) -> Option<f64> {
+        self.surface
+            .nodes
+            .iter()
+            .zip(&self.laws)
+            .map(|(&g, l)| {
+                stable_step(l.k * self.params.coupling(), mass[g as usize], l.omega_elem)
+            })
+            .min_by(f64::total_cmp)
+    }
+
     fn prepare(&mut self, ctx: &StepContext<'_>) {
         for (i, &g) in self.surface.nodes.iter().enumerate() {
             let m = ctx.mass[g as usize];
@@ -176,7 +188,7 @@ impl RigidPlane {
             law.c = damping_constant(self.params.damping, law.k, m);
         }
         self.ready = true;
-        self.dt_cache.set(None);
+        self.dt_cache.clear();
     }
 }
 
@@ -270,23 +282,8 @@ impl Interaction for RigidPlane {
     }
 
     fn stable_time_step(&self, mass: &[f64]) -> Option<f64> {
-        let key = (mass.as_ptr() as usize, mass.len());
-        if let Some((dt, p, n)) = self.dt_cache.get() {
-            if (p, n) == key {
-                return Some(dt);
-            }
-        }
-        let dt = self
-            .surface
-            .nodes
-            .iter()
-            .zip(&self.laws)
-            .map(|(&g, l)| {
-                stable_step(l.k * self.params.coupling(), mass[g as usize], l.omega_elem)
-            })
-            .min_by(f64::total_cmp)?;
-        self.dt_cache.set(Some((dt, key.0, key.1)));
-        Some(dt)
+        self.dt_cache
+            .get_or(mass, || self.stiffest_spring_step(mass))
     }
 
     fn energy(&self) -> InteractionEnergy {
@@ -302,18 +299,44 @@ impl Interaction for RigidPlane {
 mod tests {
     use super::*;
     use crate::fe::contact::PenaltyRule;
-    use crate::mesh::block::block;
+    use crate::mesh::{block::block, Mesh};
 
-    #[test]
-    fn flat_face_pressed_into_the_plane_carries_eps_g_per_area() {
-        // Bottom face of a 1 x 1 x 0.5 block, 3 x 3 x 1 elements (h = 0.5), plane at z = g.
+    /// A 1 x 1 x 0.5 m block of 3 x 3 x 1 elements (h = 0.5 m) and its bottom faces (z = 0).
+    fn block_and_bottom() -> (Mesh, Vec<[u32; 4]>) {
         let m = block([1.0, 1.0, 0.5], [3, 3, 1]);
-        let bottom: Vec<[u32; 4]> = m
+        let bottom = m
             .boundary
             .iter()
             .copied()
             .filter(|q| q.iter().all(|&i| m.nodes[i as usize][2] == 0.0))
             .collect();
+        (m, bottom)
+    }
+
+    /// `wall.add_forces` at t = 0 with step `dt` (s) for the nodes of `m` at rest where they
+    /// were made, with masses `mass` (kg); forces (N) into `f`.
+    fn at_rest(
+        wall: &mut RigidPlane,
+        m: &Mesh,
+        mass: &[f64],
+        dt: f64,
+        f: &mut [[f64; 3]],
+    ) -> Result<()> {
+        let v = vec![[0.0; 3]; m.nodes.len()];
+        let ctx = StepContext {
+            t: 0.0,
+            dt,
+            x: &m.nodes,
+            v: &v,
+            mass,
+        };
+        wall.add_forces(&ctx, f)
+    }
+
+    #[test]
+    fn flat_face_pressed_into_the_plane_carries_eps_g_per_area() {
+        // Bottom face of a 1 x 1 x 0.5 block, 3 x 3 x 1 elements (h = 0.5), plane at z = g.
+        let (m, bottom) = block_and_bottom();
         let mat = Material::preset("steel").unwrap();
         let g = 1e-6;
         let mut wall = RigidPlane::new(
@@ -327,19 +350,8 @@ mod tests {
         )
         .unwrap();
         let mass = vec![1.0; m.nodes.len()];
-        let v = vec![[0.0; 3]; m.nodes.len()];
         let mut f = vec![[0.0; 3]; m.nodes.len()];
-        wall.add_forces(
-            &StepContext {
-                t: 0.0,
-                dt: 1e-7,
-                x: &m.nodes,
-                v: &v,
-                mass: &mass,
-            },
-            &mut f,
-        )
-        .unwrap();
+        at_rest(&mut wall, &m, &mass, 1e-7, &mut f).unwrap();
         let eps = 10.0 * mat.youngs / 0.5;
         let fz: f64 = f.iter().map(|v| v[2]).sum();
         assert!((fz - eps * g).abs() < 1e-9 * eps * g, "{fz}");
@@ -366,16 +378,7 @@ mod tests {
             [0.0, 0.0, 1.0],
             ContactParams::default(),
         );
-        let e = deep.unwrap().add_forces(
-            &StepContext {
-                t: 0.0,
-                dt: 1e-7,
-                x: &m.nodes,
-                v: &v,
-                mass: &mass,
-            },
-            &mut f,
-        );
+        let e = at_rest(&mut deep.unwrap(), &m, &mass, 1e-7, &mut f);
         assert!(matches!(e, Err(Error::Numerical(_))));
         // Bad input is an error naming the field.
         let bad = RigidPlane::new(
@@ -394,13 +397,7 @@ mod tests {
     /// Soft rule stiffens them at the first step) and the mass array it is asked about.
     #[test]
     fn cached_stable_step_follows_laws_and_masses() {
-        let m = block([1.0, 1.0, 0.5], [3, 3, 1]);
-        let bottom: Vec<[u32; 4]> = m
-            .boundary
-            .iter()
-            .copied()
-            .filter(|q| q.iter().all(|&i| m.nodes[i as usize][2] == 0.0))
-            .collect();
+        let (m, bottom) = block_and_bottom();
         let mat = Material::preset("steel").unwrap();
         let params = ContactParams {
             penalty: PenaltyRule::Soft {
@@ -419,43 +416,22 @@ mod tests {
             params,
         )
         .unwrap();
-        // The limit recomputed from the laws as they are now, for masses `mass`.
-        let direct = |w: &RigidPlane, mass: &[f64]| {
-            w.surface
-                .nodes
-                .iter()
-                .zip(&w.laws)
-                .map(|(&g, l)| {
-                    stable_step(l.k * w.params.coupling(), mass[g as usize], l.omega_elem)
-                })
-                .fold(f64::INFINITY, f64::min)
-        };
         let light = vec![1e-6; m.nodes.len()];
         let before = wall.stable_time_step(&light).unwrap();
-        assert_eq!(before, direct(&wall, &light));
-        // A step 100x the spring's own limit: the Soft rule's m/Δt² term then dominates.
-        let v = vec![[0.0; 3]; m.nodes.len()];
+        assert_eq!(before, wall.stiffest_spring_step(&light).unwrap());
+        // A step so short that the Soft rule's m/Δt² term (5e10 N/m here) outweighs its bulk
+        // term (0.2e9-3.4e9 N/m): the first step stiffens every law.
         let mut f = vec![[0.0; 3]; m.nodes.len()];
-        wall.add_forces(
-            &StepContext {
-                t: 0.0,
-                dt: 1e-9,
-                x: &m.nodes,
-                v: &v,
-                mass: &light,
-            },
-            &mut f,
-        )
-        .unwrap();
+        at_rest(&mut wall, &m, &light, 1e-9, &mut f).unwrap();
         let after = wall.stable_time_step(&light).unwrap();
-        assert_eq!(after, direct(&wall, &light));
+        assert_eq!(after, wall.stiffest_spring_step(&light).unwrap());
         assert!(
             after < 0.5 * before,
             "{after} vs {before}: the stiffer laws must show"
         );
         let heavy = vec![1.0; m.nodes.len()];
         let h = wall.stable_time_step(&heavy).unwrap();
-        assert_eq!(h, direct(&wall, &heavy));
+        assert_eq!(h, wall.stiffest_spring_step(&heavy).unwrap());
         assert!(h > 10.0 * after);
     }
 }
