@@ -166,7 +166,7 @@ impl RigidPlane {
 
     /// The smallest `penalty::stable_step` of the node springs as the laws are now, for nodal
     /// masses `mass` (kg): s, `None` for an empty surface.
-    fn stiffest_spring_step(&self, mass: &[f64]) -> Option<f64> {
+    fn smallest_spring_step(&self, mass: &[f64]) -> Option<f64> {
         self.surface
             .nodes
             .iter()
@@ -283,7 +283,7 @@ impl Interaction for RigidPlane {
 
     fn stable_time_step(&self, mass: &[f64]) -> Option<f64> {
         self.dt_cache
-            .get_or(mass, || self.stiffest_spring_step(mass))
+            .get_or(mass, || self.smallest_spring_step(mass))
     }
 
     fn energy(&self) -> InteractionEnergy {
@@ -418,20 +418,20 @@ mod tests {
         .unwrap();
         let light = vec![1e-6; m.nodes.len()];
         let before = wall.stable_time_step(&light).unwrap();
-        assert_eq!(before, wall.stiffest_spring_step(&light).unwrap());
+        assert_eq!(before, wall.smallest_spring_step(&light).unwrap());
         // A step so short that the Soft rule's m/Δt² term (5e10 N/m here) outweighs its bulk
         // term (0.2e9-3.4e9 N/m): the first step stiffens every law.
         let mut f = vec![[0.0; 3]; m.nodes.len()];
         at_rest(&mut wall, &m, &light, 1e-9, &mut f).unwrap();
         let after = wall.stable_time_step(&light).unwrap();
-        assert_eq!(after, wall.stiffest_spring_step(&light).unwrap());
+        assert_eq!(after, wall.smallest_spring_step(&light).unwrap());
         assert!(
             after < 0.5 * before,
             "{after} vs {before}: the stiffer laws must show"
         );
         let heavy = vec![1.0; m.nodes.len()];
         let h = wall.stable_time_step(&heavy).unwrap();
-        assert_eq!(h, wall.stiffest_spring_step(&heavy).unwrap());
+        assert_eq!(h, wall.smallest_spring_step(&heavy).unwrap());
         assert!(h > 10.0 * after);
     }
 }
