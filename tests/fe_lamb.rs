@@ -207,7 +207,6 @@ fn explicit_vibration_matches_lamb_one_point() {
 }
 
 #[test]
-#[ignore = "about a minute on 2 cores; run with --ignored"]
 fn explicit_vibration_matches_lamb_bbar() {
     explicit_check(Formulation::BBar);
 }

@@ -90,10 +90,9 @@ fn elastic_impact_matches_hertz_within_one_percent() {
     assert!(sim.energy_error < 0.01, "energy error {}", sim.energy_error);
 }
 
-/// Slow (a full model of 6784 elements, about 40 s CPU in release): run with
-/// `cargo test --release --test study_fe_pipeline -- --ignored`.
+/// A full model of 6784 elements (about 2 s in the test profile); print the comparison with
+/// `cargo test --release --test study_fe_pipeline model_matches -- --nocapture`.
 #[test]
-#[ignore]
 fn quarter_model_matches_the_full_model() {
     let quarter = run(&scene(&COARSE));
     let mut off = COARSE.to_vec();
@@ -122,10 +121,9 @@ fn quarter_model_matches_the_full_model() {
     assert!((v1[0] + v2[0]).abs() < 1e-6, "momentum: {v1:?} {v2:?}");
 }
 
-/// Slow (a full model of 6016 elements): run with
-/// `cargo test --release --test study_fe_pipeline -- --ignored`.
+/// A full model of 6016 elements; print the comparison with
+/// `cargo test --release --test study_fe_pipeline model_matches -- --nocapture`.
 #[test]
-#[ignore]
 fn half_model_matches_the_full_model() {
     let mut sets = COARSE.to_vec();
     sets.extend(["ball1.velocity=[1,0.5,0]", "ball2.velocity=[-1,-0.5,0]"]);
