@@ -48,6 +48,25 @@ impl Error {
         }
     }
 
+    /// The same error with an [`Error::Invalid`] field named from the scene's root:
+    /// `prefix.field` (e.g. `size` from the mesh generator becomes `ball2.mesh.size`). A lower
+    /// layer knows only its own field names; the layer that called it knows where they came
+    /// from. Other variants are returned unchanged.
+    pub fn within(self, prefix: &str) -> Self {
+        match self {
+            Error::Invalid {
+                field,
+                value,
+                allowed,
+            } => Error::Invalid {
+                field: format!("{prefix}.{field}"),
+                value,
+                allowed,
+            },
+            other => other,
+        }
+    }
+
     /// Shorthand for [`Error::Io`].
     pub fn io(path: impl AsRef<std::path::Path>, source: std::io::Error) -> Self {
         Error::Io {

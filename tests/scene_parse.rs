@@ -299,6 +299,35 @@ fn run_command_rejects_bad_input_with_one_line_and_exit_1() {
     }
 }
 
+/// A mesh setting that passes the scene's checks but not the mesh generator's is named from
+/// the scene root, with the ball it belongs to (the generator itself knows only `size`).
+#[test]
+fn mesh_generator_errors_name_the_ball_and_key() {
+    let bin = env!("CARGO_BIN_EXE_twoball");
+    for (ball, field) in [("ball1", "ball1.mesh.size"), ("ball2", "ball2.mesh.size")] {
+        // size below radius / 600: more than 2000 core cells along an edge. Half model (the
+        // tangential speed), so that both balls' meshes are built.
+        let o = std::process::Command::new(bin)
+            .args([
+                "run",
+                "--set",
+                "ball1.velocity=[1,0.5,0]",
+                "--set",
+                &format!("{ball}.mesh={{size=1e-5,pole_size=1e-5}}"),
+            ])
+            .output()
+            .unwrap();
+        assert_eq!(o.status.code(), Some(1));
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert!(
+            err.starts_with(&format!(
+                "error: invalid {field} = 0.00001: allowed size >= radius"
+            )),
+            "{ball}: {err}"
+        );
+    }
+}
+
 #[test]
 fn run_without_impact_reports_it_and_writes_no_nan() {
     let dir = std::env::temp_dir().join(format!("twoball-noimpact-{}", std::process::id()));

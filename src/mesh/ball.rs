@@ -108,7 +108,7 @@ pub fn ball(spec: &BallSpec) -> Result<Mesh> {
         return Err(Error::invalid(
             "size",
             h,
-            format!("size >= radius / 600 = {} m", r / 600.0),
+            format!("size >= radius / 600 = {:.4e} m", r / 600.0),
         ));
     }
     let n = (n_raw as usize).div_ceil(2) * 2;

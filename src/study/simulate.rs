@@ -279,25 +279,27 @@ fn fe_formulation(f: Formulation) -> FeFormulation {
     }
 }
 
-/// The ball's mesh with its contact pole at +x and centre at the origin.
-fn ball_mesh(b: &BallScene, cut: Cut) -> Result<Mesh> {
+/// The mesh of ball `name` ("ball1" or "ball2") with its contact pole at +x and centre at the
+/// origin; a rejected mesh setting is named from the scene root (`ball2.mesh.size`).
+fn ball_mesh(name: &str, b: &BallScene, cut: Cut) -> Result<Mesh> {
     match &b.mesh {
         MeshSettings::Builtin { size, pole_size } => ball(&BallSpec {
             diameter: b.diameter,
             size: *size,
             pole_size: Some(*pole_size),
             cut,
-        }),
-        MeshSettings::File { path } => file_ball_mesh(path, b.diameter),
+        })
+        .map_err(|e| e.within(&format!("{name}.mesh"))),
+        MeshSettings::File { path } => file_ball_mesh(name, path, b.diameter),
     }
 }
 
 /// A ball mesh read from a gmsh file: checked to span the scene's diameter (within 2 %),
 /// centred at the origin, and given a `contact` face set (boundary quads within 30° of +x)
 /// when the file has none.
-fn file_ball_mesh(path: &std::path::Path, d: f64) -> Result<Mesh> {
+fn file_ball_mesh(name: &str, path: &std::path::Path, d: f64) -> Result<Mesh> {
     let mut mesh = crate::mesh::msh::read(path)?.mesh;
-    let field = "ballN.mesh.file";
+    let field = format!("{name}.mesh.file");
     let mut lo = [f64::INFINITY; 3];
     let mut hi = [f64::NEG_INFINITY; 3];
     for p in &mesh.nodes {
@@ -309,7 +311,7 @@ fn file_ball_mesh(path: &std::path::Path, d: f64) -> Result<Mesh> {
     let span = hi[0] - lo[0];
     if !(span.is_finite() && (span - d).abs() <= 0.02 * d) {
         return Err(Error::invalid(
-            field,
+            &field,
             format!("{} (x extent {span:.4e} m)", path.display()),
             format!("a whole ball of the scene's diameter {d} m within 2 %"),
         ));
@@ -326,7 +328,7 @@ fn file_ball_mesh(path: &std::path::Path, d: f64) -> Result<Mesh> {
             .collect();
         if faces.is_empty() {
             return Err(Error::invalid(
-                field,
+                &field,
                 path.display(),
                 "a ball mesh with boundary quads near +x",
             ));
@@ -481,7 +483,7 @@ fn build(
     let back = |u: [f64; 3]| u.map(|c| -c * pre_gap_time);
     match red {
         Reduction::Quarter => {
-            let m1 = ball_mesh(b1, Cut::Quarter)?
+            let m1 = ball_mesh("ball1", b1, Cut::Quarter)?
                 .translated([-r1, 0.0, 0.0])
                 .translated(back(kin.u[0]));
             let p1 = model.add_part("ball1", &m1, b1.material, form)?;
@@ -518,10 +520,10 @@ fn build(
             } else {
                 Cut::Full
             };
-            let m1 = ball_mesh(b1, cut)?
+            let m1 = ball_mesh("ball1", b1, cut)?
                 .translated([-r1, 0.0, 0.0])
                 .translated(back(kin.u[0]));
-            let m2 = ball_mesh(b2, cut)?
+            let m2 = ball_mesh("ball2", b2, cut)?
                 .mirrored_x()
                 .translated([r2, 0.0, 0.0])
                 .translated(back(kin.u[1]));
