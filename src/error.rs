@@ -48,23 +48,28 @@ impl Error {
         }
     }
 
-    /// The same error with an [`Error::Invalid`] field named from the scene's root:
-    /// `prefix.field` (e.g. `size` from the mesh generator becomes `ball2.mesh.size`). A lower
-    /// layer knows only its own field names; the layer that called it knows where they came
-    /// from. Other variants are returned unchanged.
-    pub fn within(self, prefix: &str) -> Self {
+    /// The same error with an [`Error::Invalid`] field renamed by `rename` (the layer that
+    /// called a lower one knows where the lower one's field names came from). Other variants
+    /// are returned unchanged.
+    pub fn map_field(self, rename: impl FnOnce(String) -> String) -> Self {
         match self {
             Error::Invalid {
                 field,
                 value,
                 allowed,
             } => Error::Invalid {
-                field: format!("{prefix}.{field}"),
+                field: rename(field),
                 value,
                 allowed,
             },
             other => other,
         }
+    }
+
+    /// [`Error::map_field`] naming the field from the scene's root: `prefix.field` (e.g.
+    /// `size` from the mesh generator becomes `ball2.mesh.size`).
+    pub fn within(self, prefix: &str) -> Self {
+        self.map_field(|field| format!("{prefix}.{field}"))
     }
 
     /// Shorthand for [`Error::Io`].

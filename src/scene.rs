@@ -422,18 +422,9 @@ fn read_material(b: &Reader<'_>) -> Result<(Material, String)> {
                     (base, "custom".to_string())
                 }
             };
-            let mat = base.with_overrides(&o).map_err(|e| match e {
-                Error::Invalid {
-                    field,
-                    value,
-                    allowed,
-                } => Error::Invalid {
-                    field: field.replacen("material", &path, 1),
-                    value,
-                    allowed,
-                },
-                other => other,
-            })?;
+            let mat = base
+                .with_overrides(&o)
+                .map_err(|e| e.map_field(|field| field.replacen("material", &path, 1)))?;
             Ok((mat, name))
         }
         Some(other) => Err(Error::Parse(format!(
