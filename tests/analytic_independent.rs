@@ -185,3 +185,31 @@ fn acceptance_case_from_the_command_line() {
     assert!((j["t3"].as_f64().unwrap() / 1.409233e-4 - 1.0).abs() < 1e-3);
     assert_eq!(j["impact"], serde_json::Value::Bool(true));
 }
+
+/// The worked case's golden numbers (tests/analytic_three_phase.rs,
+/// `worked_case_of_the_notes_to_four_digits`) derived here, without the library: two D = 20 mm
+/// copper-fe balls at +1 / −1 m/s through the printed integrals. The library is checked
+/// against the same constants there, so neither side's output defines them.
+#[test]
+fn worked_case_numbers_come_from_the_printed_integrals() {
+    let b = ball("copper-fe", 0.02);
+    let [e, d1, d2, dp, t1, t2, t3, v1a, v2a, eta] = paper(&b, &b, 1.0, -1.0);
+    let golden = [
+        (d1, 1.7984e-7),
+        (d2, 1.28080e-4),
+        (dp, 1.09292e-4),
+        (e, 0.342645),
+        (t1, 8.992e-8),
+        (t2, 1.005769e-4),
+        (t3, 1.409233e-4),
+        (v1a, -0.342645),
+        (v2a, 0.342645),
+        (eta, 0.140469),
+    ];
+    for (i, (got, want)) in golden.iter().enumerate() {
+        assert!(
+            ((got - want) / want).abs() < 5e-5,
+            "quantity {i}: printed integrals give {got}, golden {want}"
+        );
+    }
+}

@@ -13,6 +13,10 @@ fn rel(a: f64, b: f64) -> f64 {
     ((a - b) / b).abs()
 }
 
+/// The worked case: two D = 20 mm copper-fe balls at +1 / −1 m/s. The expected numbers are
+/// not this library's output: tests/analytic_independent.rs derives them from the paper's
+/// printed integrals by plain quadrature (`worked_case_numbers_come_from_the_printed_integrals`
+/// asserts the same constants to 5e-5 there).
 #[test]
 fn worked_case_of_the_notes_to_four_digits() {
     let b = ball("copper-fe", 0.02);

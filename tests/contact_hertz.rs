@@ -13,11 +13,29 @@ mod hertz;
 use hertz::{
     finite_ball_reference, hertz_pulse, impact, stiffened_pulse, windowed_peak, Impact, DIAMETER,
 };
+use std::collections::HashMap;
+use std::sync::{Arc, Mutex, OnceLock};
 use twoball::analytic::hertz::HertzPair;
 use twoball::fe::contact::PenaltyRule;
 
 fn fkn(f: f64) -> PenaltyRule {
     PenaltyRule::Fkn { factor: f }
+}
+
+/// The wall impact at 2 m/s with FKN 10 on the (`pole`, `size`) mesh (m), run once per test
+/// process: the ladder, the refined run, the penalty, element and geometry checks share runs.
+fn wall_2_m_s(pole: f64, size: f64) -> Impact {
+    type Cache = Mutex<HashMap<(u64, u64), Arc<OnceLock<Impact>>>>;
+    static CACHE: OnceLock<Cache> = OnceLock::new();
+    let cell = CACHE
+        .get_or_init(Cache::default)
+        .lock()
+        .unwrap()
+        .entry((pole.to_bits(), size.to_bits()))
+        .or_default()
+        .clone();
+    cell.get_or_init(|| impact(2.0, pole, size, fkn(10.0), false))
+        .clone()
 }
 
 fn report(label: &str, r: &Impact) {
@@ -57,9 +75,16 @@ fn report(label: &str, r: &Impact) {
     );
 }
 
-/// Energy, restitution and clean separation: what every impact must satisfy.
+/// Energy, restitution and clean separation: what every impact must satisfy. An elastic impact
+/// loses only what stays in the balls' vibration: e measured 0.99976 on the coarsest mesh of
+/// the ladder (200 µm pole), 0.99996-1.00000 on the finer ones (docs/contact-penalty.md), so
+/// e must lie in [0.999, 1.0001] (above 1 the contact would have created energy).
 fn check_impact_invariants(r: &Impact) {
-    assert!(r.restitution > 0.97, "restitution {}", r.restitution);
+    assert!(
+        (0.999..=1.0001).contains(&r.restitution),
+        "restitution {}",
+        r.restitution
+    );
     assert!(r.energy_error < 0.01, "energy drift {}", r.energy_error);
     assert!(
         r.residual_contact_energy.abs() < 1e-12,
@@ -68,45 +93,54 @@ fn check_impact_invariants(r: &Impact) {
     );
 }
 
+/// The 2 m/s impact on the 100 µm / 2 mm mesh against the finite-ball reference (the exact
+/// finite ball, not Hertz's half-space, which it misses by −1.4 / −1.6 / +2.1 %). The 2 m/s
+/// ladder against that reference (docs/contact-penalty.md, "The free ball") gives +4.34 /
+/// +3.03 / −0.86 % on the 200 µm mesh, +1.54 / +1.36 / −0.67 % on this one, +0.63 / +0.52 /
+/// −0.36 % on the 50 µm mesh (δ_max / t_c / F_peak, t_c/20 window): converging to it. Bounds of
+/// 2 % (δ_max, t_c) and 1 % (force) hold this mesh and anything more accurate, and fail the
+/// next coarser mesh's error.
 #[test]
 fn quarter_ball_on_frictionless_wall_matches_hertz_at_2_m_s() {
-    let r = impact(2.0, 1e-4, 2e-3, fkn(10.0), false);
+    let r = wall_2_m_s(1e-4, 2e-3);
     report("wall 2 m/s pole 0.1 mm", &r);
     check_impact_invariants(&r);
-    let (ed, et, ef) = r.errors();
+    let (fd, ft, ff) = r.finite_ball_errors();
     assert!(
-        ed.abs() < 0.015 && et.abs() < 0.015,
-        "delta {ed}, duration {et}"
+        fd.abs() < 0.02 && ft.abs() < 0.02 && ff.abs() < 0.01,
+        "against the finite-ball reference: delta {fd}, duration {ft}, force {ff}"
     );
-    assert!(ef.abs() < 0.03, "peak force {ef}");
 }
 
 #[test]
 fn two_balls_with_two_pass_contact_match_hertz_at_2_m_s() {
-    // The deformable pair on a coarse mesh (pole element 0.2 mm, a ≈ 2.3 elements). On this
-    // mesh the mirror-image wall run gives +5.1 % / +3.1 % (docs/contact-penalty.md); the
-    // refined comparison is `refined_two_balls_2_m_s`.
+    // The deformable pair on a coarse mesh (pole element 0.2 mm, a ≈ 2.3 elements) against
+    // the finite-ball reference. Measured +3.93 % / +2.60 % / −0.65 % (δ_max / t_c / F_peak);
+    // the mirror-image wall run on the 200 µm mesh gives +4.34 / +3.03 / −0.86 %
+    // (docs/contact-penalty.md, "The free ball"), and the errors shrink with the pole element.
+    // The refined comparison is `refined_two_balls_2_m_s`.
     let pair = impact(2.0, 2e-4, 3e-3, fkn(10.0), true);
     report("ball-ball 2 m/s pole 0.2 mm", &pair);
     check_impact_invariants(&pair);
-    let (ed, et, ef) = pair.errors();
+    let (fd, ft, ff) = pair.finite_ball_errors();
     assert!(
-        ed.abs() < 0.06 && et.abs() < 0.04 && ef.abs() < 0.05,
-        "delta {ed}, duration {et}, force {ef}"
+        fd.abs() < 0.05 && ft.abs() < 0.035 && ff.abs() < 0.01,
+        "against the finite-ball reference: delta {fd}, duration {ft}, force {ff}"
     );
 }
 
-/// The two-ball (two-pass) model on the mesh of the cargo-test wall run.
+/// The two-ball (two-pass) model on the mesh of the cargo-test wall run, against the
+/// finite-ball reference with the wall run's bounds (that run: +1.54 / +1.36 / −0.67 %).
 #[test]
 #[ignore]
 fn refined_two_balls_2_m_s() {
     let r = impact(2.0, 1e-4, 2e-3, fkn(10.0), true);
     report("ball-ball 2 m/s pole 1.0e-4 m", &r);
     check_impact_invariants(&r);
-    let (ed, et, ef) = r.errors();
+    let (fd, ft, ff) = r.finite_ball_errors();
     assert!(
-        ed.abs() < 0.015 && et.abs() < 0.015 && ef.abs() < 0.03,
-        "{ed} {et} {ef}"
+        fd.abs() < 0.02 && ft.abs() < 0.02 && ff.abs() < 0.01,
+        "against the finite-ball reference: delta {fd}, duration {ft}, force {ff}"
     );
 }
 
@@ -121,7 +155,11 @@ fn refined_two_balls_2_m_s() {
 /// finite-ball reference (Hertz stiffened by that CalculiX fit) all three quantities must be
 /// within 1 %.
 fn refined(v: f64, pole: f64, size: f64) {
-    let r = impact(v, pole, size, fkn(10.0), false);
+    let r = if v == 2.0 {
+        wall_2_m_s(pole, size)
+    } else {
+        impact(v, pole, size, fkn(10.0), false)
+    };
     report(
         &format!("wall {v} m/s pole {pole:.1e} m size {size:.1e} m"),
         &r,
@@ -175,7 +213,7 @@ fn convergence_table_2_m_s() {
         .into_iter()
         .enumerate()
     {
-        let r = impact(2.0, pole, size, fkn(10.0), false);
+        let r = wall_2_m_s(pole, size);
         report(
             &format!("wall 2 m/s pole {pole:.1e} m size {size:.1e} m"),
             &r,
@@ -287,19 +325,46 @@ fn stiffened_pulse_scales_as_the_closed_forms() {
     );
 }
 
-/// Penalty sensitivity at 2 m/s (acceptance 6, docs/contact-penalty.md).
+/// Penalty sensitivity at 2 m/s (acceptance 6, docs/contact-penalty.md): over FKN = 5 to 40
+/// (a factor of 8 around the default 10) δ_max and t_c move by less than 1 %, the t_c/20
+/// peak force by less than PENALTY_FORCE, and e by less than PENALTY_E; FKN = 5-20 (the
+/// recommended range) also keeps the elastic invariants.
 #[test]
 #[ignore]
 fn penalty_sensitivity_2_m_s() {
-    let base = impact(2.0, 1e-4, 2e-3, fkn(10.0), false);
+    let base = wall_2_m_s(1e-4, 2e-3);
     report("FKN 10", &base);
     for f in [5.0, 20.0, 40.0] {
         let r = impact(2.0, 1e-4, 2e-3, fkn(f), false);
         report(&format!("FKN {f}"), &r);
-        assert!((r.delta_max / base.delta_max - 1.0).abs() < 0.01);
-        assert!((r.duration / base.duration - 1.0).abs() < 0.01);
+        let (dd, dt, df, de) = (
+            r.delta_max / base.delta_max - 1.0,
+            r.duration / base.duration - 1.0,
+            r.peak_force_window / base.peak_force_window - 1.0,
+            r.restitution - base.restitution,
+        );
+        println!(
+            "  FKN {f} against FKN 10: delta_max {:+.2}%, t_c {:+.2}%, F_peak {:+.2}%, e {de:+.1e}",
+            100.0 * dd,
+            100.0 * dt,
+            100.0 * df
+        );
+        assert!(
+            dd.abs() < 0.01 && dt.abs() < 0.01,
+            "FKN {f}: delta {dd}, duration {dt}"
+        );
+        assert!(df.abs() < PENALTY_FORCE, "FKN {f}: peak force {df}");
+        assert!(de.abs() < PENALTY_E, "FKN {f}: e moved by {de}");
+        if f <= 20.0 {
+            check_impact_invariants(&r);
+        }
     }
 }
+
+/// Largest change of the t_c/20 peak force over FKN 5-40 against FKN 10 (TBD).
+const PENALTY_FORCE: f64 = 1.0;
+/// Largest change of e over FKN 5-40 against FKN 10 (TBD).
+const PENALTY_E: f64 = 1.0;
 
 /// Where the peak-force excess at 2 m/s comes from: the same impact (pole 100 µm, far field
 /// 2 mm) with the one-point hex at three hourglass coefficients and with the B-bar hex (no
@@ -316,6 +381,7 @@ fn peak_force_element_check_2_m_s() {
         ("one-point eps_hg 0.15", Formulation::OnePoint, 0.15),
         ("B-bar", Formulation::BBar, 0.0),
     ];
+    let mut excess = Vec::new();
     for (label, formulation, hourglass) in runs {
         let r = impact_variant(
             2.0,
@@ -332,6 +398,20 @@ fn peak_force_element_check_2_m_s() {
         );
         report(label, &r);
         check_impact_invariants(&r);
+        excess.push((label, r.force_window_error()));
+    }
+    // What docs/contact-penalty.md concludes: the excess (+1.37 to +1.46 % over a 15-fold
+    // change of ε_hg, +1.29 % with B-bar) is not the hourglass control nor the one-point
+    // integration. Each variant is within 0.3 % of the default element's excess and keeps
+    // more than +1 %: an excess that followed ε_hg or vanished with B-bar fails.
+    let default = excess[0].1;
+    for (label, x) in &excess {
+        assert!(
+            (x - default).abs() < 0.003 && *x > 0.01,
+            "{label}: excess {:+.2} % against the default element's {:+.2} %: {excess:?}",
+            100.0 * x,
+            100.0 * default
+        );
     }
 }
 
@@ -343,6 +423,8 @@ fn peak_force_element_check_2_m_s() {
 #[ignore]
 fn peak_force_linear_geometry() {
     use hertz::{impact_variant, Variant};
+    let large = wall_2_m_s(1e-4, 2e-3);
+    report("large geometry 2 m/s pole 1.0e-4 m size 2.0e-3 m", &large);
     for (v, pole, size) in [(2.0, 1e-4, 2e-3), (0.5, 3e-5, 2e-3)] {
         let r = impact_variant(
             v,
@@ -361,5 +443,24 @@ fn peak_force_linear_geometry() {
             &r,
         );
         check_impact_invariants(&r);
+        // What docs/contact-penalty.md concludes: the large-displacement kinematics are not
+        // the excess (linear geometry +1.53 % against +1.43 % at 2 m/s): small-displacement
+        // elements keep the excess within 0.3 % of the large-displacement run and above +1 %.
+        if v == 2.0 {
+            let (lin, big) = (r.force_window_error(), large.force_window_error());
+            assert!(
+                (lin - big).abs() < 0.003 && lin > 0.01,
+                "linear geometry excess {:+.2} % against {:+.2} %",
+                100.0 * lin,
+                100.0 * big
+            );
+        }
+        // Both meshes resolve the patch (a/10): against the finite-ball reference within
+        // 2 % (δ_max, t_c) and 1 % (force), as the large-displacement runs.
+        let (fd, ft, ff) = r.finite_ball_errors();
+        assert!(
+            fd.abs() < 0.02 && ft.abs() < 0.02 && ff.abs() < 0.01,
+            "{v} m/s linear geometry against the finite ball: {fd} {ft} {ff}"
+        );
     }
 }

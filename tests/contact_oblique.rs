@@ -9,6 +9,9 @@ use twoball::mesh::ball::{ball, BallSpec, Cut};
 use twoball::Material;
 
 const MU: f64 = 0.2;
+/// Allowed relative departure of the stick case's J_t/J_n from the rigid-body value (measured
+/// +19.6 %).
+const STICK_BAND: f64 = 0.3;
 
 struct Oblique {
     /// Tangential / normal impulse from the change of centre-of-mass velocity.
@@ -127,7 +130,17 @@ fn small_tangential_speed_stops_sliding_during_contact() {
         "J_t/J_n = {:.5} (mu {MU}), stuck steps {}/{}, energy {:.2e}",
         r.impulse_ratio, r.stuck_steps, r.contact_steps, r.energy_error
     );
-    assert!(r.impulse_ratio < 0.9 * MU, "J_t/J_n = {}", r.impulse_ratio);
+    // A rigid ball whose contact point is brought to rest (stick): J_t = (2/7) m v_t against
+    // J_n = (1 + e) m v_n with e ≈ 1, J_t/J_n = (2/7)(0.1)/2 = 0.0143. The elastic ball's
+    // tangential compliance shifts it (NOTES.md: the FE sticking cases of the sweep take
+    // 24-36 % more tangential impulse than the rigid-body value); measured 0.01709 (+19.6 %).
+    // Gross sliding would give μ = 0.2, 14 times more.
+    let stick = 2.0 / 7.0 * 0.1 / 2.0;
+    assert!(
+        (r.impulse_ratio / stick - 1.0).abs() < STICK_BAND,
+        "J_t/J_n = {} against the rigid-body stick value {stick}",
+        r.impulse_ratio
+    );
     assert!(
         r.stuck_steps > r.contact_steps / 20,
         "stuck {} of {}",

@@ -15,6 +15,16 @@ use twoball::mesh::ball::{ball, BallSpec, Cut};
 use twoball::mesh::block::block;
 use twoball::Material;
 
+/// Largest total-energy drift of the coarse elastic ball impact, subcycled: measured 3.96e-3
+/// (the nodal partition conserves a pseudo-energy, not the total).
+const WORST_ON: f64 = 5e-3;
+/// The same single-rate: measured 6.2e-5 (central differences with a conservative contact).
+const WORST_OFF: f64 = 2e-4;
+/// Largest total-energy drift of the squeezed bar, subcycled: measured 5.93e-2 (see the test).
+const SQUEEZED_ON: f64 = 0.065;
+/// The same single-rate: measured 2.3e-15 (no contact, linear elastic: rounding only).
+const SQUEEZED_OFF: f64 = 1e-10;
+
 fn settings(sub: Subcycling) -> Settings {
     Settings {
         subcycling: sub,
@@ -117,9 +127,14 @@ fn elastic_impact_keeps_energy_and_rebound() {
     let de = (on.rebound - off.rebound).abs() / off.rebound;
     assert!(de < 2e-3, "rebound differs by {de:.2e}");
     assert!(
-        on.worst_total < 5e-3,
-        "total energy drift {:.2e}",
+        on.worst_total < WORST_ON,
+        "subcycled total energy drift {:.2e}",
         on.worst_total
+    );
+    assert!(
+        off.worst_total < WORST_OFF,
+        "single-rate total energy drift {:.2e}",
+        off.worst_total
     );
     assert!(on.balance < 1e-6, "balance error {:.2e}", on.balance);
 }
@@ -489,8 +504,16 @@ fn squeezed_elements_drop_a_level_and_stay_stable() {
     // Nothing blew up (no growth over 2000 steps). The nodal partition conserves a
     // pseudo-energy, not the total: here, with all kinetic energy in the coarse part and the
     // whole load crossing one level-0 interface element, they differ by about 6 % (the same
-    // at any speed: the difference is relative). In the ball impact it is 0.25 %.
-    assert!(worst_total < 0.08, "total energy drift {worst_total:.2e}");
+    // at any speed: the difference is relative). In the ball impact it is 0.4 %. The
+    // single-rate run of the same bar conserves the total to rounding.
+    assert!(
+        worst_total < SQUEEZED_ON,
+        "total energy drift {worst_total:.2e}"
+    );
+    assert!(
+        worst_off < SQUEEZED_OFF,
+        "single-rate total energy drift {worst_off:.2e}"
+    );
 }
 
 /// Acceptance (issue 8, item 2): on the default scene subcycling takes at least 3x fewer
@@ -545,6 +568,18 @@ fn default_scene_three_times_fewer_updates_same_results() {
     assert!(
         de < 2e-3 && dd < 2e-3 && dt < 2e-3,
         "results moved: {de:e} {dd:e} {dt:e}"
+    );
+    // The default scene's energy error, subcycled and single-rate (results.json
+    // `energy_error`): every graded case of the sweep stays below 8.6e-4 (verification/NOTES.md).
+    eprintln!(
+        "energy error: subcycled {:.2e}, single-rate {:.2e}",
+        on.energy_error, off.energy_error
+    );
+    assert!(
+        on.energy_error < 1e-3 && off.energy_error < 1e-3,
+        "energy error: subcycled {:.2e}, single-rate {:.2e}",
+        on.energy_error,
+        off.energy_error
     );
 }
 

@@ -1,6 +1,9 @@
 //! VTU output: files that ParaView's readers accept (checked independently with meshio via
 //! scripts/check_vtu.py when python3 and meshio are installed), and refusal to write bad data.
 
+#[path = "tool_support/mod.rs"]
+mod tools;
+
 use std::process::Command;
 use twoball::mesh::ball::{ball, BallSpec, Cut};
 use twoball::mesh::vtu::{to_vtu, write, write_pvd, Field};
@@ -11,17 +14,13 @@ fn tmp(name: &str) -> std::path::PathBuf {
     d.join(name)
 }
 
+/// python3 with meshio is installed (under CI=true its absence fails the test).
 fn meshio_available() -> bool {
-    let ok = Command::new("python3")
-        .args(["-c", "import meshio, numpy"])
-        .output()
-        .is_ok_and(|o| o.status.success());
-    if !ok {
-        eprintln!(
-            "NOTICE: python3 with meshio not found; skipping the independent VTU check (CI has it)"
-        );
-    }
-    ok
+    tools::require(
+        tools::python("meshio, numpy"),
+        "vtu_with_fields_reads_in_meshio (independent VTU check)",
+        "python3 with meshio and numpy",
+    )
 }
 
 #[test]

@@ -1,6 +1,7 @@
 //! The CalculiX peer (scripts/ccx_peer.py) on a tiny, coarse case: the default scene on the
-//! coarsest ball mesh, C3D8 elements, a short end time. Runs only when `ccx` (Debian package
-//! calculix-ccx) and python3 with numpy are installed; otherwise it prints a skip notice.
+//! coarsest ball mesh, C3D8 elements, a short end time. Needs `ccx` (Debian package
+//! calculix-ccx) and python3 with numpy: a missing one fails the test under `CI=true` and is
+//! skipped with a notice otherwise.
 //!
 //! What it checks does not depend on CalculiX being accurate on so coarse a mesh (it is not):
 //! that the deck runs, that the extraction conserves momentum (equal balls leave with equal
@@ -10,19 +11,8 @@
 use std::path::PathBuf;
 use std::process::Command;
 
-/// True when `program` can be started (ccx -v prints its version but exits with 201).
-fn found(program: &str, args: &[&str]) -> bool {
-    Command::new(program).args(args).output().is_ok()
-}
-
-/// True when `program args` runs and succeeds.
-fn works(program: &str, args: &[&str]) -> bool {
-    Command::new(program)
-        .args(args)
-        .output()
-        .map(|o| o.status.success())
-        .unwrap_or(false)
-}
+#[path = "tool_support/mod.rs"]
+mod tools;
 
 fn script() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("scripts/ccx_peer.py")
@@ -30,12 +20,16 @@ fn script() -> PathBuf {
 
 #[test]
 fn ccx_peer_tiny_default_scene() {
-    if !found("ccx", &["-v"]) {
-        eprintln!("SKIPPED peer_ccx: ccx not found (apt-get install calculix-ccx)");
-        return;
-    }
-    if !works("python3", &["-c", "import numpy, tomllib"]) {
-        eprintln!("SKIPPED peer_ccx: python3 >= 3.11 with numpy not found");
+    let test = "ccx_peer_tiny_default_scene";
+    if !tools::require(
+        tools::ccx(),
+        test,
+        "ccx (CalculiX, Debian package calculix-ccx)",
+    ) || !tools::require(
+        tools::python("numpy, tomllib"),
+        test,
+        "python3 >= 3.11 with numpy",
+    ) {
         return;
     }
     let dir = std::env::temp_dir().join(format!("twoball_peer_test_{}", std::process::id()));
@@ -144,12 +138,11 @@ fn ccx_peer_tiny_default_scene() {
 /// Runs scripts/ccx_static_hertz.py with `args` and returns the words of its 20 µm table row
 /// and the whole output, or None (with a SKIPPED line) when ccx, gmsh or numpy is missing.
 fn static_hertz_20um(args: &[&str]) -> Option<(Vec<String>, String)> {
-    if !found("ccx", &["-v"]) || !found("gmsh", &["--version"]) {
-        eprintln!("SKIPPED ccx_static_hertz: ccx or gmsh not found (scripts/setup.sh)");
-        return None;
-    }
-    if !works("python3", &["-c", "import numpy"]) {
-        eprintln!("SKIPPED ccx_static_hertz: python3 with numpy not found");
+    let test = "ccx_static_hertz";
+    if !tools::require(tools::ccx(), test, "ccx (CalculiX)")
+        || !tools::require(tools::gmsh(), test, "gmsh")
+        || !tools::require(tools::python("numpy"), test, "python3 with numpy")
+    {
         return None;
     }
     let script = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("scripts/ccx_static_hertz.py");

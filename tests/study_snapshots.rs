@@ -3,8 +3,15 @@
 //! its first snapshot, rebounding in its last), checked independently with meshio when it is
 //! installed (scripts/setup.sh installs it).
 
+#[path = "tool_support/mod.rs"]
+mod tools;
+
 use std::path::Path;
 use std::process::Command;
+
+/// Allowed departure of the final node-mean speed from e, as a fraction of e (measured
+/// −0.21 %; the former bound, 0.1 m/s, was 15-30 % of e).
+const SNAP_BAND: f64 = 0.02;
 
 fn twoball() -> Command {
     Command::new(env!("CARGO_BIN_EXE_twoball"))
@@ -78,11 +85,15 @@ fn run_writes_a_playable_snapshot_series() {
     let v0 = mean_x(&data_array(&first, "velocity"));
     let v1 = mean_x(&data_array(&last, "velocity"));
     assert!((v0 - 1.0).abs() < 1e-9, "initial mean vx {v0}");
-    // After the impact it moves back at roughly e times its approach speed (the node mean is
-    // not mass-weighted, hence the loose bound).
+    // After the impact it moves back at e times its approach speed. The node mean is not
+    // mass-weighted and the ball still vibrates: measured −0.21 % of e on this mesh.
     let e = results["e"].as_f64().unwrap();
+    eprintln!(
+        "final mean vx {v1}, e {e}: {:+.2} % of e",
+        100.0 * (-v1 / e - 1.0)
+    );
     assert!(
-        v1 < 0.0 && (v1 + e).abs() < 0.1,
+        v1 < 0.0 && (v1 + e).abs() < SNAP_BAND * e,
         "final mean vx {v1}, e {e}"
     );
     // Plastic flow happened at the contact, and only after first touch.
@@ -93,12 +104,11 @@ fn run_writes_a_playable_snapshot_series() {
         .iter()
         .any(|p| *p > 1e-3));
     // Independent reader.
-    let meshio = Command::new("python3")
-        .args(["-c", "import meshio, numpy"])
-        .output()
-        .is_ok_and(|o| o.status.success());
-    if !meshio {
-        eprintln!("NOTICE: python3 with meshio not found; skipping the meshio check (CI has it)");
+    if !tools::require(
+        tools::python("meshio, numpy"),
+        "run_writes_a_playable_snapshot_series (meshio check)",
+        "python3 with meshio and numpy",
+    ) {
         return;
     }
     let script = Path::new(env!("CARGO_MANIFEST_DIR")).join("scripts/check_vtu.py");
