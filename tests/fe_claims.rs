@@ -129,7 +129,8 @@ fn default_scene_matches_the_converged_and_analytical_figures() {
 /// A geometrically similar impact has no length scale (rate-independent material, no
 /// gravity): with the default mesh scaled with D, e is the same at D = 5 and 20 mm and δ_max,
 /// t_c scale with D. NOTES.md: the graded runs at D = 5, 10, 20 and 30 mm agree to 4e-5 in e
-/// (sweep.csv at ±1 m/s: 0.3211550 and 0.3211574, δ_max/D and t_c/D within 2e-6 and 8e-5).
+/// (sweep.csv at ±1 m/s: 0.3211550 and 0.3211574, δ_max/D and t_c/D within 2e-6 and 8e-5;
+/// measured here −7.6e-6, −2.0e-6, 7.5e-5).
 #[test]
 fn d_scaled_mesh_gives_the_same_impact_at_5_and_20_mm() {
     let big = run(&scene(&[]));
@@ -144,7 +145,11 @@ fn d_scaled_mesh_gives_the_same_impact_at_5_and_20_mm() {
     println!(
         "D = 20 mm e {eb:.7}, D = 5 mm e {es:.7} ({de:.1e}); delta_max/D {dd:.1e}, t_c/D {dt:.1e}"
     );
-    assert!(de.abs() < 4e-5, "e differs by {de:.2e}");
+    // 1e-4: the sweep's largest spread is 4e-5; the same pair with the yield stress raised by
+    // 10 % differs by 5.6e-5 (the time step falls differently within the contact), while a
+    // length that failed to scale with D moves e by per cents (NOTES.md: the unscaled 2 mm
+    // mesh is +20 % to +207 %).
+    assert!(de.abs() < 1e-4, "e differs by {de:.2e}");
     assert!(dd.abs() < 1e-4, "delta_max/D differs by {dd:.2e}");
     // The duration is read from the sampled force pulse: 400 history rows, 2.5e-3 of it.
     assert!(dt.abs() < 1e-3, "t_c/D differs by {dt:.2e}");

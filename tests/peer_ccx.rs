@@ -111,6 +111,24 @@ fn ccx_peer_tiny_default_scene() {
         variants[1]["e"].as_f64().unwrap(),
     );
     assert!((eq - ef).abs() < 0.01 * ef, "quarter e {eq}, full e {ef}");
+
+    // The two codes on the same mesh. CalculiX's fully integrated C3D8 locks (too stiff in
+    // bending and near-incompressible flow), so it approaches less than twoball's one-point
+    // hex: on the documented 5 mm / 0.5 mm mesh δ_max 7.624e-5 against 8.543e-5 m (−10.8 %,
+    // docs/performance.md, "CalculiX on the same mesh"). On this one-element-pole mesh the
+    // gap is larger (measured ccx 2.316e-5 against 4.292e-5 m for the full model, −46 %);
+    // e is not compared here because neither code resolves the plastic zone of a
+    // one-element pole (ccx 0.62, twoball 0.98, converged 0.319):
+    // `ccx_and_twoball_on_the_documented_mesh` compares e on the documented mesh.
+    let (dc, df) = (
+        num(&["calculix", "delta_max_m"]),
+        variants[1]["delta_max_m"].as_f64().unwrap(),
+    );
+    assert!(
+        (0.45..0.65).contains(&(dc / df)),
+        "delta_max: ccx {dc:.4e}, twoball full {df:.4e} (ratio {:.3}, measured 0.54)",
+        dc / df
+    );
     assert!(num(&["error_in_e_vs_reference", "calculix"]).is_finite());
     assert!(num(&["error_in_e_vs_reference", "full"]).is_finite());
 
@@ -222,4 +240,67 @@ fn ccx_free_ball_is_stiffer_than_the_held_one() {
         .unwrap_or_else(|| panic!("no north-pole force in:\n{out}"));
     let north = number(&row, at + 2);
     assert!(north.abs() < 1e-4, "north-pole force {north} F");
+}
+
+/// twoball and CalculiX on the mesh of docs/performance.md ("CalculiX on the same mesh": D/4
+/// bulk, 0.5 mm pole; ccx 6400 C3D8, about 5-13 min on one thread, hence ignored): the
+/// documented gap. ccx e 0.37278 (+16.9 % from the converged 0.3190: C3D8 locking), twoball's
+/// quarter model 0.32264 (+1.14 %) and full model 0.32177 (+0.87 %); δ_max ccx 7.624e-5 m
+/// against twoball's 8.543e-5 m (−10.8 %). Bands: ±2 % of e for ccx (its increments depend on
+/// the time step), ±0.3 % for twoball, ±3 % for the δ_max gap.
+/// `cargo test --release --test peer_ccx documented_mesh -- --ignored --nocapture`
+#[test]
+#[ignore]
+fn ccx_and_twoball_on_the_documented_mesh() {
+    let test = "ccx_and_twoball_on_the_documented_mesh";
+    if !tools::require(tools::ccx(), test, "ccx (CalculiX)")
+        || !tools::require(
+            tools::python("numpy, tomllib"),
+            test,
+            "python3 >= 3.11 with numpy",
+        )
+    {
+        return;
+    }
+    let dir = std::env::temp_dir().join(format!("twoball_peer_doc_{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    let json = dir.join("peer.json");
+    let out = Command::new("python3")
+        .arg(script())
+        .args(["--twoball", env!("CARGO_BIN_EXE_twoball")])
+        .args(["--size", "0.005", "--pole-size", "0.0005"])
+        .args(["--run-twoball", "--reference-e", "0.3190"])
+        .args(["--twoball-variant", "full=reduction.symmetry=\"off\""])
+        .arg("--work")
+        .arg(&dir)
+        .arg("--json")
+        .arg(&json)
+        .output()
+        .expect("python3 runs");
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        out.status.success(),
+        "script failed:\n{stdout}\n{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    println!("{stdout}");
+    let r: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+    let ccx_e = r["calculix"]["e"].as_f64().unwrap();
+    let ccx_d = r["calculix"]["delta_max_m"].as_f64().unwrap();
+    let v = r["twoball_variants"].as_array().unwrap();
+    let (tq, tf) = (v[0]["e"].as_f64().unwrap(), v[1]["e"].as_f64().unwrap());
+    let tq_d = v[0]["delta_max_m"].as_f64().unwrap();
+    let within = |x: f64, want: f64, tol: f64| (x / want - 1.0).abs() < tol;
+    assert!(within(ccx_e, 0.37278, 0.02), "ccx e {ccx_e}");
+    assert!(within(tq, 0.32264, 0.003), "twoball quarter e {tq}");
+    assert!(within(tf, 0.32177, 0.003), "twoball full e {tf}");
+    let gap = ccx_d / tq_d - 1.0;
+    assert!(
+        (gap + 0.108).abs() < 0.03,
+        "delta_max: ccx {ccx_d:.4e} against twoball {tq_d:.4e} ({:+.1} %)",
+        100.0 * gap
+    );
+    let _ = std::fs::remove_dir_all(&dir);
 }
