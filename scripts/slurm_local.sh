@@ -76,9 +76,13 @@ start() {
   stop >/dev/null 2>&1 || true
   write_conf
   export SLURM_CONF="$CONF"
-  # munged refuses a key readable by others and runs as the key's owner.
-  munged --force --socket="$MUNGE_SOCKET" --pid-file="$DIR/munged.pid" \
-    --log-file="$DIR/munged.log" --seed-file="$DIR/munge/munged.seed"
+  # A key of this cluster's own (munged refuses one that others can read).
+  if [ ! -s "$DIR/munge/munge.key" ]; then
+    (umask 077 && dd if=/dev/urandom of="$DIR/munge/munge.key" bs=1024 count=1 status=none)
+  fi
+  chmod 700 "$DIR/munge"
+  munged --force --socket="$MUNGE_SOCKET" --key-file="$DIR/munge/munge.key" \
+    --pid-file="$DIR/munged.pid" --log-file="$DIR/munged.log" --seed-file="$DIR/munge/munged.seed"
   slurmctld -f "$CONF" -c
   slurmd -f "$CONF" -c
   local t=0

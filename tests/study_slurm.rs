@@ -199,11 +199,19 @@ fn sweep_runs_as_a_slurm_job_array_and_survives_a_cancelled_task() {
     assert_equal_to_local(&a, &local);
     let (code, text) = status(&a);
     assert_eq!(code, Some(0), "{text}");
-    assert!(text.contains(&format!("{N_CASES} cases: {N_CASES} done")), "{text}");
+    assert!(
+        text.contains(&format!("{N_CASES} cases: {N_CASES} done")),
+        "{text}"
+    );
     assert!(std::fs::read_dir(a.join("slurm")).unwrap().count() >= TASKS);
     // `twoball report DIR` merges what the array produced (the sweep file kept in DIR).
     let report = dir.join("report");
-    let r = twoball(&["report", a.to_str().unwrap(), "--to", report.to_str().unwrap()]);
+    let r = twoball(&[
+        "report",
+        a.to_str().unwrap(),
+        "--to",
+        report.to_str().unwrap(),
+    ]);
     assert!(r.status.success(), "{}", String::from_utf8_lossy(&r.stderr));
     let csv = std::fs::read_to_string(report.join("ansys").join("sweep.csv")).unwrap();
     assert_eq!(csv.lines().count(), 1 + N_CASES);
@@ -222,20 +230,33 @@ fn sweep_runs_as_a_slurm_job_array_and_survives_a_cancelled_task() {
         .filter(|(_, &s)| s == 1)
         .map(|(c, _)| c.id.as_str())
         .collect();
-    assert!(victim.len() >= 2, "task 1 needs two cases to be cancelled between");
+    assert!(
+        victim.len() >= 2,
+        "task 1 needs two cases to be cancelled between"
+    );
     let t0 = Instant::now();
     loop {
         let done = records(&b);
         let mine = victim.iter().filter(|id| done.contains_key(**id)).count();
         if mine >= 1 {
-            assert!(mine < victim.len(), "task 1 finished before it could be cancelled");
+            assert!(
+                mine < victim.len(),
+                "task 1 finished before it could be cancelled"
+            );
             break;
         }
-        assert!(t0.elapsed() < Duration::from_secs(120), "task 1 never wrote a case");
+        assert!(
+            t0.elapsed() < Duration::from_secs(120),
+            "task 1 never wrote a case"
+        );
         std::thread::sleep(Duration::from_millis(50));
     }
     let task = format!("{job}_1");
-    assert!(Command::new("scancel").arg(&task).status().unwrap().success());
+    assert!(Command::new("scancel")
+        .arg(&task)
+        .status()
+        .unwrap()
+        .success());
     wait_for(&job, Duration::from_secs(120));
     let survivors = records(&b);
     assert!(survivors.len() < N_CASES, "nothing was lost by the cancel");

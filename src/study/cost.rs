@@ -16,6 +16,8 @@ use crate::mesh::ball::{ball, BallSpec, Cut};
 use crate::mesh::quality::hex_volume;
 use crate::mesh::Mesh;
 use crate::scene::{approach, Approach, MeshSettings, Scene};
+use std::collections::HashMap;
+use std::sync::Mutex;
 
 /// Cost of any case, in element-steps, besides its FE run (approach, analytical model, files):
 /// keeps cases without impact from piling up on one shard.
@@ -48,61 +50,95 @@ fn smallest_length(mesh: &Mesh) -> f64 {
         .fold(f64::INFINITY, f64::min)
 }
 
-/// The estimated cost of running `scene` through the FE model (`fe`) or the analytical model
-/// only (`!fe`: no elements).
-///
-/// Errors: as [`approach`] and [`analytic_outcome`]; the mesh generator's errors for the
-/// scene's mesh settings. A mesh read from a file is not read: it is costed as a built-in
-/// mesh with the default sizes.
-pub fn estimate(scene: &Scene, fe: bool) -> Result<CostEstimate> {
-    let none = CostEstimate {
-        elements: 0,
-        steps: 0.0,
-    };
-    let touch = match approach(scene)? {
-        Approach::NoImpact { .. } => return Ok(none),
-        Approach::Impact(t) => t,
-    };
-    if !fe {
-        return Ok(none);
+/// Element count and smallest Courant length (m) of each ball mesh costed so far: a sweep
+/// meshes the same ball for many speeds, and every task of a job array costs every case.
+#[derive(Debug, Default)]
+pub struct Estimator {
+    meshes: Mutex<HashMap<String, (usize, f64)>>,
+}
+
+impl Estimator {
+    /// Element count and smallest Courant length (m) of the ball mesh `spec`.
+    fn mesh(&self, spec: &BallSpec) -> Result<(usize, f64)> {
+        let key = format!(
+            "{:e} {:e} {:?} {:?}",
+            spec.diameter, spec.size, spec.pole_size, spec.cut
+        );
+        let cached = self.meshes.lock().ok().and_then(|m| m.get(&key).copied());
+        if let Some(hit) = cached {
+            return Ok(hit);
+        }
+        let mesh = ball(spec)?;
+        let stats = (mesh.n_elements(), smallest_length(&mesh));
+        if let Ok(mut m) = self.meshes.lock() {
+            m.insert(key, stats);
+        }
+        Ok(stats)
     }
-    let (outcome, _) = analytic_outcome(scene, &touch)?;
-    let (reduction, _) = choose_reduction(scene, &touch);
-    let (cut, parts) = match reduction {
-        Reduction::Quarter => (Cut::Quarter, 1),
-        Reduction::Half => (Cut::Half, 2),
-        Reduction::Full => (Cut::Full, 2),
-    };
-    let mut elements = 0;
-    let mut dt = f64::INFINITY;
-    for b in [&scene.ball1, &scene.ball2].into_iter().take(parts) {
-        let (size, pole_size) = match b.mesh {
-            MeshSettings::Builtin { size, pole_size } => (size, pole_size),
-            MeshSettings::File { .. } => (
-                crate::scene::DEFAULT_SIZE_PER_D * b.diameter,
-                crate::scene::DEFAULT_POLE_SIZE_PER_D * b.diameter,
-            ),
+
+    /// The estimated cost of running `scene` through the FE model (`fe`) or the analytical
+    /// model only (`!fe`: no elements).
+    ///
+    /// Errors: as [`approach`] and [`analytic_outcome`]; the mesh generator's errors for the
+    /// scene's mesh settings. A mesh read from a file is not read: it is costed as a built-in
+    /// mesh with the default sizes.
+    pub fn estimate(&self, scene: &Scene, fe: bool) -> Result<CostEstimate> {
+        let none = CostEstimate {
+            elements: 0,
+            steps: 0.0,
         };
-        let mesh = ball(&BallSpec {
-            diameter: b.diameter,
-            size,
-            pole_size: Some(pole_size),
-            cut,
-        })?;
-        elements += mesh.n_elements();
-        dt = dt.min(smallest_length(&mesh) / b.material.dilatational_wave_speed());
+        let touch = match approach(scene)? {
+            Approach::NoImpact { .. } => return Ok(none),
+            Approach::Impact(t) => t,
+        };
+        if !fe {
+            return Ok(none);
+        }
+        let (outcome, _) = analytic_outcome(scene, &touch)?;
+        let (reduction, _) = choose_reduction(scene, &touch);
+        let (cut, parts) = match reduction {
+            Reduction::Quarter => (Cut::Quarter, 1),
+            Reduction::Half => (Cut::Half, 2),
+            Reduction::Full => (Cut::Full, 2),
+        };
+        let mut elements = 0;
+        let mut dt = f64::INFINITY;
+        for b in [&scene.ball1, &scene.ball2].into_iter().take(parts) {
+            let (size, pole_size) = match b.mesh {
+                MeshSettings::Builtin { size, pole_size } => (size, pole_size),
+                MeshSettings::File { .. } => (
+                    crate::scene::DEFAULT_SIZE_PER_D * b.diameter,
+                    crate::scene::DEFAULT_POLE_SIZE_PER_D * b.diameter,
+                ),
+            };
+            let (n, length) = self.mesh(&BallSpec {
+                diameter: b.diameter,
+                size,
+                pole_size: Some(pole_size),
+                cut,
+            })?;
+            elements += n;
+            dt = dt.min(length / b.material.dilatational_wave_speed());
+        }
+        let dt = dt * scene.solver.time_step_factor;
+        let simulated = scene
+            .solver
+            .end_time
+            .unwrap_or(outcome.contact_duration * (1.0 + DEFAULT_HOLD_FRACTION));
+        let steps = if dt.is_finite() && dt > 0.0 && simulated.is_finite() {
+            (simulated / dt).ceil()
+        } else {
+            0.0
+        };
+        Ok(CostEstimate { elements, steps })
     }
-    let dt = dt * scene.solver.time_step_factor;
-    let simulated = scene
-        .solver
-        .end_time
-        .unwrap_or(outcome.contact_duration * (1.0 + DEFAULT_HOLD_FRACTION));
-    let steps = if dt.is_finite() && dt > 0.0 && simulated.is_finite() {
-        (simulated / dt).ceil()
-    } else {
-        0.0
-    };
-    Ok(CostEstimate { elements, steps })
+}
+
+/// [`Estimator::estimate`] for one scene.
+///
+/// Errors: as [`Estimator::estimate`].
+pub fn estimate(scene: &Scene, fe: bool) -> Result<CostEstimate> {
+    Estimator::default().estimate(scene, fe)
 }
 
 /// Deals items of cost `costs` (≥ 0) to `n` ≥ 1 shards, costliest first, each to the shard

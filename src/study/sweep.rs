@@ -293,10 +293,12 @@ pub fn select<'a>(
 /// fails (it will fail when run, with its reason) costs [`super::cost::CASE_OVERHEAD`].
 pub fn case_costs(spec: &SweepSpec, cases: &[&Case]) -> Vec<f64> {
     let fe = spec.model == SweepModel::Fe;
+    let estimator = super::cost::Estimator::default();
     cases
         .par_iter()
         .map(|c| {
-            super::cost::estimate(&c.scene, fe)
+            estimator
+                .estimate(&c.scene, fe)
                 .map_or(super::cost::CASE_OVERHEAD, |e| e.element_steps())
         })
         .collect()
