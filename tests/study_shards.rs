@@ -233,13 +233,34 @@ fn concurrent_shards_share_the_folder_and_status_counts_what_is_missing() {
                 .unwrap()
         })
         .collect();
-    // While they run, status sees their cases as running (or finished), never lost.
-    std::thread::sleep(std::time::Duration::from_millis(300));
+    // While they run, status sees a case with a marker as running (unless it finished
+    // meanwhile), never as missing.
+    let t0 = std::time::Instant::now();
+    let marked = loop {
+        let running: Vec<String> = std::fs::read_dir(out.join("running"))
+            .map(|rd| {
+                rd.flatten()
+                    .map(|e| e.file_name().to_string_lossy().into_owned())
+                    .filter(|n| n.ends_with(".json") && !n.starts_with('.'))
+                    .collect()
+            })
+            .unwrap_or_default();
+        if let Some(n) = running.first() {
+            break n.trim_end_matches(".json").to_string();
+        }
+        assert!(
+            t0.elapsed().as_secs() < 60,
+            "no case was ever marked running"
+        );
+        std::thread::sleep(std::time::Duration::from_millis(10));
+    };
     let mid = text(&status(&[])).0;
     assert!(
-        mid.contains("running ") || mid.contains(" 0 missing"),
-        "{mid}"
+        mid.contains(&format!("running {marked}: "))
+            || out.join("cases").join(format!("{marked}.json")).exists(),
+        "{marked}: {mid}"
     );
+    assert!(!mid.contains(&format!("missing {marked}\n")), "{mid}");
     for mut c in children {
         assert!(c.wait().unwrap().success());
     }

@@ -9,6 +9,7 @@
 //! skipped with a printed reason, except under CI=true, where that is a failure.
 
 use std::collections::BTreeMap;
+use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 use std::time::{Duration, Instant, SystemTime};
@@ -171,7 +172,11 @@ fn sweep_runs_as_a_slurm_job_array_and_survives_a_cancelled_task() {
             std::env::var("CI").as_deref() != Ok("true"),
             "CI=true but no Slurm: {why} (scripts/slurm_local.sh start sets one up)"
         );
-        println!("skipped: no Slurm here ({why}); scripts/slurm_local.sh start sets one up");
+        // Straight to stderr, past the test harness's capture, so that the skip is seen.
+        let _ = writeln!(
+            std::io::stderr(),
+            "study_slurm: skipped, no Slurm here ({why}); scripts/slurm_local.sh start sets one up"
+        );
         return;
     }
     let t_start = Instant::now();
