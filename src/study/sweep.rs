@@ -784,15 +784,15 @@ fn run_cases(
     cases: &[Case],
     mine: &[&Case],
 ) -> Result<SweepSummary> {
-    let dir = opts.out.join("cases");
-    if opts.shard.count == 1 {
-        remove_stale_temporaries(&dir)?;
-        remove_stale_temporaries(&opts.out)?;
-    } else {
-        // Other shards may be writing into the same folder right now (other nodes of a job
-        // array): only temporaries far older than any write are a killed writer's.
-        remove_temporaries_older_than(&dir, STALE_AFTER)?;
-        remove_temporaries_older_than(&opts.out, STALE_AFTER)?;
+    let dirs = [opts.out.join("cases"), opts.out.join("running"), opts.out.clone()];
+    for d in &dirs {
+        if opts.shard.count == 1 {
+            remove_stale_temporaries(d)?;
+        } else {
+            // Other shards may be writing into the same folder right now (other nodes of a
+            // job array): only temporaries far older than any write are a killed writer's.
+            remove_temporaries_older_than(d, STALE_AFTER)?;
+        }
     }
     let mut pending: Vec<&Case> = mine
         .iter()
