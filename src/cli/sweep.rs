@@ -211,8 +211,12 @@ fn write_array(
     } else {
         println!("submit with: sbatch {}", path.display());
     }
+    let mesh = cmd
+        .mesh
+        .as_ref()
+        .map_or(String::new(), |m| format!(" --mesh {m}"));
     println!(
-        "then: twoball sweep status {} ; twoball report {}",
+        "then: twoball sweep status {}{mesh} ; twoball report {}",
         cmd.out.display(),
         cmd.out.display()
     );

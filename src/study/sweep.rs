@@ -784,7 +784,11 @@ fn run_cases(
     cases: &[Case],
     mine: &[&Case],
 ) -> Result<SweepSummary> {
-    let dirs = [opts.out.join("cases"), opts.out.join("running"), opts.out.clone()];
+    let dirs = [
+        opts.out.join("cases"),
+        opts.out.join("running"),
+        opts.out.clone(),
+    ];
     for d in &dirs {
         if opts.shard.count == 1 {
             remove_stale_temporaries(d)?;
