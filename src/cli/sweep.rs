@@ -34,8 +34,8 @@ pub struct SweepArgs {
     /// Output folder: one JSON per case in DIR/cases/, all cases in DIR/sweep.csv.
     #[arg(long, required = true)]
     pub out: Option<PathBuf>,
-    /// Worker threads (default: all cores).
-    #[arg(long)]
+    /// Worker threads (default: all cores; with --slurm, --cpus-per-task sets them).
+    #[arg(long, conflicts_with = "slurm")]
     pub jobs: Option<usize>,
     /// Run only shard I of N (1-based; shards are balanced by estimated cost).
     #[arg(long, conflicts_with = "slurm")]
