@@ -45,7 +45,14 @@ pub fn write_atomic(path: impl AsRef<Path>, bytes: &[u8]) -> Result<()> {
 }
 
 /// Deletes temporary files left in `dir` by a killed writer; returns how many were removed.
+/// Only for a folder no other process writes into (else see [`remove_temporaries_older_than`]).
 pub fn remove_stale_temporaries(dir: &Path) -> Result<usize> {
+    remove_temporaries_older_than(dir, std::time::Duration::ZERO)
+}
+
+/// Deletes temporary files in `dir` last modified at least `age` ago (a live writer renames
+/// its temporary within moments, so old ones are a killed writer's); returns how many.
+pub fn remove_temporaries_older_than(dir: &Path, age: std::time::Duration) -> Result<usize> {
     let mut n = 0;
     let entries = match std::fs::read_dir(dir) {
         Ok(e) => e,
@@ -55,7 +62,14 @@ pub fn remove_stale_temporaries(dir: &Path) -> Result<usize> {
     for entry in entries.flatten() {
         let name = entry.file_name();
         let name = name.to_string_lossy();
-        if name.starts_with('.') && name.contains(TMP_MARKER) {
+        let old_enough = age.is_zero()
+            || entry
+                .metadata()
+                .and_then(|m| m.modified())
+                .ok()
+                .and_then(|t| t.elapsed().ok())
+                .is_some_and(|e| e >= age);
+        if name.starts_with('.') && name.contains(TMP_MARKER) && old_enough {
             std::fs::remove_file(entry.path()).map_err(|e| Error::io(entry.path(), e))?;
             n += 1;
         }

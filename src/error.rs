@@ -32,6 +32,8 @@ pub enum Error {
     Numerical(String),
     /// An external program (gmsh, ccx) is missing or failed.
     External(String),
+    /// Work is not finished (a sweep with cases still missing); the message says what is left.
+    Incomplete(String),
 }
 
 impl Error {
@@ -95,6 +97,7 @@ impl fmt::Display for Error {
             Error::Io { path, source } => write!(f, "{path}: {source}"),
             Error::Numerical(m) => write!(f, "numerical failure: {m}"),
             Error::External(m) => write!(f, "{m}"),
+            Error::Incomplete(m) => write!(f, "{m}"),
         }
     }
 }

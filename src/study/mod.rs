@@ -3,6 +3,9 @@
 //! - [`outcome`]: the quantities both models produce, and the analytical answer for a scene;
 //! - [`bench`]: run time against error on a mesh/element/time-step ladder;
 //! - [`sweep`]: resumable, shardable parameter sweeps (the paper's ANSYS study);
+//! - [`cost`]: estimated cost of a case, shards balanced by it;
+//! - [`slurm`]: a sweep as a Slurm job array;
+//! - [`sweep_status`]: cases done, failed, running and missing in a sweep folder;
 //! - [`simulate`]: the FE run (model, reductions, stop rule, reduction to rigid motion);
 //! - [`single`]: one scene, both models side by side, results.json and history.csv;
 //! - [`plots`]: SVG charts for the report;
@@ -11,12 +14,15 @@
 //! - [`progress`]: the terminal progress bar.
 
 pub mod bench;
+pub mod cost;
 pub mod outcome;
 pub mod plots;
 pub mod progress;
 pub mod report;
 pub mod simulate;
 pub mod single;
+pub mod slurm;
 pub mod snapshots;
 pub mod stress;
 pub mod sweep;
+pub mod sweep_status;

@@ -20,7 +20,10 @@
 //! ```
 
 use super::outcome::{analytic_outcome, Outcome};
-use crate::atomic::{ensure_dir, remove_stale_temporaries, write_atomic};
+use super::sweep_status::{clear_running, mark_running};
+use crate::atomic::{
+    ensure_dir, remove_stale_temporaries, remove_temporaries_older_than, write_atomic,
+};
 use crate::error::{Error, Result};
 use crate::scene::reader::{parse_table, Reader};
 use crate::scene::{approach, Approach, Override, Scene, DEFAULT_SCENE};
@@ -187,7 +190,8 @@ pub struct CaseRecord {
 /// The FE solver a sweep calls for each impacting case.
 pub type FeRunner<'a> = &'a (dyn Fn(&Scene) -> Result<FeCase> + Sync);
 
-/// `I/N`: this process runs the cases whose index ≡ I − 1 (mod N).
+/// `I/N`: this process runs shard I of a plan that deals the sweep's cases to N shards by
+/// estimated cost ([`shard_plan`]), so that shards take similar time.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Shard {
     /// 1-based shard number.
@@ -213,11 +217,112 @@ impl Shard {
         }
         Ok(Shard { index: i, count: n })
     }
+}
 
-    /// Whether case `index` belongs to this shard.
-    pub fn owns(&self, index: usize) -> bool {
-        index % self.count == self.index - 1
+/// Name of the copy of the sweep file kept in the sweep folder.
+pub const SPEC_COPY: &str = "sweep.toml";
+
+/// Makes `out` the folder of the sweep `spec` (read from `file`): keeps a copy of the file as
+/// `out/sweep.toml`, which `twoball sweep status` and `twoball report` read. A folder that
+/// already holds a different sweep is refused, so that results of two sweeps never mix.
+///
+/// Errors: `out` holds another sweep ([`Error::Invalid`] naming `--out`); I/O errors.
+pub fn adopt_folder(out: &Path, file: &Path, spec: &SweepSpec) -> Result<()> {
+    let copy = out.join(SPEC_COPY);
+    if copy.exists() {
+        let kept = SweepSpec::from_file(&copy)?;
+        if &kept != spec {
+            return Err(Error::invalid(
+                "--out",
+                out.display(),
+                format!(
+                    "a new folder or one of the same sweep ({} differs from {})",
+                    copy.display(),
+                    file.display()
+                ),
+            ));
+        }
+        return Ok(());
     }
+    let text = std::fs::read(file).map_err(|e| Error::io(file, e))?;
+    ensure_dir(out)?;
+    write_atomic(&copy, &text)
+}
+
+/// The sweep file of the folder `out` (its `sweep.toml` copy), parsed.
+///
+/// Errors: no copy there (not a sweep folder), or the copy does not parse.
+pub fn folder_spec(out: &Path) -> Result<SweepSpec> {
+    let copy = out.join(SPEC_COPY);
+    if !copy.is_file() {
+        return Err(Error::Parse(format!(
+            "{}: not a sweep folder (no {SPEC_COPY}; run twoball sweep FILE --out {} first, or give --sweep FILE)",
+            out.display(),
+            out.display()
+        )));
+    }
+    SweepSpec::from_file(&copy)
+}
+
+/// The cases of a run: all of `cases`, or those of mesh setting `mesh`.
+///
+/// Errors: `mesh` names no setting of `spec` ([`Error::Invalid`] naming `--mesh` and listing
+/// the names).
+pub fn select<'a>(
+    spec: &SweepSpec,
+    cases: &'a [Case],
+    mesh: Option<&str>,
+) -> Result<Vec<&'a Case>> {
+    if let Some(m) = mesh {
+        if !spec.meshes.iter().any(|s| s.name == m) {
+            let names: Vec<&str> = spec.meshes.iter().map(|s| s.name.as_str()).collect();
+            return Err(Error::invalid(
+                "--mesh",
+                m,
+                format!("one of the sweep's mesh settings: {}", names.join(", ")),
+            ));
+        }
+    }
+    Ok(cases
+        .iter()
+        .filter(|c| mesh.is_none_or(|m| c.params.mesh == m))
+        .collect())
+}
+
+/// Estimated cost of each case in element-steps ([`super::cost`]); a case whose estimate
+/// fails (it will fail when run, with its reason) costs [`super::cost::CASE_OVERHEAD`].
+pub fn case_costs(spec: &SweepSpec, cases: &[&Case]) -> Vec<f64> {
+    let fe = spec.model == SweepModel::Fe;
+    let estimator = super::cost::Estimator::default();
+    cases
+        .par_iter()
+        .map(|c| {
+            estimator
+                .estimate(&c.scene, fe)
+                .map_or(super::cost::CASE_OVERHEAD, |e| e.element_steps())
+        })
+        .collect()
+}
+
+/// Cases and estimated cost (element-steps) of each shard when `cases` are split `count` ways.
+pub fn shard_costs(spec: &SweepSpec, cases: &[&Case], count: usize) -> Vec<(usize, f64)> {
+    let costs = case_costs(spec, cases);
+    let plan = super::cost::balance(&costs, count);
+    let mut out = vec![(0, 0.0); count.max(1)];
+    for (c, &s) in costs.iter().zip(&plan) {
+        out[s].0 += 1;
+        out[s].1 += c;
+    }
+    out
+}
+
+/// The 0-based shard of each of `cases` when the sweep is split `count` ways, balanced by
+/// estimated cost; every process computes the same plan from the same sweep file.
+pub fn shard_plan(spec: &SweepSpec, cases: &[&Case], count: usize) -> Vec<usize> {
+    if count <= 1 {
+        return vec![0; cases.len()];
+    }
+    super::cost::balance(&case_costs(spec, cases), count)
 }
 
 const STUDY_KEYS: [&str; 7] = [
@@ -593,6 +698,10 @@ pub struct SweepOptions {
     pub mesh: Option<String>,
 }
 
+/// Age after which a temporary file in a sweep folder shared by several shards is a killed
+/// writer's (a live writer renames it within milliseconds).
+const STALE_AFTER: Duration = Duration::from_secs(600);
+
 /// What a sweep run did.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct SweepSummary {
@@ -604,10 +713,13 @@ pub struct SweepSummary {
     pub skipped: usize,
     /// Cases run now.
     pub ran: usize,
-    /// Cases of the whole sweep in the CSV.
+    /// Cases of the whole sweep finished (all in `DIR/sweep.csv` if `csv_written`).
     pub in_csv: usize,
-    /// Cases that failed (of the whole sweep, in the CSV).
+    /// Cases that failed (of the whole sweep).
     pub failed: usize,
+    /// Whether this run rewrote `DIR/sweep.csv` (unsharded runs only: the shards of a job
+    /// array share no file).
+    pub csv_written: bool,
 }
 
 /// Path of a case's result file.
@@ -633,31 +745,6 @@ pub fn run_sweep(
     if opts.jobs == 0 {
         return Err(Error::invalid("--jobs", 0, "jobs >= 1"));
     }
-    let cases = spec.cases()?;
-    let dir = opts.out.join("cases");
-    ensure_dir(&dir)?;
-    remove_stale_temporaries(&dir)?;
-    remove_stale_temporaries(&opts.out)?;
-    if let Some(m) = &opts.mesh {
-        if !spec.meshes.iter().any(|s| &s.name == m) {
-            let names: Vec<&str> = spec.meshes.iter().map(|s| s.name.as_str()).collect();
-            return Err(Error::invalid("--mesh", m, format!("one of {names:?}")));
-        }
-    }
-    let mine: Vec<&Case> = cases
-        .iter()
-        .filter(|c| opts.shard.owns(c.index))
-        .filter(|c| opts.mesh.as_ref().is_none_or(|m| &c.params.mesh == m))
-        .collect();
-    let mut pending: Vec<&Case> = mine
-        .iter()
-        .copied()
-        .filter(|c| read_case(&opts.out, &c.id).is_none())
-        .collect();
-    // Longest first, so that no worker is left with one long case at the end: cases with
-    // tangential speed run a half model (about four times the work of a quarter model).
-    pending.sort_by_key(|c| (c.params.v1t == 0.0 && c.params.v2t == 0.0, c.index));
-    let skipped = mine.len() - pending.len();
     let fe = if spec.model == SweepModel::Fe {
         fe
     } else {
@@ -668,10 +755,64 @@ pub fn run_sweep(
             "this sweep asks for the FE model, which is not available here".into(),
         ));
     }
+    let cases = spec.cases()?;
+    let selected = select(spec, &cases, opts.mesh.as_deref())?;
+    let plan = shard_plan(spec, &selected, opts.shard.count);
+    let mine: Vec<&Case> = selected
+        .iter()
+        .zip(&plan)
+        .filter(|(_, &s)| s == opts.shard.index - 1)
+        .map(|(c, _)| *c)
+        .collect();
+    let dir = opts.out.join("cases");
+    let made_dir = !dir.exists();
+    ensure_dir(&dir)?;
+    let result = run_cases(spec, opts, fe, &cases, &mine);
+    if result.is_err() && made_dir {
+        // A sweep that failed before finishing any case leaves no empty folders behind.
+        let _ = std::fs::remove_dir(opts.out.join("running"));
+        let _ = std::fs::remove_dir(&dir);
+    }
+    result
+}
+
+/// Runs the unfinished cases of `mine` (this shard's) and sums up.
+fn run_cases(
+    spec: &SweepSpec,
+    opts: &SweepOptions,
+    fe: Option<FeRunner<'_>>,
+    cases: &[Case],
+    mine: &[&Case],
+) -> Result<SweepSummary> {
+    let dirs = [
+        opts.out.join("cases"),
+        opts.out.join("running"),
+        opts.out.clone(),
+    ];
+    for d in &dirs {
+        if opts.shard.count == 1 {
+            remove_stale_temporaries(d)?;
+        } else {
+            // Other shards may be writing into the same folder right now (other nodes of a
+            // job array): only temporaries far older than any write are a killed writer's.
+            remove_temporaries_older_than(d, STALE_AFTER)?;
+        }
+    }
+    let mut pending: Vec<&Case> = mine
+        .iter()
+        .copied()
+        .filter(|c| read_case(&opts.out, &c.id).is_none())
+        .collect();
+    // Longest first, so that no worker is left with one long case at the end: cases with
+    // tangential speed run a half model (about four times the work of a quarter model).
+    pending.sort_by_key(|c| (c.params.v1t == 0.0 && c.params.v2t == 0.0, c.index));
+    let skipped = mine.len() - pending.len();
+    let shard_name = format!("{}/{}", opts.shard.index, opts.shard.count);
     let done = std::sync::atomic::AtomicUsize::new(0);
     let n_pending = pending.len();
     let work = |c: &&Case| -> Result<()> {
         let t0 = Instant::now();
+        mark_running(&opts.out, &c.id, &shard_name)?;
         let rec = run_case(c, fe, spec.history_points);
         if let Some(rest) = opts.pace.checked_sub(t0.elapsed()) {
             std::thread::sleep(rest);
@@ -679,6 +820,7 @@ pub fn run_sweep(
         let json = serde_json::to_string_pretty(&rec)
             .map_err(|e| Error::Parse(format!("case {}: {e}", c.id)))?;
         write_atomic(case_path(&opts.out, &c.id), json.as_bytes())?;
+        clear_running(&opts.out, &c.id);
         let k = done.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1;
         if opts.verbose {
             eprintln!(
@@ -699,7 +841,14 @@ pub fn run_sweep(
     } else {
         pending.iter().try_for_each(work)?;
     }
-    let (in_csv, failed) = write_csv(&opts.out, &cases)?;
+    // One writer only: shards of an array leave the CSV to an unsharded run or the report.
+    let (in_csv, failed) = if opts.shard.count == 1 {
+        write_csv(&opts.out, cases)?
+    } else {
+        let recs = read_records(&opts.out, cases);
+        let failed = recs.iter().filter(|r| r.status == Status::Failed).count();
+        (recs.len(), failed)
+    };
     Ok(SweepSummary {
         total: cases.len(),
         in_shard: mine.len(),
@@ -707,6 +856,7 @@ pub fn run_sweep(
         ran: n_pending,
         in_csv,
         failed,
+        csv_written: opts.shard.count == 1,
     })
 }
 

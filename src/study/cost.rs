@@ -1,0 +1,208 @@
+//! Estimated cost of a sweep case and shards balanced by it.
+//!
+//! The cost of an FE case is its element count times its explicit steps: elements of the
+//! meshes the run builds (one quarter ball against the mirror plane, or two half or whole
+//! balls, as [`choose_reduction`] picks), steps = simulated time / stable step, with the
+//! simulated time the analytical contact duration plus the stop rule's hold time and the
+//! stable step the Courant limit of the smallest element (L_e / c, times the scene's
+//! `solver.time_step_factor`). Subcycling is left out, so the estimate is an upper bound on
+//! the element updates a run reports. A case without impact costs nothing but its overhead.
+
+use super::outcome::analytic_outcome;
+use super::simulate::{choose_reduction, Reduction, DEFAULT_HOLD_FRACTION};
+use crate::error::Result;
+use crate::fe::timestep::characteristic_length;
+use crate::mesh::ball::{ball, BallSpec, Cut};
+use crate::mesh::quality::hex_volume;
+use crate::mesh::Mesh;
+use crate::scene::{approach, Approach, MeshSettings, Scene};
+use std::collections::HashMap;
+use std::sync::Mutex;
+
+/// Cost of any case, in element-steps, besides its FE run (approach, analytical model, files):
+/// keeps cases without impact from piling up on one shard.
+pub const CASE_OVERHEAD: f64 = 1.0e3;
+
+/// The estimated work of one case.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct CostEstimate {
+    /// Elements simulated (all parts of the reduced model).
+    pub elements: usize,
+    /// Explicit steps (simulated time / stable step).
+    pub steps: f64,
+}
+
+impl CostEstimate {
+    /// Element-steps plus [`CASE_OVERHEAD`].
+    pub fn element_steps(&self) -> f64 {
+        self.elements as f64 * self.steps + CASE_OVERHEAD
+    }
+}
+
+/// Smallest Courant length L_e = V / (largest face area) of `mesh`'s elements, m.
+fn smallest_length(mesh: &Mesh) -> f64 {
+    mesh.hexes
+        .iter()
+        .map(|h| {
+            let x = h.map(|n| mesh.nodes[n as usize]);
+            characteristic_length(&x, hex_volume(&x).abs())
+        })
+        .fold(f64::INFINITY, f64::min)
+}
+
+/// Element count and smallest Courant length (m) of each ball mesh costed so far: a sweep
+/// meshes the same ball for many speeds, and every task of a job array costs every case.
+#[derive(Debug, Default)]
+pub struct Estimator {
+    meshes: Mutex<HashMap<String, (usize, f64)>>,
+}
+
+impl Estimator {
+    /// Element count and smallest Courant length (m) of the ball mesh `spec`.
+    fn mesh(&self, spec: &BallSpec) -> Result<(usize, f64)> {
+        let key = format!(
+            "{:e} {:e} {:?} {:?}",
+            spec.diameter, spec.size, spec.pole_size, spec.cut
+        );
+        let cached = self.meshes.lock().ok().and_then(|m| m.get(&key).copied());
+        if let Some(hit) = cached {
+            return Ok(hit);
+        }
+        let mesh = ball(spec)?;
+        let stats = (mesh.n_elements(), smallest_length(&mesh));
+        if let Ok(mut m) = self.meshes.lock() {
+            m.insert(key, stats);
+        }
+        Ok(stats)
+    }
+
+    /// The estimated cost of running `scene` through the FE model (`fe`) or the analytical
+    /// model only (`!fe`: no elements).
+    ///
+    /// Errors: as [`approach`] and [`analytic_outcome`]; the mesh generator's errors for the
+    /// scene's mesh settings. A mesh read from a file is not read: it is costed as a built-in
+    /// mesh with the default sizes.
+    pub fn estimate(&self, scene: &Scene, fe: bool) -> Result<CostEstimate> {
+        let none = CostEstimate {
+            elements: 0,
+            steps: 0.0,
+        };
+        let touch = match approach(scene)? {
+            Approach::NoImpact { .. } => return Ok(none),
+            Approach::Impact(t) => t,
+        };
+        if !fe {
+            return Ok(none);
+        }
+        let (outcome, _) = analytic_outcome(scene, &touch)?;
+        let (reduction, _) = choose_reduction(scene, &touch);
+        let (cut, parts) = match reduction {
+            Reduction::Quarter => (Cut::Quarter, 1),
+            Reduction::Half => (Cut::Half, 2),
+            Reduction::Full => (Cut::Full, 2),
+        };
+        let mut elements = 0;
+        let mut dt = f64::INFINITY;
+        for b in [&scene.ball1, &scene.ball2].into_iter().take(parts) {
+            let (size, pole_size) = match b.mesh {
+                MeshSettings::Builtin { size, pole_size } => (size, pole_size),
+                MeshSettings::File { .. } => (
+                    crate::scene::DEFAULT_SIZE_PER_D * b.diameter,
+                    crate::scene::DEFAULT_POLE_SIZE_PER_D * b.diameter,
+                ),
+            };
+            let (n, length) = self.mesh(&BallSpec {
+                diameter: b.diameter,
+                size,
+                pole_size: Some(pole_size),
+                cut,
+            })?;
+            elements += n;
+            dt = dt.min(length / b.material.dilatational_wave_speed());
+        }
+        let dt = dt * scene.solver.time_step_factor;
+        let simulated = scene
+            .solver
+            .end_time
+            .unwrap_or(outcome.contact_duration * (1.0 + DEFAULT_HOLD_FRACTION));
+        let steps = if dt.is_finite() && dt > 0.0 && simulated.is_finite() {
+            (simulated / dt).ceil()
+        } else {
+            0.0
+        };
+        Ok(CostEstimate { elements, steps })
+    }
+}
+
+/// [`Estimator::estimate`] for one scene.
+///
+/// Errors: as [`Estimator::estimate`].
+pub fn estimate(scene: &Scene, fe: bool) -> Result<CostEstimate> {
+    Estimator::default().estimate(scene, fe)
+}
+
+/// Deals items of cost `costs` (≥ 0) to `n` ≥ 1 shards, costliest first, each to the shard
+/// with the least cost so far (ties: lower item index first, lower shard first). Returns the
+/// 0-based shard of each item. Deterministic: every task of a job array computes the same plan.
+///
+/// The costliest shard exceeds the mean by at most the costliest single item.
+pub fn balance(costs: &[f64], n: usize) -> Vec<usize> {
+    let n = n.max(1);
+    let mut order: Vec<usize> = (0..costs.len()).collect();
+    order.sort_by(|&a, &b| costs[b].total_cmp(&costs[a]).then(a.cmp(&b)));
+    let mut load = vec![0.0f64; n];
+    let mut plan = vec![0; costs.len()];
+    for i in order {
+        let s = (0..n)
+            .min_by(|&a, &b| load[a].total_cmp(&load[b]).then(a.cmp(&b)))
+            .unwrap_or(0);
+        load[s] += costs[i];
+        plan[i] = s;
+    }
+    plan
+}
+
+/// The total cost of each of `n` shards under `plan` (from [`balance`]).
+pub fn shard_loads(costs: &[f64], plan: &[usize], n: usize) -> Vec<f64> {
+    let mut load = vec![0.0; n.max(1)];
+    for (c, &s) in costs.iter().zip(plan) {
+        load[s] += c;
+    }
+    load
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn balance_partitions_and_bounds_the_longest_shard() {
+        // Blocks of equal costs in case order (as a sweep lists them): dealt by cost, not order.
+        let costs: Vec<f64> = (0..72)
+            .map(|i| {
+                if i % 6 == 5 {
+                    1.0
+                } else {
+                    (1 + i / 6) as f64 * 100.0
+                }
+            })
+            .collect();
+        for n in [1, 3, 8, 72] {
+            let plan = balance(&costs, n);
+            assert_eq!(plan.len(), costs.len());
+            assert!(plan.iter().all(|&s| s < n));
+            let load = shard_loads(&costs, &plan, n);
+            let mean = costs.iter().sum::<f64>() / n as f64;
+            let most = costs.iter().cloned().fold(0.0, f64::max);
+            let longest = load.iter().cloned().fold(0.0, f64::max);
+            assert!(
+                longest <= mean + most + 1e-9,
+                "n = {n}: {longest} > {mean} + {most}"
+            );
+            assert!((load.iter().sum::<f64>() - costs.iter().sum::<f64>()).abs() < 1e-6);
+        }
+        // Equal costs: round-robin, every shard one more or one fewer.
+        let plan = balance(&[1.0; 10], 4);
+        assert_eq!(plan, vec![0, 1, 2, 3, 0, 1, 2, 3, 0, 1]);
+    }
+}
