@@ -32,6 +32,8 @@ pub enum Error {
     Numerical(String),
     /// An external program (gmsh, ccx) is missing or failed.
     External(String),
+    /// The user pressed Ctrl-C; the message says where the job stopped and what was written.
+    Interrupted(String),
 }
 
 impl Error {
@@ -95,6 +97,7 @@ impl fmt::Display for Error {
             Error::Io { path, source } => write!(f, "{path}: {source}"),
             Error::Numerical(m) => write!(f, "numerical failure: {m}"),
             Error::External(m) => write!(f, "{m}"),
+            Error::Interrupted(m) => write!(f, "interrupted {m}"),
         }
     }
 }

@@ -1,7 +1,10 @@
 //! Command-line interface: one file per subcommand; this file only dispatches.
 //!
 //! Every failure is printed as one line `error: …` on stderr with exit code 1 (2 for
-//! malformed flags, as clap does); nothing panics on user input.
+//! malformed flags, as clap does); nothing panics on user input. Ctrl-C during `run`,
+//! `sweep` or `stress` prints one line `interrupted at …` saying what was written, and exits
+//! with 130. Negative numbers are values everywhere (`--diameter -0.02` reaches the range
+//! check).
 
 mod analytic;
 mod bench;
@@ -9,6 +12,7 @@ mod bench_machine;
 mod bench_profile;
 mod bench_study;
 mod mesh;
+mod report;
 mod run;
 mod stress;
 mod sweep;
@@ -43,7 +47,7 @@ pub enum Command {
     /// `bench study` (run time against error).
     Bench(bench::BenchArgs),
     /// The verification report (REPORT.md, CSV, Figures 6-10) from a finished sweep.
-    Report(sweep::ReportArgs),
+    Report(report::ReportArgs),
     /// Stability matrix of extreme scenes: every case completes cleanly or stops with a reason.
     Stress(stress::StressArgs),
 }
@@ -68,6 +72,12 @@ where
             return e.exit_code();
         }
     };
+    if matches!(
+        cli.command,
+        Command::Run(_) | Command::Sweep(_) | Command::Stress(_)
+    ) {
+        crate::study::interrupt::install();
+    }
     let dispatch = move || match cli.command {
         Command::Analytic(a) => analytic::run_analytic(a),
         Command::Materials(a) => analytic::run_materials(a),
@@ -76,7 +86,7 @@ where
         Command::Run(a) => run::run(a),
         Command::Sweep(a) => sweep::run(a),
         Command::Bench(a) => bench::run(a),
-        Command::Report(a) => sweep::report(a),
+        Command::Report(a) => report::run(a),
         Command::Stress(a) => stress::run(a),
     };
     // The command runs on a worker of the thread pool: the solver's parallel loops (a dozen
@@ -89,6 +99,10 @@ where
     };
     match result {
         Ok(()) => 0,
+        Err(e @ crate::Error::Interrupted(_)) => {
+            eprintln!("{e}");
+            crate::study::interrupt::EXIT_CODE
+        }
         Err(e) => {
             eprintln!("error: {e}");
             1

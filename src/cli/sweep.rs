@@ -5,7 +5,6 @@
 use crate::error::Result;
 use crate::study::sweep::{run_sweep, Shard, SweepModel, SweepOptions, SweepSpec};
 use clap::Args;
-use std::io::IsTerminal;
 use std::path::PathBuf;
 use std::time::Duration;
 
@@ -51,7 +50,7 @@ pub fn run(a: SweepArgs) -> Result<()> {
         jobs,
         shard,
         pace: Duration::from_millis(a.pace_ms),
-        verbose: std::io::stderr().is_terminal(),
+        verbose: true,
         mesh: a.mesh.clone(),
     };
     let fe: crate::study::sweep::FeRunner<'_> = &crate::study::simulate::sweep_case;
@@ -69,34 +68,5 @@ pub fn run(a: SweepArgs) -> Result<()> {
         a.out.join("sweep.csv").display(),
         s.failed
     );
-    Ok(())
-}
-
-/// Arguments of `twoball report`.
-#[derive(Debug, Args)]
-pub struct ReportArgs {
-    /// Sweep output folder (from `twoball sweep --out DIR`).
-    pub dir: PathBuf,
-    /// The sweep file that produced it.
-    #[arg(long, default_value = "verification/ansys-study.toml")]
-    pub sweep: PathBuf,
-    /// Where REPORT.md and its files go.
-    #[arg(long, default_value = "verification")]
-    pub to: PathBuf,
-    /// Markdown appended as the discussion (default: NOTES.md beside the report, if present).
-    #[arg(long)]
-    pub notes: Option<PathBuf>,
-}
-
-/// Runs `twoball report`.
-pub fn report(a: ReportArgs) -> Result<()> {
-    let notes_path = a.notes.clone().unwrap_or_else(|| a.to.join("NOTES.md"));
-    let notes = match std::fs::read_to_string(&notes_path) {
-        Ok(t) => Some(t),
-        Err(_) if a.notes.is_none() => None,
-        Err(e) => return Err(crate::Error::io(&notes_path, e)),
-    };
-    crate::study::report::write_report(&a.sweep, &a.dir, &a.to, notes.as_deref())?;
-    println!("wrote {}", a.to.join("REPORT.md").display());
     Ok(())
 }
