@@ -17,7 +17,7 @@ mod run;
 mod stress;
 mod sweep;
 
-use clap::{Parser, Subcommand};
+use clap::{CommandFactory, FromArgMatches, Parser, Subcommand};
 
 /// twoball: finite-element verifier for the collision of two elastic-plastic balls.
 #[derive(Debug, Parser)]
@@ -52,6 +52,35 @@ pub enum Command {
     Stress(stress::StressArgs),
 }
 
+/// Whether `arg` takes a number (its value parser is that of a numeric type).
+fn takes_number(arg: &clap::Arg) -> bool {
+    let id = arg.get_value_parser().type_id();
+    let of = |p: clap::builder::ValueParser| p.type_id();
+    [
+        of(clap::value_parser!(f64).into()),
+        of(clap::value_parser!(usize).into()),
+        of(clap::value_parser!(u64).into()),
+        of(clap::value_parser!(u32).into()),
+        of(clap::value_parser!(i64).into()),
+    ]
+    .contains(&id)
+}
+
+/// `cmd` and all its subcommands reading `-0.02` and `-2e-3` as values of numeric flags,
+/// never as flags: a negative number reaches the range check, which names the flag and the
+/// allowed range.
+fn negative_numbers_everywhere(cmd: clap::Command) -> clap::Command {
+    cmd.allow_negative_numbers(true)
+        .mut_args(|a| {
+            if takes_number(&a) {
+                a.allow_hyphen_values(true)
+            } else {
+                a
+            }
+        })
+        .mut_subcommands(negative_numbers_everywhere)
+}
+
 /// Runs the command line and returns the process exit code.
 pub fn main() -> i32 {
     main_from(std::env::args_os())
@@ -64,7 +93,10 @@ where
     I: IntoIterator<Item = T>,
     T: Into<std::ffi::OsString> + Clone,
 {
-    let cli = match Cli::try_parse_from(args) {
+    let parsed = negative_numbers_everywhere(Cli::command())
+        .try_get_matches_from(args)
+        .and_then(|m| Cli::from_arg_matches(&m));
+    let cli = match parsed {
         Ok(c) => c,
         Err(e) => {
             // clap prints help/version to stdout with exit 0 and usage errors with exit 2.

@@ -11,7 +11,6 @@ use std::time::SystemTime;
 
 /// Arguments of `twoball run`.
 #[derive(Debug, Args)]
-#[command(allow_negative_numbers = true)]
 pub struct RunArgs {
     /// Scene file (TOML); the built-in default is the paper's Figure 8 case.
     pub scene: Option<PathBuf>,

@@ -7,7 +7,6 @@ use std::path::{Path, PathBuf};
 
 /// Arguments of `twoball stress`.
 #[derive(Debug, Args)]
-#[command(allow_negative_numbers = true)]
 pub struct StressArgs {
     /// Matrix file (TOML).
     #[arg(long, default_value = "verification/stress.toml")]
