@@ -178,7 +178,8 @@ fn report_stays_beside_the_sweep_and_refuses_a_partial_sweep_elsewhere() {
 fn progress_is_printed_when_stderr_is_a_pipe() {
     let root = scratch("progress");
     std::fs::write(root.join("study.toml"), SWEEP).unwrap();
-    // 12 cases paced to 0.5 s each on one worker: about 6 s, several plain lines.
+    // 12 cases paced to 0.7 s each on one worker: about 8.4 s, a plain line about every
+    // 2.1 s (3 cases, 25 %) and a final one.
     let o = run_in(
         &root,
         &[
@@ -189,7 +190,7 @@ fn progress_is_printed_when_stderr_is_a_pipe() {
             "--jobs",
             "1",
             "--pace-ms",
-            "500",
+            "700",
         ],
     );
     assert!(o.status.success(), "{}", text(&o.stderr));
