@@ -2,13 +2,18 @@
 """Independent check that a .vtu written by twoball is readable by a VTK-XML reader.
 
 Usage: check_vtu.py FILE.vtu [--expect-cells N] [--expect-points N] [--fields a,b,...]
+                    [--components NAME=c1,c2,...]... [--expect-time T]
 
-Reads FILE with meshio (the reader ParaView users rely on for conversions), checks that it holds
-only hexahedra, that the counts and named fields match, that every value is finite, and that
-every hexahedron has a positive volume (node order VTK_HEXAHEDRON). Exit status 0 on success,
-1 with a message on failure, 2 if meshio is missing.
+Reads FILE (ASCII or binary, appended raw and zlib-compressed as ParaView writes it) with
+meshio (the reader ParaView users rely on for conversions), checks that it holds only
+hexahedra, that the counts and named fields match, that every value is finite, and that
+every hexahedron has a positive volume (node order VTK_HEXAHEDRON); with --components, that
+the field's DataArray names its components so (ComponentName0.. attributes of the XML
+header); with --expect-time, that the file's TimeValue field data is T (relative 1e-12).
+Exit status 0 on success, 1 with a message on failure, 2 if meshio is missing.
 """
 import argparse
+import re
 import sys
 
 try:
@@ -41,6 +46,8 @@ def main():
     ap.add_argument("--expect-cells", type=int)
     ap.add_argument("--expect-points", type=int)
     ap.add_argument("--fields", default="")
+    ap.add_argument("--components", action="append", default=[])
+    ap.add_argument("--expect-time", type=float)
     a = ap.parse_args()
     m = meshio.read(a.file)
     kinds = {c.type for c in m.cells}
@@ -67,6 +74,21 @@ def main():
         v = np.concatenate(blocks)
         if len(v) != len(hexes) or not np.all(np.isfinite(v)):
             sys.exit(f"check_vtu: cell field {k} has a wrong length or non-finite values")
+    with open(a.file, "rb") as f:
+        header = f.read().split(b"<AppendedData", 1)[0].decode()
+    for spec in a.components:
+        name, want = spec.split("=", 1)
+        tag = re.search(r'<DataArray[^>]*Name="%s"[^>]*>' % re.escape(name), header)
+        if tag is None:
+            sys.exit(f"check_vtu: no DataArray {name!r} in the header")
+        got = re.findall(r'ComponentName(\d+)="([^"]*)"', tag.group(0))
+        got = ",".join(v for _, v in sorted(got, key=lambda kv: int(kv[0])))
+        if got != want:
+            sys.exit(f"check_vtu: {name} components {got!r}, expected {want!r}")
+    if a.expect_time is not None:
+        t = m.field_data.get("TimeValue")
+        if t is None or abs(float(np.ravel(t)[0]) - a.expect_time) > 1e-12 * max(1.0, abs(a.expect_time)):
+            sys.exit(f"check_vtu: TimeValue {t}, expected {a.expect_time}")
     print(f"check_vtu: {a.file}: {len(m.points)} points, {len(hexes)} hexahedra, "
           f"volume {vol.sum():.6e}, fields {sorted(names)}")
 

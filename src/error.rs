@@ -34,6 +34,8 @@ pub enum Error {
     External(String),
     /// Work is not finished (a sweep with cases still missing); the message says what is left.
     Incomplete(String),
+    /// The user pressed Ctrl-C; the message says where the job stopped and what was written.
+    Interrupted(String),
 }
 
 impl Error {
@@ -98,6 +100,7 @@ impl fmt::Display for Error {
             Error::Numerical(m) => write!(f, "numerical failure: {m}"),
             Error::External(m) => write!(f, "{m}"),
             Error::Incomplete(m) => write!(f, "{m}"),
+            Error::Interrupted(m) => write!(f, "interrupted {m}"),
         }
     }
 }

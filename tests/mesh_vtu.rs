@@ -6,7 +6,7 @@ mod tools;
 
 use std::process::Command;
 use twoball::mesh::ball::{ball, BallSpec, Cut};
-use twoball::mesh::vtu::{to_vtu, write, write_pvd, Field};
+use twoball::mesh::vtu::{to_vtu, write, write_pvd, write_with, Field, VtuFormat};
 
 fn tmp(name: &str) -> std::path::PathBuf {
     let d = std::env::temp_dir().join(format!("twoball-mesh-vtu-{}", std::process::id()));
@@ -39,7 +39,7 @@ fn vtu_with_fields_reads_in_meshio() {
     let stress = vec![[-1e8, 0.0, 0.0, 0.0, 0.0, 0.0]; m.hexes.len()];
     let eps: Vec<f64> = (0..m.hexes.len()).map(|e| e as f64 * 1e-6).collect();
     let path = tmp("ball.vtu");
-    write(
+    write_with(
         &path,
         &m,
         &[
@@ -50,6 +50,8 @@ fn vtu_with_fields_reads_in_meshio() {
             Field::sym_tensors("stress", &stress),
             Field::scalars("plastic_strain", &eps),
         ],
+        None,
+        VtuFormat::Ascii,
     )
     .unwrap();
     let text = std::fs::read_to_string(&path).unwrap();

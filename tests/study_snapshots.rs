@@ -17,7 +17,7 @@ fn twoball() -> Command {
     Command::new(env!("CARGO_BIN_EXE_twoball"))
 }
 
-/// The values of the `<DataArray Name="name">` of a twoball `.vtu` (ASCII format).
+/// The values of the `<DataArray Name="name">` of a twoball `.vtu` (ASCII format, `--vtu-ascii`).
 fn data_array(text: &str, name: &str) -> Vec<f64> {
     let key = format!("Name=\"{name}\"");
     let start = text.find(&key).expect("field present");
@@ -43,6 +43,7 @@ fn run_writes_a_playable_snapshot_series() {
     let out = twoball()
         .args([
             "run",
+            "--vtu-ascii",
             "--set",
             "output.vtu_snapshots=4",
             "--set",

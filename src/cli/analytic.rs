@@ -12,6 +12,8 @@ use crate::analytic::{collide_with_mu, Body, Collision};
 use crate::atomic::write_atomic;
 use crate::error::{Error, Result};
 use crate::material::{Material, MaterialOverrides, PRESET_NAMES};
+use crate::study::number::sci;
+use crate::study::warnings::{analytic_warnings, Warning};
 use clap::{Args, ValueEnum};
 use serde_json::{json, Value};
 use std::path::PathBuf;
@@ -137,7 +139,31 @@ fn apply_sets(m: Material, flag: &str, sets: &[String], ball: u8) -> Result<Mate
         };
         *slot = Some(v);
     }
-    apply(m, &o).validated(&prefix)
+    apply(m, &o).validated(&prefix).map_err(|e| {
+        e.map_field(|field| {
+            let key = field.rsplit('.').next().unwrap_or(&field).to_string();
+            set_flag_of(sets, ball, &key).unwrap_or(field)
+        })
+    })
+}
+
+/// The `--set` that gave ball `ball` (1 or 2) its field `key` (the last one wins), as the
+/// user wrote its target: `--set yield` for both balls, `--set 2.yield` for one.
+fn set_flag_of(sets: &[String], ball: u8, key: &str) -> Option<String> {
+    sets.iter().rev().find_map(|s| {
+        let (target, rest) = match s.split_once('.') {
+            Some(("1", r)) => (Some(1), r),
+            Some(("2", r)) => (Some(2), r),
+            _ => (None, s.as_str()),
+        };
+        let k = rest.split_once('=')?.0.trim();
+        match target {
+            _ if k != key => None,
+            None => Some(format!("--set {key}")),
+            Some(t) if t == ball => Some(format!("--set {t}.{key}")),
+            Some(_) => None,
+        }
+    })
 }
 
 /// Field replacement without validation (validated by the caller with a precise prefix).
@@ -263,19 +289,21 @@ fn collision_json(c: &Collision, b1: &Body, b2: &Body) -> Value {
 fn describe(b: &Body, name: &str) -> String {
     match b {
         Body::Ball { material, diameter } => format!(
-            "{name}: D = {diameter} m, m = {:.6e} kg, E = {:.4e} Pa, nu = {}, rho = {} kg/m^3, \
-             yield = {:.4e} Pa, mu = {}",
-            b.mass(),
-            material.youngs,
+            "{name}: D = {diameter} m, m = {} kg, E = {} Pa, nu = {}, rho = {} kg/m^3, \
+             yield = {} Pa, mu = {}",
+            sci(b.mass(), 6),
+            sci(material.youngs, 4),
             material.nu,
             material.rho,
-            material.yield_strength,
+            sci(material.yield_strength, 4),
             material.mu
         ),
         Body::RigidWall => format!("{name}: rigid half-space at rest"),
         Body::HalfSpace { material } => format!(
-            "{name}: elastic-plastic half-space at rest, E = {:.4e} Pa, nu = {}, yield = {:.4e} Pa",
-            material.youngs, material.nu, material.yield_strength
+            "{name}: elastic-plastic half-space at rest, E = {} Pa, nu = {}, yield = {} Pa",
+            sci(material.youngs, 4),
+            material.nu,
+            sci(material.yield_strength, 4)
         ),
     }
 }
@@ -283,17 +311,20 @@ fn describe(b: &Body, name: &str) -> String {
 fn print_table(c: &Collision, b1: &Body, b2: &Body) {
     println!("Three-phase collision model (Li, Yang & Shi 2019), SI units");
     println!("{}", describe(b1, "ball 1"));
-    println!("{}", describe(b2, "body 2"));
+    println!(
+        "{}",
+        describe(b2, if b2.is_wall() { "wall" } else { "ball 2" })
+    );
     println!(
         "before: v1 = ({:+.6}, {:+.6}) m/s, v2 = ({:+.6}, {:+.6}) m/s  [normal, tangential]",
         c.v1_before[0], c.v1_before[1], c.v2_before[0], c.v2_before[1]
     );
     println!(
-        "pair:   E* = {:.6e} Pa, R* = {:.6e} m, m* = {:.6e} kg, sigma_p = {:.6e} Pa, mu = {}",
-        c.pair.modulus,
-        c.pair.radius,
-        c.pair.mass,
-        b1.yield_pressure().min(b2.yield_pressure()),
+        "pair:   E* = {} Pa, R* = {} m, m* = {} kg, sigma_p = {} Pa, mu = {}",
+        sci(c.pair.modulus, 6),
+        sci(c.pair.radius, 6),
+        sci(c.pair.mass, 6),
+        sci(b1.yield_pressure().min(b2.yield_pressure()), 6),
         c.mu
     );
     let Some(n) = c.normal else {
@@ -308,18 +339,16 @@ fn print_table(c: &Collision, b1: &Body, b2: &Body) {
             "never yields (pure Hertz, e = 1)"
         }
     );
-    println!(
-        "  phase 1 end   delta1  = {:.6e} m     t1 = {:.6e} s",
-        n.delta1, n.t1
-    );
-    println!(
-        "  max approach  delta2  = {:.6e} m     t2 = {:.6e} s",
-        n.delta2, n.t2
-    );
-    println!(
-        "  permanent     delta_p = {:.6e} m     t3 = {:.6e} s",
-        n.delta_p, n.t3
-    );
+    let phase = |label: &str, name: &str, delta: f64, t_name: &str, t: f64| {
+        println!(
+            "  {label:<13} {name:<7} = {:<12} m     {t_name} = {} s",
+            sci(delta, 6),
+            sci(t, 6)
+        );
+    };
+    phase("phase 1 end", "delta1", n.delta1, "t1", n.t1);
+    phase("max approach", "delta2", n.delta2, "t2", n.t2);
+    phase("permanent", "delta_p", n.delta_p, "t3", n.t3);
     println!(
         "  restitution   e = {:.6}   (v_r = {:.6} -> {:.6} m/s)",
         n.e, n.approach_speed, n.rebound_speed
@@ -334,10 +363,10 @@ fn print_table(c: &Collision, b1: &Body, b2: &Body) {
             time,
             approach,
         }) => println!(
-            "tangential: slip stops in phase {} (t = {:.4e} s, delta = {:.4e} m), then rolls",
+            "tangential: slip stops in phase {} (t = {} s, delta = {} m), then rolls",
             phase.number(),
-            time,
-            approach
+            sci(time, 4),
+            sci(approach, 4)
         ),
         Some(TangentialExit::Slip) => println!("tangential: slides for the whole contact"),
         _ => println!("tangential: no slip"),
@@ -345,7 +374,14 @@ fn print_table(c: &Collision, b1: &Body, b2: &Body) {
     println!("eta (eq. 33)          = {:.6}", c.eta);
     println!("eta_friction (eq. 43) = {:.6}", c.eta_friction);
     println!("eta_impulse (Coulomb) = {:.6}", c.eta_impulse);
-    println!("Zhang loss (eq. 42)   = {:.6e} J", c.zhang_loss);
+    println!("Zhang loss (eq. 42)   = {} J", sci(c.zhang_loss, 6));
+}
+
+/// The analytical model's range warnings for collision `c` (none without impact).
+fn collision_warnings(c: &Collision) -> Vec<Warning> {
+    c.normal
+        .as_ref()
+        .map_or_else(Vec::new, |n| analytic_warnings(n.delta2, c.pair.radius))
 }
 
 fn write_curve(c: &Collision, path: &std::path::Path, samples: usize) -> Result<()> {
@@ -406,8 +442,12 @@ pub fn run_analytic(a: AnalyticArgs) -> Result<()> {
     if let Some(path) = &a.curve {
         write_curve(&c, path, a.samples)?;
     }
+    let warnings = collision_warnings(&c);
+    crate::study::warnings::print(&warnings);
     if a.json {
-        println!("{}", collision_json(&c, &b1, &b2));
+        let mut v = collision_json(&c, &b1, &b2);
+        v["warnings"] = json!(warnings);
+        println!("{v}");
     } else {
         print_table(&c, &b1, &b2);
         if let Some(path) = &a.curve {

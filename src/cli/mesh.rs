@@ -39,9 +39,12 @@ struct BallArgs {
     /// full, half (z >= 0) or quarter (y >= 0, z >= 0).
     #[arg(long, default_value = "full")]
     cut: String,
-    /// Output file: .msh (gmsh 4.1 ASCII) or .vtu (ParaView).
+    /// Output file: .msh (gmsh 4.1 ASCII) or .vtu (ParaView; compressed binary).
     #[arg(short, long)]
     output: PathBuf,
+    /// Write a .vtu as ASCII text instead of compressed binary.
+    #[arg(long)]
+    ascii: bool,
     /// Print the summary as JSON.
     #[arg(long)]
     json: bool,
@@ -91,10 +94,18 @@ fn run_ball(b: BallArgs) -> Result<()> {
         size: b.size,
         pole_size: b.pole_size,
         cut,
-    })?;
+    })
+    .map_err(|e| e.map_field(|f| format!("--{}", f.replace('_', "-"))))?;
     match format {
         Format::Msh => msh::write(&b.output, &mesh)?,
-        Format::Vtu => vtu::write(&b.output, &mesh, &[], &[])?,
+        Format::Vtu => {
+            let format = if b.ascii {
+                vtu::VtuFormat::Ascii
+            } else {
+                vtu::VtuFormat::Binary
+            };
+            vtu::write_with(&b.output, &mesh, &[], &[], None, format)?
+        }
     }
     report(&mesh, &b.output, b.json)
 }

@@ -1,7 +1,10 @@
 //! Command-line interface: one file per subcommand; this file only dispatches.
 //!
 //! Every failure is printed as one line `error: …` on stderr with exit code 1 (2 for
-//! malformed flags, as clap does); nothing panics on user input.
+//! malformed flags, as clap does); nothing panics on user input. Ctrl-C during `run`,
+//! `sweep` or `stress` prints one line `interrupted at …` saying what was written, and exits
+//! with 130. Negative numbers are values everywhere (`--diameter -0.02` reaches the range
+//! check).
 
 mod analytic;
 mod bench;
@@ -9,11 +12,12 @@ mod bench_machine;
 mod bench_profile;
 mod bench_study;
 mod mesh;
+mod report;
 mod run;
 mod stress;
 mod sweep;
 
-use clap::{Parser, Subcommand};
+use clap::{CommandFactory, FromArgMatches, Parser, Subcommand};
 
 /// twoball: finite-element verifier for the collision of two elastic-plastic balls.
 #[derive(Debug, Parser)]
@@ -43,9 +47,38 @@ pub enum Command {
     /// `bench study` (run time against error).
     Bench(bench::BenchArgs),
     /// The verification report (REPORT.md, CSV, Figures 6-10) from a finished sweep.
-    Report(sweep::ReportArgs),
+    Report(report::ReportArgs),
     /// Stability matrix of extreme scenes: every case completes cleanly or stops with a reason.
     Stress(stress::StressArgs),
+}
+
+/// Whether `arg` takes a number (its value parser is that of a numeric type).
+fn takes_number(arg: &clap::Arg) -> bool {
+    let id = arg.get_value_parser().type_id();
+    let of = |p: clap::builder::ValueParser| p.type_id();
+    [
+        of(clap::value_parser!(f64).into()),
+        of(clap::value_parser!(usize).into()),
+        of(clap::value_parser!(u64).into()),
+        of(clap::value_parser!(u32).into()),
+        of(clap::value_parser!(i64).into()),
+    ]
+    .contains(&id)
+}
+
+/// `cmd` and all its subcommands reading `-0.02` and `-2e-3` as values of numeric flags,
+/// never as flags: a negative number reaches the range check, which names the flag and the
+/// allowed range.
+fn negative_numbers_everywhere(cmd: clap::Command) -> clap::Command {
+    cmd.allow_negative_numbers(true)
+        .mut_args(|a| {
+            if takes_number(&a) {
+                a.allow_hyphen_values(true)
+            } else {
+                a
+            }
+        })
+        .mut_subcommands(negative_numbers_everywhere)
 }
 
 /// Runs the command line and returns the process exit code.
@@ -60,7 +93,10 @@ where
     I: IntoIterator<Item = T>,
     T: Into<std::ffi::OsString> + Clone,
 {
-    let cli = match Cli::try_parse_from(args) {
+    let parsed = negative_numbers_everywhere(Cli::command())
+        .try_get_matches_from(args)
+        .and_then(|m| Cli::from_arg_matches(&m));
+    let cli = match parsed {
         Ok(c) => c,
         Err(e) => {
             // clap prints help/version to stdout with exit 0 and usage errors with exit 2.
@@ -68,6 +104,12 @@ where
             return e.exit_code();
         }
     };
+    if matches!(
+        cli.command,
+        Command::Run(_) | Command::Sweep(_) | Command::Stress(_)
+    ) {
+        crate::study::interrupt::install();
+    }
     let dispatch = move || match cli.command {
         Command::Analytic(a) => analytic::run_analytic(a),
         Command::Materials(a) => analytic::run_materials(a),
@@ -76,7 +118,7 @@ where
         Command::Run(a) => run::run(a),
         Command::Sweep(a) => sweep::run(a),
         Command::Bench(a) => bench::run(a),
-        Command::Report(a) => sweep::report(a),
+        Command::Report(a) => report::run(a),
         Command::Stress(a) => stress::run(a),
     };
     // The command runs on a worker of the thread pool: the solver's parallel loops (a dozen
@@ -89,6 +131,10 @@ where
     };
     match result {
         Ok(()) => 0,
+        Err(e @ crate::Error::Interrupted(_)) => {
+            eprintln!("{e}");
+            crate::study::interrupt::EXIT_CODE
+        }
         Err(e) => {
             eprintln!("error: {e}");
             1

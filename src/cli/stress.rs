@@ -3,8 +3,7 @@
 use crate::error::{Error, Result};
 use crate::study::stress::{run_stress, StressOptions, StressSpec};
 use clap::Args;
-use std::io::IsTerminal;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 /// Arguments of `twoball stress`.
 #[derive(Debug, Args)]
@@ -23,6 +22,32 @@ pub struct StressArgs {
     pub quick: bool,
 }
 
+/// Prints the warnings (results.json `warnings`) of every case run that has any, one line
+/// each, `ID: warning: ...`.
+fn print_flagged_warnings(out: &Path) {
+    let Ok(entries) = std::fs::read_dir(out.join("runs")) else {
+        return;
+    };
+    let mut dirs: Vec<PathBuf> = entries.flatten().map(|e| e.path()).collect();
+    dirs.sort();
+    for d in dirs {
+        let Ok(text) = std::fs::read_to_string(d.join("results.json")) else {
+            continue;
+        };
+        let Ok(v) = serde_json::from_str::<serde_json::Value>(&text) else {
+            continue;
+        };
+        let id = d
+            .file_name()
+            .map_or(String::new(), |n| n.to_string_lossy().to_string());
+        for w in v["warnings"].as_array().into_iter().flatten() {
+            if let Some(m) = w["message"].as_str() {
+                println!("{id}: warning: {m}");
+            }
+        }
+    }
+}
+
 /// Runs `twoball stress`; fails if any case failed silently.
 pub fn run(a: StressArgs) -> Result<()> {
     let spec = StressSpec::from_file(&a.matrix)?;
@@ -38,9 +63,10 @@ pub fn run(a: StressArgs) -> Result<()> {
         jobs,
         quick: a.quick,
         exe,
-        verbose: std::io::stderr().is_terminal(),
+        verbose: true,
     };
     let (c, _) = run_stress(&spec, &opts)?;
+    print_flagged_warnings(&a.out);
     println!(
         "stress: {} cases: {} completed (energy error < tolerance), {} flagged, {} stopped with a reason, {} silent failures; {}",
         c.total,

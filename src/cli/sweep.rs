@@ -11,7 +11,6 @@ use crate::study::sweep::{
 };
 use crate::study::sweep_status::sweep_status;
 use clap::{Args, Subcommand};
-use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
 use std::time::Duration;
 
@@ -142,7 +141,7 @@ pub fn run(a: SweepArgs) -> Result<()> {
         jobs,
         shard,
         pace: Duration::from_millis(a.pace_ms),
-        verbose: std::io::stderr().is_terminal(),
+        verbose: true,
         mesh: a.mesh.clone(),
     };
     let fe: crate::study::sweep::FeRunner<'_> = &crate::study::simulate::sweep_case;
@@ -264,43 +263,5 @@ fn status(a: StatusArgs) -> Result<()> {
             a.dir.join("sweep.sbatch").display()
         )));
     }
-    Ok(())
-}
-
-/// Arguments of `twoball report`.
-#[derive(Debug, Args)]
-pub struct ReportArgs {
-    /// Sweep output folder (from `twoball sweep --out DIR`).
-    pub dir: PathBuf,
-    /// The sweep file that produced it (default: DIR/sweep.toml, the copy the sweep keeps,
-    /// else verification/ansys-study.toml).
-    #[arg(long)]
-    pub sweep: Option<PathBuf>,
-    /// Where REPORT.md and its files go.
-    #[arg(long, default_value = "verification")]
-    pub to: PathBuf,
-    /// Markdown appended as the discussion (default: NOTES.md beside the report, if present).
-    #[arg(long)]
-    pub notes: Option<PathBuf>,
-}
-
-/// Runs `twoball report`.
-pub fn report(a: ReportArgs) -> Result<()> {
-    let notes_path = a.notes.clone().unwrap_or_else(|| a.to.join("NOTES.md"));
-    let notes = match std::fs::read_to_string(&notes_path) {
-        Ok(t) => Some(t),
-        Err(_) if a.notes.is_none() => None,
-        Err(e) => return Err(crate::Error::io(&notes_path, e)),
-    };
-    let kept = a.dir.join(crate::study::sweep::SPEC_COPY);
-    let sweep = a.sweep.clone().unwrap_or_else(|| {
-        if kept.is_file() {
-            kept
-        } else {
-            PathBuf::from("verification/ansys-study.toml")
-        }
-    });
-    crate::study::report::write_report(&sweep, &a.dir, &a.to, notes.as_deref())?;
-    println!("wrote {}", a.to.join("REPORT.md").display());
     Ok(())
 }

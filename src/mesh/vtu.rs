@@ -1,14 +1,43 @@
-//! ParaView output: VTK XML UnstructuredGrid (`.vtu`, ASCII) with optional nodal and element
+//! ParaView output: VTK XML UnstructuredGrid (`.vtu`) with optional nodal and element
 //! fields, and `.pvd` collections for time series.
 //!
-//! Hexahedra are VTK_HEXAHEDRON (type 12), whose node order is gmsh's. Symmetric tensors
-//! (stress, strain) are written as 6 components in ParaView's order xx, yy, zz, xy, yz, xz.
+//! Files are binary by default, as ParaView writes them: the arrays follow the XML header as
+//! appended raw data, each zlib-compressed in 32 KiB blocks (`compressor=
+//! "vtkZLibDataCompressor"`, UInt64 block headers); [`VtuFormat::Ascii`] writes plain text.
+//! Hexahedra are VTK_HEXAHEDRON (type 12), whose node order is gmsh's. Components are named:
+//! vectors `x`, `y`, `z`; symmetric tensors (stress, strain) are 6 components in ParaView's
+//! order `xx`, `yy`, `zz`, `xy`, `yz`, `zx`. A time value (s) can be stored as the field
+//! `TimeValue`, which ParaView shows as the data set's time.
 
 use super::Mesh;
 use crate::atomic::write_atomic;
 use crate::error::{Error, Result};
+use flate2::{write::ZlibEncoder, Compression};
 use std::fmt::Write as _;
+use std::io::Write as _;
 use std::path::Path;
+
+/// How the arrays of a `.vtu` file are stored.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub enum VtuFormat {
+    /// Appended raw binary, zlib-compressed (ParaView's own choice; about a tenth of ASCII).
+    #[default]
+    Binary,
+    /// Plain text, one entity per line.
+    Ascii,
+}
+
+/// Uncompressed size of one compressed block, bytes (VTK's default).
+const BLOCK: usize = 32 * 1024;
+
+/// Names of the components of a field with `n` components (none for scalars).
+fn component_names(n: usize) -> &'static [&'static str] {
+    match n {
+        3 => &["x", "y", "z"],
+        6 => &["xx", "yy", "zz", "xy", "yz", "zx"],
+        _ => &[],
+    }
+}
 
 /// A named field with `components` values per node or element, stored flat
 /// (`values.len() == components * count`).
@@ -84,29 +113,131 @@ impl<'a> Field<'a> {
     }
 }
 
-fn data_array(s: &mut String, f: &Field) {
-    let _ = writeln!(
-        s,
-        "        <DataArray type=\"Float64\" Name=\"{}\" NumberOfComponents=\"{}\" format=\"ascii\">",
-        f.name, f.components
-    );
-    for chunk in f.values.chunks(f.components) {
-        s.push_str("          ");
-        for (k, v) in chunk.iter().enumerate() {
-            if k > 0 {
-                s.push(' ');
-            }
-            let _ = write!(s, "{v:e}");
-        }
-        s.push('\n');
-    }
-    s.push_str("        </DataArray>\n");
+/// One array of the file, whatever its element type.
+enum Values<'a> {
+    F64(&'a [f64]),
+    I64(Vec<i64>),
+    U8(Vec<u8>),
 }
 
-/// The mesh and fields as VTU text. Fails (and writes nothing) if a field has the wrong
-/// length, an unsupported component count, a bad name or a non-finite value, or a node is
-/// not finite.
-pub fn to_vtu(mesh: &Mesh, point_fields: &[Field], cell_fields: &[Field]) -> Result<String> {
+impl Values<'_> {
+    fn vtk_type(&self) -> &'static str {
+        match self {
+            Values::F64(_) => "Float64",
+            Values::I64(_) => "Int64",
+            Values::U8(_) => "UInt8",
+        }
+    }
+
+    /// Little-endian bytes.
+    fn bytes(&self) -> Vec<u8> {
+        match self {
+            Values::F64(v) => v.iter().flat_map(|x| x.to_le_bytes()).collect(),
+            Values::I64(v) => v.iter().flat_map(|x| x.to_le_bytes()).collect(),
+            Values::U8(v) => v.clone(),
+        }
+    }
+
+    /// Text, `per_line` values a line.
+    fn text(&self, per_line: usize) -> String {
+        let items: Vec<String> = match self {
+            Values::F64(v) => v.iter().map(|x| format!("{x:e}")).collect(),
+            Values::I64(v) => v.iter().map(|x| x.to_string()).collect(),
+            Values::U8(v) => v.iter().map(|x| x.to_string()).collect(),
+        };
+        let mut s = String::new();
+        for line in items.chunks(per_line.max(1)) {
+            s.push_str("          ");
+            s.push_str(&line.join(" "));
+            s.push('\n');
+        }
+        s
+    }
+}
+
+/// The `<DataArray>` attributes and values of one array.
+struct Array<'a> {
+    name: &'a str,
+    components: usize,
+    tuples: Option<usize>,
+    /// Values a line in ASCII.
+    per_line: usize,
+    values: Values<'a>,
+}
+
+/// zlib-compressed `bytes` with VTK's block header (block count, block size, size of a
+/// partial last block, compressed sizes; all UInt64).
+fn compressed(bytes: &[u8]) -> Result<Vec<u8>> {
+    let blocks: Vec<Vec<u8>> = bytes
+        .chunks(BLOCK)
+        .map(|chunk| {
+            let mut z = ZlibEncoder::new(Vec::new(), Compression::default());
+            z.write_all(chunk)?;
+            z.finish()
+        })
+        .collect::<std::io::Result<_>>()
+        .map_err(|e| Error::External(format!("vtu compression: {e}")))?;
+    let mut out = Vec::new();
+    for h in [blocks.len(), BLOCK, bytes.len() % BLOCK] {
+        out.extend((h as u64).to_le_bytes());
+    }
+    for b in &blocks {
+        out.extend((b.len() as u64).to_le_bytes());
+    }
+    for b in blocks {
+        out.extend(b);
+    }
+    Ok(out)
+}
+
+/// Writes the array's `<DataArray>` element into `xml`; binary values go to `appended`.
+fn data_array(
+    xml: &mut String,
+    appended: &mut Vec<u8>,
+    a: &Array,
+    format: VtuFormat,
+) -> Result<()> {
+    let _ = write!(
+        xml,
+        "        <DataArray type=\"{}\" Name=\"{}\"",
+        a.values.vtk_type(),
+        a.name
+    );
+    if a.components > 1 {
+        let _ = write!(xml, " NumberOfComponents=\"{}\"", a.components);
+    }
+    for (k, c) in component_names(a.components).iter().enumerate() {
+        let _ = write!(xml, " ComponentName{k}=\"{c}\"");
+    }
+    if let Some(n) = a.tuples {
+        let _ = write!(xml, " NumberOfTuples=\"{n}\"");
+    }
+    match format {
+        VtuFormat::Ascii => {
+            xml.push_str(" format=\"ascii\">\n");
+            xml.push_str(&a.values.text(a.per_line));
+            xml.push_str("        </DataArray>\n");
+        }
+        VtuFormat::Binary => {
+            let _ = writeln!(xml, " format=\"appended\" offset=\"{}\"/>", appended.len());
+            appended.extend(compressed(&a.values.bytes())?);
+        }
+    }
+    Ok(())
+}
+
+fn field_array<'a>(f: &Field<'a>) -> Array<'a> {
+    Array {
+        name: f.name,
+        components: f.components,
+        tuples: None,
+        per_line: f.components,
+        values: Values::F64(f.values),
+    }
+}
+
+/// Checks the fields and the mesh for [`to_vtu_bytes`].
+fn check_all(mesh: &Mesh, point_fields: &[Field], cell_fields: &[Field]) -> Result<()> {
     for f in point_fields {
         f.check(mesh.nodes.len(), "point")?;
     }
@@ -122,12 +253,50 @@ pub fn to_vtu(mesh: &Mesh, point_fields: &[Field], cell_fields: &[Field]) -> Res
             "mesh node {i} is not finite; not written"
         )));
     }
-    let mut s = String::with_capacity(80 * (mesh.nodes.len() + mesh.hexes.len()));
+    Ok(())
+}
+
+/// The mesh and fields as a `.vtu` file in `format`, with the data set's time `time` (s)
+/// as the field `TimeValue` when given. Fails (and writes nothing) if a field has the wrong
+/// length, an unsupported component count, a bad name or a non-finite value, or a node or
+/// the time is not finite.
+pub fn to_vtu_bytes(
+    mesh: &Mesh,
+    point_fields: &[Field],
+    cell_fields: &[Field],
+    time: Option<f64>,
+    format: VtuFormat,
+) -> Result<Vec<u8>> {
+    check_all(mesh, point_fields, cell_fields)?;
+    if let Some(t) = time.filter(|t| !t.is_finite()) {
+        return Err(Error::Numerical(format!(
+            "time {t} is not finite; not written"
+        )));
+    }
+    let mut s = String::with_capacity(4096);
+    let mut appended = Vec::new();
     s.push_str("<?xml version=\"1.0\"?>\n");
     s.push_str(
         "<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\" \
-         header_type=\"UInt64\">\n  <UnstructuredGrid>\n",
+         header_type=\"UInt64\"",
     );
+    if format == VtuFormat::Binary {
+        s.push_str(" compressor=\"vtkZLibDataCompressor\"");
+    }
+    s.push_str(">\n  <UnstructuredGrid>\n");
+    let time_value = time.map(|t| [t]);
+    if let Some(t) = &time_value {
+        s.push_str("    <FieldData>\n");
+        let a = Array {
+            name: "TimeValue",
+            components: 1,
+            tuples: Some(1),
+            per_line: 1,
+            values: Values::F64(t),
+        };
+        data_array(&mut s, &mut appended, &a, format)?;
+        s.push_str("    </FieldData>\n");
+    }
     let _ = writeln!(
         s,
         "    <Piece NumberOfPoints=\"{}\" NumberOfCells=\"{}\">",
@@ -136,50 +305,98 @@ pub fn to_vtu(mesh: &Mesh, point_fields: &[Field], cell_fields: &[Field]) -> Res
     );
     s.push_str("      <PointData>\n");
     for f in point_fields {
-        data_array(&mut s, f);
+        data_array(&mut s, &mut appended, &field_array(f), format)?;
     }
     s.push_str("      </PointData>\n      <CellData>\n");
     for f in cell_fields {
-        data_array(&mut s, f);
+        data_array(&mut s, &mut appended, &field_array(f), format)?;
     }
     s.push_str("      </CellData>\n      <Points>\n");
-    data_array(&mut s, &Field::vectors("Points", &mesh.nodes));
+    data_array(
+        &mut s,
+        &mut appended,
+        &field_array(&Field::vectors("Points", &mesh.nodes)),
+        format,
+    )?;
     s.push_str("      </Points>\n      <Cells>\n");
-    s.push_str("        <DataArray type=\"Int64\" Name=\"connectivity\" format=\"ascii\">\n");
-    for h in &mesh.hexes {
-        let _ = writeln!(
-            s,
-            "          {} {} {} {} {} {} {} {}",
-            h[0], h[1], h[2], h[3], h[4], h[5], h[6], h[7]
-        );
+    let cells = [
+        Array {
+            name: "connectivity",
+            components: 1,
+            tuples: None,
+            per_line: 8,
+            values: Values::I64(mesh.hexes.iter().flatten().map(|&n| n as i64).collect()),
+        },
+        Array {
+            name: "offsets",
+            components: 1,
+            tuples: None,
+            per_line: 1,
+            values: Values::I64((1..=mesh.hexes.len()).map(|e| 8 * e as i64).collect()),
+        },
+        Array {
+            name: "types",
+            components: 1,
+            tuples: None,
+            per_line: 1,
+            values: Values::U8(vec![12; mesh.hexes.len()]),
+        },
+    ];
+    for a in &cells {
+        data_array(&mut s, &mut appended, a, format)?;
     }
-    s.push_str("        </DataArray>\n");
-    s.push_str("        <DataArray type=\"Int64\" Name=\"offsets\" format=\"ascii\">\n");
-    for e in 0..mesh.hexes.len() {
-        let _ = writeln!(s, "          {}", 8 * (e + 1));
+    s.push_str("      </Cells>\n    </Piece>\n  </UnstructuredGrid>\n");
+    let mut out = s.into_bytes();
+    if format == VtuFormat::Binary {
+        out.extend_from_slice(b"  <AppendedData encoding=\"raw\">\n   _");
+        out.extend(appended);
+        out.extend_from_slice(b"\n  </AppendedData>\n");
     }
-    s.push_str("        </DataArray>\n");
-    s.push_str("        <DataArray type=\"UInt8\" Name=\"types\" format=\"ascii\">\n");
-    for _ in &mesh.hexes {
-        s.push_str("          12\n");
-    }
-    s.push_str(
-        "        </DataArray>\n      </Cells>\n    </Piece>\n  </UnstructuredGrid>\n</VTKFile>\n",
-    );
-    Ok(s)
+    out.extend_from_slice(b"</VTKFile>\n");
+    Ok(out)
+}
+
+/// The mesh and fields as ASCII VTU text; see [`to_vtu_bytes`] for the failure modes.
+pub fn to_vtu(mesh: &Mesh, point_fields: &[Field], cell_fields: &[Field]) -> Result<String> {
+    let bytes = to_vtu_bytes(mesh, point_fields, cell_fields, None, VtuFormat::Ascii)?;
+    String::from_utf8(bytes).map_err(|e| Error::Parse(format!("vtu text: {e}")))
 }
 
 /// Writes the mesh with nodal fields (`point_fields`, one entry per node) and element fields
-/// (`cell_fields`, one entry per hexahedron) to a `.vtu` file, atomically.
+/// (`cell_fields`, one entry per hexahedron) to a binary `.vtu` file, atomically.
 ///
-/// Errors: see [`to_vtu`]; I/O errors name the path.
+/// Errors: see [`to_vtu_bytes`]; I/O errors name the path.
 pub fn write(
     path: impl AsRef<Path>,
     mesh: &Mesh,
     point_fields: &[Field],
     cell_fields: &[Field],
 ) -> Result<()> {
-    write_atomic(path, to_vtu(mesh, point_fields, cell_fields)?.as_bytes())
+    write_with(
+        path,
+        mesh,
+        point_fields,
+        cell_fields,
+        None,
+        VtuFormat::Binary,
+    )
+}
+
+/// [`write`] in `format`, with the data set's time `time` (s) when given.
+///
+/// Errors: see [`to_vtu_bytes`]; I/O errors name the path.
+pub fn write_with(
+    path: impl AsRef<Path>,
+    mesh: &Mesh,
+    point_fields: &[Field],
+    cell_fields: &[Field],
+    time: Option<f64>,
+    format: VtuFormat,
+) -> Result<()> {
+    write_atomic(
+        path,
+        &to_vtu_bytes(mesh, point_fields, cell_fields, time, format)?,
+    )
 }
 
 /// Writes a ParaView collection (`.pvd`) listing `(time in s, .vtu file name)` steps, so

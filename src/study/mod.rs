@@ -11,10 +11,14 @@
 //! - [`plots`]: SVG charts for the report;
 //! - [`snapshots`]: `.vtu` snapshots of a run for ParaView;
 //! - [`atomic`]: crash-safe file output;
-//! - [`progress`]: the terminal progress bar.
+//! - [`progress`]: progress on stderr (a bar on a terminal, plain lines elsewhere);
+//! - [`interrupt`]: Ctrl-C stops a job cleanly;
+//! - [`warnings`]: results a user should not trust blindly, each said in one line.
 
 pub mod bench;
 pub mod cost;
+pub mod interrupt;
+pub mod number;
 pub mod outcome;
 pub mod plots;
 pub mod progress;
@@ -26,3 +30,4 @@ pub mod snapshots;
 pub mod stress;
 pub mod sweep;
 pub mod sweep_status;
+pub mod warnings;

@@ -12,7 +12,7 @@ pub enum Style {
     Points,
 }
 
-/// One curve or point set.
+/// One curve or point set (a line of one point is drawn as a marker).
 #[derive(Debug, Clone, PartialEq)]
 pub struct Series {
     /// Legend label.
@@ -88,7 +88,14 @@ impl Chart {
             for (k, s) in self.series.iter().enumerate() {
                 let color = Palette99::pick(k).to_rgba();
                 let p = pts(s);
-                match s.style {
+                // A line through one point draws nothing: show the point instead, so the
+                // legend never lists a series that is not on the chart.
+                let style = if s.style == Style::Line && p.len() < 2 {
+                    Style::Points
+                } else {
+                    s.style
+                };
+                match style {
                     Style::Line => {
                         chart
                             .draw_series(LineSeries::new(p, color.stroke_width(2)))
@@ -150,5 +157,24 @@ mod tests {
         assert!(svg.contains("<polyline") || svg.contains("<path"));
         assert!(svg.contains("<circle"));
         assert!(!svg.contains("NaN"));
+    }
+
+    /// A figure with one x-point (one speed, one diameter) still draws every series its
+    /// legend lists: the one-point analytical "line" becomes a marker.
+    #[test]
+    fn a_one_point_line_is_drawn_as_a_marker() {
+        let c = Chart {
+            title: "one point".into(),
+            x_label: "v (m/s)".into(),
+            y_label: "v after (m/s)".into(),
+            series: vec![Series {
+                label: "analytical".into(),
+                points: vec![(-1.0, 0.3)],
+                style: Style::Line,
+            }],
+        };
+        let svg = c.svg().unwrap();
+        assert!(svg.contains("analytical"));
+        assert!(svg.contains("<circle"), "the single point is not drawn");
     }
 }

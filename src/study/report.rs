@@ -43,15 +43,85 @@ fn fe_an(r: &CaseRecord, g: Getter) -> (Option<f64>, Option<f64>) {
     )
 }
 
+/// How a report treats a sweep that has not finished every case.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Partial {
+    /// Refuse it (the committed report must describe the whole sweep).
+    Refuse,
+    /// Write it, saying in the title how many cases it covers.
+    Allow,
+}
+
+/// What [`write_report`] wrote.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct ReportSummary {
+    /// Finished cases the report covers.
+    pub finished: usize,
+    /// Cases of the whole sweep.
+    pub total: usize,
+    /// Figure files written (names in `to/ansys/`).
+    pub figures: Vec<String>,
+    /// Figure files of an earlier report removed because this one has none of that name.
+    pub removed: Vec<String>,
+}
+
+impl ReportSummary {
+    /// Whether the report covers fewer cases than the sweep has.
+    pub fn is_partial(&self) -> bool {
+        self.finished < self.total
+    }
+}
+
+/// Finished and total cases of the sweep file `spec_path` in the sweep folder `dir`.
+///
+/// Errors: the sweep file cannot be read or is invalid.
+pub fn finished_cases(spec_path: &Path, dir: &Path) -> Result<(usize, usize)> {
+    let cases = SweepSpec::from_file(spec_path)?.cases()?;
+    Ok((read_records(dir, &cases).len(), cases.len()))
+}
+
+/// Whether `a` and `b` name the same folder (both existing), or the same path.
+pub fn same_folder(a: &Path, b: &Path) -> bool {
+    match (a.canonicalize(), b.canonicalize()) {
+        (Ok(x), Ok(y)) => x == y,
+        _ => a == b,
+    }
+}
+
+/// Whether a file in a report's figure folder is one of the report's figures.
+fn is_figure(name: &str) -> bool {
+    name.starts_with("fig") && name.ends_with(".svg")
+}
+
+/// Removes the figures in `fig_dir` that are not in `keep`; returns their names.
+fn remove_stale_figures(fig_dir: &Path, keep: &[String]) -> Result<Vec<String>> {
+    let mut removed = Vec::new();
+    let entries = std::fs::read_dir(fig_dir).map_err(|e| Error::io(fig_dir, e))?;
+    for e in entries.flatten() {
+        let name = e.file_name().to_string_lossy().to_string();
+        if is_figure(&name) && !keep.contains(&name) {
+            std::fs::remove_file(e.path()).map_err(|err| Error::io(e.path(), err))?;
+            removed.push(name);
+        }
+    }
+    removed.sort();
+    Ok(removed)
+}
+
 /// Writes `REPORT.md` into `to` (and its CSV/SVG files into `to/ansys/`), from the sweep
 /// results in `dir` for the sweep file `spec_path`; `notes` (Markdown, optional) is appended
-/// as the discussion.
+/// as the discussion. Figures of an earlier report in `to/ansys/` that this one does not
+/// draw are removed, so no stale figure stays beside new tables.
+///
+/// Errors: no finished case; a partial sweep with [`Partial::Refuse`] (nothing is written);
+/// I/O errors naming the path.
 pub fn write_report(
     spec_path: &Path,
     dir: &Path,
     to: &Path,
     notes: Option<&str>,
-) -> Result<String> {
+    partial: Partial,
+) -> Result<ReportSummary> {
     let spec = SweepSpec::from_file(spec_path)?;
     let cases = spec.cases()?;
     let recs = read_records(dir, &cases);
@@ -61,8 +131,22 @@ pub fn write_report(
             dir.display()
         )));
     }
+    let is_partial = recs.len() < cases.len();
+    if is_partial && partial == Partial::Refuse {
+        return Err(Error::invalid(
+            "--to",
+            to.display(),
+            format!(
+                "a folder for a whole sweep ({} holds {} of {} cases; add --partial to write a partial report there, or leave out --to to write it beside the sweep)",
+                dir.display(),
+                recs.len(),
+                cases.len()
+            ),
+        ));
+    }
     let fig_dir = to.join("ansys");
     ensure_dir(&fig_dir)?;
+    let mut figures: Vec<String> = Vec::new();
     // The CSV from the finished case files (also while a sweep is running or after a kill).
     let (csv, _, _) = super::sweep::csv_text(dir, &cases);
     write_atomic(fig_dir.join("sweep.csv"), csv.as_bytes())?;
@@ -71,13 +155,24 @@ pub fn write_report(
     let w = &mut md;
     let _ = writeln!(
         w,
-        "# Verification report: the paper's FE study, FE beside the analytical model\n"
+        "# Verification report: the paper's FE study, FE beside the analytical model{}\n",
+        if is_partial {
+            format!(" (partial: {} of {} cases)", recs.len(), cases.len())
+        } else {
+            String::new()
+        }
     );
     let _ = writeln!(
         w,
-        "Regenerate with `twoball sweep {} --out DIR` then `twoball report DIR`. \
+        "Regenerate with `twoball sweep {} --out DIR` then `twoball report DIR{}{}`. \
          Source numbers: [ansys/sweep.csv](ansys/sweep.csv) (one row per case, units in the header).\n",
-        spec_path.display()
+        spec_path.display(),
+        if same_folder(dir, to) {
+            String::new()
+        } else {
+            format!(" --to {}", to.display())
+        },
+        if is_partial { " --partial" } else { "" }
     );
     let n_done = recs.iter().filter(|r| r.status == Status::Done).count();
     let n_fe = recs.iter().filter(|r| r.fe.is_some()).count();
@@ -256,6 +351,7 @@ pub fn write_report(
             let name = format!("fig{fig}_{}.svg", m.name);
             write_atomic(fig_dir.join(&name), chart.svg()?.as_bytes())?;
             let _ = writeln!(w, "![Figure {fig}, {}](ansys/{name})\n", m.name);
+            figures.push(name);
         }
     }
 
@@ -310,6 +406,7 @@ pub fn write_report(
         let name = format!("fig{fig}.svg");
         write_atomic(fig_dir.join(&name), chart.svg()?.as_bytes())?;
         let _ = writeln!(w, "![Figure {fig}](ansys/{name})\n");
+        figures.push(name);
     }
 
     // Convergence evidence, if a mesh ladder was run.
@@ -333,5 +430,11 @@ pub fn write_report(
         let _ = writeln!(w, "## Discussion\n\n{n}");
     }
     write_atomic(to.join("REPORT.md"), md.as_bytes())?;
-    Ok(md)
+    let removed = remove_stale_figures(&fig_dir, &figures)?;
+    Ok(ReportSummary {
+        finished: recs.len(),
+        total: cases.len(),
+        figures,
+        removed,
+    })
 }

@@ -235,6 +235,8 @@ pub struct Simulation {
     pub stop_reason: String,
     /// Wall time, s.
     pub wall_time_s: f64,
+    /// Largest contact penetration over the run (simulated model), m.
+    pub max_penetration: f64,
     /// History rows.
     #[serde(skip)]
     pub history: Vec<HistoryRow>,
@@ -245,8 +247,10 @@ pub struct Simulation {
 pub struct RunOptions {
     /// History rows wanted over the expected contact (≥ 2).
     pub history_rows: usize,
-    /// Draw a progress bar on stderr.
+    /// Report progress on stderr (a bar on a terminal, plain lines elsewhere).
     pub progress: bool,
+    /// Write the `.vtu` snapshots as ASCII instead of compressed binary.
+    pub vtu_ascii: bool,
     /// Folder for the scene's `.vtu` snapshots (`output.vtu_snapshots` of them); none
     /// written without it.
     pub snapshot_dir: Option<std::path::PathBuf>,
@@ -652,18 +656,40 @@ pub fn simulate(
         let mut next_row = 0.0;
         let mut apart_since: Option<f64> = None;
         let stop_reason;
-        let mut bar = super::progress::Bar::new(opts.progress, end_time.min(pre + 2.0 * duration));
+        // The bar's end: the stop rule's expected end, refined at the peak and at separation.
+        let expected_end = if by_separation {
+            pre + duration + hold
+        } else {
+            end_time
+        };
+        let mut bar = super::progress::Bar::new(
+            super::progress::Mode::detect(opts.progress),
+            solver.time(),
+            expected_end,
+        );
+        let mut peak_seen = false;
+        let mut max_penetration: f64 = 0.0;
         let mut snapshots = match (&opts.snapshot_dir, scene.output.vtu_snapshots) {
-            (Some(dir), n) if n > 0 => Some(Snapshots::new(dir.clone(), n, pre, duration)),
+            (Some(dir), n) if n > 0 => {
+                Some(Snapshots::new(dir.clone(), n, pre, duration).ascii(opts.vtu_ascii))
+            }
             _ => None,
         };
         loop {
+            if super::interrupt::requested() {
+                return Err(Error::Interrupted(format!(
+                    "at t = {:.3e} s of about {:.3e} s",
+                    solver.time() - pre,
+                    expected_end - pre
+                )));
+            }
             if let Some(s) = &mut snapshots {
                 s.maybe_write(&solver, pre)?;
             }
             let t = solver.time();
             let probe_now = probe.last();
             let force_free = probe_now.active_nodes == 0 && probe_now.normal_force == 0.0;
+            max_penetration = max_penetration.max(probe_now.max_penetration);
             let record = t >= next_row;
             let check = solver.step_count().is_multiple_of(16);
             if record || (by_separation && check) {
@@ -707,8 +733,14 @@ pub fn simulate(
                 if by_separation {
                     let separating = u[0][0] - u[1][0] < 0.0;
                     let touched = probe.touched();
+                    if touched && separating && !peak_seen {
+                        // Unloading is no longer than loading: the end is at most this far.
+                        peak_seen = true;
+                        bar.set_end(t + (t - pre) + hold);
+                    }
                     if touched && separating && force_free {
                         let since = *apart_since.get_or_insert(t);
+                        bar.set_end(since + hold);
                         if t - since >= hold {
                             stop_reason = format!("separated: contact force zero for {hold:.3e} s");
                             break;
@@ -783,6 +815,7 @@ pub fn simulate(
             dt: dt0,
             stop_reason,
             wall_time_s: start.elapsed().as_secs_f64(),
+            max_penetration,
             history,
         })
     };

@@ -6,7 +6,9 @@
 //! Snapshot times are spread evenly over the analytical contact duration from first touch
 //! (the window where the fields change); the state at the end of the run is always written
 //! as the last snapshot. Each file is written atomically and the collection is rewritten
-//! after every snapshot, so an interrupted run leaves a valid, shorter series.
+//! after every snapshot. Each snapshot stores its time since first touch (s) as `TimeValue`,
+//! and the collection lists the same time per file. Files are compressed binary unless ASCII
+//! is asked for.
 
 use crate::error::Result;
 use crate::fe::{explicit::Solver, tensor::von_mises};
@@ -21,6 +23,8 @@ pub struct Snapshots {
     times: Vec<f64>,
     /// Written so far: (time since first touch in s, file name).
     written: Vec<(f64, String)>,
+    /// File format.
+    format: vtu::VtuFormat,
 }
 
 impl Snapshots {
@@ -35,7 +39,18 @@ impl Snapshots {
             dir,
             times,
             written: Vec::new(),
+            format: vtu::VtuFormat::Binary,
         }
+    }
+
+    /// The same plan writing ASCII files when `ascii` (compressed binary otherwise).
+    pub fn ascii(mut self, ascii: bool) -> Self {
+        self.format = if ascii {
+            vtu::VtuFormat::Ascii
+        } else {
+            vtu::VtuFormat::Binary
+        };
+        self
     }
 
     /// Writes a snapshot if the solver clock has reached the next planned time; `t0` is the
@@ -55,7 +70,12 @@ impl Snapshots {
 
     fn write(&mut self, solver: &Solver, t0: f64) -> Result<()> {
         let name = format!("snapshot_{:04}.vtu", self.written.len());
-        write_state(&self.dir.join(&name), solver)?;
+        write_state(
+            &self.dir.join(&name),
+            solver,
+            solver.time() - t0,
+            self.format,
+        )?;
         self.written.push((solver.time() - t0, name));
         vtu::write_pvd(self.dir.join("snapshots.pvd"), &self.written)
     }
@@ -68,10 +88,17 @@ impl Snapshots {
 
 /// Writes the solver's current state as one `.vtu` file: deformed coordinates (m); point
 /// fields `displacement` (m) and `velocity` (m/s); cell fields `stress` (Pa, symmetric
-/// tensor), `von_mises` (Pa), `plastic_strain` (-) and `part` (0-based part index).
+/// tensor, components xx yy zz xy yz zx), `von_mises` (Pa), `plastic_strain` (-) and `part`
+/// (0-based part index); `time` (s since first touch) as the field `TimeValue`; in `format`.
+/// Everything is in the simulated model's frame (see [`crate::study::simulate`]).
 ///
 /// Errors: a non-finite value anywhere (nothing is written), I/O errors naming the path.
-pub fn write_state(path: &std::path::Path, solver: &Solver) -> Result<()> {
+pub fn write_state(
+    path: &std::path::Path,
+    solver: &Solver,
+    time: f64,
+    format: vtu::VtuFormat,
+) -> Result<()> {
     let model = solver.model();
     let x = solver.x();
     let mesh = Mesh {
@@ -94,7 +121,7 @@ pub fn write_state(path: &std::path::Path, solver: &Solver) -> Result<()> {
             part[e] = p as f64;
         }
     }
-    vtu::write(
+    vtu::write_with(
         path,
         &mesh,
         &[
@@ -107,5 +134,7 @@ pub fn write_state(path: &std::path::Path, solver: &Solver) -> Result<()> {
             vtu::Field::scalars("plastic_strain", &eps_p),
             vtu::Field::scalars("part", &part),
         ],
+        Some(time),
+        format,
     )
 }

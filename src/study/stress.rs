@@ -278,7 +278,7 @@ pub struct StressOptions {
     pub quick: bool,
     /// The `twoball` executable to run each case with.
     pub exe: PathBuf,
-    /// Print one line per finished case on stderr.
+    /// Report progress on stderr (a bar on a terminal, plain lines elsewhere).
     pub verbose: bool,
 }
 
@@ -508,6 +508,11 @@ fn run_one(case: &StressCase, spec: &StressSpec, opts: &StressOptions) -> Result
     let (status, timed_out) = loop {
         match child.try_wait() {
             Ok(Some(s)) => break (Some(s), false),
+            Ok(None) if super::interrupt::requested() => {
+                let _ = child.kill();
+                let _ = child.wait();
+                return Err(Error::Interrupted(String::new()));
+            }
             Ok(None) if start.elapsed() > cap => {
                 let _ = child.kill();
                 let _ = child.wait();
@@ -548,28 +553,36 @@ pub fn run_stress(spec: &StressSpec, opts: &StressOptions) -> Result<(StressCoun
         .iter()
         .filter(|c| read_record(&opts.out, &c.id).is_none())
         .collect();
+    let progress = super::progress::Cases::new(
+        super::progress::Mode::detect(opts.verbose),
+        "stress",
+        pending.len(),
+    );
     let next = AtomicUsize::new(0);
     let failure: std::sync::Mutex<Option<Error>> = std::sync::Mutex::new(None);
     std::thread::scope(|s| {
         for _ in 0..opts.jobs.min(pending.len().max(1)) {
             s.spawn(|| loop {
+                if super::interrupt::requested() {
+                    break;
+                }
                 let k = next.fetch_add(1, Ordering::SeqCst);
                 let Some(c) = pending.get(k) else { break };
                 let res = run_one(c, spec, opts).and_then(|rec| {
+                    if super::interrupt::requested() {
+                        // Cut short: not recorded, so a resumed matrix reruns it.
+                        return Err(Error::Interrupted(String::new()));
+                    }
                     let json = serde_json::to_string_pretty(&rec)
                         .map_err(|e| Error::Parse(format!("case {}: {e}", c.id)))?;
                     write_atomic(record_path(&opts.out, &c.id), json.as_bytes())?;
-                    if opts.verbose {
-                        eprintln!(
-                            "[{}/{}] {} {:?} ({:.1} s) {}",
-                            k + 1,
-                            pending.len(),
-                            c.id,
-                            rec.class,
-                            rec.wall_time_s,
-                            rec.reason
-                        );
-                    }
+                    progress.case_done(
+                        rec.class == Class::Silent,
+                        &format!(
+                            "{} {:?} ({:.1} s) {}",
+                            c.id, rec.class, rec.wall_time_s, rec.reason
+                        ),
+                    );
                     Ok(())
                 });
                 if let Err(e) = res {
@@ -579,8 +592,18 @@ pub fn run_stress(spec: &StressSpec, opts: &StressOptions) -> Result<(StressCoun
             });
         }
     });
-    if let Some(e) = failure.into_inner().unwrap_or_else(|p| p.into_inner()) {
-        return Err(e);
+    let failure = failure.into_inner().unwrap_or_else(|p| p.into_inner());
+    match failure {
+        _ if super::interrupt::requested() => {
+            return Err(Error::Interrupted(format!(
+                "after {} of {} cases: they are in {} (the same command resumes); summary.md not written",
+                progress.counts().0,
+                pending.len(),
+                dir.display()
+            )))
+        }
+        Some(e) => return Err(e),
+        None => progress.finish(),
     }
     let records: Vec<StressRecord> = cases
         .iter()

@@ -692,7 +692,8 @@ pub struct SweepOptions {
     pub shard: Shard,
     /// Minimum wall time per case (testing aid: makes a fast sweep slow enough to kill).
     pub pace: Duration,
-    /// Print one line per finished case on stderr.
+    /// Report progress on stderr: a bar with one line per case on a terminal, a plain line
+    /// every few seconds or 10 % elsewhere.
     pub verbose: bool,
     /// Run only the cases of this mesh setting (`None`: every setting).
     pub mesh: Option<String>,
@@ -807,27 +808,37 @@ fn run_cases(
     // tangential speed run a half model (about four times the work of a quarter model).
     pending.sort_by_key(|c| (c.params.v1t == 0.0 && c.params.v2t == 0.0, c.index));
     let skipped = mine.len() - pending.len();
+    let dir = opts.out.join("cases");
     let shard_name = format!("{}/{}", opts.shard.index, opts.shard.count);
-    let done = std::sync::atomic::AtomicUsize::new(0);
     let n_pending = pending.len();
+    let progress = super::progress::Cases::new(
+        super::progress::Mode::detect(opts.verbose),
+        "sweep",
+        n_pending,
+    );
     let work = |c: &&Case| -> Result<()> {
+        if super::interrupt::requested() {
+            return Err(Error::Interrupted(String::new()));
+        }
         let t0 = Instant::now();
         mark_running(&opts.out, &c.id, &shard_name)?;
         let rec = run_case(c, fe, spec.history_points);
         if let Some(rest) = opts.pace.checked_sub(t0.elapsed()) {
             std::thread::sleep(rest);
         }
+        if super::interrupt::requested() {
+            // The case may have been cut short: not recorded, so a resumed sweep reruns it.
+            clear_running(&opts.out, &c.id);
+            return Err(Error::Interrupted(String::new()));
+        }
         let json = serde_json::to_string_pretty(&rec)
             .map_err(|e| Error::Parse(format!("case {}: {e}", c.id)))?;
         write_atomic(case_path(&opts.out, &c.id), json.as_bytes())?;
         clear_running(&opts.out, &c.id);
-        let k = done.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1;
-        if opts.verbose {
-            eprintln!(
-                "[{k}/{n_pending}] {} {:?} ({:.2} s)",
-                c.id, rec.status, rec.wall_time_s
-            );
-        }
+        progress.case_done(
+            rec.status == Status::Failed,
+            &format!("{} {:?} ({:.2} s)", c.id, rec.status, rec.wall_time_s),
+        );
         Ok(())
     };
     if opts.jobs > 1 && n_pending > 1 {
@@ -837,10 +848,19 @@ fn run_cases(
             .num_threads(opts.jobs)
             .build()
             .map_err(|e| Error::External(format!("thread pool: {e}")))?;
-        pool.install(|| pending.par_iter().with_max_len(1).try_for_each(work))?;
+        pool.install(|| pending.par_iter().with_max_len(1).try_for_each(work))
     } else {
-        pending.iter().try_for_each(work)?;
+        pending.iter().try_for_each(work)
     }
+    .map_err(|e| match e {
+        Error::Interrupted(_) => Error::Interrupted(format!(
+            "after {} of {n_pending} cases: they are in {} (the same command resumes); sweep.csv not written",
+            progress.counts().0,
+            dir.display()
+        )),
+        other => other,
+    })?;
+    progress.finish();
     // One writer only: shards of an array leave the CSV to an unsharded run or the report.
     let (in_csv, failed) = if opts.shard.count == 1 {
         write_csv(&opts.out, cases)?
