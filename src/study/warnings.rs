@@ -201,6 +201,7 @@ mod tests {
         let mut f = clean();
         f.r_star = 1.25e-3;
         f.delta_max = 1e-5;
+        f.max_penetration = 1e-8;
         f.pole_size = Some(2e-3);
         assert_eq!(one(f), Check::UnresolvedContact);
     }
