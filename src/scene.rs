@@ -23,6 +23,7 @@ pub use approach::{approach, Approach, Frame, Touch};
 pub use overrides::Override;
 
 use crate::error::{Error, Result};
+use crate::fe::materials::{law::LAW_NAMES, Law};
 use crate::material::{Material, MaterialOverrides, PRESET_NAMES};
 use reader::{parse_table, Reader};
 use serde::Serialize;
@@ -188,8 +189,9 @@ const BALL_KEYS: [&str; 6] = [
     "position",
     "mesh",
 ];
-const MATERIAL_KEYS: [&str; 8] = [
+const MATERIAL_KEYS: [&str; 9] = [
     "preset",
+    "hardening",
     "E",
     "nu",
     "rho",
@@ -418,13 +420,26 @@ fn read_material(b: &Reader<'_>) -> Result<(Material, String)> {
                         },
                         mu,
                         mu_static: mu,
+                        hardening: None,
                     };
                     (base, "custom".to_string())
                 }
             };
-            let mat = base
+            let mut mat = base
                 .with_overrides(&o)
                 .map_err(|e| e.map_field(|field| field.replacen("material", &path, 1)))?;
+            if let Some(h) = m.table("hardening")? {
+                let hp = m.key_path("hardening");
+                mat.hardening = Some(read_hardening(&h, &hp, mat.yield_strength)?);
+            }
+            if let Some(Law::JohnsonCook(jc)) = mat.hardening {
+                if o.yield_strength.is_some() {
+                    return Err(Error::Parse(format!(
+                        "{path}.yield is the Johnson-Cook law's A: give {path}.hardening.A instead"
+                    )));
+                }
+                mat.yield_strength = jc.a;
+            }
             Ok((mat, name))
         }
         Some(other) => Err(Error::Parse(format!(
@@ -432,6 +447,21 @@ fn read_material(b: &Reader<'_>) -> Result<(Material, String)> {
             reader::show(other)
         ))),
     }
+}
+
+/// A hardening table `{ law = "...", keys of the law }` named `path`; `yield0` is the
+/// material's yield strength (Pa).
+fn read_hardening(h: &Reader<'_>, path: &str, yield0: f64) -> Result<Law> {
+    let laws = format!("one of {}", LAW_NAMES.join(", "));
+    let name = h.string("law")?.ok_or_else(|| h.missing("law", &laws))?;
+    let keys = Law::keys(name)
+        .ok_or_else(|| Error::invalid(h.key_path("law"), format!("\"{name}\""), laws.clone()))?;
+    let mut allowed = vec!["law"];
+    allowed.extend_from_slice(keys);
+    h.only(&allowed)?;
+    Law::from_keys(name, path, yield0, &mut |key| {
+        h.f64(key, |_| true, "finite")
+    })
 }
 
 fn read_mesh(m: Option<Reader<'_>>, d: f64, dir: &Path) -> Result<MeshSettings> {

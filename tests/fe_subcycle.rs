@@ -511,6 +511,7 @@ fn default_scene_three_times_fewer_updates_same_results() {
             history_rows: 400,
             progress: false,
             snapshot_dir: None,
+            profile: false,
         };
         run_scene(&scene, &opts).unwrap()
     };

@@ -37,6 +37,7 @@ pub fn run(a: RunArgs) -> Result<()> {
         history_rows: 400,
         progress: std::io::stderr().is_terminal(),
         snapshot_dir: a.out.clone(),
+        ..RunOptions::default()
     };
     if let Some(dir) = &a.out {
         crate::atomic::ensure_dir(dir)?;

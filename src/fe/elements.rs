@@ -6,9 +6,9 @@
 
 use super::{
     hex_bbar_lanes as bp, hex_one_point_lanes as op,
-    lanes::{build, Lanes, Vec3},
+    materials::{Hardening, J2Material, LawVisitor},
     model::Formulation,
-    plasticity::J2Material,
+    simd::{build, prefetch::prefetch_ahead, Kernel, KernelPath, LaneIsa, LaneKernel, Lanes, Vec3},
     tensor::Sym,
 };
 use rayon::prelude::*;
@@ -92,6 +92,8 @@ pub struct ElementBlock {
     pub volume: Vec<f64>,
     /// Critical time step per element, s.
     pub dt_crit: Vec<f64>,
+    /// The kernel path of the element loop (the widest the CPU has, within a cap).
+    pub kernel: Kernel,
 }
 
 impl ElementBlock {
@@ -120,7 +122,14 @@ impl ElementBlock {
             hourglass_energy: vec![0.0; n],
             volume: vec![0.0; n],
             dt_crit: vec![f64::INFINITY; n],
+            kernel: Kernel::widest(KernelPath::Avx512),
         }
+    }
+
+    /// Runs the element loop on the widest kernel path this CPU supports, at most `cap`
+    /// (results are the same bits on every path; only the speed differs).
+    pub fn set_kernel_cap(&mut self, cap: KernelPath) {
+        self.kernel = Kernel::widest(cap);
     }
 
     /// Integration points per element of a formulation.
@@ -173,6 +182,7 @@ impl ElementBlock {
         let mat = self.material;
         let hg = self.hourglass_coeff;
         let form = self.formulation;
+        let kernel = self.kernel;
         let first = self.first + range.start;
         let r = range.clone();
         let rp = range.start * npe..range.end * npe;
@@ -215,6 +225,7 @@ impl ElementBlock {
                     mat: &mat,
                     hg,
                     form,
+                    kernel,
                 };
                 element_batch(&mut batch, inp, base)
             })
@@ -270,6 +281,7 @@ impl ElementBlock {
             mat: &self.material,
             hg: self.hourglass_coeff,
             form: self.formulation,
+            kernel: self.kernel,
         };
         let mut best = (f64::INFINITY, usize::MAX);
         let mut k = range.start;
@@ -378,7 +390,7 @@ fn finish_lanes<const W: usize>(
     best: &mut (f64, usize),
 ) -> std::result::Result<(), (usize, ElementFailure)> {
     // Σ 0·f over the 24 force components: ±0 when all are finite, NaN when one is ±∞ or NaN.
-    let mut nonfinite = Lanes::splat(0.0);
+    let mut nonfinite = r.volume.splat_like(0.0);
     for fi in r.force {
         for c in fi {
             nonfinite += *c * 0.0;
@@ -450,12 +462,14 @@ fn finish_lanes<const W: usize>(
 /// ([`bp::update`]), scatter state and forces back. Lanes past the batch end repeat its last
 /// element and are discarded.
 #[inline(always)]
-fn bbar_lanes<const W: usize>(
+fn bbar_lanes<H: Hardening, const W: usize>(
+    isa: LaneIsa<W>,
     b: &mut Batch<'_>,
     x: &[[f64; 3]],
     v: &[[f64; 3]],
     dt: f64,
     mat: &J2Material,
+    law: &H,
     base: usize,
 ) -> BatchResult {
     let n = b.conn.len();
@@ -465,7 +479,7 @@ fn bbar_lanes<const W: usize>(
         let idx: [usize; W] = build(|l| (k0 + l).min(n - 1));
         let live = (n - k0).min(W);
         let (mut xe, mut ve) = (MaybeUninit::uninit(), MaybeUninit::uninit());
-        let (xe, ve) = gather_nodes(&idx, b.conn, x, v, &mut xe, &mut ve);
+        let (xe, ve) = gather_nodes(isa, &idx, b.conn, x, v, &mut xe, &mut ve);
         // The state as rows of the point array transposed into lanes (Lanes::load_rows):
         // every index is a local element < n of this batch's slices (points: eight per
         // element, eight f64 each, repr(C): stress, eps_p, volume). The lane state is built
@@ -479,18 +493,18 @@ fn bbar_lanes<const W: usize>(
         let st = unsafe {
             for g in 0..8 {
                 let rows: [usize; W] = build(|l| 64 * idx[l] + 8 * g);
-                let f: [Lanes<W>; 7] = Lanes::load_rows(pp, &rows);
+                let f: [Lanes<W>; 7] = Lanes::load_rows(isa, pp, &rows);
                 let stress = std::ptr::addr_of_mut!((*sp).stress).cast::<[Lanes<W>; 6]>();
                 stress.add(g).write([f[0], f[1], f[2], f[3], f[4], f[5]]);
                 let eps_p = std::ptr::addr_of_mut!((*sp).eps_p).cast::<Lanes<W>>();
                 eps_p.add(g).write(f[6]);
             }
-            std::ptr::addr_of_mut!((*sp).plastic_work).write(contiguous(b.wp, &idx));
-            std::ptr::addr_of_mut!((*sp).internal_energy).write(contiguous(b.ie, &idx));
+            std::ptr::addr_of_mut!((*sp).plastic_work).write(contiguous(isa, b.wp, &idx));
+            std::ptr::addr_of_mut!((*sp).internal_energy).write(contiguous(isa, b.ie, &idx));
             st.assume_init_mut()
         };
         prefetch_ahead(b.pts.as_ptr(), 8 * (k0 + 2 * W), 8 * W);
-        let out = bp::update(xe, ve, dt, mat, st);
+        let out = bp::update(xe, ve, dt, mat, law, st);
         if live == W {
             for g in 0..8 {
                 let s = &st.stress[g];
@@ -539,7 +553,8 @@ fn bbar_lanes<const W: usize>(
 
 impl ElementBlock {
     /// Time of the lane kernel's arithmetic alone, ns per element: the block's first lane
-    /// group (eight elements on the AVX-512 path, four on the others: [`kernel_path`]) with its nodes `x` (m), `v` (m/s)
+    /// group (eight elements on the AVX-512 path, four on the others: [`ElementBlock::kernel`])
+    /// with its nodes `x` (m), `v` (m/s)
     /// and state loaded once, then updated `repeats` times with step `dt` (s) while every
     /// input stays in registers and L1 (the state is restored every 64 updates so that it
     /// stays near the block's own). No node gathers, state loads or stores, checks or force
@@ -557,15 +572,55 @@ impl ElementBlock {
         assert!(repeats > 0, "no repeats to time");
         let lanes = self.conn.len().min(8);
         self.assert_nodes_below(0..lanes, x.len().min(v.len()));
-        // SAFETY: kernel_path returns only paths this CPU supports.
-        unsafe { arithmetic_on(kernel_path(), self, x, v, dt, repeats) }
+        self.kernel.run(ArithmeticAlone {
+            b: self,
+            x,
+            v,
+            dt,
+            repeats,
+        })
+    }
+}
+
+/// [`ElementBlock::time_arithmetic_alone`] as a lane-generic kernel.
+struct ArithmeticAlone<'a> {
+    b: &'a ElementBlock,
+    x: &'a [[f64; 3]],
+    v: &'a [[f64; 3]],
+    dt: f64,
+    repeats: u32,
+}
+
+impl LaneKernel for ArithmeticAlone<'_> {
+    type Output = f64;
+    #[inline(always)]
+    fn run<const W: usize>(self, isa: LaneIsa<W>) -> f64 {
+        let b = self.b;
+        b.material.law.with(ArithmeticLaw { isa, a: self })
+    }
+}
+
+/// [`ArithmeticAlone`] on W lanes, for the block's hardening law.
+struct ArithmeticLaw<'a, const W: usize> {
+    isa: LaneIsa<W>,
+    a: ArithmeticAlone<'a>,
+}
+
+impl<const W: usize> LawVisitor for ArithmeticLaw<'_, W> {
+    type Output = f64;
+    #[inline(always)]
+    fn visit<H: Hardening>(self, law: &H) -> f64 {
+        let a = self.a;
+        arithmetic_lanes(self.isa, law, a.b, a.x, a.v, a.dt, a.repeats)
     }
 }
 
 /// [`ElementBlock::time_arithmetic_alone`] on W lanes (inlined into its caller's target
 /// features, as the element loop is).
 #[inline(always)]
-fn arithmetic_lanes<const W: usize>(
+fn arithmetic_lanes<H: Hardening, const W: usize>(
+    isa: LaneIsa<W>,
+    law: &H,
     b: &ElementBlock,
     x: &[[f64; 3]],
     v: &[[f64; 3]],
@@ -578,7 +633,7 @@ fn arithmetic_lanes<const W: usize>(
     // shared helper (or one of its closures) would get a second caller, and the compiler
     // could then leave it out of line in the element loop too.
     let idx: [usize; W] = std::array::from_fn(|l| l.min(n - 1));
-    let lane = |f: &dyn Fn(usize) -> f64| Lanes::<W>(std::array::from_fn(f));
+    let lane = |f: &dyn Fn(usize) -> f64| isa.lanes(std::array::from_fn(f));
     let xe: [Vec3<W>; 8] = std::array::from_fn(|i| {
         std::array::from_fn(|d| lane(&|l| x[b.conn[idx[l]][i] as usize][d]))
     });
@@ -624,6 +679,7 @@ fn arithmetic_lanes<const W: usize>(
                 vr,
                 dt,
                 mat,
+                law,
                 b.hourglass_coeff,
                 &mut st
             ))
@@ -638,7 +694,7 @@ fn arithmetic_lanes<const W: usize>(
                 plastic_work: lane(&|l| b.plastic_work[idx[l]]),
                 internal_energy: lane(&|l| b.internal_energy[idx[l]]),
             };
-            time_updates!(st0, |st, xr, vr| bp::update(xr, vr, dt, mat, &mut st))
+            time_updates!(st0, |st, xr, vr| bp::update(xr, vr, dt, mat, law, &mut st))
         }
     };
     elapsed.as_secs_f64() * 1e9 / (f64::from(repeats) * W as f64)
@@ -669,14 +725,14 @@ fn max_index(a: &[u32]) -> u32 {
 /// Lane l = `a[idx[l]]` for one f64 per element: a plain vector load when `idx` is a run
 /// of consecutive elements (every full group), else W loads.
 #[inline(always)]
-fn contiguous<const W: usize>(a: &[f64], idx: &[usize; W]) -> Lanes<W> {
+fn contiguous<const W: usize>(isa: LaneIsa<W>, a: &[f64], idx: &[usize; W]) -> Lanes<W> {
     let k0 = idx[0];
     if idx[W - 1] == k0 + W - 1 {
         let mut r = [0.0; W];
         r.copy_from_slice(&a[k0..k0 + W]);
-        return Lanes(r);
+        return isa.lanes(r);
     }
-    Lanes(build(|l| a[idx[l]]))
+    isa.lanes(build(|l| a[idx[l]]))
 }
 
 /// Nodal coordinates and velocities of the elements `idx` (local indices into `conn`) into
@@ -685,6 +741,7 @@ fn contiguous<const W: usize>(a: &[f64], idx: &[usize; W]) -> Lanes<W> {
 /// caller's arrays need no zero fill first (it was a 1.5 KB `memset` call per lane group).
 #[inline(always)]
 fn gather_nodes<'e, const W: usize>(
+    isa: LaneIsa<W>,
     idx: &[usize; W],
     conn: &[[u32; 8]],
     x: &[[f64; 3]],
@@ -698,42 +755,15 @@ fn gather_nodes<'e, const W: usize>(
     );
     for i in 0..8 {
         let nodes: [u32; W] = build(|l| conn[idx[l]][i]);
-        // SAFETY: update_range checked every node index of the range < len of x and v; 8
-        // lanes only run in the AVX-512 kernel. Slot i < 8 of the [Vec3; 8] arrays, each
-        // written once.
+        // SAFETY: update_range checked every node index of the range < len of x and v.
+        // Slot i < 8 of the [Vec3; 8] arrays, each written once.
         unsafe {
-            xq.add(i).write(Lanes::load_vec3(x.as_ptr(), &nodes));
-            vq.add(i).write(Lanes::load_vec3(v.as_ptr(), &nodes));
+            xq.add(i).write(Lanes::load_vec3(isa, x.as_ptr(), &nodes));
+            vq.add(i).write(Lanes::load_vec3(isa, v.as_ptr(), &nodes));
         }
     }
     // SAFETY: all eight slots of both arrays were written above.
     unsafe { (xe.assume_init_ref(), ve.assume_init_ref()) }
-}
-
-/// Asks the CPU to bring `count` items of `T` from `base[first..]` into the L2 cache (one
-/// prefetch hint per 64-byte line). The lane loops call it for the element state two lane
-/// groups ahead: the state streams through once per step (28 MB for the benchmark's B-bar
-/// ball, more than the L3), and on AMD's Zen 4 the hardware prefetchers do not keep up with
-/// it among the loop's other streams (measured: B-bar −28 ns, one-point −8 ns per
-/// element-cycle; hints into L1 gained less, the kernels' spills need it). The items may lie
-/// past the slice `base` points into (the next batch's, or past the block's end), since a
-/// prefetch hint reads nothing and cannot fault.
-#[inline(always)]
-fn prefetch_ahead<T>(base: *const T, first: usize, count: usize) {
-    #[cfg(target_arch = "x86_64")]
-    {
-        use std::arch::x86_64::{_mm_prefetch, _MM_HINT_T1};
-        let start = base.wrapping_add(first).cast::<i8>();
-        let bytes = count * std::mem::size_of::<T>();
-        let mut off = 0;
-        while off < bytes {
-            // SAFETY: a prefetch hint has no architectural effect and never faults.
-            unsafe { _mm_prefetch::<_MM_HINT_T1>(start.wrapping_add(off)) };
-            off += 64;
-        }
-    }
-    #[cfg(not(target_arch = "x86_64"))]
-    let _ = (base, first, count);
 }
 
 /// What every element of a batch needs besides its own state.
@@ -749,138 +779,50 @@ struct StepInput<'a> {
     /// Hourglass coefficient (one-point hex; 0 = off).
     hg: f64,
     form: Formulation,
+    /// The kernel path (with its instruction-set token).
+    kernel: Kernel,
 }
 
-/// Which build of the lane kernels an element loop runs. Results are the same bits on every
-/// path (see [`super::lanes`]); only the speed differs.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum KernelPath {
-    /// Eight lanes, AVX-512 (x86-64 with AVX-512F, AVX2 and FMA).
-    Avx512,
-    /// Four lanes, AVX2 (x86-64 with AVX2 and FMA).
-    Avx2,
-    /// Four lanes as plain arrays, compiled for the baseline target (any CPU).
-    Portable,
-}
-
-impl KernelPath {
-    /// Elements per lane group.
-    pub fn lanes(self) -> usize {
-        match self {
-            KernelPath::Avx512 => 8,
-            KernelPath::Avx2 | KernelPath::Portable => 4,
-        }
-    }
-}
-
-/// The widest kernel path allowed (the cap on [`kernel_path`]), process-wide (0: no cap,
-/// 1: at most AVX2, 2: portable); set by [`limit_kernel_path`].
-static PATH_LIMIT: std::sync::atomic::AtomicU8 = std::sync::atomic::AtomicU8::new(0);
-
-/// Caps the kernel every element loop of this process uses at `widest` (the CPU still has
-/// to support it): to measure and test, on one machine, the paths other CPUs take
-/// (`twoball bench kernel --kernel`). [`KernelPath::Avx512`] removes the cap. Process-wide:
-/// it slows every solver of the process that runs after it (results stay the same bits).
-pub fn limit_kernel_path(widest: KernelPath) {
-    let code = match widest {
-        KernelPath::Avx512 => 0,
-        KernelPath::Avx2 => 1,
-        KernelPath::Portable => 2,
-    };
-    PATH_LIMIT.store(code, std::sync::atomic::Ordering::Relaxed);
-}
-
-/// The kernel the element loop runs: the widest this CPU supports, within the cap of
-/// [`limit_kernel_path`].
-pub fn kernel_path() -> KernelPath {
-    let limit = PATH_LIMIT.load(std::sync::atomic::Ordering::Relaxed);
-    #[cfg(target_arch = "x86_64")]
-    {
-        let avx2 = std::is_x86_feature_detected!("avx2") && std::is_x86_feature_detected!("fma");
-        choose_path(
-            limit,
-            avx2,
-            avx2 && std::is_x86_feature_detected!("avx512f"),
-        )
-    }
-    #[cfg(not(target_arch = "x86_64"))]
-    choose_path(limit, false, false)
-}
-
-/// The kernel path for cap `limit` (as stored in `PATH_LIMIT`) on a CPU with (`avx2`:
-/// AVX2 and FMA) and (`avx512`: also AVX-512F).
-fn choose_path(limit: u8, avx2: bool, avx512: bool) -> KernelPath {
-    if limit == 0 && avx512 {
-        KernelPath::Avx512
-    } else if limit <= 1 && avx2 {
-        KernelPath::Avx2
-    } else {
-        KernelPath::Portable
-    }
-}
-
-/// Defines `unsafe fn $name(path: KernelPath, args…) -> $ret`, which runs the lane-generic
-/// `$inner::<W>(args…)` on `path`: eight lanes compiled for AVX-512, four for AVX2, or four
-/// as plain arrays. One place for the target-feature entry points of every lane loop, so
-/// each is compiled (and `$inner` inlined) for exactly the features its path checked.
-///
-/// Safety of the generated function: the CPU must support `path` ([`kernel_path`] only
-/// returns paths it supports).
-macro_rules! on_kernel_path {
-    ($(#[$doc:meta])* fn $name:ident($($arg:ident: $ty:ty),*) -> $ret:ty => $inner:ident) => {
-        $(#[$doc])*
-        unsafe fn $name(path: KernelPath, $($arg: $ty),*) -> $ret {
-            #[cfg(target_arch = "x86_64")]
-            {
-                #[target_feature(enable = "avx512f,avx2,fma")]
-                unsafe fn avx512($($arg: $ty),*) -> $ret {
-                    $inner::<8>($($arg),*)
-                }
-                #[target_feature(enable = "avx2,fma")]
-                unsafe fn avx2($($arg: $ty),*) -> $ret {
-                    // A 32-byte-aligned local on the stack makes the compiler realign this
-                    // frame, so that its 256-bit stack slots are aligned wherever the caller's
-                    // stack pointer is (the AVX-512 entry realigns by itself).
-                    #[repr(align(32))]
-                    struct Aligned32(u8);
-                    let frame = Aligned32(std::hint::black_box(0));
-                    std::hint::black_box(&frame.0);
-                    $inner::<4>($($arg),*)
-                }
-                match path {
-                    // SAFETY: the caller guarantees the CPU supports `path`.
-                    KernelPath::Avx512 => return avx512($($arg),*),
-                    KernelPath::Avx2 => return avx2($($arg),*),
-                    KernelPath::Portable => {}
-                }
-            }
-            let _ = path;
-            $inner::<4>($($arg),*)
-        }
-    };
-}
-
-on_kernel_path! {
-    /// One batch of elements on kernel `path` ([`element_lanes`]).
-    fn element_batch_on(b: &mut Batch<'_>, inp: StepInput<'_>, base: usize) -> BatchResult
-        => element_lanes
-}
-
-on_kernel_path! {
-    /// [`ElementBlock::time_arithmetic_alone`] on kernel `path` ([`arithmetic_lanes`]).
-    fn arithmetic_on(b: &ElementBlock, x: &[[f64; 3]], v: &[[f64; 3]], dt: f64, repeats: u32)
-        -> f64 => arithmetic_lanes
-}
-
-/// One batch of elements on the kernel [`kernel_path`] chooses.
+/// One batch of elements on the block's kernel path.
 fn element_batch(b: &mut Batch<'_>, inp: StepInput<'_>, base: usize) -> BatchResult {
-    // SAFETY: kernel_path returns only paths this CPU supports.
-    unsafe { element_batch_on(kernel_path(), b, inp, base) }
+    inp.kernel.run(ElementLoop { b, inp, base })
+}
+
+/// One batch of the element loop as a lane-generic kernel.
+struct ElementLoop<'a, 'b> {
+    b: &'a mut Batch<'b>,
+    inp: StepInput<'a>,
+    base: usize,
+}
+
+impl LaneKernel for ElementLoop<'_, '_> {
+    type Output = BatchResult;
+    #[inline(always)]
+    fn run<const W: usize>(self, isa: LaneIsa<W>) -> BatchResult {
+        let mat = self.inp.mat;
+        mat.law.with(LawLoop { isa, lp: self })
+    }
+}
+
+/// [`ElementLoop`] on W lanes, for the batch's hardening law.
+struct LawLoop<'a, 'b, const W: usize> {
+    isa: LaneIsa<W>,
+    lp: ElementLoop<'a, 'b>,
+}
+
+impl<const W: usize> LawVisitor for LawLoop<'_, '_, W> {
+    type Output = BatchResult;
+    #[inline(always)]
+    fn visit<H: Hardening>(self, law: &H) -> BatchResult {
+        element_lanes(self.isa, law, self.lp.b, self.lp.inp, self.lp.base)
+    }
 }
 
 /// The lane loop of the batch's formulation (both inline into the caller's target features).
 #[inline(always)]
-fn element_lanes<const W: usize>(
+fn element_lanes<H: Hardening, const W: usize>(
+    isa: LaneIsa<W>,
+    law: &H,
     b: &mut Batch<'_>,
     inp: StepInput<'_>,
     base: usize,
@@ -892,22 +834,25 @@ fn element_lanes<const W: usize>(
         mat,
         hg,
         form,
+        kernel: _,
     } = inp;
     match form {
-        Formulation::OnePoint => one_point_lanes::<W>(b, x, v, dt, mat, hg, base),
-        Formulation::BBar => bbar_lanes::<W>(b, x, v, dt, mat, base),
+        Formulation::OnePoint => one_point_lanes::<H, W>(isa, b, x, v, dt, mat, law, hg, base),
+        Formulation::BBar => bbar_lanes::<H, W>(isa, b, x, v, dt, mat, law, base),
     }
 }
 
 /// Gathers W elements (`idx`: local element per lane) into lanes, updates them, scatters
 /// state and forces back. Lanes past the batch end repeat its last element and are discarded.
 #[inline(always)]
-fn one_point_lanes<const W: usize>(
+fn one_point_lanes<H: Hardening, const W: usize>(
+    isa: LaneIsa<W>,
     b: &mut Batch<'_>,
     x: &[[f64; 3]],
     v: &[[f64; 3]],
     dt: f64,
     mat: &J2Material,
+    law: &H,
     hg: f64,
     base: usize,
 ) -> BatchResult {
@@ -920,7 +865,7 @@ fn one_point_lanes<const W: usize>(
         // Gather nodal coordinates and velocities and the element state into lanes (plain
         // loops: no closure or generic helper is left out of the AVX2 kernel).
         let (mut xe, mut ve) = (MaybeUninit::uninit(), MaybeUninit::uninit());
-        let (xe, ve) = gather_nodes(&idx, b.conn, x, v, &mut xe, &mut ve);
+        let (xe, ve) = gather_nodes(isa, &idx, b.conn, x, v, &mut xe, &mut ve);
         // The state as rows transposed into lanes (Lanes::load_rows): every index is a local
         // element < n of this batch's slices, whose lengths are n (points: eight f64 each,
         // repr(C): stress, eps_p, volume; hourglass: twelve f64 each). The lane state is
@@ -936,23 +881,23 @@ fn one_point_lanes<const W: usize>(
         // SAFETY: as above (rows of 8 and 12 f64 inside their slices); every field of `st`
         // is written once, through raw pointers to its own storage, before it is read.
         let st = unsafe {
-            let f: [Lanes<W>; 7] = Lanes::load_rows(pp, &build(|l| 8 * idx[l]));
+            let f: [Lanes<W>; 7] = Lanes::load_rows(isa, pp, &build(|l| 8 * idx[l]));
             std::ptr::addr_of_mut!((*sp).stress).write([f[0], f[1], f[2], f[3], f[4], f[5]]);
             std::ptr::addr_of_mut!((*sp).eps_p).write(f[6]);
-            let h0: [Lanes<W>; 8] = Lanes::load_rows(hp, &build(|l| 12 * idx[l]));
-            let h1: [Lanes<W>; 4] = Lanes::load_rows(hp, &build(|l| 12 * idx[l] + 8));
+            let h0: [Lanes<W>; 8] = Lanes::load_rows(isa, hp, &build(|l| 12 * idx[l]));
+            let h1: [Lanes<W>; 4] = Lanes::load_rows(isa, hp, &build(|l| 12 * idx[l] + 8));
             let q = std::ptr::addr_of_mut!((*sp).hourglass).cast::<Lanes<W>>();
             for (k, h) in h0.iter().chain(&h1).enumerate() {
                 q.add(k).write(*h);
             }
-            std::ptr::addr_of_mut!((*sp).plastic_work).write(contiguous(b.wp, &idx));
-            std::ptr::addr_of_mut!((*sp).internal_energy).write(contiguous(b.ie, &idx));
-            std::ptr::addr_of_mut!((*sp).hourglass_energy).write(contiguous(b.ehg, &idx));
+            std::ptr::addr_of_mut!((*sp).plastic_work).write(contiguous(isa, b.wp, &idx));
+            std::ptr::addr_of_mut!((*sp).internal_energy).write(contiguous(isa, b.ie, &idx));
+            std::ptr::addr_of_mut!((*sp).hourglass_energy).write(contiguous(isa, b.ehg, &idx));
             st.assume_init_mut()
         };
         prefetch_ahead(b.pts.as_ptr(), k0 + 2 * W, W);
         prefetch_ahead(b.hgq.as_ptr(), k0 + 2 * W, W);
-        let out = op::update(xe, ve, dt, mat, hg, st);
+        let out = op::update(xe, ve, dt, mat, law, hg, st);
         if live == W {
             let s = &st.stress;
             let cols = [s[0], s[1], s[2], s[3], s[4], s[5], st.eps_p, out.volume];
@@ -1178,95 +1123,57 @@ mod tests {
         }
     }
 
-    /// The cap of `limit_kernel_path` only narrows the path, and never past what the CPU has.
-    #[test]
-    fn kernel_path_choice_respects_cap_and_cpu() {
-        use KernelPath::*;
-        for (limit, avx2, avx512, want) in [
-            (0, true, true, Avx512),
-            (0, true, false, Avx2),
-            (0, false, false, Portable),
-            (1, true, true, Avx2),
-            (1, false, false, Portable),
-            (2, true, true, Portable),
-            (2, true, false, Portable),
-        ] {
-            assert_eq!(
-                choose_path(limit, avx2, avx512),
-                want,
-                "{limit} {avx2} {avx512}"
-            );
-        }
-    }
-
-    /// The AVX-512 kernel (eight lanes), the AVX2 kernel (four) and the portable one (four,
-    /// plain arrays) compute the same forces and state, bit for bit: AVX2 against portable
-    /// wherever the CPU has AVX2 and FMA, and AVX-512 against both where it also has
-    /// AVX-512F.
-    #[cfg(target_arch = "x86_64")]
+    /// Every kernel path this CPU supports (AVX-512 with eight lanes, AVX2 and portable
+    /// with four) computes the same forces (as force blocks and added into nodal rows),
+    /// critical steps and state, bit for bit, for both elements over yielding steps. On a
+    /// CPU with fewer paths the test compares the ones it has.
     #[test]
     fn every_kernel_path_gives_the_same_bits() {
-        let avx2 = std::is_x86_feature_detected!("avx2") && std::is_x86_feature_detected!("fma");
-        let avx512 = avx2 && std::is_x86_feature_detected!("avx512f");
-        if !avx2 {
-            eprintln!("skipped: this CPU lacks AVX2/FMA");
-            return;
-        }
+        let paths = Kernel::all_supported();
+        assert_eq!(paths.last().map(|k| k.path()), Some(KernelPath::Portable));
+        eprintln!(
+            "kernel paths on this CPU: {:?}",
+            paths.iter().map(|k| k.path()).collect::<Vec<_>>()
+        );
         for form in [Formulation::OnePoint, Formulation::BBar] {
-            let (mut a, mut x, v) = yielding_block(form, 6000.0);
-            let mut b = a.clone();
-            let mut c = a.clone();
-            let n = a.conn.len();
+            let (blk, x0, v) = yielding_block(form, 6000.0);
+            let n = blk.conn.len();
             let dt = 1e-8;
-            let run = |blk: &mut ElementBlock, x: &[[f64; 3]], path: KernelPath| {
-                let mut f = vec![[[0.0; 3]; 8]; n];
-                let mut batch = Batch {
-                    conn: &blk.conn,
-                    pts: &mut blk.points,
-                    wp: &mut blk.plastic_work,
-                    ie: &mut blk.internal_energy,
-                    hgq: &mut blk.hourglass,
-                    ehg: &mut blk.hourglass_energy,
-                    vol: &mut blk.volume,
-                    dtc: &mut blk.dt_crit,
-                    f: Forces::Blocks(&mut f),
-                };
-                let inp = StepInput {
-                    x,
-                    v: &v,
-                    dt,
-                    mat: &blk.material,
-                    hg: blk.hourglass_coeff,
-                    form: blk.formulation,
-                };
-                // SAFETY: the CPU features were checked above; node indices are in range.
-                let r = unsafe { element_batch_on(path, &mut batch, inp, 0) };
-                (r.unwrap(), f)
-            };
-            for _ in 0..20 {
-                advance(&mut x, &v, dt);
-                let (ra, fa) = run(&mut a, &x, KernelPath::Avx2);
-                // Without AVX-512 the second copy runs the portable path again.
-                let wide = if avx512 {
-                    KernelPath::Avx512
-                } else {
-                    KernelPath::Portable
-                };
-                let (rb, fb) = run(&mut b, &x, wide);
-                let (rc, fc) = run(&mut c, &x, KernelPath::Portable);
-                let fbits = |f: &[[[f64; 3]; 8]]| -> Vec<u64> {
-                    f.iter().flatten().flatten().map(|c| c.to_bits()).collect()
-                };
-                for (r, f, blk, path) in [(rb, &fb, &b, "AVX-512"), (rc, &fc, &c, "portable")] {
-                    assert_eq!((ra.0.to_bits(), ra.1), (r.0.to_bits(), r.1), "{path}");
-                    assert_eq!(fbits(&fa), fbits(f), "{form:?}, {path}: forces differ");
-                    assert_eq!(bits(&a), bits(blk), "{form:?}, {path}: state differs");
+            // (forces as blocks, forces into nodes, final state bits, critical steps) per path.
+            let run = |kernel: Kernel| {
+                let (mut a, mut b) = (blk.clone(), blk.clone());
+                a.kernel = kernel;
+                b.kernel = kernel;
+                let mut x = x0.clone();
+                let (mut fa, mut fb, mut steps) = (Vec::new(), Vec::new(), Vec::new());
+                for _ in 0..20 {
+                    advance(&mut x, &v, dt);
+                    let mut blocks = vec![[[0.0; 3]; 8]; n];
+                    let da = a.update(&x, &v, dt, &mut blocks).unwrap();
+                    let mut direct = vec![[0.0; 4]; x.len()];
+                    let db = b
+                        .update_range_into_nodes(0..n, &x, &v, dt, &mut direct)
+                        .unwrap();
+                    steps.push((da.0.to_bits(), da.1, db.0.to_bits(), db.1));
+                    fa.extend(blocks.iter().flatten().flatten().map(|c| c.to_bits()));
+                    fb.extend(direct.iter().flatten().map(|c| c.to_bits()));
                 }
+                assert!(
+                    a.points.iter().any(|p| p.eps_p > 0.0),
+                    "{form:?} must yield"
+                );
+                (fa, fb, bits(&a), bits(&b), steps)
+            };
+            let want = run(Kernel::Portable(crate::fe::simd::Portable));
+            for &k in &paths {
+                let got = run(k);
+                let path = k.path();
+                assert!(got.0 == want.0, "{form:?}, {path:?}: force blocks differ");
+                assert!(got.1 == want.1, "{form:?}, {path:?}: nodal forces differ");
+                assert!(got.2 == want.2, "{form:?}, {path:?}: state differs");
+                assert!(got.3 == want.3, "{form:?}, {path:?}: state (nodes) differs");
+                assert_eq!(got.4, want.4, "{form:?}, {path:?}: steps differ");
             }
-            assert!(
-                a.points.iter().any(|p| p.eps_p > 0.0),
-                "{form:?} must yield"
-            );
         }
     }
 }

@@ -11,10 +11,11 @@ use super::{
     energy::{EnergyReport, PartEnergy},
     interaction::{Interaction, StepContext},
     mass::element_lumped_mass,
+    materials::J2Material,
     model::Model,
-    plasticity::J2Material,
     profile::{Phase, Profile},
     rows::Rows4,
+    simd::KernelPath,
     subcycle::{node_force_sum, SubcycleReport, Subcycler, Subcycling, AUTO_MIN_SAVING},
     tensor::{cross, inverse, Sym},
     timestep::StableStep,
@@ -59,6 +60,13 @@ pub struct Settings {
     /// as Hertz's, which neglect the change of geometry; contact still acts on the current
     /// positions. Wrong for large rotations (a rigid rotation strains the elements).
     pub linear_geometry: bool,
+    /// The widest element-kernel path to use (default: the widest the CPU has); narrower
+    /// paths give the same bits, slower (to measure the paths other CPUs take).
+    #[serde(skip)]
+    pub kernel_cap: KernelPath,
+    /// Time the phases of every step ([`super::profile`]; default off).
+    #[serde(skip)]
+    pub profile: bool,
 }
 
 impl Default for Settings {
@@ -74,6 +82,8 @@ impl Default for Settings {
             subcycling: Subcycling::Off,
             subcycle_max_level: 4,
             linear_geometry: false,
+            kernel_cap: KernelPath::Avx512,
+            profile: false,
         }
     }
 }
@@ -299,14 +309,16 @@ impl Solver {
                 }
             }
             let mat = J2Material::new(&part.material, part.elastic_only);
-            blocks.push(ElementBlock::new(
+            let mut block = ElementBlock::new(
                 p,
                 part.elements.start,
                 conn,
                 part.formulation,
                 mat,
                 settings.hourglass,
-            ));
+            );
+            block.set_kernel_cap(settings.kernel_cap);
+            blocks.push(block);
         }
         if let Some(i) = mass.iter().position(|m| m.is_nan() || *m <= 0.0) {
             return Err(Error::invalid(
@@ -368,7 +380,7 @@ impl Solver {
             w_ext: 0.0,
             e0: 0.0,
             max_balance_error: 0.0,
-            profile: Profile::new(ne),
+            profile: Profile::new(ne, settings.profile),
             updates: 0,
             sub: None,
             sub_report: SubcycleReport::default(),
@@ -1223,7 +1235,7 @@ impl Solver {
         let (b, k) = self.locate(e);
         self.blocks[b].plastic_work[k]
     }
-    /// The phase timer (on when [`super::profile::set_enabled`] was called before `new`).
+    /// The phase timer (on when [`Settings::profile`] is).
     pub fn profile(&self) -> &Profile {
         &self.profile
     }

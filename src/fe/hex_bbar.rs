@@ -7,8 +7,8 @@
 use super::{
     elements::ElementStateMut,
     hex_one_point::ElementOutput,
+    materials::J2Material,
     objective::{hughes_winget, rotate_symmetric},
-    plasticity::J2Material,
     shape::{gauss_points_2x2x2, natural_derivatives, spatial_gradients},
     tensor::{ddot, deviator, spin_vector, sym_part, sym_vec, trace},
     timestep::characteristic_length,
@@ -90,7 +90,7 @@ pub fn update(
         let rot = hughes_winget(spin_vector(l).map(|e| e * dt));
         ip.stress = rotate_symmetric(&rot, &ip.stress);
         let before = ip.stress;
-        let dwp = mat.update(&mut ip.stress, &mut ip.eps_p, &d);
+        let dwp = mat.update(&mut ip.stress, &mut ip.eps_p, &d, dt);
         *plastic_work += dwp * jm[p];
         *internal_energy += 0.5 * jm[p] * (ddot(&before, &d) + ddot(&ip.stress, &d));
     }

@@ -24,9 +24,9 @@ use std::mem::MaybeUninit;
 
 use super::{
     hex_one_point_lanes::{critical_step, modes, nodes_from_modes, point_update},
-    lanes::{cross, dot, Lanes, Vec3},
-    plasticity::J2Material,
+    materials::{Hardening, J2Material},
     shape::{GAUSS2, NODE_XI},
+    simd::{cross, dot, Lanes, Vec3},
 };
 
 /// The state of W B-bar elements, lane-wise; points in the order of
@@ -72,7 +72,7 @@ fn natural_columns<const W: usize>(a: &[Vec3<W>; 8], q: [f64; 3]) -> [Vec3<W>; 3
     let (tu, us, st) = (t * u, u * s, s * t);
     // Plain loops, no closures: a closure the compiler leaves out of line would run its
     // lane arithmetic as calls.
-    let mut col = [[Lanes::splat(0.0); 3]; 3];
+    let mut col = [[a[0][0].splat_like(0.0); 3]; 3];
     for c in 0..3 {
         col[0][c] = a[1][c] + u * a[5][c] + t * a[6][c] + tu * a[7][c];
         col[1][c] = a[2][c] + u * a[4][c] + s * a[6][c] + us * a[7][c];
@@ -100,11 +100,12 @@ fn cofactor_rows<const W: usize>(c: &[Vec3<W>; 3]) -> ([Vec3<W>; 3], Lanes<W>) {
 /// configuration, Hughes-Winget rotation and J2 update per point, forces on x^{n+1}. An
 /// inverted lane returns a non-positive `min_jacobian` and meaningless forces.
 #[inline(always)]
-pub fn update<const W: usize>(
+pub fn update<H: Hardening, const W: usize>(
     x1: &[Vec3<W>; 8],
     v: &[Vec3<W>; 8],
     dt: f64,
     mat: &J2Material,
+    law: &H,
     st: &mut State<W>,
 ) -> Output<W> {
     let a1 = modes(x1);
@@ -116,7 +117,7 @@ pub fn update<const W: usize>(
             m[c] -= half * uk[c];
         }
     }
-    let z = Lanes::splat(0.0);
+    let z = x1[0][0].splat_like(0.0);
 
     // Mid-step velocity gradients L_g = Σ_d (8 ∂v/∂ξ_d) ⊗ n̂_d / (512 det J) and their mean
     // dilatation Σ_g J_g tr L_g / Σ_g J_g.
@@ -151,8 +152,15 @@ pub fn update<const W: usize>(
     for g in 0..8 {
         let l = &ls[g];
         let shift = (div_mean - (l[0][0] + l[1][1] + l[2][2])) * (1.0 / 3.0);
-        let (_, dwp, dw) =
-            point_update(mat, l, Some(shift), dt, &mut st.stress[g], &mut st.eps_p[g]);
+        let (_, dwp, dw) = point_update(
+            mat,
+            law,
+            l,
+            Some(shift),
+            dt,
+            &mut st.stress[g],
+            &mut st.eps_p[g],
+        );
         st.plastic_work += dwp * jm[g];
         st.internal_energy += 0.5 * jm[g] * dw;
     }
@@ -163,7 +171,7 @@ pub fn update<const W: usize>(
     let mut j1 = [z; 8];
     let mut vol = z;
     let mut pj = z;
-    let mut jmin = Lanes::splat(f64::INFINITY);
+    let mut jmin = z.splat_like(f64::INFINITY);
     for g in 0..8 {
         let (n, det) = cofactor_rows(&natural_columns(&a1, gauss_point(g)));
         // SAFETY: slot g < 8 of the array, written once.
@@ -236,16 +244,20 @@ mod tests {
     #[test]
     fn lanes_match_the_per_element_kernel() {
         let mat = J2Material::new(&Material::preset("copper-fe").unwrap(), false);
+        let crate::fe::materials::Law::Bilinear(law) = mat.law else {
+            panic!("copper-fe hardens linearly")
+        };
         let h = 1e-3;
         // Lane 1 moves rigidly (spin, no strain); the others stretch hard and yield.
         let (xs, vs) = four_elements(0x0bad_cafe_2468_1357, h, 1, 50.0, [4.0, 2.0, 3.0], 0.3);
         let dt = 2e-8;
         let mut x = xs;
+        let z = crate::fe::simd::LaneIsa::<4>::detect().unwrap().splat(0.0);
         let mut st = State::<4> {
-            stress: [[Lanes([0.0; 4]); 6]; 8],
-            eps_p: [Lanes([0.0; 4]); 8],
-            plastic_work: Lanes([0.0; 4]),
-            internal_energy: Lanes([0.0; 4]),
+            stress: [[z; 6]; 8],
+            eps_p: [z; 8],
+            plastic_work: z,
+            internal_energy: z,
         };
         let mut refs = [([IntegrationPoint::default(); 8], 0.0, 0.0); 4];
         let mut yielded = [false; 4];
@@ -257,7 +269,7 @@ mod tests {
                     }
                 }
             }
-            let out = update(&lanes(&x), &lanes(&vs), dt, &mat, &mut st);
+            let out = update(&lanes(&x), &lanes(&vs), dt, &mat, &law, &mut st);
             for l in 0..4 {
                 let r = &mut refs[l];
                 let mut hg = [[0.0; 3]; 4];

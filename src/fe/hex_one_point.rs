@@ -11,8 +11,8 @@
 
 use super::{
     elements::ElementStateMut,
+    materials::J2Material,
     objective::{hughes_winget, rotate_symmetric},
-    plasticity::J2Material,
     shape::NODE_XI,
     tensor::{ddot, mat_vec, spin_vector, sym_part, sym_vec},
     timestep::characteristic_length,
@@ -178,7 +178,7 @@ pub fn update(
         *q = mat_vec(&rot, *q);
     }
     let before = ip.stress;
-    let dwp = mat.update(&mut ip.stress, &mut ip.eps_p, &d);
+    let dwp = mat.update(&mut ip.stress, &mut ip.eps_p, &d, dt);
     *plastic_work += dwp * vm;
     // Stress power with the mid-step stress (trapezoid): V (σⁿ + σⁿ⁺¹)/2 : Δε.
     *internal_energy += 0.5 * vm * (ddot(&before, &d) + ddot(&ip.stress, &d));

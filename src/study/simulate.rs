@@ -250,6 +250,8 @@ pub struct RunOptions {
     /// Folder for the scene's `.vtu` snapshots (`output.vtu_snapshots` of them); none
     /// written without it.
     pub snapshot_dir: Option<std::path::PathBuf>,
+    /// Time the solver's phases (`fe::profile`; totals from `fe::profile::take_totals`).
+    pub profile: bool,
 }
 
 /// Contact-frame state of the pair in its centre-of-mass frame.
@@ -615,6 +617,7 @@ pub fn simulate(
     let settings = Settings {
         safety: scene.solver.time_step_factor,
         subcycling: scene.solver.subcycling,
+        profile: opts.profile,
         ..Settings::default()
     };
     let run = move |mut solver: Solver| -> Result<Simulation> {
