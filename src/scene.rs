@@ -103,15 +103,7 @@ pub struct ContactSettings {
     pub friction: Friction,
 }
 
-/// Hexahedron formulation (see the FE core, docs/design.md §4).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, serde::Deserialize)]
-#[serde(rename_all = "kebab-case")]
-pub enum Formulation {
-    /// One-point integration with hourglass control (`one-point`, the default).
-    OnePoint,
-    /// 2×2×2 integration with B-bar (mean dilatation) volumetric strain (`b-bar`).
-    BBar,
-}
+pub use crate::fe::Formulation;
 
 /// Explicit solver settings.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
@@ -570,12 +562,8 @@ fn read_solver(s: Option<Reader<'_>>) -> Result<SolverSettings> {
     };
     let Some(s) = s else { return Ok(out) };
     s.only(&SOLVER_KEYS)?;
-    if let Some(e) = s.choice("element", &["one-point", "b-bar"])? {
-        out.element = if e == "one-point" {
-            Formulation::OnePoint
-        } else {
-            Formulation::BBar
-        };
+    if let Some(e) = s.choice("element", &Formulation::NAMES)? {
+        out.element = Formulation::from_name(e).expect("a choice of Formulation::NAMES");
     }
     if let Some(f) = s.f64(
         "time_step_factor",

@@ -15,11 +15,11 @@ use crate::fe::contact::{
 };
 use crate::fe::explicit::{Settings, Solver};
 use crate::fe::interaction::Interaction;
-use crate::fe::model::{Formulation as FeFormulation, Model};
+use crate::fe::model::Model;
 use crate::fe::subcycle::SubcycleReport;
 use crate::mesh::ball::{ball, BallSpec, Cut};
 use crate::mesh::Mesh;
-use crate::scene::{BallScene, Formulation, MeshSettings, Scene, Switch, Touch};
+use crate::scene::{BallScene, MeshSettings, Scene, Switch, Touch};
 use serde::Serialize;
 use std::time::Instant;
 
@@ -274,13 +274,6 @@ fn pair_kinematics(scene: &Scene, touch: &Touch) -> Kinematics {
     Kinematics { v_cm, u }
 }
 
-fn fe_formulation(f: Formulation) -> FeFormulation {
-    match f {
-        Formulation::OnePoint => FeFormulation::OnePoint,
-        Formulation::BBar => FeFormulation::BBar,
-    }
-}
-
 /// The mesh of ball `name` ("ball1" or "ball2") with its contact pole at +x and centre at the
 /// origin; a rejected mesh setting is named from the scene root (`ball2.mesh.size`).
 fn ball_mesh(name: &str, b: &BallScene, cut: Cut) -> Result<Mesh> {
@@ -472,7 +465,7 @@ fn build(
 ) -> Result<Built> {
     let (b1, b2) = (&scene.ball1, &scene.ball2);
     let (r1, r2) = (b1.diameter / 2.0, b2.diameter / 2.0);
-    let form = fe_formulation(scene.solver.element);
+    let form = scene.solver.element;
     let penalty = PenaltyRule::Fkn {
         factor: default_fkn() * scene.contact.penalty_factor,
     };

@@ -1,7 +1,7 @@
 //! The SIMD layer of the element kernels: lane values ([`lanes`]), the instruction-set tokens
-//! that make eight-lane arithmetic reachable only on CPUs that have it, and the dispatch that
-//! compiles a lane-generic kernel for each kernel path ([`isa`]), and cache hints
-//! ([`prefetch`]).
+//! that make eight-lane arithmetic reachable only on CPUs that have it and the dispatch that
+//! compiles a lane-generic kernel for each kernel path ([`isa`]), padded nodal rows
+//! ([`rows`]) and cache hints ([`prefetch`]).
 //!
 //! Soundness: every [`Lanes`] value carries a [`LaneIsa`] token, whose constructors detect
 //! the CPU's features first; so no safe function reaches an instruction the CPU lacks. The
@@ -11,6 +11,7 @@
 pub mod isa;
 pub mod lanes;
 pub mod prefetch;
+pub mod rows;
 
 pub use isa::{Avx2, Avx512, Kernel, KernelPath, LaneIsa, LaneKernel, Portable, Simd};
 pub use lanes::{build, cross, dot, select, Lanes, Vec3};

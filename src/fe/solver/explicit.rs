@@ -5,22 +5,22 @@
 //! Updated Lagrangian: positions x are current coordinates, stresses are Cauchy stresses in
 //! the current frame; every array is allocated once in [`Solver::new`].
 
-use super::{
+use crate::error::{Error, Result};
+use crate::fe::{
     contact::vec3::dot,
     elements::{ElementBlock, ElementFailure},
-    energy::{EnergyReport, PartEnergy},
-    interaction::{Interaction, StepContext},
-    mass::element_lumped_mass,
     materials::J2Material,
     model::Model,
-    profile::{Phase, Profile},
-    rows::Rows4,
+    simd::rows::Rows4,
     simd::KernelPath,
-    subcycle::{node_force_sum, SubcycleReport, Subcycler, Subcycling, AUTO_MIN_SAVING},
+    solver::energy::{EnergyReport, PartEnergy},
+    solver::interaction::{Interaction, StepContext},
+    solver::mass::element_lumped_mass,
+    solver::profile::{Phase, Profile},
+    solver::subcycle::{node_force_sum, SubcycleReport, Subcycler, Subcycling, AUTO_MIN_SAVING},
+    solver::timestep::StableStep,
     tensor::{cross, inverse, Sym},
-    timestep::StableStep,
 };
-use crate::error::{Error, Result};
 use rayon::prelude::*;
 
 /// Nodes per chunk of the node loops; fixed so that partial sums never depend on threads.
@@ -50,7 +50,7 @@ pub struct Settings {
     /// instability, long before values turn non-finite.
     pub energy_growth: f64,
     /// Multi-time-step integration: element groups step with powers of two of the fine step
-    /// (see [`super::subcycle`]); default off. Ignored with `fixed_dt`.
+    /// (see [`crate::fe::solver::subcycle`]); default off. Ignored with `fixed_dt`.
     pub subcycling: Subcycling,
     /// Highest subcycling level: an element steps at most 2^level fine steps (1..=8; default 4).
     pub subcycle_max_level: u32,
@@ -64,7 +64,7 @@ pub struct Settings {
     /// paths give the same bits, slower (to measure the paths other CPUs take).
     #[serde(skip)]
     pub kernel_cap: KernelPath,
-    /// Time the phases of every step ([`super::profile`]; default off).
+    /// Time the phases of every step ([`crate::fe::solver::profile`]; default off).
     #[serde(skip)]
     pub profile: bool,
 }
@@ -502,7 +502,7 @@ impl Solver {
         Ok(())
     }
 
-    /// One fine step n → n+1 with subcycling (module [`super::subcycle`]): Box 6.1 with the
+    /// One fine step n → n+1 with subcycling (module [`crate::fe::solver::subcycle`]): Box 6.1 with the
     /// half-kicks split into closing and opening parts. Elements due now act with the weight
     /// 2^k of their own step; the others act not at all until their next update.
     fn step_subcycled(&mut self) -> Result<()> {
@@ -1142,7 +1142,7 @@ impl Solver {
         }
         let (inv, det) = inverse(&inertia);
         let omega = if det > 0.0 {
-            super::tensor::mat_vec(&inv, l)
+            crate::fe::tensor::mat_vec(&inv, l)
         } else {
             [0.0; 3]
         };

@@ -6,7 +6,7 @@
 //!   an interaction's limit, with the same growth hysteresis).
 //! - Node level L_i: the node is integrated with its own step 2^{L_i} h, the largest that
 //!   every element around it allows (2^L h ≤ safety × its Courant limit) up to a cap; nodes an
-//!   interaction may act on ([`super::interaction::Interaction::active_nodes`]) have level 0.
+//!   interaction may act on ([`crate::fe::solver::interaction::Interaction::active_nodes`]) have level 0.
 //! - Element update level u_e = min of its nodes' levels: an element is updated whenever one
 //!   of its nodes is due, with its own step 2^{u_e} h, from its nodes' synchronised
 //!   positions; a coarser node of it has not been kicked since its last update, so it drifted
@@ -34,7 +34,7 @@
 //! The resonance instability of impulse (r-RESPA-type) schemes, where a coarse element kicks a
 //! fine node once per coarse step, is absent because a fine node only ever sees fresh forces.
 
-use super::elements::{ElementBlock, ElementFailure};
+use crate::fe::elements::{ElementBlock, ElementFailure};
 use serde::{Deserialize, Serialize};
 use std::ops::Range;
 

@@ -1,5 +1,5 @@
-//! The B-bar hexahedron of [`super::hex_bbar`], computed for W elements at once (SIMD lanes)
-//! and in mode space, like [`super::hex_one_point_lanes`].
+//! The B-bar hexahedron of [`crate::fe::elements::hex_bbar`], computed for W elements at once (SIMD lanes)
+//! and in mode space, like [`crate::fe::elements::hex_one_point_lanes`].
 //!
 //! With the mode vectors A_k of the nodal coordinates (x(ξ) = (1/8) Σ_k A_k h_k(ξ), modes
 //! h = (1, ξ, η, ζ, ηζ, ζξ, ξη, ξηζ)), the Jacobian columns at a Gauss point are short sums:
@@ -20,17 +20,23 @@
 //! elements are grouped into lanes; they equal the per-element kernel up to round-off
 //! (checked to 1e-11 relative in the tests).
 
+use crate::fe::elements::block::{
+    contiguous, finish_lanes, gather_nodes, time_updates, Batch, BatchResult, ElementBlock,
+    LaneResult, StepInput,
+};
+use crate::fe::elements::formulation::Element;
+use crate::fe::simd::{build, prefetch::prefetch_ahead, LaneIsa};
 use std::mem::MaybeUninit;
 
-use super::{
-    hex_one_point_lanes::{critical_step, modes, nodes_from_modes, point_update},
+use crate::fe::{
+    elements::hex_one_point_lanes::{critical_step, modes, nodes_from_modes, point_update},
+    elements::shape::{GAUSS2, NODE_XI},
     materials::{Hardening, J2Material},
-    shape::{GAUSS2, NODE_XI},
     simd::{cross, dot, Lanes, Vec3},
 };
 
 /// The state of W B-bar elements, lane-wise; points in the order of
-/// [`super::shape::gauss_points_2x2x2`].
+/// [`crate::fe::elements::shape::gauss_points_2x2x2`].
 #[derive(Debug, Clone, Copy)]
 pub struct State<const W: usize> {
     /// Cauchy stress at each Gauss point, Pa (Voigt [xx, yy, zz, xy, yz, zx]).
@@ -96,7 +102,7 @@ fn cofactor_rows<const W: usize>(c: &[Vec3<W>; 3]) -> ([Vec3<W>; 3], Lanes<W>) {
 
 /// Advances W B-bar elements from t^n to t^{n+1}: nodal coordinates `x1` = x^{n+1} (m),
 /// velocities `v` = v^{n+1/2} (m/s), step `dt` (s, 0 = evaluate only). The same physics as
-/// [`super::hex_bbar::update`]: mean-dilatation velocity gradient on the mid-step
+/// [`crate::fe::elements::hex_bbar::update`]: mean-dilatation velocity gradient on the mid-step
 /// configuration, Hughes-Winget rotation and J2 update per point, forces on x^{n+1}. An
 /// inverted lane returns a non-positive `min_jacobian` and meaningless forces.
 #[inline(always)]
@@ -228,13 +234,137 @@ pub fn update<H: Hardening, const W: usize>(
     }
 }
 
+/// The B-bar hexahedron as an element of the element loop.
+#[derive(Debug, Clone, Copy)]
+pub struct BBarHex;
+
+impl Element for BBarHex {
+    const POINTS: usize = 8;
+
+    /// B-bar elements W at a time: gather nodes and the eight points' state into lanes,
+    /// update ([`update`]), scatter state and forces back. Lanes past the batch end repeat
+    /// its last element and are discarded.
+    #[inline(always)]
+    fn lane_loop<H: Hardening, const W: usize>(
+        isa: LaneIsa<W>,
+        law: &H,
+        b: &mut Batch<'_>,
+        inp: StepInput<'_>,
+        base: usize,
+    ) -> BatchResult {
+        let StepInput { x, v, dt, mat, .. } = inp;
+        let n = b.conn.len();
+        let mut best = (f64::INFINITY, base);
+        let mut k0 = 0;
+        while k0 < n {
+            let idx: [usize; W] = build(|l| (k0 + l).min(n - 1));
+            let live = (n - k0).min(W);
+            let (mut xe, mut ve) = (MaybeUninit::uninit(), MaybeUninit::uninit());
+            let (xe, ve) = gather_nodes(isa, &idx, b.conn, x, v, &mut xe, &mut ve);
+            // The state as rows of the point array transposed into lanes (Lanes::load_rows):
+            // every index is a local element < n of this batch's slices (points: eight per
+            // element, eight f64 each, repr(C): stress, eps_p, volume). The lane state is built
+            // from them directly, with no zero fill first (a 3.7 KB `memset` call per group).
+            debug_assert!(b.pts.len() == 8 * n && b.wp.len() == n && b.ie.len() == n);
+            let pp = b.pts.as_mut_ptr().cast::<f64>();
+            let mut st = MaybeUninit::<State<W>>::uninit();
+            let sp = st.as_mut_ptr();
+            // SAFETY: as above (rows of 8 f64 inside the slice); every field of `st` is written
+            // once, through raw pointers to its own storage, before it is read.
+            let st = unsafe {
+                for g in 0..8 {
+                    let rows: [usize; W] = build(|l| 64 * idx[l] + 8 * g);
+                    let f: [Lanes<W>; 7] = Lanes::load_rows(isa, pp, &rows);
+                    let stress = std::ptr::addr_of_mut!((*sp).stress).cast::<[Lanes<W>; 6]>();
+                    stress.add(g).write([f[0], f[1], f[2], f[3], f[4], f[5]]);
+                    let eps_p = std::ptr::addr_of_mut!((*sp).eps_p).cast::<Lanes<W>>();
+                    eps_p.add(g).write(f[6]);
+                }
+                std::ptr::addr_of_mut!((*sp).plastic_work).write(contiguous(isa, b.wp, &idx));
+                std::ptr::addr_of_mut!((*sp).internal_energy).write(contiguous(isa, b.ie, &idx));
+                st.assume_init_mut()
+            };
+            prefetch_ahead(b.pts.as_ptr(), 8 * (k0 + 2 * W), 8 * W);
+            let out = update(xe, ve, dt, mat, law, st);
+            if live == W {
+                for g in 0..8 {
+                    let s = &st.stress[g];
+                    let cols = [
+                        s[0],
+                        s[1],
+                        s[2],
+                        s[3],
+                        s[4],
+                        s[5],
+                        st.eps_p[g],
+                        out.point_volume[g],
+                    ];
+                    let rows: [usize; W] = build(|l| 64 * (k0 + l) + 8 * g);
+                    // SAFETY: full group: W distinct elements k0.. < n, rows of 8 f64 in the slice.
+                    unsafe { Lanes::store_rows(&cols, pp, &rows) };
+                }
+                b.wp[k0..k0 + W].copy_from_slice(&st.plastic_work.0);
+                b.ie[k0..k0 + W].copy_from_slice(&st.internal_energy.0);
+            } else {
+                for l in 0..live {
+                    let k = k0 + l;
+                    for g in 0..8 {
+                        let ip = &mut b.pts[8 * k + g];
+                        for c in 0..6 {
+                            ip.stress[c] = st.stress[g][c].0[l];
+                        }
+                        ip.eps_p = st.eps_p[g].0[l];
+                        ip.volume = out.point_volume[g].0[l];
+                    }
+                    b.wp[k] = st.plastic_work.0[l];
+                    b.ie[k] = st.internal_energy.0[l];
+                }
+            }
+            let r = LaneResult {
+                force: &out.force,
+                volume: out.volume,
+                min_jacobian: out.min_jacobian,
+                dt_crit: out.dt_crit,
+            };
+            finish_lanes(&r, b, k0, live, base, &mut best)?;
+            k0 += W;
+        }
+        Ok(best)
+    }
+
+    #[inline(always)]
+    fn time_arithmetic<H: Hardening, const W: usize>(
+        isa: LaneIsa<W>,
+        law: &H,
+        b: &ElementBlock,
+        xe: &[Vec3<W>; 8],
+        ve: &[Vec3<W>; 8],
+        idx: &[usize; W],
+        dt: f64,
+        repeats: u32,
+    ) -> std::time::Duration {
+        let lane = |f: &dyn Fn(usize) -> f64| isa.lanes(std::array::from_fn(f));
+        let mat = &b.material;
+        let pt = |l: usize, g: usize| &b.points[8 * idx[l] + g];
+        let st0 = State::<W> {
+            stress: std::array::from_fn(|g| std::array::from_fn(|c| lane(&|l| pt(l, g).stress[c]))),
+            eps_p: std::array::from_fn(|g| lane(&|l| pt(l, g).eps_p)),
+            plastic_work: lane(&|l| b.plastic_work[idx[l]]),
+            internal_energy: lane(&|l| b.internal_energy[idx[l]]),
+        };
+        time_updates!(repeats, xe, ve, st0, |st, xr, vr| update(
+            xr, vr, dt, mat, law, &mut st
+        ))
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::fe::{
+        elements::hex_one_point_lanes::tests::{assert_forces_match, four_elements, lanes},
         elements::{ElementStateMut, IntegrationPoint},
         hex_bbar,
-        hex_one_point_lanes::tests::{assert_forces_match, four_elements, lanes},
     };
     use crate::material::Material;
 

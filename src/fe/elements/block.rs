@@ -4,11 +4,10 @@
 //! of elements in parallel (rayon) and writes one force block per element, so the result does
 //! not depend on the number of threads.
 
-use super::{
-    hex_bbar_lanes as bp, hex_one_point_lanes as op,
+use crate::fe::{
+    elements::{Element, ElementVisitor, Formulation},
     materials::{Hardening, J2Material, LawVisitor},
-    model::Formulation,
-    simd::{build, prefetch::prefetch_ahead, Kernel, KernelPath, LaneIsa, LaneKernel, Lanes, Vec3},
+    simd::{build, Kernel, KernelPath, LaneIsa, LaneKernel, Lanes, Vec3},
     tensor::Sym,
 };
 use rayon::prelude::*;
@@ -134,10 +133,7 @@ impl ElementBlock {
 
     /// Integration points per element of a formulation.
     pub fn points_for(f: Formulation) -> usize {
-        match f {
-            Formulation::OnePoint => 1,
-            Formulation::BBar => 8,
-        }
+        f.points()
     }
 
     /// Integration points per element of this block.
@@ -341,20 +337,20 @@ impl ElementBlock {
 }
 
 /// One batch of elements of the element loop: its slices of every state array.
-struct Batch<'a> {
-    conn: &'a [[u32; 8]],
-    pts: &'a mut [IntegrationPoint],
-    wp: &'a mut [f64],
-    ie: &'a mut [f64],
-    hgq: &'a mut [[[f64; 3]; 4]],
-    ehg: &'a mut [f64],
-    vol: &'a mut [f64],
-    dtc: &'a mut [f64],
-    f: Forces<'a>,
+pub(crate) struct Batch<'a> {
+    pub(crate) conn: &'a [[u32; 8]],
+    pub(crate) pts: &'a mut [IntegrationPoint],
+    pub(crate) wp: &'a mut [f64],
+    pub(crate) ie: &'a mut [f64],
+    pub(crate) hgq: &'a mut [[[f64; 3]; 4]],
+    pub(crate) ehg: &'a mut [f64],
+    pub(crate) vol: &'a mut [f64],
+    pub(crate) dtc: &'a mut [f64],
+    pub(crate) f: Forces<'a>,
 }
 
 /// Where a batch puts its elements' internal forces.
-enum Forces<'a> {
+pub(crate) enum Forces<'a> {
     /// One 8-node force block per element of the batch (parallel loops: the blocks are
     /// summed per node afterwards, in element order).
     Blocks(&'a mut [[[f64; 3]; 8]]),
@@ -365,15 +361,15 @@ enum Forces<'a> {
 }
 
 /// Result of a batch: smallest critical step and its element, or the first failing element.
-type BatchResult = Result<(f64, usize), (usize, ElementFailure)>;
+pub(crate) type BatchResult = Result<(f64, usize), (usize, ElementFailure)>;
 
 /// What a lane group's update hands back for every lane: nodal forces (N), volume (m³),
 /// smallest Jacobian (m³, ≤ 0 or NaN: inverted) and Courant limit (s).
-struct LaneResult<'r, const W: usize> {
-    force: &'r [Vec3<W>; 8],
-    volume: Lanes<W>,
-    min_jacobian: Lanes<W>,
-    dt_crit: Lanes<W>,
+pub(crate) struct LaneResult<'r, const W: usize> {
+    pub(crate) force: &'r [Vec3<W>; 8],
+    pub(crate) volume: Lanes<W>,
+    pub(crate) min_jacobian: Lanes<W>,
+    pub(crate) dt_crit: Lanes<W>,
 }
 
 /// Checks the `live` lanes of a group starting at local element `k0`, records their volume,
@@ -381,7 +377,7 @@ struct LaneResult<'r, const W: usize> {
 /// that is inverted or has a non-finite force, as the per-element check would (a failing
 /// group's forces are then not all written: the solver stops anyway).
 #[inline(always)]
-fn finish_lanes<const W: usize>(
+pub(crate) fn finish_lanes<const W: usize>(
     r: &LaneResult<'_, W>,
     b: &mut Batch<'_>,
     k0: usize,
@@ -456,99 +452,6 @@ fn finish_lanes<const W: usize>(
         }
     }
     Ok(())
-}
-
-/// B-bar elements W at a time: gather nodes and the eight points' state into lanes, update
-/// ([`bp::update`]), scatter state and forces back. Lanes past the batch end repeat its last
-/// element and are discarded.
-#[inline(always)]
-fn bbar_lanes<H: Hardening, const W: usize>(
-    isa: LaneIsa<W>,
-    b: &mut Batch<'_>,
-    x: &[[f64; 3]],
-    v: &[[f64; 3]],
-    dt: f64,
-    mat: &J2Material,
-    law: &H,
-    base: usize,
-) -> BatchResult {
-    let n = b.conn.len();
-    let mut best = (f64::INFINITY, base);
-    let mut k0 = 0;
-    while k0 < n {
-        let idx: [usize; W] = build(|l| (k0 + l).min(n - 1));
-        let live = (n - k0).min(W);
-        let (mut xe, mut ve) = (MaybeUninit::uninit(), MaybeUninit::uninit());
-        let (xe, ve) = gather_nodes(isa, &idx, b.conn, x, v, &mut xe, &mut ve);
-        // The state as rows of the point array transposed into lanes (Lanes::load_rows):
-        // every index is a local element < n of this batch's slices (points: eight per
-        // element, eight f64 each, repr(C): stress, eps_p, volume). The lane state is built
-        // from them directly, with no zero fill first (a 3.7 KB `memset` call per group).
-        debug_assert!(b.pts.len() == 8 * n && b.wp.len() == n && b.ie.len() == n);
-        let pp = b.pts.as_mut_ptr().cast::<f64>();
-        let mut st = MaybeUninit::<bp::State<W>>::uninit();
-        let sp = st.as_mut_ptr();
-        // SAFETY: as above (rows of 8 f64 inside the slice); every field of `st` is written
-        // once, through raw pointers to its own storage, before it is read.
-        let st = unsafe {
-            for g in 0..8 {
-                let rows: [usize; W] = build(|l| 64 * idx[l] + 8 * g);
-                let f: [Lanes<W>; 7] = Lanes::load_rows(isa, pp, &rows);
-                let stress = std::ptr::addr_of_mut!((*sp).stress).cast::<[Lanes<W>; 6]>();
-                stress.add(g).write([f[0], f[1], f[2], f[3], f[4], f[5]]);
-                let eps_p = std::ptr::addr_of_mut!((*sp).eps_p).cast::<Lanes<W>>();
-                eps_p.add(g).write(f[6]);
-            }
-            std::ptr::addr_of_mut!((*sp).plastic_work).write(contiguous(isa, b.wp, &idx));
-            std::ptr::addr_of_mut!((*sp).internal_energy).write(contiguous(isa, b.ie, &idx));
-            st.assume_init_mut()
-        };
-        prefetch_ahead(b.pts.as_ptr(), 8 * (k0 + 2 * W), 8 * W);
-        let out = bp::update(xe, ve, dt, mat, law, st);
-        if live == W {
-            for g in 0..8 {
-                let s = &st.stress[g];
-                let cols = [
-                    s[0],
-                    s[1],
-                    s[2],
-                    s[3],
-                    s[4],
-                    s[5],
-                    st.eps_p[g],
-                    out.point_volume[g],
-                ];
-                let rows: [usize; W] = build(|l| 64 * (k0 + l) + 8 * g);
-                // SAFETY: full group: W distinct elements k0.. < n, rows of 8 f64 in the slice.
-                unsafe { Lanes::store_rows(&cols, pp, &rows) };
-            }
-            b.wp[k0..k0 + W].copy_from_slice(&st.plastic_work.0);
-            b.ie[k0..k0 + W].copy_from_slice(&st.internal_energy.0);
-        } else {
-            for l in 0..live {
-                let k = k0 + l;
-                for g in 0..8 {
-                    let ip = &mut b.pts[8 * k + g];
-                    for c in 0..6 {
-                        ip.stress[c] = st.stress[g][c].0[l];
-                    }
-                    ip.eps_p = st.eps_p[g].0[l];
-                    ip.volume = out.point_volume[g].0[l];
-                }
-                b.wp[k] = st.plastic_work.0[l];
-                b.ie[k] = st.internal_energy.0[l];
-            }
-        }
-        let r = LaneResult {
-            force: &out.force,
-            volume: out.volume,
-            min_jacobian: out.min_jacobian,
-            dt_crit: out.dt_crit,
-        };
-        finish_lanes(&r, b, k0, live, base, &mut best)?;
-        k0 += W;
-    }
-    Ok(best)
 }
 
 impl ElementBlock {
@@ -627,7 +530,6 @@ fn arithmetic_lanes<H: Hardening, const W: usize>(
     dt: f64,
     repeats: u32,
 ) -> f64 {
-    use std::hint::black_box;
     let n = b.conn.len();
     // Set-up by local closures and plain indexing, none shared with the element loop: a
     // shared helper (or one of its closures) would get a second caller, and the compiler
@@ -640,65 +542,70 @@ fn arithmetic_lanes<H: Hardening, const W: usize>(
     let ve: [Vec3<W>; 8] = std::array::from_fn(|i| {
         std::array::from_fn(|d| lane(&|l| v[b.conn[idx[l]][i] as usize][d]))
     });
-    let mat = &b.material;
-    // The timing loop, as a macro so that it expands in place: a helper taking the kernel
-    // call as a closure could see that closure compiled out of line, without the target
-    // features, and time the wrong code. Every update's output goes through black_box (to
-    // the stack, as the element loop's forces do), so none of the arithmetic can be
-    // optimised out; the state restarts every 64 updates, so it does not drift far from the
-    // state of a real step.
-    macro_rules! time_updates {
-        ($st0:expr, |$st:ident, $xr:ident, $vr:ident| $update:expr) => {{
-            let st0 = $st0;
-            let mut $st = st0;
-            let start = std::time::Instant::now();
-            for r in 0..repeats {
-                if r % 64 == 0 {
-                    $st = st0;
-                }
-                let ($xr, $vr) = (black_box(&xe), black_box(&ve));
-                black_box(&$update);
-            }
-            start.elapsed()
-        }};
-    }
-    let elapsed = match b.formulation {
-        Formulation::OnePoint => {
-            let st0 = op::State::<W> {
-                stress: std::array::from_fn(|c| lane(&|l| b.points[idx[l]].stress[c])),
-                eps_p: lane(&|l| b.points[idx[l]].eps_p),
-                hourglass: std::array::from_fn(|a| {
-                    std::array::from_fn(|c| lane(&|l| b.hourglass[idx[l]][a][c]))
-                }),
-                plastic_work: lane(&|l| b.plastic_work[idx[l]]),
-                internal_energy: lane(&|l| b.internal_energy[idx[l]]),
-                hourglass_energy: lane(&|l| b.hourglass_energy[idx[l]]),
-            };
-            time_updates!(st0, |st, xr, vr| op::update(
-                xr,
-                vr,
-                dt,
-                mat,
-                law,
-                b.hourglass_coeff,
-                &mut st
-            ))
-        }
-        Formulation::BBar => {
-            let pt = |l: usize, g: usize| &b.points[8 * idx[l] + g];
-            let st0 = bp::State::<W> {
-                stress: std::array::from_fn(|g| {
-                    std::array::from_fn(|c| lane(&|l| pt(l, g).stress[c]))
-                }),
-                eps_p: std::array::from_fn(|g| lane(&|l| pt(l, g).eps_p)),
-                plastic_work: lane(&|l| b.plastic_work[idx[l]]),
-                internal_energy: lane(&|l| b.internal_energy[idx[l]]),
-            };
-            time_updates!(st0, |st, xr, vr| bp::update(xr, vr, dt, mat, law, &mut st))
-        }
-    };
+    let elapsed = b.formulation.with(TimeArithmetic {
+        isa,
+        law,
+        b,
+        xe: &xe,
+        ve: &ve,
+        idx: &idx,
+        dt,
+        repeats,
+    });
     elapsed.as_secs_f64() * 1e9 / (f64::from(repeats) * W as f64)
 }
+
+/// [`Element::time_arithmetic`] of the block's formulation.
+struct TimeArithmetic<'a, H, const W: usize> {
+    isa: LaneIsa<W>,
+    law: &'a H,
+    b: &'a ElementBlock,
+    xe: &'a [Vec3<W>; 8],
+    ve: &'a [Vec3<W>; 8],
+    idx: &'a [usize; W],
+    dt: f64,
+    repeats: u32,
+}
+
+impl<H: Hardening, const W: usize> ElementVisitor for TimeArithmetic<'_, H, W> {
+    type Output = std::time::Duration;
+    #[inline(always)]
+    fn visit<E: Element>(self) -> std::time::Duration {
+        E::time_arithmetic(
+            self.isa,
+            self.law,
+            self.b,
+            self.xe,
+            self.ve,
+            self.idx,
+            self.dt,
+            self.repeats,
+        )
+    }
+}
+
+/// Times `repeats` updates of the lane state `$st0` (restarted every 64 updates, so that it
+/// does not drift far from a real step's) by `$update`, with `$st`, `$xr`, `$vr` bound to
+/// the state and the nodal lanes `$xe`, `$ve` (through `black_box`, as is every update's
+/// output, so none of the arithmetic can be optimised out). A macro, so that it expands in
+/// place: a helper taking the update as a closure could see that closure compiled out of
+/// line, without the target features, and time the wrong code.
+macro_rules! time_updates {
+    ($repeats:expr, $xe:expr, $ve:expr, $st0:expr, |$st:ident, $xr:ident, $vr:ident| $update:expr) => {{
+        let st0 = $st0;
+        let mut $st = st0;
+        let start = std::time::Instant::now();
+        for r in 0..$repeats {
+            if r % 64 == 0 {
+                $st = st0;
+            }
+            let ($xr, $vr) = (std::hint::black_box($xe), std::hint::black_box($ve));
+            std::hint::black_box(&$update);
+        }
+        start.elapsed()
+    }};
+}
+pub(crate) use time_updates;
 
 /// The largest of `a` (0 if empty). The baseline x86-64 target has no unsigned 32-bit vector
 /// maximum, so the loop is compiled for AVX2 where the CPU has it (eight lanes per
@@ -725,7 +632,7 @@ fn max_index(a: &[u32]) -> u32 {
 /// Lane l = `a[idx[l]]` for one f64 per element: a plain vector load when `idx` is a run
 /// of consecutive elements (every full group), else W loads.
 #[inline(always)]
-fn contiguous<const W: usize>(isa: LaneIsa<W>, a: &[f64], idx: &[usize; W]) -> Lanes<W> {
+pub(crate) fn contiguous<const W: usize>(isa: LaneIsa<W>, a: &[f64], idx: &[usize; W]) -> Lanes<W> {
     let k0 = idx[0];
     if idx[W - 1] == k0 + W - 1 {
         let mut r = [0.0; W];
@@ -740,7 +647,7 @@ fn contiguous<const W: usize>(isa: LaneIsa<W>, a: &[f64], idx: &[usize; W]) -> L
 /// registers). Writes every slot of `xe` and `ve` and returns them initialised: the
 /// caller's arrays need no zero fill first (it was a 1.5 KB `memset` call per lane group).
 #[inline(always)]
-fn gather_nodes<'e, const W: usize>(
+pub(crate) fn gather_nodes<'e, const W: usize>(
     isa: LaneIsa<W>,
     idx: &[usize; W],
     conn: &[[u32; 8]],
@@ -768,19 +675,19 @@ fn gather_nodes<'e, const W: usize>(
 
 /// What every element of a batch needs besides its own state.
 #[derive(Clone, Copy)]
-struct StepInput<'a> {
+pub(crate) struct StepInput<'a> {
     /// Nodal coordinates at t^{n+1}, m.
-    x: &'a [[f64; 3]],
+    pub(crate) x: &'a [[f64; 3]],
     /// Nodal velocities at t^{n+1/2}, m/s.
-    v: &'a [[f64; 3]],
+    pub(crate) v: &'a [[f64; 3]],
     /// Step, s.
-    dt: f64,
-    mat: &'a J2Material,
+    pub(crate) dt: f64,
+    pub(crate) mat: &'a J2Material,
     /// Hourglass coefficient (one-point hex; 0 = off).
-    hg: f64,
-    form: Formulation,
+    pub(crate) hg: f64,
+    pub(crate) form: Formulation,
     /// The kernel path (with its instruction-set token).
-    kernel: Kernel,
+    pub(crate) kernel: Kernel,
 }
 
 /// One batch of elements on the block's kernel path.
@@ -814,137 +721,28 @@ impl<const W: usize> LawVisitor for LawLoop<'_, '_, W> {
     type Output = BatchResult;
     #[inline(always)]
     fn visit<H: Hardening>(self, law: &H) -> BatchResult {
-        element_lanes(self.isa, law, self.lp.b, self.lp.inp, self.lp.base)
+        let form = self.lp.inp.form;
+        form.with(FormLoop {
+            isa: self.isa,
+            law,
+            lp: self.lp,
+        })
     }
 }
 
-/// The lane loop of the batch's formulation (both inline into the caller's target features).
-#[inline(always)]
-fn element_lanes<H: Hardening, const W: usize>(
+/// [`LawLoop`] for the batch's formulation: its lane loop ([`Element::lane_loop`]).
+struct FormLoop<'a, 'b, 'h, H, const W: usize> {
     isa: LaneIsa<W>,
-    law: &H,
-    b: &mut Batch<'_>,
-    inp: StepInput<'_>,
-    base: usize,
-) -> BatchResult {
-    let StepInput {
-        x,
-        v,
-        dt,
-        mat,
-        hg,
-        form,
-        kernel: _,
-    } = inp;
-    match form {
-        Formulation::OnePoint => one_point_lanes::<H, W>(isa, b, x, v, dt, mat, law, hg, base),
-        Formulation::BBar => bbar_lanes::<H, W>(isa, b, x, v, dt, mat, law, base),
-    }
+    law: &'h H,
+    lp: ElementLoop<'a, 'b>,
 }
 
-/// Gathers W elements (`idx`: local element per lane) into lanes, updates them, scatters
-/// state and forces back. Lanes past the batch end repeat its last element and are discarded.
-#[inline(always)]
-fn one_point_lanes<H: Hardening, const W: usize>(
-    isa: LaneIsa<W>,
-    b: &mut Batch<'_>,
-    x: &[[f64; 3]],
-    v: &[[f64; 3]],
-    dt: f64,
-    mat: &J2Material,
-    law: &H,
-    hg: f64,
-    base: usize,
-) -> BatchResult {
-    let n = b.conn.len();
-    let mut best = (f64::INFINITY, base);
-    let mut k0 = 0;
-    while k0 < n {
-        let idx: [usize; W] = build(|l| (k0 + l).min(n - 1));
-        let live = (n - k0).min(W);
-        // Gather nodal coordinates and velocities and the element state into lanes (plain
-        // loops: no closure or generic helper is left out of the AVX2 kernel).
-        let (mut xe, mut ve) = (MaybeUninit::uninit(), MaybeUninit::uninit());
-        let (xe, ve) = gather_nodes(isa, &idx, b.conn, x, v, &mut xe, &mut ve);
-        // The state as rows transposed into lanes (Lanes::load_rows): every index is a local
-        // element < n of this batch's slices, whose lengths are n (points: eight f64 each,
-        // repr(C): stress, eps_p, volume; hourglass: twelve f64 each). The lane state is
-        // built from them directly, with no zero fill first (a 1.4 KB `memset` call per
-        // group, 2 % of a subcycled default-scene run, whose level ranges are short).
-        debug_assert!(b.pts.len() == n && b.hgq.len() == n && b.wp.len() == n);
-        let (pp, hp) = (
-            b.pts.as_mut_ptr().cast::<f64>(),
-            b.hgq.as_mut_ptr().cast::<f64>(),
-        );
-        let mut st = MaybeUninit::<op::State<W>>::uninit();
-        let sp = st.as_mut_ptr();
-        // SAFETY: as above (rows of 8 and 12 f64 inside their slices); every field of `st`
-        // is written once, through raw pointers to its own storage, before it is read.
-        let st = unsafe {
-            let f: [Lanes<W>; 7] = Lanes::load_rows(isa, pp, &build(|l| 8 * idx[l]));
-            std::ptr::addr_of_mut!((*sp).stress).write([f[0], f[1], f[2], f[3], f[4], f[5]]);
-            std::ptr::addr_of_mut!((*sp).eps_p).write(f[6]);
-            let h0: [Lanes<W>; 8] = Lanes::load_rows(isa, hp, &build(|l| 12 * idx[l]));
-            let h1: [Lanes<W>; 4] = Lanes::load_rows(isa, hp, &build(|l| 12 * idx[l] + 8));
-            let q = std::ptr::addr_of_mut!((*sp).hourglass).cast::<Lanes<W>>();
-            for (k, h) in h0.iter().chain(&h1).enumerate() {
-                q.add(k).write(*h);
-            }
-            std::ptr::addr_of_mut!((*sp).plastic_work).write(contiguous(isa, b.wp, &idx));
-            std::ptr::addr_of_mut!((*sp).internal_energy).write(contiguous(isa, b.ie, &idx));
-            std::ptr::addr_of_mut!((*sp).hourglass_energy).write(contiguous(isa, b.ehg, &idx));
-            st.assume_init_mut()
-        };
-        prefetch_ahead(b.pts.as_ptr(), k0 + 2 * W, W);
-        prefetch_ahead(b.hgq.as_ptr(), k0 + 2 * W, W);
-        let out = op::update(xe, ve, dt, mat, law, hg, st);
-        if live == W {
-            let s = &st.stress;
-            let cols = [s[0], s[1], s[2], s[3], s[4], s[5], st.eps_p, out.volume];
-            let q = &st.hourglass;
-            let h0 = [
-                q[0][0], q[0][1], q[0][2], q[1][0], q[1][1], q[1][2], q[2][0], q[2][1],
-            ];
-            let h1 = [q[2][2], q[3][0], q[3][1], q[3][2]];
-            // SAFETY: full group: W distinct elements k0.. < n, rows inside the slices.
-            unsafe {
-                Lanes::store_rows(&cols, pp, &build(|l| 8 * (k0 + l)));
-                Lanes::store_rows(&h0, hp, &build(|l| 12 * (k0 + l)));
-                Lanes::store_rows(&h1, hp, &build(|l| 12 * (k0 + l) + 8));
-            }
-            b.wp[k0..k0 + W].copy_from_slice(&st.plastic_work.0);
-            b.ie[k0..k0 + W].copy_from_slice(&st.internal_energy.0);
-            b.ehg[k0..k0 + W].copy_from_slice(&st.hourglass_energy.0);
-        } else {
-            for l in 0..live {
-                let k = k0 + l;
-                let ip = &mut b.pts[k];
-                for c in 0..6 {
-                    ip.stress[c] = st.stress[c].0[l];
-                }
-                ip.eps_p = st.eps_p.0[l];
-                ip.volume = out.volume.0[l];
-                b.wp[k] = st.plastic_work.0[l];
-                b.ie[k] = st.internal_energy.0[l];
-                b.ehg[k] = st.hourglass_energy.0[l];
-                for a in 0..4 {
-                    for c in 0..3 {
-                        b.hgq[k][a][c] = st.hourglass[a][c].0[l];
-                    }
-                }
-            }
-        }
-        // One point: the element volume is its only Jacobian.
-        let r = LaneResult {
-            force: &out.force,
-            volume: out.volume,
-            min_jacobian: out.volume,
-            dt_crit: out.dt_crit,
-        };
-        finish_lanes(&r, b, k0, live, base, &mut best)?;
-        k0 += W;
+impl<H: Hardening, const W: usize> ElementVisitor for FormLoop<'_, '_, '_, H, W> {
+    type Output = BatchResult;
+    #[inline(always)]
+    fn visit<E: Element>(self) -> BatchResult {
+        E::lane_loop(self.isa, self.law, self.lp.b, self.lp.inp, self.lp.base)
     }
-    Ok(best)
 }
 
 #[cfg(test)]

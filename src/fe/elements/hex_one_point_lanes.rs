@@ -1,4 +1,4 @@
-//! The one-point hexahedron of [`super::hex_one_point`], computed for W elements at once
+//! The one-point hexahedron of [`crate::fe::elements::hex_one_point`], computed for W elements at once
 //! (SIMD lanes) and in "mode space", which needs about half the arithmetic.
 //!
 //! Mode space: a trilinear hex maps x(ξ, η, ζ) = Σ_I N_I(ξ) x_I = (1/8) Σ_k A_k h_k(ξ) with the
@@ -22,7 +22,13 @@
 //! are grouped into lanes; they equal the per-element kernel up to round-off (different, not
 //! less accurate, operation order; checked to 1e-12 relative in the tests).
 
-use super::{
+use crate::fe::elements::block::{
+    contiguous, finish_lanes, gather_nodes, time_updates, Batch, BatchResult, ElementBlock,
+    LaneResult, StepInput,
+};
+use crate::fe::elements::formulation::Element;
+use crate::fe::simd::{build, prefetch::prefetch_ahead, LaneIsa};
+use crate::fe::{
     materials::{
         j2::{ddot_lanes as ddot, update_lanes},
         Hardening, J2Material,
@@ -30,6 +36,7 @@ use super::{
     simd::{cross, dot, Lanes, Vec3},
 };
 use crate::mesh::topology::HEX_FACES;
+use std::mem::MaybeUninit;
 
 /// Mode vectors A_k = Σ_I h_k(ξ_I) p_I (k = 0..7: 1, ξ, η, ζ, ηζ, ζξ, ξη, ξηζ) of nodal
 /// vectors `p` (gmsh node order), by three butterfly stages (ξ pairs, η pairs, ζ pairs).
@@ -140,7 +147,7 @@ fn velocity_gradient<const W: usize>(
 }
 
 /// The Hughes-Winget rotation increment for the spin increment with axial vector `w`
-/// (lane-wise [`super::objective::hughes_winget`]).
+/// (lane-wise [`crate::fe::elements::objective::hughes_winget`]).
 #[inline(always)]
 pub fn hughes_winget<const W: usize>(w: &Vec3<W>) -> [Vec3<W>; 3] {
     let a = [0.5 * w[0], 0.5 * w[1], 0.5 * w[2]];
@@ -259,7 +266,7 @@ pub struct Output<const W: usize> {
 
 /// Advances W one-point elements from t^n to t^{n+1}: nodal coordinates `x1` = x^{n+1} (m),
 /// velocities `v` = v^{n+1/2} (m/s), step `dt` (s, 0 = evaluate only), hourglass coefficient
-/// `hg` (0 = off). The same physics as [`super::hex_one_point::update`]: velocity gradient on
+/// `hg` (0 = off). The same physics as [`crate::fe::elements::hex_one_point::update`]: velocity gradient on
 /// the mid-step configuration, Hughes-Winget rotation of stress and hourglass forces, J2
 /// update, forces on x^{n+1}. An inverted lane returns a non-positive volume and
 /// meaningless forces.
@@ -359,7 +366,7 @@ pub fn update<H: Hardening, const W: usize>(
 }
 
 /// Courant limit L_e / c (s) with L_e = volume / largest face area (the lane-wise
-/// [`super::timestep::characteristic_length`]; a face's area is half the cross product of its
+/// [`crate::fe::solver::timestep::characteristic_length`]; a face's area is half the cross product of its
 /// diagonals), for nodal coordinates `x1` (m), element `volume` (m³) and `wave_speed` (m/s).
 #[inline(always)]
 pub fn critical_step<const W: usize>(
@@ -380,6 +387,153 @@ pub fn critical_step<const W: usize>(
     }
     let amax = 0.5 * a2.sqrt();
     volume / amax * (1.0 / wave_speed)
+}
+
+/// The one-point hexahedron as an element of the element loop.
+#[derive(Debug, Clone, Copy)]
+pub struct OnePointHex;
+
+impl Element for OnePointHex {
+    const POINTS: usize = 1;
+
+    /// Gathers W elements (`idx`: local element per lane) into lanes, updates them
+    /// ([`update`]), scatters state and forces back. Lanes past the batch end repeat its last
+    /// element and are discarded.
+    #[inline(always)]
+    fn lane_loop<H: Hardening, const W: usize>(
+        isa: LaneIsa<W>,
+        law: &H,
+        b: &mut Batch<'_>,
+        inp: StepInput<'_>,
+        base: usize,
+    ) -> BatchResult {
+        let StepInput {
+            x, v, dt, mat, hg, ..
+        } = inp;
+        let n = b.conn.len();
+        let mut best = (f64::INFINITY, base);
+        let mut k0 = 0;
+        while k0 < n {
+            let idx: [usize; W] = build(|l| (k0 + l).min(n - 1));
+            let live = (n - k0).min(W);
+            // Gather nodal coordinates and velocities and the element state into lanes (plain
+            // loops: no closure or generic helper is left out of the AVX2 kernel).
+            let (mut xe, mut ve) = (MaybeUninit::uninit(), MaybeUninit::uninit());
+            let (xe, ve) = gather_nodes(isa, &idx, b.conn, x, v, &mut xe, &mut ve);
+            // The state as rows transposed into lanes (Lanes::load_rows): every index is a local
+            // element < n of this batch's slices, whose lengths are n (points: eight f64 each,
+            // repr(C): stress, eps_p, volume; hourglass: twelve f64 each). The lane state is
+            // built from them directly, with no zero fill first (a 1.4 KB `memset` call per
+            // group, 2 % of a subcycled default-scene run, whose level ranges are short).
+            debug_assert!(b.pts.len() == n && b.hgq.len() == n && b.wp.len() == n);
+            let (pp, hp) = (
+                b.pts.as_mut_ptr().cast::<f64>(),
+                b.hgq.as_mut_ptr().cast::<f64>(),
+            );
+            let mut st = MaybeUninit::<State<W>>::uninit();
+            let sp = st.as_mut_ptr();
+            // SAFETY: as above (rows of 8 and 12 f64 inside their slices); every field of `st`
+            // is written once, through raw pointers to its own storage, before it is read.
+            let st = unsafe {
+                let f: [Lanes<W>; 7] = Lanes::load_rows(isa, pp, &build(|l| 8 * idx[l]));
+                std::ptr::addr_of_mut!((*sp).stress).write([f[0], f[1], f[2], f[3], f[4], f[5]]);
+                std::ptr::addr_of_mut!((*sp).eps_p).write(f[6]);
+                let h0: [Lanes<W>; 8] = Lanes::load_rows(isa, hp, &build(|l| 12 * idx[l]));
+                let h1: [Lanes<W>; 4] = Lanes::load_rows(isa, hp, &build(|l| 12 * idx[l] + 8));
+                let q = std::ptr::addr_of_mut!((*sp).hourglass).cast::<Lanes<W>>();
+                for (k, h) in h0.iter().chain(&h1).enumerate() {
+                    q.add(k).write(*h);
+                }
+                std::ptr::addr_of_mut!((*sp).plastic_work).write(contiguous(isa, b.wp, &idx));
+                std::ptr::addr_of_mut!((*sp).internal_energy).write(contiguous(isa, b.ie, &idx));
+                std::ptr::addr_of_mut!((*sp).hourglass_energy).write(contiguous(isa, b.ehg, &idx));
+                st.assume_init_mut()
+            };
+            prefetch_ahead(b.pts.as_ptr(), k0 + 2 * W, W);
+            prefetch_ahead(b.hgq.as_ptr(), k0 + 2 * W, W);
+            let out = update(xe, ve, dt, mat, law, hg, st);
+            if live == W {
+                let s = &st.stress;
+                let cols = [s[0], s[1], s[2], s[3], s[4], s[5], st.eps_p, out.volume];
+                let q = &st.hourglass;
+                let h0 = [
+                    q[0][0], q[0][1], q[0][2], q[1][0], q[1][1], q[1][2], q[2][0], q[2][1],
+                ];
+                let h1 = [q[2][2], q[3][0], q[3][1], q[3][2]];
+                // SAFETY: full group: W distinct elements k0.. < n, rows inside the slices.
+                unsafe {
+                    Lanes::store_rows(&cols, pp, &build(|l| 8 * (k0 + l)));
+                    Lanes::store_rows(&h0, hp, &build(|l| 12 * (k0 + l)));
+                    Lanes::store_rows(&h1, hp, &build(|l| 12 * (k0 + l) + 8));
+                }
+                b.wp[k0..k0 + W].copy_from_slice(&st.plastic_work.0);
+                b.ie[k0..k0 + W].copy_from_slice(&st.internal_energy.0);
+                b.ehg[k0..k0 + W].copy_from_slice(&st.hourglass_energy.0);
+            } else {
+                for l in 0..live {
+                    let k = k0 + l;
+                    let ip = &mut b.pts[k];
+                    for c in 0..6 {
+                        ip.stress[c] = st.stress[c].0[l];
+                    }
+                    ip.eps_p = st.eps_p.0[l];
+                    ip.volume = out.volume.0[l];
+                    b.wp[k] = st.plastic_work.0[l];
+                    b.ie[k] = st.internal_energy.0[l];
+                    b.ehg[k] = st.hourglass_energy.0[l];
+                    for a in 0..4 {
+                        for c in 0..3 {
+                            b.hgq[k][a][c] = st.hourglass[a][c].0[l];
+                        }
+                    }
+                }
+            }
+            // One point: the element volume is its only Jacobian.
+            let r = LaneResult {
+                force: &out.force,
+                volume: out.volume,
+                min_jacobian: out.volume,
+                dt_crit: out.dt_crit,
+            };
+            finish_lanes(&r, b, k0, live, base, &mut best)?;
+            k0 += W;
+        }
+        Ok(best)
+    }
+
+    #[inline(always)]
+    fn time_arithmetic<H: Hardening, const W: usize>(
+        isa: LaneIsa<W>,
+        law: &H,
+        b: &ElementBlock,
+        xe: &[Vec3<W>; 8],
+        ve: &[Vec3<W>; 8],
+        idx: &[usize; W],
+        dt: f64,
+        repeats: u32,
+    ) -> std::time::Duration {
+        let lane = |f: &dyn Fn(usize) -> f64| isa.lanes(std::array::from_fn(f));
+        let mat = &b.material;
+        let st0 = State::<W> {
+            stress: std::array::from_fn(|c| lane(&|l| b.points[idx[l]].stress[c])),
+            eps_p: lane(&|l| b.points[idx[l]].eps_p),
+            hourglass: std::array::from_fn(|a| {
+                std::array::from_fn(|c| lane(&|l| b.hourglass[idx[l]][a][c]))
+            }),
+            plastic_work: lane(&|l| b.plastic_work[idx[l]]),
+            internal_energy: lane(&|l| b.internal_energy[idx[l]]),
+            hourglass_energy: lane(&|l| b.hourglass_energy[idx[l]]),
+        };
+        time_updates!(repeats, xe, ve, st0, |st, xr, vr| update(
+            xr,
+            vr,
+            dt,
+            mat,
+            law,
+            b.hourglass_coeff,
+            &mut st
+        ))
+    }
 }
 
 #[cfg(test)]
