@@ -50,7 +50,7 @@ fn check(mesh: &Mesh, f: Formulation, what: &str) -> f64 {
         model,
         vec![],
         Settings {
-            safety: 1.0,
+            time_step_factor: 1.0,
             ..settings
         },
     )
@@ -74,9 +74,9 @@ fn courant_estimate_times_safety_is_below_the_true_limit() {
         for (m, name) in [(&cube, "cube block"), (&graded, "graded quarter ball")] {
             let r = check(m, f, name);
             assert!(
-                r * Settings::default().safety <= 1.0,
+                r * Settings::default().time_step_factor <= 1.0,
                 "{name} {f:?}: default safety × estimate = {:.3} of 2/ω_max",
-                r * Settings::default().safety
+                r * Settings::default().time_step_factor
             );
         }
     }

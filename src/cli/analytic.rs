@@ -529,7 +529,7 @@ pub fn run_materials(a: MaterialsArgs) -> Result<()> {
 pub fn run_parametric(a: ParametricArgs) -> Result<()> {
     std::fs::create_dir_all(&a.out).map_err(|e| Error::io(&a.out, e))?;
     for f in all_figures()? {
-        f.write(&a.out)?;
+        crate::study::figures::write(&f, &a.out)?;
         println!(
             "{}: {} curves x {} points -> {}/{}.csv, .svg",
             f.name,

@@ -608,7 +608,7 @@ pub fn simulate(
     let elements = model.hexes.len();
     let nodes = model.nodes.len();
     let settings = Settings {
-        safety: scene.solver.time_step_factor,
+        time_step_factor: scene.solver.time_step_factor,
         subcycling: scene.solver.subcycling,
         profile: opts.profile,
         ..Settings::default()

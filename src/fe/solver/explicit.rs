@@ -7,7 +7,6 @@
 
 use crate::error::{Error, Result};
 use crate::fe::{
-    contact::vec3::dot,
     elements::{ElementBlock, ElementFailure},
     materials::J2Material,
     model::Model,
@@ -19,7 +18,7 @@ use crate::fe::{
     solver::profile::{Phase, Profile},
     solver::subcycle::{node_force_sum, SubcycleReport, Subcycler, Subcycling, AUTO_MIN_SAVING},
     solver::timestep::StableStep,
-    tensor::{cross, inverse, Sym},
+    tensor::{cross, dot, inverse, Sym},
 };
 use rayon::prelude::*;
 
@@ -30,8 +29,9 @@ const NODE_CHUNK: usize = 4096;
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct Settings {
-    /// Time-step safety factor on the Courant limit (0 < s ≤ 1; default 0.9).
-    pub safety: f64,
+    /// Time-step factor on the Courant limit (0 < f ≤ 1; default 0.9; the scene's
+    /// `solver.time_step_factor`).
+    pub time_step_factor: f64,
     /// Hourglass coefficient ε_hg of the one-point hex (0 ≤ ε ≤ 0.5; default 0.05).
     pub hourglass: f64,
     /// Fixed time step (s) instead of the Courant limit; `None` = automatic.
@@ -72,7 +72,7 @@ pub struct Settings {
 impl Default for Settings {
     fn default() -> Self {
         Settings {
-            safety: 0.9,
+            time_step_factor: 0.9,
             hourglass: 0.05,
             fixed_dt: None,
             dt_collapse: 1e-3,
@@ -91,11 +91,11 @@ impl Default for Settings {
 impl Settings {
     /// Checks every field, naming the bad one.
     pub fn validated(self) -> Result<Self> {
-        if !(self.safety > 0.0 && self.safety <= 1.0) {
+        if !(self.time_step_factor > 0.0 && self.time_step_factor <= 1.0) {
             return Err(Error::invalid(
-                "solver.safety",
-                self.safety,
-                "0 < safety <= 1",
+                "solver.time_step_factor",
+                self.time_step_factor,
+                "0 < time_step_factor <= 1",
             ));
         }
         if !(self.hourglass >= 0.0 && self.hourglass <= 0.5) {
@@ -434,7 +434,7 @@ impl Solver {
             &self.blocks,
             &self.x,
             &pinned,
-            self.settings.safety,
+            self.settings.time_step_factor,
             self.dt_next,
             self.settings.subcycle_max_level,
         );
@@ -583,7 +583,7 @@ impl Solver {
         let h = sub.choose_levels(
             &self.blocks,
             &self.x,
-            self.settings.safety,
+            self.settings.time_step_factor,
             dt,
             interaction_limit,
             |h_taken| self.next_step(h_taken, stable_dt),
@@ -770,17 +770,17 @@ impl Solver {
         ))
     }
 
-    /// The stable step (safety included) from the smallest element Courant limit `best`
+    /// The stable step (time-step factor included) from the smallest element Courant limit `best`
     /// (s, global element) and every interaction's limit.
     fn stable_limit(&self, best: (f64, usize)) -> StableStep {
         let mut stable = StableStep {
-            dt: self.settings.safety * best.0,
+            dt: self.settings.time_step_factor * best.0,
             element: Some(best.1),
             interaction: None,
         };
         for (k, it) in self.interactions.iter().enumerate() {
             if let Some(d) = it.stable_time_step(&self.mass) {
-                let d = self.settings.safety * d;
+                let d = self.settings.time_step_factor * d;
                 if d < stable.dt {
                     stable = StableStep {
                         dt: d,
