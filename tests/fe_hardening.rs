@@ -390,3 +390,58 @@ fn scenes_select_hardening_laws_and_name_bad_keys() {
         assert!(e.contains(key) && !e.contains('\n'), "{set}: {e}");
     }
 }
+
+/// Acceptance: the default scene with `hardening = { law = "power", K = E E_T/(E − E_T),
+/// n = 1 }` on both balls gives the bilinear result to round-off; the Johnson-Cook presets
+/// run through the same scene. The command-line form:
+/// `twoball run --set 'ball1.material={preset="copper-fe",hardening={law="power",K=1.2121212121212122e9,n=1}}'`
+/// (and the same for ball2) against `twoball run`.
+#[test]
+fn default_scene_runs_every_law_and_the_unit_power_law_is_bilinear() {
+    use std::path::Path;
+    use twoball::scene::{Override, Scene, DEFAULT_SCENE};
+    use twoball::study::simulate::RunOptions;
+    use twoball::study::single::run_scene;
+    let run = |sets: &[String]| {
+        let o: Vec<Override> = sets.iter().map(|s| Override::parse(s).unwrap()).collect();
+        let scene = Scene::from_toml(DEFAULT_SCENE, Path::new("."), &o).unwrap();
+        let opts = RunOptions {
+            history_rows: 400,
+            ..RunOptions::default()
+        };
+        run_scene(&scene, &opts).unwrap()
+    };
+    let m = copper(None);
+    let k = m.youngs * m.tangent / (m.youngs - m.tangent);
+    let both = |table: &str| {
+        ["ball1", "ball2"]
+            .map(|b| format!("{b}.material={table}"))
+            .to_vec()
+    };
+    let bilinear = run(&[]);
+    let power = run(&both(&format!(
+        r#"{{preset="copper-fe",hardening={{law="power",K={k:e},n=1}}}}"#
+    )));
+    let (eb, ep) = (bilinear.e.unwrap(), power.e.unwrap());
+    assert!(
+        (eb - ep).abs() <= 1e-9 * eb,
+        "e: bilinear {eb}, power n = 1 {ep}"
+    );
+    let rel = |a: f64, b: f64| (a - b).abs() / b.abs();
+    assert!(rel(power.delta_max, bilinear.delta_max) <= 1e-9);
+    assert!(rel(power.contact_duration, bilinear.contact_duration) <= 1e-9);
+    let jc = run(&both(r#""ofhc-copper""#));
+    let e_jc = jc.e.unwrap();
+    // OFHC copper yields at 90 MPa against copper-fe's 100 MPa but hardens much faster at
+    // small strain (B n ε^(n−1)): a different, physical e.
+    assert!(
+        e_jc > 0.0 && e_jc < 1.0 && (e_jc - eb).abs() > 1e-3,
+        "e {e_jc} vs {eb}"
+    );
+    let steel = run(&both(r#""steel-4340""#));
+    let e_st = steel.e.unwrap();
+    assert!(
+        e_st > e_jc && e_st < 1.0,
+        "hard steel rebounds more: {e_st} vs {e_jc}"
+    );
+}

@@ -23,9 +23,7 @@ const MIN_BATCHES_PER_TASK: usize = 8;
 /// State at one integration point (`repr(C)`: eight f64 in this order, so the lane kernels
 /// read W points as W rows of eight f64 and transpose them into lanes, `Lanes::load_rows`).
 /// Aligned to 64 bytes, so that a point is exactly one cache line and one aligned 512-bit
-/// row: unaligned, every row straddled two lines (B-bar, which moves eight rows per
-/// element each way, ran about 12 ns per element-cycle slower on Zen 4:
-/// docs/performance.md, thirteenth session; `twoball bench machine` row
+/// row (unaligned, every row straddles two lines; `twoball bench machine` row
 /// `row_update_512_offset_16b` against `_0b` shows the cost per row).
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 #[repr(C, align(64))]

@@ -995,7 +995,10 @@ impl Solver {
             .map(|(i, v)| (i, (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt()))
             .fold((0, -1.0), |a, b| if b.1 > a.1 { b } else { a });
         Error::Numerical(format!(
-            "energy grew by {:.3e} of its start value (limit {:.3e}) at t = {:.6e} s, step {} (fastest node {node},              {speed:.3e} m/s; step controlled by {}): energy grows, the time step is too large for an              element or the penalty is too stiff: lower solver.time_step_factor or contact.penalty_factor",
+            "energy grew by {:.3e} of its start value (limit {:.3e}) at t = {:.6e} s, step {} \
+             (fastest node {node}, {speed:.3e} m/s; step controlled by {}): energy grows, the \
+             time step is too large for an element or the penalty is too stiff: lower \
+             solver.time_step_factor or contact.penalty_factor",
             created,
             self.settings.energy_growth,
             self.t,
