@@ -1,3 +1,4 @@
+#![allow(clippy::needless_range_loop)]
 //! The hardening laws through the J2 return mapping (scalar and lane forms) against closed
 //! forms on the uniaxial stress path at constant strain rate, and the power law with n = 1
 //! against the linear law it equals.

@@ -172,7 +172,6 @@ pub fn add_into(f: &mut [[f64; 3]], i: usize, v: [f64; 3]) {
 }
 
 /// Area of a (possibly warped) quadrilateral p0-p1-p2-p3: half the norm of the cross product of
-
 /// its diagonals (exact for planar quads), m².
 pub fn quad_area(p: &[[f64; 3]; 4]) -> f64 {
     0.5 * norm(cross(sub(p[2], p[0]), sub(p[3], p[1])))
