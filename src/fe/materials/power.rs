@@ -1,5 +1,5 @@
 //! Ludwik/Swift power-law hardening, σ_y = σ_0 + K ε_p^n (Ludwik 1909), rate independent.
-//! n = 1 is linear hardening with H = K.
+//! n = 1 is linear hardening with H = K, and returns exactly as the linear law does.
 
 use super::hardening::{newton_return, Hardening};
 use crate::error::{Error, Result};
@@ -46,7 +46,14 @@ impl Hardening for Power {
         self.flow(eps_p).0
     }
 
+    /// For n = 1 the flow stress is linear in ε_p and the return has the closed form of
+    /// [`super::Bilinear`] with H = K (the same operations, so the same bits); otherwise the
+    /// safeguarded Newton solve of [`newton_return`].
     fn plastic_increment(&self, q: f64, sy: f64, eps_p: f64, shear: f64, _: f64) -> (f64, f64) {
+        if self.n == 1.0 {
+            let dp = (q - sy) / (3.0 * shear + self.k);
+            return (dp, dp * (sy + 0.5 * self.k * dp));
+        }
         newton_return(q, sy, shear, |dp| self.flow(eps_p + dp))
     }
 }
