@@ -522,7 +522,7 @@ def analytic(twoball, scene):
            "--v2t", repr(b2["velocity"][1]), "--mu", repr(scene["mu"])]
     for b, ball in ((1, b1), (2, b2)):
         for k, v in ball["material"].items():
-            cmd += ["--set", f"{b}.{k}={v!r}"]
+            cmd += ["--set", f"ball{b}.material.{k}={v!r}"]
     r = subprocess.run(cmd, capture_output=True, text=True)
     if r.returncode != 0:
         raise PeerError(f"`twoball analytic` failed: {r.stderr.strip()}")

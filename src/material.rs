@@ -1,10 +1,14 @@
-//! Ball materials: isotropic elasticity, bilinear isotropic hardening, Coulomb friction.
+//! Ball materials: isotropic elasticity, isotropic hardening (bilinear unless a hardening
+//! law is given), Coulomb friction.
 //!
 //! The nine presets of Table 1 of Li, Yang & Shi (2019) and the copper of their ANSYS study
-//! (`copper-fe`). The paper never gives a hardening (tangent) modulus; every preset uses
-//! `tangent = E / 100`, a common bilinear choice for metals, and says so in docs/design.md.
+//! (`copper-fe`). The paper never gives a hardening (tangent) modulus; these presets use
+//! `tangent = E / 100`, a common bilinear choice for metals, and say so in docs/design.md.
+//! Two presets harden by Johnson & Cook's (1983) published laws: `ofhc-copper` and
+//! `steel-4340` (see [`crate::fe::materials::johnson_cook`]).
 
 use crate::error::{Error, Result};
+use crate::fe::materials::{johnson_cook, JohnsonCook, Law};
 use serde::{Deserialize, Serialize};
 
 /// An elastic-plastic ball material in SI units.
@@ -27,6 +31,10 @@ pub struct Material {
     pub mu: f64,
     /// Static friction coefficient μ_s (≥ μ_d); the paper uses one coefficient, so presets set μ_s = μ_d.
     pub mu_static: f64,
+    /// Hardening law after first yield; `None`: linear, from `yield` and `tangent`. With a
+    /// law, `yield` is its initial yield strength.
+    #[serde(default, skip_deserializing, skip_serializing_if = "Option::is_none")]
+    pub hardening: Option<Law>,
 }
 
 /// Field-by-field overrides of a material; `None` keeps the base value.
@@ -52,7 +60,7 @@ pub struct MaterialOverrides {
 }
 
 /// Names of all presets, in Table 1 order followed by the FE study's copper.
-pub const PRESET_NAMES: [&str; 10] = [
+pub const PRESET_NAMES: [&str; 12] = [
     "copper",
     "steel",
     "concrete",
@@ -63,6 +71,8 @@ pub const PRESET_NAMES: [&str; 10] = [
     "aluminum",
     "rubber",
     "copper-fe",
+    "ofhc-copper",
+    "steel-4340",
 ];
 
 impl Material {
@@ -77,7 +87,17 @@ impl Material {
             tangent: e_gpa * 1e9 / 100.0,
             mu,
             mu_static: mu,
+            hardening: None,
         }
+    }
+
+    /// A Johnson-Cook material: E (GPa), ρ (kg/m³), μ, ν and the law `jc`, whose A is the
+    /// yield strength (`tangent = E/100` is then unused by the FE model).
+    const fn johnson_cook(e_gpa: f64, rho: f64, mu: f64, nu: f64, jc: JohnsonCook) -> Material {
+        let mut m = Self::table(e_gpa, 0.0, rho, mu, nu);
+        m.yield_strength = jc.a;
+        m.hardening = Some(Law::JohnsonCook(jc));
+        m
     }
 
     /// The named preset (`copper`, `steel`, …, `copper-fe`), or an error listing the names.
@@ -95,6 +115,12 @@ impl Material {
             "rubber" => Self::table(0.0061, 7.0, 1000.0, 0.45, 0.45),
             // Section 3 of the paper: the ANSYS model's copper.
             "copper-fe" => Self::table(120.0, 100.0, 7900.0, 0.20, 0.33),
+            // Johnson & Cook (1983, 1985): OFHC copper and 4340 steel, with their densities;
+            // E and ν are handbook values (124 GPa, 0.34; 200 GPa, 0.29), μ Table 1's.
+            "ofhc-copper" => {
+                Self::johnson_cook(124.0, 8960.0, 0.20, 0.34, johnson_cook::OFHC_COPPER)
+            }
+            "steel-4340" => Self::johnson_cook(200.0, 7830.0, 0.10, 0.29, johnson_cook::STEEL_4340),
             _ => {
                 return Err(Error::invalid(
                     "material",

@@ -23,6 +23,7 @@ pub use approach::{approach, Approach, Frame, Touch};
 pub use overrides::Override;
 
 use crate::error::{Error, Result};
+use crate::fe::materials::{law::LAW_NAMES, Law};
 use crate::material::{Material, MaterialOverrides, PRESET_NAMES};
 use reader::{parse_table, Reader};
 use serde::Serialize;
@@ -102,15 +103,7 @@ pub struct ContactSettings {
     pub friction: Friction,
 }
 
-/// Hexahedron formulation (see the FE core, docs/design.md §4).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, serde::Deserialize)]
-#[serde(rename_all = "kebab-case")]
-pub enum Formulation {
-    /// One-point integration with hourglass control (`one-point`, the default).
-    OnePoint,
-    /// 2×2×2 integration with B-bar (mean dilatation) volumetric strain (`b-bar`).
-    BBar,
-}
+pub use crate::fe::Formulation;
 
 /// Explicit solver settings.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
@@ -188,8 +181,9 @@ const BALL_KEYS: [&str; 6] = [
     "position",
     "mesh",
 ];
-const MATERIAL_KEYS: [&str; 8] = [
+const MATERIAL_KEYS: [&str; 9] = [
     "preset",
+    "hardening",
     "E",
     "nu",
     "rho",
@@ -418,13 +412,26 @@ fn read_material(b: &Reader<'_>) -> Result<(Material, String)> {
                         },
                         mu,
                         mu_static: mu,
+                        hardening: None,
                     };
                     (base, "custom".to_string())
                 }
             };
-            let mat = base
+            let mut mat = base
                 .with_overrides(&o)
                 .map_err(|e| e.map_field(|field| field.replacen("material", &path, 1)))?;
+            if let Some(h) = m.table("hardening")? {
+                let hp = m.key_path("hardening");
+                mat.hardening = Some(read_hardening(&h, &hp, mat.yield_strength)?);
+            }
+            if let Some(Law::JohnsonCook(jc)) = mat.hardening {
+                if o.yield_strength.is_some() {
+                    return Err(Error::Parse(format!(
+                        "{path}.yield is the Johnson-Cook law's A: give {path}.hardening.A instead"
+                    )));
+                }
+                mat.yield_strength = jc.a;
+            }
             Ok((mat, name))
         }
         Some(other) => Err(Error::Parse(format!(
@@ -432,6 +439,21 @@ fn read_material(b: &Reader<'_>) -> Result<(Material, String)> {
             reader::show(other)
         ))),
     }
+}
+
+/// A hardening table `{ law = "...", keys of the law }` named `path`; `yield0` is the
+/// material's yield strength (Pa).
+fn read_hardening(h: &Reader<'_>, path: &str, yield0: f64) -> Result<Law> {
+    let laws = format!("one of {}", LAW_NAMES.join(", "));
+    let name = h.string("law")?.ok_or_else(|| h.missing("law", &laws))?;
+    let keys = Law::keys(name)
+        .ok_or_else(|| Error::invalid(h.key_path("law"), format!("\"{name}\""), laws.clone()))?;
+    let mut allowed = vec!["law"];
+    allowed.extend_from_slice(keys);
+    h.only(&allowed)?;
+    Law::from_keys(name, path, yield0, &mut |key| {
+        h.f64(key, |_| true, "finite")
+    })
 }
 
 fn read_mesh(m: Option<Reader<'_>>, d: f64, dir: &Path) -> Result<MeshSettings> {
@@ -540,12 +562,8 @@ fn read_solver(s: Option<Reader<'_>>) -> Result<SolverSettings> {
     };
     let Some(s) = s else { return Ok(out) };
     s.only(&SOLVER_KEYS)?;
-    if let Some(e) = s.choice("element", &["one-point", "b-bar"])? {
-        out.element = if e == "one-point" {
-            Formulation::OnePoint
-        } else {
-            Formulation::BBar
-        };
+    if let Some(e) = s.choice("element", &Formulation::NAMES)? {
+        out.element = Formulation::from_name(e).expect("a choice of Formulation::NAMES");
     }
     if let Some(f) = s.f64(
         "time_step_factor",

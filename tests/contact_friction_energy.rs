@@ -63,7 +63,7 @@ fn oblique(vn: f64, vt: f64, pole: f64, safety: f64) -> Run {
     .unwrap();
     let probe = wall.probe();
     let settings = Settings {
-        safety,
+        time_step_factor: safety,
         ..Default::default()
     };
     let mut s = Solver::new(model, vec![Box::new(wall)], settings).unwrap();

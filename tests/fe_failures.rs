@@ -44,10 +44,10 @@ fn invalid_settings_name_the_field() {
     for (settings, field) in [
         (
             Settings {
-                safety: 1.5,
+                time_step_factor: 1.5,
                 ..Settings::default()
             },
-            "solver.safety",
+            "solver.time_step_factor",
         ),
         (
             Settings {

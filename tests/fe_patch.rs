@@ -4,7 +4,7 @@
 //! interior node, for both formulations, with hourglass control switched on.
 
 use twoball::fe::elements::ElementBlock;
-use twoball::fe::plasticity::J2Material;
+use twoball::fe::materials::J2Material;
 use twoball::fe::Formulation;
 use twoball::mesh::block::block;
 use twoball::Material;

@@ -9,7 +9,7 @@
 //! radial return is exact, so the stress must equal the closed form to round-off.
 
 use twoball::fe::elements::ElementBlock;
-use twoball::fe::plasticity::J2Material;
+use twoball::fe::materials::J2Material;
 use twoball::fe::Formulation;
 use twoball::mesh::block::block;
 use twoball::Material;

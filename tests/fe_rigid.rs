@@ -5,7 +5,7 @@
 //! is prescribed to test objectivity of the stress update alone).
 
 use twoball::fe::elements::ElementBlock;
-use twoball::fe::plasticity::J2Material;
+use twoball::fe::materials::J2Material;
 use twoball::fe::{Formulation, Model, Settings, Solver};
 use twoball::mesh::block::block;
 use twoball::Material;

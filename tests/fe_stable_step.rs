@@ -55,7 +55,7 @@ fn check(mesh: &Mesh, f: Formulation, what: &str) -> f64 {
         model,
         vec![],
         Settings {
-            safety: 1.0,
+            time_step_factor: 1.0,
             ..settings
         },
     )
@@ -81,9 +81,9 @@ fn courant_estimate_times_safety_is_below_the_true_limit() {
             // A lower bound too: a step far below the limit is stable but wastes run time.
             assert!(r >= LOWER, "{name} {f:?}: estimate only {r:.3} of 2/ω_max");
             assert!(
-                r * Settings::default().safety <= 1.0,
+                r * Settings::default().time_step_factor <= 1.0,
                 "{name} {f:?}: default safety × estimate = {:.3} of 2/ω_max",
-                r * Settings::default().safety
+                r * Settings::default().time_step_factor
             );
         }
     }

@@ -413,7 +413,7 @@ fn full_scan_minimum(s: &Solver) -> (f64, usize) {
 #[test]
 fn subcycled_stable_step_is_the_full_scan_minimum() {
     let mut s = squeezed_bar_with(200.0, 0.0, settings(Subcycling::On), 2.02e-3, Vec::new());
-    let safety = s.settings().safety;
+    let safety = s.settings().time_step_factor;
     while s.step_count() < 1500 {
         s.step().unwrap();
         let best = full_scan_minimum(&s);
@@ -442,7 +442,7 @@ fn stable_step_is_the_full_scan_minimum_above_level_zero() {
     let lifted = StepLimit::until(h, 60.0 * h);
     let on = settings(Subcycling::On);
     let mut s = squeezed_bar_with(0.0, 300.0, on, 2.02e-3, vec![Box::new(lifted)]);
-    let safety = s.settings().safety;
+    let safety = s.settings().time_step_factor;
     let (mut checked, mut above_zero) = (0, 0);
     while s.step_count() < 300 {
         s.step().unwrap();
@@ -535,6 +535,7 @@ fn default_scene_three_times_fewer_updates_same_results() {
             progress: false,
             snapshot_dir: None,
             vtu_ascii: false,
+            profile: false,
         };
         run_scene(&scene, &opts).unwrap()
     };

@@ -1,6 +1,6 @@
 //! The paper's parametric studies (Figures 11–14): the energy dissipation factor against
 //! density, dynamic friction coefficient, elastic modulus (per modulus ratio) and yield strength
-//! (per yield ratio), written as CSV and SVG.
+//! (per yield ratio); `study::figures` writes them as CSV and SVG.
 //!
 //! Base case (docs/design.md, section 2): two Table 1 copper balls, D = 20 mm, left ball
 //! v_n1 = +1 m/s, right ball v_n2 = −1 m/s (the FE study's set-up), no tangential speed unless
@@ -10,7 +10,6 @@ use super::body::Body;
 use super::collision::collide_with_mu;
 use crate::error::{Error, Result};
 use crate::material::Material;
-use std::path::Path;
 
 /// One figure: an x grid and a family of η curves on it.
 #[derive(Debug, Clone, PartialEq)]
@@ -192,7 +191,7 @@ pub fn all_figures() -> Result<Vec<Figure>> {
 
 impl Figure {
     /// Fails if any value is not finite (nothing non-finite is ever written).
-    fn check_finite(&self) -> Result<()> {
+    pub fn check_finite(&self) -> Result<()> {
         for (label, ys) in &self.curves {
             if let Some((i, y)) = ys.iter().enumerate().find(|(_, y)| !y.is_finite()) {
                 return Err(Error::Numerical(format!(
@@ -202,91 +201,5 @@ impl Figure {
             }
         }
         Ok(())
-    }
-
-    /// The CSV text: header `x_column,eta (label),…` (η dimensionless), one row per x.
-    pub fn csv(&self) -> Result<String> {
-        self.check_finite()?;
-        let mut s = String::from(self.x_column);
-        for (label, _) in &self.curves {
-            s.push_str(&format!(",eta [{label}]"));
-        }
-        s.push('\n');
-        for (i, x) in self.x.iter().enumerate() {
-            s.push_str(&format!("{}", x * self.x_scale));
-            for (_, ys) in &self.curves {
-                s.push_str(&format!(",{:.6}", ys[i]));
-            }
-            s.push('\n');
-        }
-        Ok(s)
-    }
-
-    /// The SVG plot (plotters).
-    pub fn svg(&self) -> Result<String> {
-        use plotters::prelude::*;
-        self.check_finite()?;
-        let xs: Vec<f64> = self.x.iter().map(|x| x * self.x_scale).collect();
-        let (x0, x1) = (xs[0], xs[xs.len() - 1]);
-        let ymax = self
-            .curves
-            .iter()
-            .flat_map(|(_, ys)| ys.iter().copied())
-            .fold(0.0_f64, f64::max);
-        let ymax = if ymax > 0.0 { 1.1 * ymax } else { 1.0 };
-        let mut out = String::new();
-        let plot_err =
-            |e: &dyn std::fmt::Display| Error::External(format!("plotting {}: {e}", self.name));
-        {
-            let root = SVGBackend::with_string(&mut out, (800, 560)).into_drawing_area();
-            root.fill(&WHITE).map_err(|e| plot_err(&e))?;
-            let mut chart = ChartBuilder::on(&root)
-                .caption(self.title, ("sans-serif", 22))
-                .margin(16)
-                .x_label_area_size(48)
-                .y_label_area_size(64)
-                .build_cartesian_2d(x0..x1, 0.0..ymax)
-                .map_err(|e| plot_err(&e))?;
-            chart
-                .configure_mesh()
-                .x_desc(self.x_label)
-                .y_desc("energy dissipation factor eta (-)")
-                .draw()
-                .map_err(|e| plot_err(&e))?;
-            for (k, (label, ys)) in self.curves.iter().enumerate() {
-                let color = Palette99::pick(k).to_rgba();
-                chart
-                    .draw_series(LineSeries::new(
-                        xs.iter().copied().zip(ys.iter().copied()),
-                        color.stroke_width(2),
-                    ))
-                    .map_err(|e| plot_err(&e))?
-                    .label(label.as_str())
-                    .legend(move |(x, y)| {
-                        PathElement::new(vec![(x, y), (x + 20, y)], color.stroke_width(2))
-                    });
-            }
-            chart
-                .configure_series_labels()
-                .background_style(WHITE.mix(0.8))
-                .border_style(BLACK)
-                .position(SeriesLabelPosition::LowerRight)
-                .draw()
-                .map_err(|e| plot_err(&e))?;
-            root.present().map_err(|e| plot_err(&e))?;
-        }
-        Ok(out)
-    }
-
-    /// Writes `DIR/name.csv` and `DIR/name.svg`.
-    pub fn write(&self, dir: &Path) -> Result<()> {
-        crate::atomic::write_atomic(
-            dir.join(format!("{}.csv", self.name)),
-            self.csv()?.as_bytes(),
-        )?;
-        crate::atomic::write_atomic(
-            dir.join(format!("{}.svg", self.name)),
-            self.svg()?.as_bytes(),
-        )
     }
 }

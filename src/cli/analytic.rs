@@ -43,9 +43,10 @@ pub struct AnalyticArgs {
     /// Diameter of ball 2, m (default: --diameter).
     #[arg(long, allow_negative_numbers = true)]
     pub diameter2: Option<f64>,
-    /// Override a material field, KEY=VALUE in SI units (keys: E, nu, rho, yield, tangent,
-    /// mu, mu_static) for both balls, or 1.KEY=VALUE / 2.KEY=VALUE for one; repeatable.
-    #[arg(long = "set", value_name = "[1.|2.]KEY=VALUE")]
+    /// Override a material field in SI units (keys: E, nu, rho, yield, tangent, mu,
+    /// mu_static) by its scene path, ball1.material.KEY=VALUE or ball2.material.KEY=VALUE
+    /// (as `twoball run --set`), or KEY=VALUE for both balls; repeatable.
+    #[arg(long = "set", value_name = "[ballN.material.]KEY=VALUE")]
     pub set: Vec<String>,
     /// Replace ball 2 by a half-space at rest (ball-on-wall limit).
     #[arg(long, value_enum)]
@@ -99,15 +100,17 @@ fn preset(flag: &str, name: &str) -> Result<Material> {
         .map_err(|_| Error::invalid(flag, name, format!("one of {}", PRESET_NAMES.join(", "))))
 }
 
-/// Applies the `--set [1.|2.]KEY=VALUE` overrides that concern ball `ball` (1 or 2).
+/// Applies the `--set [ballN.material.]KEY=VALUE` overrides that concern ball `ball` (1 or 2).
 fn apply_sets(m: Material, flag: &str, sets: &[String], ball: u8) -> Result<Material> {
     let prefix = format!("ball{ball}.material");
     let mut o = MaterialOverrides::default();
     for s in sets {
-        let (target, rest) = match s.split_once('.') {
-            Some(("1", r)) => (Some(1), r),
-            Some(("2", r)) => (Some(2), r),
-            _ => (None, s.as_str()),
+        let (target, rest) = if let Some(r) = s.strip_prefix("ball1.material.") {
+            (Some(1), r)
+        } else if let Some(r) = s.strip_prefix("ball2.material.") {
+            (Some(2), r)
+        } else {
+            (None, s.as_str())
         };
         if target.is_some_and(|t| t != ball) {
             continue;
@@ -569,7 +572,7 @@ pub fn run_materials(a: MaterialsArgs) -> Result<()> {
 pub fn run_parametric(a: ParametricArgs) -> Result<()> {
     std::fs::create_dir_all(&a.out).map_err(|e| Error::io(&a.out, e))?;
     for f in all_figures()? {
-        f.write(&a.out)?;
+        crate::study::figures::write(&f, &a.out)?;
         println!(
             "{}: {} curves x {} points -> {}/{}.csv, .svg",
             f.name,

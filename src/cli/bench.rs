@@ -3,8 +3,8 @@
 //! 50 000 elements, and a check that the results do not depend on the thread count.
 
 use crate::error::{Error, Result};
-use crate::fe::elements::{kernel_path, limit_kernel_path, KernelPath};
-use crate::fe::profile::{self, Totals};
+use crate::fe::profile::Totals;
+use crate::fe::simd::{Kernel, KernelPath};
 use crate::fe::{Formulation, Model, Settings, Solver};
 use crate::material::Material;
 use crate::mesh::ball::{ball, BallSpec, Cut};
@@ -137,16 +137,19 @@ fn time_one(
     steps: u64,
     repeats: usize,
     phases: bool,
+    kernel_cap: KernelPath,
 ) -> Result<Timing> {
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(threads)
         .build()
         .map_err(|e| Error::External(format!("thread pool: {e}")))?;
     pool.install(|| {
-        profile::set_enabled(phases);
-        let made = Solver::new(model.clone(), vec![], Settings::default());
-        profile::set_enabled(false);
-        let mut s = made?;
+        let settings = Settings {
+            profile: phases,
+            kernel_cap,
+            ..Settings::default()
+        };
+        let mut s = Solver::new(model.clone(), vec![], settings)?;
         // Warm up (caches, page faults, first plastic steps).
         for _ in 0..5 {
             s.step()?;
@@ -206,7 +209,7 @@ fn kernel(a: KernelArgs) -> Result<()> {
     if all == 0 {
         return Err(Error::invalid("--threads", 0, "at least 1"));
     }
-    limit_kernel_path(a.kernel.into());
+    let kernel_cap: KernelPath = a.kernel.into();
     let d = 0.02;
     let mesh = ball(&BallSpec {
         diameter: d,
@@ -219,7 +222,7 @@ fn kernel(a: KernelArgs) -> Result<()> {
         mesh.hexes.len(),
         mesh.nodes.len()
     );
-    let path = kernel_path();
+    let path = Kernel::widest(kernel_cap).path();
     println!(
         "# {} timed steps x {} repeats (median), ns per element-cycle = step time / elements, kernel {:?} ({} lanes)",
         a.steps,
@@ -245,10 +248,10 @@ fn kernel(a: KernelArgs) -> Result<()> {
             x: x1,
             v: v1,
             ..
-        } = time_one(&model, 1, a.steps, a.repeats, false)?;
+        } = time_one(&model, 1, a.steps, a.repeats, false, kernel_cap)?;
         println!("{f:?},1,{t1:.1},1.00,-");
         if a.phases {
-            let t = time_one(&model, 1, a.steps, a.repeats, true)?;
+            let t = time_one(&model, 1, a.steps, a.repeats, true, kernel_cap)?;
             breakdowns.push((f, t.phases, t.arithmetic));
         }
         if all > 1 {
@@ -257,7 +260,7 @@ fn kernel(a: KernelArgs) -> Result<()> {
                 x: xn,
                 v: vn,
                 ..
-            } = time_one(&model, all, a.steps, a.repeats, false)?;
+            } = time_one(&model, all, a.steps, a.repeats, false, kernel_cap)?;
             let same = x1
                 .iter()
                 .zip(&xn)

@@ -220,15 +220,16 @@ fn gather_512(reps: usize) -> Option<f64> {
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx512f,avx2,fma")]
 unsafe fn row_rounds_avx512(data: &[f64], idx: &[i64], reps: usize) -> f64 {
-    use crate::fe::lanes::Lanes;
+    use crate::fe::simd::{LaneIsa, Lanes};
+    let isa = LaneIsa::<8>::detect().expect("the caller checked AVX-512F");
     let rows = data.as_ptr().cast::<[f64; 3]>();
     let nodes: Vec<u32> = idx.iter().map(|&k| (k / 3) as u32).collect();
-    let mut acc = [Lanes::<8>::splat(0.0); 4];
+    let mut acc = [isa.splat(0.0); 4];
     for _ in 0..reps {
         for c in nodes.chunks_exact(32) {
             for (j, a) in acc.iter_mut().enumerate() {
                 let n: &[u32; 8] = c[8 * j..8 * j + 8].try_into().unwrap();
-                let [x, y, z] = Lanes::load_vec3(rows, n);
+                let [x, y, z] = Lanes::load_vec3(isa, rows, n);
                 *a += x + y + z;
             }
         }

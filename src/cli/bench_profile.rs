@@ -43,7 +43,6 @@ pub fn profile(a: ProfileArgs) -> Result<()> {
         .num_threads(threads)
         .build()
         .map_err(|e| Error::External(format!("thread pool: {e}")))?;
-    profile::set_enabled(true);
     profile::take_totals();
     let t0 = Instant::now();
     let report = pool.install(|| {
@@ -52,12 +51,12 @@ pub fn profile(a: ProfileArgs) -> Result<()> {
             &RunOptions {
                 history_rows: 400,
                 progress: false,
+                profile: true,
                 ..Default::default()
             },
         )
     });
     let wall = t0.elapsed().as_secs_f64();
-    profile::set_enabled(false);
     let report = report?;
     let t = profile::take_totals();
     println!(

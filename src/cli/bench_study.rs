@@ -39,10 +39,9 @@ pub fn run(a: StudyArgs) -> Result<()> {
     let elements = a
         .elements
         .iter()
-        .map(|e| match e.as_str() {
-            "one-point" => Ok(Formulation::OnePoint),
-            "b-bar" => Ok(Formulation::BBar),
-            other => Err(Error::invalid("--elements", other, "one-point, b-bar")),
+        .map(|e| {
+            Formulation::from_name(e)
+                .ok_or_else(|| Error::invalid("--elements", e, Formulation::NAMES.join(", ")))
         })
         .collect::<Result<Vec<_>>>()?;
     let ladder = Ladder {

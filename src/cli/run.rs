@@ -41,6 +41,7 @@ pub fn run(a: RunArgs) -> Result<()> {
         progress: true,
         snapshot_dir: a.out.clone(),
         vtu_ascii: a.vtu_ascii,
+        ..RunOptions::default()
     };
     let created = a.out.as_ref().is_some_and(|d| !d.exists());
     if let Some(dir) = &a.out {

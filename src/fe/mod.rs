@@ -1,33 +1,30 @@
-//! The explicit finite-element solver: elements, materials, contact, time integration, energy.
+//! The explicit finite-element solver, in layers (docs/architecture.md draws them):
 //!
-//! Reading order: [`explicit`] (the Box 6.1 loop) calls [`elements`] (the element loop) which
-//! calls the kernels [`hex_one_point`] and [`hex_bbar`]; those use [`shape`], [`objective`]
-//! and [`plasticity`]. [`model`] builds the input, [`energy`] reports the balance.
+//! - [`solver`]: the explicit loop of Belytschko, Liu & Moran's Box 6.1 ([`solver::explicit`]),
+//!   multi-time-step subcycling, the stable step, lumped masses, energy balance, the phase
+//!   timer and the interaction interface;
+//! - [`elements`]: the element block and its loop, and each hexahedron formulation with its
+//!   scalar reference kernel beside its lane kernel, registered in [`elements::Formulation`];
+//! - [`materials`]: J2 plasticity and the hardening laws behind one trait;
+//! - [`simd`]: lanes, instruction-set tokens and kernel dispatch, row layouts, prefetch;
+//! - [`contact`]: contact search and laws (interactions the loop calls);
+//! - [`linear`]: small-strain linear tools for verification (modal analysis, Lamb's modes);
+//! - [`model`] (what the solver is given) and [`tensor`] (small tensor algebra).
 // Index loops mirror the index notation of the formulas (σ_ij B_Ij, ...): keep them.
 #![allow(clippy::needless_range_loop)]
 pub mod contact;
 pub mod elements;
-pub mod energy;
-pub mod explicit;
-pub mod hex_bbar;
-pub(crate) mod hex_bbar_lanes;
-pub mod hex_one_point;
-pub(crate) mod hex_one_point_lanes;
-pub mod interaction;
-pub mod lamb;
-pub(crate) mod lanes;
-pub mod mass;
-pub mod modal;
+pub mod linear;
+pub mod materials;
 pub mod model;
-pub mod objective;
-pub mod plasticity;
-pub mod profile;
-pub mod rows;
-pub mod shape;
-pub mod subcycle;
+pub mod simd;
+pub mod solver;
 pub mod tensor;
-pub mod timestep;
 
-pub use energy::EnergyReport;
-pub use explicit::{Settings, Solver};
+pub use elements::{hex_bbar, hex_one_point, objective, shape};
+pub use linear::{lamb, modal};
 pub use model::{Formulation, Model, Part};
+pub use simd::rows;
+pub use solver::energy::EnergyReport;
+pub use solver::explicit::{Settings, Solver};
+pub use solver::{energy, explicit, interaction, mass, profile, subcycle, timestep};

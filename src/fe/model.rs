@@ -9,17 +9,7 @@ use crate::mesh::Mesh;
 use std::collections::BTreeMap;
 use std::ops::Range;
 
-/// Element formulation of a part. Plain 2x2x2 integration is deliberately absent: it locks
-/// in plastic (isochoric) flow.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize, serde::Deserialize)]
-#[serde(rename_all = "kebab-case")]
-pub enum Formulation {
-    /// One-point Flanagan-Belytschko hex with stiffness hourglass control.
-    #[default]
-    OnePoint,
-    /// 2x2x2 hex with B-bar (mean dilatation) volumetric strain.
-    BBar,
-}
+pub use super::elements::Formulation;
 
 /// One part: a contiguous range of nodes and elements with one material and formulation.
 #[derive(Debug, Clone)]

@@ -89,10 +89,7 @@ impl Setting {
 }
 
 fn element_name(f: Formulation) -> &'static str {
-    match f {
-        Formulation::OnePoint => "one-point",
-        Formulation::BBar => "b-bar",
-    }
+    f.name()
 }
 
 /// What one run of the ladder measured.

@@ -9,6 +9,7 @@
 //! - [`simulate`]: the FE run (model, reductions, stop rule, reduction to rigid motion);
 //! - [`single`]: one scene, both models side by side, results.json and history.csv;
 //! - [`plots`]: SVG charts for the report;
+//! - [`figures`]: CSV and SVG files of the paper's parametric figures;
 //! - [`snapshots`]: `.vtu` snapshots of a run for ParaView;
 //! - [`atomic`]: crash-safe file output;
 //! - [`progress`]: progress on stderr (a bar on a terminal, plain lines elsewhere);
@@ -19,6 +20,7 @@ pub mod bench;
 pub mod cost;
 pub mod interrupt;
 pub mod number;
+pub mod figures;
 pub mod outcome;
 pub mod plots;
 pub mod progress;

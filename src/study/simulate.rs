@@ -15,11 +15,11 @@ use crate::fe::contact::{
 };
 use crate::fe::explicit::{Settings, Solver};
 use crate::fe::interaction::Interaction;
-use crate::fe::model::{Formulation as FeFormulation, Model};
+use crate::fe::model::Model;
 use crate::fe::subcycle::SubcycleReport;
 use crate::mesh::ball::{ball, BallSpec, Cut};
 use crate::mesh::Mesh;
-use crate::scene::{BallScene, Formulation, MeshSettings, Scene, Switch, Touch};
+use crate::scene::{BallScene, MeshSettings, Scene, Switch, Touch};
 use serde::Serialize;
 use std::time::Instant;
 
@@ -254,6 +254,8 @@ pub struct RunOptions {
     /// Folder for the scene's `.vtu` snapshots (`output.vtu_snapshots` of them); none
     /// written without it.
     pub snapshot_dir: Option<std::path::PathBuf>,
+    /// Time the solver's phases (`fe::profile`; totals from `fe::profile::take_totals`).
+    pub profile: bool,
 }
 
 /// Contact-frame state of the pair in its centre-of-mass frame.
@@ -274,13 +276,6 @@ fn pair_kinematics(scene: &Scene, touch: &Touch) -> Kinematics {
         [0, 1, 2].map(|k| v2[k] - v_cm[k]),
     ];
     Kinematics { v_cm, u }
-}
-
-fn fe_formulation(f: Formulation) -> FeFormulation {
-    match f {
-        Formulation::OnePoint => FeFormulation::OnePoint,
-        Formulation::BBar => FeFormulation::BBar,
-    }
 }
 
 /// The mesh of ball `name` ("ball1" or "ball2") with its contact pole at +x and centre at the
@@ -474,7 +469,7 @@ fn build(
 ) -> Result<Built> {
     let (b1, b2) = (&scene.ball1, &scene.ball2);
     let (r1, r2) = (b1.diameter / 2.0, b2.diameter / 2.0);
-    let form = fe_formulation(scene.solver.element);
+    let form = scene.solver.element;
     let penalty = PenaltyRule::Fkn {
         factor: default_fkn() * scene.contact.penalty_factor,
     };
@@ -617,8 +612,9 @@ pub fn simulate(
     let elements = model.hexes.len();
     let nodes = model.nodes.len();
     let settings = Settings {
-        safety: scene.solver.time_step_factor,
+        time_step_factor: scene.solver.time_step_factor,
         subcycling: scene.solver.subcycling,
+        profile: opts.profile,
         ..Settings::default()
     };
     let run = move |mut solver: Solver| -> Result<Simulation> {

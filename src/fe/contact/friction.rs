@@ -7,8 +7,8 @@
 //! radially to the cone, and the slip Δu_p = (|F*| − |F_t|)/k_t dissipates |F_t| Δu_p. In gross
 //! sliding this is exactly μ_d F_n times the slip.
 
-use super::vec3::{norm, scale, sub};
 use crate::error::{Error, Result};
+use crate::fe::tensor::{norm, scale, sub};
 
 /// Coulomb coefficients.
 #[derive(Debug, Clone, Copy, PartialEq)]

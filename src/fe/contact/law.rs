@@ -3,7 +3,7 @@
 
 use super::friction::{return_map, stick_energy, Coulomb, StickState};
 use super::penalty::normal_force;
-use super::vec3::{add, norm, scale, tangential};
+use crate::fe::tensor::{add, norm, scale, tangential};
 
 /// Constants of one contact node, fixed after the first step.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]

@@ -23,7 +23,6 @@ pub mod rigid_plane;
 pub mod search;
 pub mod step_cache;
 pub mod surface;
-pub mod vec3;
 
 pub use friction::Coulomb;
 pub use node_to_segment::SurfacePair;

@@ -15,10 +15,10 @@ use super::projection::{project, shape, Projection};
 use super::search::{bounding_box, Aabb, BucketSearch};
 use super::step_cache::StepCache;
 use super::surface::ContactSurface;
-use super::vec3::{add, dot, norm, scale, sub, tangential};
 use super::ContactParams;
 use crate::error::{Error, Result};
 use crate::fe::interaction::{Interaction, InteractionEnergy, StepContext};
+use crate::fe::tensor::{add, dot, norm, scale, sub, tangential};
 use crate::material::Material;
 use std::collections::HashMap;
 

@@ -1,7 +1,7 @@
 //! What a contact pair reports each step: force resultants, contact area and patch radius,
 //! penetration and energies.
 
-use super::vec3::{add, dot, norm, scale, sub, tangential};
+use crate::fe::tensor::{add, dot, norm, scale, sub, tangential};
 
 /// One step's contact state. Forces are those acting on the first body of the pair (the
 /// deformable body for a rigid plane), N.

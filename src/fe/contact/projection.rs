@@ -8,7 +8,7 @@
 //! the candidates is returned: an interior stationary point when it exists inside the quad,
 //! otherwise the point on an edge or corner.
 
-use super::vec3::{add, cross, dot, norm, scale, sub};
+use crate::fe::tensor::{add, cross, dot, norm, scale, sub};
 
 /// Where a node projects on a segment.
 #[derive(Debug, Clone, Copy, PartialEq)]

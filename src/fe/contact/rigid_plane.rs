@@ -7,10 +7,10 @@ use super::output::{ContactOutput, ContactProbe, NodeContact, OutputBuilder, Pre
 use super::penalty::{damping_constant, stable_step};
 use super::step_cache::StepCache;
 use super::surface::ContactSurface;
-use super::vec3::{add_into, axpy, dot, norm, scale, sub, tangential};
 use super::ContactParams;
 use crate::error::{Error, Result};
 use crate::fe::interaction::{Interaction, InteractionEnergy, StepContext};
+use crate::fe::tensor::{add_into, axpy, dot, norm, scale, sub, tangential};
 use crate::material::Material;
 
 /// Penalty contact of one surface against the half-space behind a rigid plane.

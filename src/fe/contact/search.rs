@@ -7,7 +7,7 @@
 //! it. The lists stay valid until some node has moved half the margin since they were built
 //! (then no node and segment can have approached by more than the margin).
 
-use super::vec3::sub;
+use crate::fe::tensor::sub;
 
 /// Axis-aligned box.
 #[derive(Debug, Clone, Copy, PartialEq)]

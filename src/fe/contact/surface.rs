@@ -1,8 +1,8 @@
 //! A contact surface: the quads that can touch, their nodes and each node's share of area and
 //! of the solid underneath (what the penalty stiffness is scaled by).
 
-use super::vec3::{quad_area, sub};
 use crate::error::{Error, Result};
+use crate::fe::tensor::{quad_area, sub};
 use crate::fe::timestep::characteristic_length;
 use crate::mesh::topology::HEX_FACES;
 use std::collections::HashMap;
@@ -39,9 +39,9 @@ fn hex_volume(x: &[[f64; 3]], h: &[u32; 8]) -> f64 {
         let p = f.map(|i| x[h[i] as usize]);
         let d1 = sub(p[2], p[0]);
         let d2 = sub(p[3], p[1]);
-        let n = super::vec3::cross(d1, d2);
+        let n = crate::fe::tensor::cross(d1, d2);
         let c = [0, 1, 2].map(|a| 0.25 * (p[0][a] + p[1][a] + p[2][a] + p[3][a]));
-        v += 0.5 * super::vec3::dot(c, n) / 3.0;
+        v += 0.5 * crate::fe::tensor::dot(c, n) / 3.0;
     }
     v
 }
@@ -115,7 +115,7 @@ impl ContactSurface {
             face_thickness.push(v / a);
             let l = characteristic_length(&hexes[e].map(|i| nodes[i as usize]), v);
             for k in 0..4 {
-                min_edge = min_edge.min(super::vec3::norm(sub(p[(k + 1) % 4], p[k])));
+                min_edge = min_edge.min(crate::fe::tensor::norm(sub(p[(k + 1) % 4], p[k])));
             }
             for &g in q {
                 let i = index[&g];

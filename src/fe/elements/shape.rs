@@ -4,7 +4,7 @@
 //! Local node order is gmsh/VTK (see [`crate::mesh`]); node I sits at the natural
 //! coordinates [`NODE_XI`]`[I]`.
 
-use super::tensor::{inverse, Mat3};
+use crate::fe::tensor::{inverse, Mat3};
 
 /// Natural coordinates (ξ, η, ζ) of the eight nodes.
 pub const NODE_XI: [[f64; 3]; 8] = [

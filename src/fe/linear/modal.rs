@@ -8,13 +8,13 @@
 //! the one-point hex's mean-gradient B plus its hourglass stiffness k Σ_α γ_α γ_αᵀ, or the
 //! B-bar hex's 2x2x2 operator with mean-dilatation volumetric part.
 
-use super::{
-    hex_bbar::gauss_gradients,
-    hex_one_point::{hourglass_gammas, hourglass_stiffness, mean_gradient},
-    model::{Formulation, Model},
-    shape::{natural_derivatives, shape_functions, spatial_gradients},
-};
 use crate::error::{Error, Result};
+use crate::fe::{
+    elements::hex_bbar::gauss_gradients,
+    elements::hex_one_point::{hourglass_gammas, hourglass_stiffness, mean_gradient},
+    elements::shape::{natural_derivatives, shape_functions, spatial_gradients},
+    model::{Formulation, Model},
+};
 use faer::prelude::Solve;
 use sprs::{CsMat, TriMat};
 

@@ -5,21 +5,21 @@
 //! Updated Lagrangian: positions x are current coordinates, stresses are Cauchy stresses in
 //! the current frame; every array is allocated once in [`Solver::new`].
 
-use super::{
-    contact::vec3::dot,
-    elements::{ElementBlock, ElementFailure},
-    energy::{EnergyReport, PartEnergy},
-    interaction::{Interaction, StepContext},
-    mass::element_lumped_mass,
-    model::Model,
-    plasticity::J2Material,
-    profile::{Phase, Profile},
-    rows::Rows4,
-    subcycle::{node_force_sum, SubcycleReport, Subcycler, Subcycling, AUTO_MIN_SAVING},
-    tensor::{cross, inverse, Sym},
-    timestep::StableStep,
-};
 use crate::error::{Error, Result};
+use crate::fe::{
+    elements::{ElementBlock, ElementFailure},
+    materials::J2Material,
+    model::Model,
+    simd::rows::Rows4,
+    simd::KernelPath,
+    solver::energy::{EnergyReport, PartEnergy},
+    solver::interaction::{Interaction, StepContext},
+    solver::mass::element_lumped_mass,
+    solver::profile::{Phase, Profile},
+    solver::subcycle::{node_force_sum, SubcycleReport, Subcycler, Subcycling, AUTO_MIN_SAVING},
+    solver::timestep::StableStep,
+    tensor::{cross, dot, inverse, Sym},
+};
 use rayon::prelude::*;
 
 /// Nodes per chunk of the node loops; fixed so that partial sums never depend on threads.
@@ -29,8 +29,9 @@ const NODE_CHUNK: usize = 4096;
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct Settings {
-    /// Time-step safety factor on the Courant limit (0 < s ≤ 1; default 0.9).
-    pub safety: f64,
+    /// Time-step factor on the Courant limit (0 < f ≤ 1; default 0.9; the scene's
+    /// `solver.time_step_factor`).
+    pub time_step_factor: f64,
     /// Hourglass coefficient ε_hg of the one-point hex (0 ≤ ε ≤ 0.5; default 0.05).
     pub hourglass: f64,
     /// Fixed time step (s) instead of the Courant limit; `None` = automatic.
@@ -49,7 +50,7 @@ pub struct Settings {
     /// instability, long before values turn non-finite.
     pub energy_growth: f64,
     /// Multi-time-step integration: element groups step with powers of two of the fine step
-    /// (see [`super::subcycle`]); default off. Ignored with `fixed_dt`.
+    /// (see [`crate::fe::solver::subcycle`]); default off. Ignored with `fixed_dt`.
     pub subcycling: Subcycling,
     /// Highest subcycling level: an element steps at most 2^level fine steps (1..=8; default 4).
     pub subcycle_max_level: u32,
@@ -59,12 +60,19 @@ pub struct Settings {
     /// as Hertz's, which neglect the change of geometry; contact still acts on the current
     /// positions. Wrong for large rotations (a rigid rotation strains the elements).
     pub linear_geometry: bool,
+    /// The widest element-kernel path to use (default: the widest the CPU has); narrower
+    /// paths give the same bits, slower (to measure the paths other CPUs take).
+    #[serde(skip)]
+    pub kernel_cap: KernelPath,
+    /// Time the phases of every step ([`crate::fe::solver::profile`]; default off).
+    #[serde(skip)]
+    pub profile: bool,
 }
 
 impl Default for Settings {
     fn default() -> Self {
         Settings {
-            safety: 0.9,
+            time_step_factor: 0.9,
             hourglass: 0.05,
             fixed_dt: None,
             dt_collapse: 1e-3,
@@ -74,6 +82,8 @@ impl Default for Settings {
             subcycling: Subcycling::Off,
             subcycle_max_level: 4,
             linear_geometry: false,
+            kernel_cap: KernelPath::Avx512,
+            profile: false,
         }
     }
 }
@@ -81,11 +91,11 @@ impl Default for Settings {
 impl Settings {
     /// Checks every field, naming the bad one.
     pub fn validated(self) -> Result<Self> {
-        if !(self.safety > 0.0 && self.safety <= 1.0) {
+        if !(self.time_step_factor > 0.0 && self.time_step_factor <= 1.0) {
             return Err(Error::invalid(
-                "solver.safety",
-                self.safety,
-                "0 < safety <= 1",
+                "solver.time_step_factor",
+                self.time_step_factor,
+                "0 < time_step_factor <= 1",
             ));
         }
         if !(self.hourglass >= 0.0 && self.hourglass <= 0.5) {
@@ -299,14 +309,16 @@ impl Solver {
                 }
             }
             let mat = J2Material::new(&part.material, part.elastic_only);
-            blocks.push(ElementBlock::new(
+            let mut block = ElementBlock::new(
                 p,
                 part.elements.start,
                 conn,
                 part.formulation,
                 mat,
                 settings.hourglass,
-            ));
+            );
+            block.set_kernel_cap(settings.kernel_cap);
+            blocks.push(block);
         }
         if let Some(i) = mass.iter().position(|m| m.is_nan() || *m <= 0.0) {
             return Err(Error::invalid(
@@ -368,7 +380,7 @@ impl Solver {
             w_ext: 0.0,
             e0: 0.0,
             max_balance_error: 0.0,
-            profile: Profile::new(ne),
+            profile: Profile::new(ne, settings.profile),
             updates: 0,
             sub: None,
             sub_report: SubcycleReport::default(),
@@ -422,7 +434,7 @@ impl Solver {
             &self.blocks,
             &self.x,
             &pinned,
-            self.settings.safety,
+            self.settings.time_step_factor,
             self.dt_next,
             self.settings.subcycle_max_level,
         );
@@ -490,7 +502,7 @@ impl Solver {
         Ok(())
     }
 
-    /// One fine step n → n+1 with subcycling (module [`super::subcycle`]): Box 6.1 with the
+    /// One fine step n → n+1 with subcycling (module [`crate::fe::solver::subcycle`]): Box 6.1 with the
     /// half-kicks split into closing and opening parts. Elements due now act with the weight
     /// 2^k of their own step; the others act not at all until their next update.
     fn step_subcycled(&mut self) -> Result<()> {
@@ -571,7 +583,7 @@ impl Solver {
         let h = sub.choose_levels(
             &self.blocks,
             &self.x,
-            self.settings.safety,
+            self.settings.time_step_factor,
             dt,
             interaction_limit,
             |h_taken| self.next_step(h_taken, stable_dt),
@@ -758,17 +770,17 @@ impl Solver {
         ))
     }
 
-    /// The stable step (safety included) from the smallest element Courant limit `best`
+    /// The stable step (time-step factor included) from the smallest element Courant limit `best`
     /// (s, global element) and every interaction's limit.
     fn stable_limit(&self, best: (f64, usize)) -> StableStep {
         let mut stable = StableStep {
-            dt: self.settings.safety * best.0,
+            dt: self.settings.time_step_factor * best.0,
             element: Some(best.1),
             interaction: None,
         };
         for (k, it) in self.interactions.iter().enumerate() {
             if let Some(d) = it.stable_time_step(&self.mass) {
-                let d = self.settings.safety * d;
+                let d = self.settings.time_step_factor * d;
                 if d < stable.dt {
                     stable = StableStep {
                         dt: d,
@@ -983,7 +995,10 @@ impl Solver {
             .map(|(i, v)| (i, (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt()))
             .fold((0, -1.0), |a, b| if b.1 > a.1 { b } else { a });
         Error::Numerical(format!(
-            "energy grew by {:.3e} of its start value (limit {:.3e}) at t = {:.6e} s, step {} (fastest node {node},              {speed:.3e} m/s; step controlled by {}): energy grows, the time step is too large for an              element or the penalty is too stiff: lower solver.time_step_factor or contact.penalty_factor",
+            "energy grew by {:.3e} of its start value (limit {:.3e}) at t = {:.6e} s, step {} \
+             (fastest node {node}, {speed:.3e} m/s; step controlled by {}): energy grows, the \
+             time step is too large for an element or the penalty is too stiff: lower \
+             solver.time_step_factor or contact.penalty_factor",
             created,
             self.settings.energy_growth,
             self.t,
@@ -1130,7 +1145,7 @@ impl Solver {
         }
         let (inv, det) = inverse(&inertia);
         let omega = if det > 0.0 {
-            super::tensor::mat_vec(&inv, l)
+            crate::fe::tensor::mat_vec(&inv, l)
         } else {
             [0.0; 3]
         };
@@ -1223,7 +1238,7 @@ impl Solver {
         let (b, k) = self.locate(e);
         self.blocks[b].plastic_work[k]
     }
-    /// The phase timer (on when [`super::profile::set_enabled`] was called before `new`).
+    /// The phase timer (on when [`Settings::profile`] is).
     pub fn profile(&self) -> &Profile {
         &self.profile
     }

@@ -1,33 +1,36 @@
 //! SIMD lanes for the element kernels: a value per element of a group of W elements
 //! (structure of arrays), with the arithmetic written once, lane-wise.
 //!
-//! Why plain arrays and not a SIMD crate: every operation is a fixed-length loop over
-//! `[f64; W]` marked `#[inline(always)]`, so inside a kernel compiled with
-//! `#[target_feature(enable = "avx2,fma")]` (or `avx512f`) the compiler turns each into one
-//! vector instruction, and the same source compiles to scalar code on any other target. No
-//! dependency, no `unsafe` in the arithmetic, and the results are identical on every path:
-//! no operation is fused or reordered (Rust never contracts a·b + c into an FMA on its own),
-//! so lane l computes exactly what the scalar formula computes for element l.
+//! Every operation is a fixed-length loop over `[f64; W]` marked `#[inline(always)]`, so inside
+//! a kernel compiled with `#[target_feature(enable = "avx2,fma")]` the compiler turns each
+//! into one vector instruction, and the same source compiles to scalar code on any other
+//! target; eight lanes on x86-64 use AVX-512 intrinsics, which pin the 512-bit form. The
+//! results are identical on every path: no operation is fused or reordered (Rust never
+//! contracts a·b + c into an FMA on its own), so lane l computes exactly what the scalar
+//! formula computes for element l.
+//!
+//! Every value carries its [`LaneIsa`] token (a zero-sized field), so a `Lanes<8>` exists
+//! only where AVX-512F was detected, and its safe operators cannot reach an instruction the
+//! CPU lacks.
 
+use super::isa::LaneIsa;
+use std::mem::MaybeUninit;
 use std::ops::{Add, AddAssign, Div, Mul, Neg, Sub, SubAssign};
 
-/// One f64 per lane.
+/// One f64 per lane, with the token that proves W-lane arithmetic legal on this CPU (the
+/// token is zero-sized: the layout is the array's).
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[repr(transparent)]
-pub struct Lanes<const W: usize>(pub [f64; W]);
+pub struct Lanes<const W: usize>(pub [f64; W], pub LaneIsa<W>);
 
 /// Eight lanes as one AVX-512 register. The lane loops below compile to whatever vector width
 /// the compiler prefers for the calling kernel's target features, and for eight f64 lanes
 /// that was two 256-bit halves (twice the instructions, and register spills); these ops pin
-/// the 512-bit form. Only reached when W = 8.
-///
-/// The crate's contract (this module and the lane kernels are crate-private so that no
-/// outside code can break it): `Lanes<8>` arithmetic runs only inside the AVX-512 element
-/// kernel, entered after the CPU check, or in tests that make the same check first. On
-/// x86-64 without AVX-512F, eight-lane arithmetic would execute instructions the CPU lacks.
+/// the 512-bit form. Only reached when W = 8, with a `LaneIsa<8>` token in hand: on x86-64
+/// that token exists only where AVX-512F was detected.
 #[cfg(target_arch = "x86_64")]
 mod avx512 {
-    use super::Lanes;
+    use super::{LaneIsa, Lanes};
     use std::arch::x86_64::*;
 
     /// The same 64 bytes as eight f64 lanes or as one AVX-512 register. Moving lanes in and
@@ -51,18 +54,18 @@ mod avx512 {
     }
 
     #[inline(always)]
-    pub(super) fn store<const W: usize>(v: __m512d) -> Lanes<W> {
+    pub(super) fn store<const W: usize>(v: __m512d, isa: LaneIsa<W>) -> Lanes<W> {
         debug_assert_eq!(W, 8);
         // SAFETY: W == 8: the 64 bytes written are the W f64 read back.
-        Lanes(unsafe { Pun::<W> { reg: v }.lanes })
+        Lanes(unsafe { Pun::<W> { reg: v }.lanes }, isa)
     }
 
     macro_rules! bin {
         ($name:ident, $intr:ident) => {
             #[inline(always)]
             pub(super) fn $name<const W: usize>(a: Lanes<W>, b: Lanes<W>) -> Lanes<W> {
-                // SAFETY: only called with W = 8 inside the AVX-512 kernel.
-                store(unsafe { $intr(load(a), load(b)) })
+                // SAFETY: W = 8, and the token `a.1` proves AVX-512F present.
+                store(unsafe { $intr(load(a), load(b)) }, a.1)
             }
         };
     }
@@ -80,9 +83,10 @@ mod avx512 {
     /// pair of registers then leave x, y and z of the eight rows in lane order.
     ///
     /// # Safety
-    /// W = 8, AVX-512F, and every `base.add(nodes[l])` in bounds of one allocation.
+    /// W = 8 (AVX-512F: `isa`), and every `base.add(nodes[l])` in bounds of one allocation.
     #[inline(always)]
     pub(super) unsafe fn load_vec3<const W: usize>(
+        isa: LaneIsa<W>,
         base: *const [f64; 3],
         nodes: &[u32; W],
     ) -> [Lanes<W>; 3] {
@@ -103,9 +107,9 @@ mod avx512 {
         let t2 = _mm512_unpacklo_pd(c, d);
         let t3 = _mm512_unpackhi_pd(c, d);
         [
-            store(_mm512_shuffle_f64x2::<0x88>(t0, t2)),
-            store(_mm512_shuffle_f64x2::<0x88>(t1, t3)),
-            store(_mm512_shuffle_f64x2::<0xDD>(t0, t2)),
+            store(_mm512_shuffle_f64x2::<0x88>(t0, t2), isa),
+            store(_mm512_shuffle_f64x2::<0x88>(t1, t3), isa),
+            store(_mm512_shuffle_f64x2::<0xDD>(t0, t2), isa),
         ]
     }
 
@@ -144,9 +148,10 @@ mod avx512 {
     /// Columns 0..C (C ≤ 8) of eight rows starting at `base.add(rows[l])`.
     ///
     /// # Safety
-    /// W = 8, AVX-512F, and `base.add(rows[l] + c)` in bounds for every l and c < C.
+    /// W = 8 (AVX-512F: `isa`), and `base.add(rows[l] + c)` in bounds for every l and c < C.
     #[inline(always)]
     pub(super) unsafe fn load_rows<const W: usize, const C: usize>(
+        isa: LaneIsa<W>,
         base: *const f64,
         rows: &[usize; W],
     ) -> [Lanes<W>; C] {
@@ -156,9 +161,9 @@ mod avx512 {
             *x = _mm512_maskz_loadu_pd(mask, base.add(rows[l]));
         }
         let t = transpose8(r);
-        let mut out = [Lanes([0.0; W]); C];
+        let mut out = [isa.splat(0.0); C];
         for (c, o) in out.iter_mut().enumerate() {
-            *o = store(t[c]);
+            *o = store(t[c], isa);
         }
         out
     }
@@ -169,7 +174,7 @@ mod avx512 {
     /// every value, ±0 included, as it was).
     ///
     /// # Safety
-    /// W = 8, AVX-512F, every `conn[l][i]` < the length of `f4`.
+    /// W = 8 (AVX-512F: the forces' token), every `conn[l][i]` < the length of `f4`.
     #[inline(always)]
     pub(super) unsafe fn add_node_rows<const W: usize>(
         force: &[[Lanes<W>; 3]; 8],
@@ -241,26 +246,22 @@ mod avx512 {
     /// −a by flipping the sign bit (exactly what scalar negation does, −0.0 included).
     #[inline(always)]
     pub(super) fn neg<const W: usize>(a: Lanes<W>) -> Lanes<W> {
-        // SAFETY: as above.
-        store(unsafe {
-            _mm512_castsi512_pd(_mm512_xor_si512(
-                _mm512_castpd_si512(load(a)),
-                _mm512_set1_epi64(i64::MIN),
-            ))
-        })
+        // SAFETY: W = 8, and the token `a.1` proves AVX-512F present.
+        store(
+            unsafe {
+                _mm512_castsi512_pd(_mm512_xor_si512(
+                    _mm512_castpd_si512(load(a)),
+                    _mm512_set1_epi64(i64::MIN),
+                ))
+            },
+            a.1,
+        )
     }
 
     #[inline(always)]
     pub(super) fn sqrt<const W: usize>(a: Lanes<W>) -> Lanes<W> {
-        // SAFETY: as above.
-        store(unsafe { _mm512_sqrt_pd(load(a)) })
-    }
-}
-
-impl<const W: usize> Default for Lanes<W> {
-    #[inline(always)]
-    fn default() -> Self {
-        Lanes([0.0; W])
+        // SAFETY: W = 8, and the token `a.1` proves AVX-512F present.
+        store(unsafe { _mm512_sqrt_pd(load(a)) }, a.1)
     }
 }
 
@@ -271,19 +272,28 @@ impl<const W: usize> Default for Lanes<W> {
 /// its caller is instantiated in more than one place; so the lane kernels use plain loops,
 /// and `build` serves the element loop's small index arrays.
 #[inline(always)]
-pub fn build<T: Copy + Default, const N: usize>(mut f: impl FnMut(usize) -> T) -> [T; N] {
-    let mut a = [T::default(); N];
-    for (i, x) in a.iter_mut().enumerate() {
-        *x = f(i);
+pub fn build<T: Copy, const N: usize>(mut f: impl FnMut(usize) -> T) -> [T; N] {
+    let mut a = MaybeUninit::<[T; N]>::uninit();
+    let p = a.as_mut_ptr().cast::<T>();
+    for i in 0..N {
+        // SAFETY: slot i < N of the array, written once.
+        unsafe { p.add(i).write(f(i)) };
     }
-    a
+    // SAFETY: all N slots were written above.
+    unsafe { a.assume_init() }
 }
 
 impl<const W: usize> Lanes<W> {
-    /// Every lane equal to `v`.
+    /// The token this value carries (to build more lanes of the same width).
     #[inline(always)]
-    pub fn splat(v: f64) -> Self {
-        Lanes([v; W])
+    pub fn isa(self) -> LaneIsa<W> {
+        self.1
+    }
+
+    /// Every lane equal to `v`, with this value's token.
+    #[inline(always)]
+    pub fn splat_like(self, v: f64) -> Self {
+        Lanes([v; W], self.1)
     }
 
     /// The x, y and z lanes of W 3-vectors `base[nodes[l]]` (nodal coordinates or velocities
@@ -291,15 +301,14 @@ impl<const W: usize> Lanes<W> {
     /// registers; other widths load the W values of each component.
     ///
     /// # Safety
-    /// Every `base.add(nodes[l])` must be in bounds of the allocation `base` points into;
-    /// with W = 8 on x86-64 the CPU must have AVX-512F.
+    /// Every `base.add(nodes[l])` must be in bounds of the allocation `base` points into.
     #[inline(always)]
-    pub unsafe fn load_vec3(base: *const [f64; 3], nodes: &[u32; W]) -> Vec3<W> {
+    pub unsafe fn load_vec3(isa: LaneIsa<W>, base: *const [f64; 3], nodes: &[u32; W]) -> Vec3<W> {
         #[cfg(target_arch = "x86_64")]
         if W == 8 {
-            return avx512::load_vec3(base, nodes);
+            return avx512::load_vec3(isa, base, nodes);
         }
-        let mut out = [Lanes([0.0; W]); 3];
+        let mut out = [isa.splat(0.0); 3];
         for (d, o) in out.iter_mut().enumerate() {
             for l in 0..W {
                 o.0[l] = (*base.add(nodes[l] as usize))[d];
@@ -314,14 +323,18 @@ impl<const W: usize> Lanes<W> {
     ///
     /// # Safety
     /// Every `base.add(rows[l] + c)`, c < C ≤ 8, must be in bounds of the allocation `base`
-    /// points into; with W = 8 on x86-64 the CPU must have AVX-512F.
+    /// points into.
     #[inline(always)]
-    pub unsafe fn load_rows<const C: usize>(base: *const f64, rows: &[usize; W]) -> [Self; C] {
+    pub unsafe fn load_rows<const C: usize>(
+        isa: LaneIsa<W>,
+        base: *const f64,
+        rows: &[usize; W],
+    ) -> [Self; C] {
         #[cfg(target_arch = "x86_64")]
         if W == 8 && C <= 8 {
-            return avx512::load_rows(base, rows);
+            return avx512::load_rows(isa, base, rows);
         }
-        let mut out = [Lanes([0.0; W]); C];
+        let mut out = [isa.splat(0.0); C];
         for (c, o) in out.iter_mut().enumerate() {
             for l in 0..W {
                 o.0[l] = *base.add(rows[l] + c);
@@ -335,8 +348,7 @@ impl<const W: usize> Lanes<W> {
     /// scalar `f4[n][d] += force[i][d].0[l]` loop, in the same order.
     ///
     /// # Safety
-    /// Every node of `conn` (at least W rows) < `f4.len()`-equivalent allocation of `f4`;
-    /// with W = 8 on x86-64 the CPU must have AVX-512F.
+    /// Every node of `conn` (at least W rows) < `f4.len()`-equivalent allocation of `f4`.
     #[inline(always)]
     pub unsafe fn add_node_rows(force: &[Vec3<W>; 8], f4: *mut [f64; 4], conn: &[[u32; 8]]) {
         #[cfg(target_arch = "x86_64")]
@@ -381,7 +393,7 @@ impl<const W: usize> Lanes<W> {
         for x in &mut r {
             *x = x.sqrt();
         }
-        Lanes(r)
+        Lanes(r, self.1)
     }
 
     /// Lane-wise maximum (the `f64::max` rule: a NaN lane yields the other operand).
@@ -391,7 +403,7 @@ impl<const W: usize> Lanes<W> {
         for l in 0..W {
             r[l] = r[l].max(o.0[l]);
         }
-        Lanes(r)
+        Lanes(r, self.1)
     }
 
     /// Lane-wise minimum (the `f64::min` rule: a NaN lane yields the other operand).
@@ -401,13 +413,13 @@ impl<const W: usize> Lanes<W> {
         for l in 0..W {
             r[l] = r[l].min(o.0[l]);
         }
-        Lanes(r)
+        Lanes(r, self.1)
     }
 
     /// Lane-wise reciprocal 1/x.
     #[inline(always)]
     pub fn recip(self) -> Self {
-        Lanes::splat(1.0) / self
+        self.splat_like(1.0) / self
     }
 
     /// Lane-wise `self > o`.
@@ -430,7 +442,7 @@ pub fn select<const W: usize>(m: [bool; W], a: Lanes<W>, b: Lanes<W>) -> Lanes<W
             r[l] = a.0[l];
         }
     }
-    Lanes(r)
+    Lanes(r, b.1)
 }
 
 macro_rules! lane_op {
@@ -448,7 +460,7 @@ macro_rules! lane_op {
                 for l in 0..W {
                     r[l] = r[l] $op o.0[l];
                 }
-                Lanes(r)
+                Lanes(r, self.1)
             }
         }
         impl<const W: usize> $tr<f64> for Lanes<W> {
@@ -458,13 +470,13 @@ macro_rules! lane_op {
             fn $f(self, o: f64) -> Self {
                 #[cfg(target_arch = "x86_64")]
                 if W == 8 {
-                    return avx512::$f(self, Lanes([o; W]));
+                    return avx512::$f(self, self.splat_like(o));
                 }
                 let mut r = self.0;
                 for l in 0..W {
                     r[l] = r[l] $op o;
                 }
-                Lanes(r)
+                Lanes(r, self.1)
             }
         }
     };
@@ -480,13 +492,13 @@ impl<const W: usize> Mul<Lanes<W>> for f64 {
     fn mul(self, o: Lanes<W>) -> Lanes<W> {
         #[cfg(target_arch = "x86_64")]
         if W == 8 {
-            return avx512::mul(Lanes([self; W]), o);
+            return avx512::mul(o.splat_like(self), o);
         }
         let mut r = o.0;
         for l in 0..W {
             r[l] *= self;
         }
-        Lanes(r)
+        Lanes(r, o.1)
     }
 }
 
@@ -496,13 +508,13 @@ impl<const W: usize> Add<Lanes<W>> for f64 {
     fn add(self, o: Lanes<W>) -> Lanes<W> {
         #[cfg(target_arch = "x86_64")]
         if W == 8 {
-            return avx512::add(Lanes([self; W]), o);
+            return avx512::add(o.splat_like(self), o);
         }
         let mut r = o.0;
         for l in 0..W {
             r[l] += self;
         }
-        Lanes(r)
+        Lanes(r, o.1)
     }
 }
 
@@ -518,7 +530,7 @@ impl<const W: usize> Neg for Lanes<W> {
         for x in &mut r {
             *x = -*x;
         }
-        Lanes(r)
+        Lanes(r, self.1)
     }
 }
 
@@ -559,17 +571,18 @@ pub fn dot<const W: usize>(a: &Vec3<W>, b: &Vec3<W>) -> Lanes<W> {
 mod tests {
     use super::*;
 
-    fn is_avx512() -> bool {
-        #[cfg(target_arch = "x86_64")]
-        return std::is_x86_feature_detected!("avx512f");
-        #[cfg(not(target_arch = "x86_64"))]
-        return false;
+    fn four() -> LaneIsa<4> {
+        LaneIsa::detect().expect("four lanes run everywhere")
+    }
+
+    fn one() -> LaneIsa<1> {
+        LaneIsa::detect().expect("one lane runs everywhere")
     }
 
     #[test]
     fn lanes_compute_what_scalars_compute() {
-        let a = Lanes([1.5, -2.0, 3.25, 0.1]);
-        let b = Lanes([0.3, 4.0, -1.0, 7.0]);
+        let a = four().lanes([1.5, -2.0, 3.25, 0.1]);
+        let b = four().lanes([0.3, 4.0, -1.0, 7.0]);
         let r = (a * b + a - b * 2.0) / (b + 10.0);
         for l in 0..4 {
             let (x, y) = (a.0[l], b.0[l]);
@@ -582,10 +595,9 @@ mod tests {
         // and four (scalar), with a partial row width.
         let data: Vec<f64> = (0..100).map(|i| i as f64 * 1.5 - 7.0).collect();
         let rows8 = [3, 17, 40, 41, 60, 9, 90, 0];
-        let wide = is_avx512();
-        if wide {
-            // SAFETY: AVX-512F present; every row + c < 100.
-            let cols: [Lanes<8>; 7] = unsafe { Lanes::load_rows(data.as_ptr(), &rows8) };
+        if let Some(isa) = LaneIsa::<8>::detect() {
+            // SAFETY: every row + c < 100.
+            let cols: [Lanes<8>; 7] = unsafe { Lanes::load_rows(isa, data.as_ptr(), &rows8) };
             for (c, col) in cols.iter().enumerate() {
                 for l in 0..8 {
                     assert_eq!(col.0[l], data[rows8[l] + c], "column {c} lane {l}");
@@ -604,15 +616,15 @@ mod tests {
         }
         let rows4 = [5, 1, 33, 2];
         // SAFETY: every row + c < 100.
-        let cols: [Lanes<4>; 3] = unsafe { Lanes::load_rows(data.as_ptr(), &rows4) };
+        let cols: [Lanes<4>; 3] = unsafe { Lanes::load_rows(four(), data.as_ptr(), &rows4) };
         for (c, col) in cols.iter().enumerate() {
             for l in 0..4 {
                 assert_eq!(col.0[l], data[rows4[l] + c]);
             }
         }
         let c = cross(
-            &[Lanes([1.0]), Lanes([0.0]), Lanes([0.0])],
-            &[Lanes([0.0]), Lanes([1.0]), Lanes([0.0])],
+            &[one().splat(1.0), one().splat(0.0), one().splat(0.0)],
+            &[one().splat(0.0), one().splat(1.0), one().splat(0.0)],
         );
         assert_eq!(c.map(|v| v.0[0]), [0.0, 0.0, 1.0]);
     }
@@ -625,9 +637,9 @@ mod tests {
         let nodes: Vec<[f64; 3]> = (0..37)
             .map(|n| [n as f64 + 0.25, -(n as f64) * 3.0, 1e-300 * n as f64])
             .collect();
-        fn check<const W: usize>(nodes: &[[f64; 3]], pick: &[u32; W]) {
-            // SAFETY: every index < nodes.len(); W = 8 only with AVX-512F (checked below).
-            let got = unsafe { Lanes::load_vec3(nodes.as_ptr(), pick) };
+        fn check<const W: usize>(isa: LaneIsa<W>, nodes: &[[f64; 3]], pick: &[u32; W]) {
+            // SAFETY: every index < nodes.len().
+            let got = unsafe { Lanes::load_vec3(isa, nodes.as_ptr(), pick) };
             for (d, lane) in got.iter().enumerate() {
                 for l in 0..W {
                     let want = nodes[pick[l] as usize][d];
@@ -639,10 +651,10 @@ mod tests {
                 }
             }
         }
-        check::<4>(&nodes, &[36, 0, 5, 36]);
-        if is_avx512() {
-            check::<8>(&nodes, &[0, 36, 1, 35, 7, 0, 36, 19]);
-            check::<8>(&nodes, &[36, 0, 36, 0, 2, 3, 4, 5]);
+        check(four(), &nodes, &[36, 0, 5, 36]);
+        if let Some(isa) = LaneIsa::<8>::detect() {
+            check(isa, &nodes, &[0, 36, 1, 35, 7, 0, 36, 19]);
+            check(isa, &nodes, &[36, 0, 36, 0, 2, 3, 4, 5]);
         }
     }
 
@@ -660,9 +672,9 @@ mod tests {
 
     /// Forces whose sums depend on their order (1e16 + 1 − 1e16 ≠ 1e16 − 1e16 + 1) and signed
     /// zeros, on nodes shared by several lanes, as a lane group of neighbouring elements has.
-    fn order_sensitive_group<const W: usize>() -> ([Vec3<W>; 8], Vec<[u32; 8]>) {
+    fn order_sensitive_group<const W: usize>(isa: LaneIsa<W>) -> ([Vec3<W>; 8], Vec<[u32; 8]>) {
         let vals = [1e16, 1.0, -1e16, -0.0, 0.5, -3.25, 0.0, 7e-300];
-        let mut force = [[Lanes([0.0; W]); 3]; 8];
+        let mut force = [[isa.splat(0.0); 3]; 8];
         for (i, fi) in force.iter_mut().enumerate() {
             for (d, c) in fi.iter_mut().enumerate() {
                 for l in 0..W {
@@ -689,27 +701,27 @@ mod tests {
 
     #[test]
     fn node_rows_add_in_element_order_bit_for_bit() {
-        fn check<const W: usize>() {
-            let (force, conn) = order_sensitive_group::<W>();
+        fn check<const W: usize>(isa: LaneIsa<W>) {
+            let (force, conn) = order_sensitive_group(isa);
             let start: Vec<[f64; 4]> = (0..12)
                 .map(|n| [n as f64 - 6.0, -0.0, 0.25 * n as f64, 0.0])
                 .collect();
             let mut want = start.clone();
             add_in_order(&force, &mut want, &conn);
             let mut got = start;
-            // SAFETY: W = 8 only with AVX-512F (checked by the caller); nodes < 12.
+            // SAFETY: nodes < 12.
             unsafe { Lanes::add_node_rows(&force, got.as_mut_ptr(), &conn) };
             let bits =
                 |f: &[[f64; 4]]| -> Vec<u64> { f.iter().flatten().map(|c| c.to_bits()).collect() };
             assert_eq!(bits(&got), bits(&want), "{W} lanes");
             assert!(got.iter().all(|g| g[3].to_bits() == 0), "the pad stays +0");
         }
-        check::<4>();
-        if is_avx512() {
-            check::<8>();
+        check(four());
+        if let Some(isa) = LaneIsa::<8>::detect() {
+            check(isa);
         }
         // The test data must make the order matter, or the test could not fail.
-        let (force, conn) = order_sensitive_group::<4>();
+        let (force, conn) = order_sensitive_group(four());
         let mut fwd = vec![[0.0; 4]; 12];
         add_in_order(&force, &mut fwd, &conn);
         let mut rev = vec![[0.0; 4]; 12];

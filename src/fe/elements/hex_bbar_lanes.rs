@@ -1,5 +1,5 @@
-//! The B-bar hexahedron of [`super::hex_bbar`], computed for W elements at once (SIMD lanes)
-//! and in mode space, like [`super::hex_one_point_lanes`].
+//! The B-bar hexahedron of [`crate::fe::elements::hex_bbar`], computed for W elements at once (SIMD lanes)
+//! and in mode space, like [`crate::fe::elements::hex_one_point_lanes`].
 //!
 //! With the mode vectors A_k of the nodal coordinates (x(ξ) = (1/8) Σ_k A_k h_k(ξ), modes
 //! h = (1, ξ, η, ζ, ηζ, ζξ, ξη, ξηζ)), the Jacobian columns at a Gauss point are short sums:
@@ -20,17 +20,23 @@
 //! elements are grouped into lanes; they equal the per-element kernel up to round-off
 //! (checked to 1e-11 relative in the tests).
 
+use crate::fe::elements::block::{
+    contiguous, finish_lanes, gather_nodes, time_updates, Batch, BatchResult, ElementBlock,
+    LaneResult, StepInput,
+};
+use crate::fe::elements::formulation::Element;
+use crate::fe::simd::{build, prefetch::prefetch_ahead, LaneIsa};
 use std::mem::MaybeUninit;
 
-use super::{
-    hex_one_point_lanes::{critical_step, modes, nodes_from_modes, point_update},
-    lanes::{cross, dot, Lanes, Vec3},
-    plasticity::J2Material,
-    shape::{GAUSS2, NODE_XI},
+use crate::fe::{
+    elements::hex_one_point_lanes::{critical_step, modes, nodes_from_modes, point_update},
+    elements::shape::{GAUSS2, NODE_XI},
+    materials::{Hardening, J2Material},
+    simd::{cross, dot, Lanes, Vec3},
 };
 
 /// The state of W B-bar elements, lane-wise; points in the order of
-/// [`super::shape::gauss_points_2x2x2`].
+/// [`crate::fe::elements::shape::gauss_points_2x2x2`].
 #[derive(Debug, Clone, Copy)]
 pub struct State<const W: usize> {
     /// Cauchy stress at each Gauss point, Pa (Voigt [xx, yy, zz, xy, yz, zx]).
@@ -72,7 +78,7 @@ fn natural_columns<const W: usize>(a: &[Vec3<W>; 8], q: [f64; 3]) -> [Vec3<W>; 3
     let (tu, us, st) = (t * u, u * s, s * t);
     // Plain loops, no closures: a closure the compiler leaves out of line would run its
     // lane arithmetic as calls.
-    let mut col = [[Lanes::splat(0.0); 3]; 3];
+    let mut col = [[a[0][0].splat_like(0.0); 3]; 3];
     for c in 0..3 {
         col[0][c] = a[1][c] + u * a[5][c] + t * a[6][c] + tu * a[7][c];
         col[1][c] = a[2][c] + u * a[4][c] + s * a[6][c] + us * a[7][c];
@@ -96,15 +102,16 @@ fn cofactor_rows<const W: usize>(c: &[Vec3<W>; 3]) -> ([Vec3<W>; 3], Lanes<W>) {
 
 /// Advances W B-bar elements from t^n to t^{n+1}: nodal coordinates `x1` = x^{n+1} (m),
 /// velocities `v` = v^{n+1/2} (m/s), step `dt` (s, 0 = evaluate only). The same physics as
-/// [`super::hex_bbar::update`]: mean-dilatation velocity gradient on the mid-step
+/// [`crate::fe::elements::hex_bbar::update`]: mean-dilatation velocity gradient on the mid-step
 /// configuration, Hughes-Winget rotation and J2 update per point, forces on x^{n+1}. An
 /// inverted lane returns a non-positive `min_jacobian` and meaningless forces.
 #[inline(always)]
-pub fn update<const W: usize>(
+pub fn update<H: Hardening, const W: usize>(
     x1: &[Vec3<W>; 8],
     v: &[Vec3<W>; 8],
     dt: f64,
     mat: &J2Material,
+    law: &H,
     st: &mut State<W>,
 ) -> Output<W> {
     let a1 = modes(x1);
@@ -116,7 +123,7 @@ pub fn update<const W: usize>(
             m[c] -= half * uk[c];
         }
     }
-    let z = Lanes::splat(0.0);
+    let z = x1[0][0].splat_like(0.0);
 
     // Mid-step velocity gradients L_g = Σ_d (8 ∂v/∂ξ_d) ⊗ n̂_d / (512 det J) and their mean
     // dilatation Σ_g J_g tr L_g / Σ_g J_g.
@@ -151,8 +158,15 @@ pub fn update<const W: usize>(
     for g in 0..8 {
         let l = &ls[g];
         let shift = (div_mean - (l[0][0] + l[1][1] + l[2][2])) * (1.0 / 3.0);
-        let (_, dwp, dw) =
-            point_update(mat, l, Some(shift), dt, &mut st.stress[g], &mut st.eps_p[g]);
+        let (_, dwp, dw) = point_update(
+            mat,
+            law,
+            l,
+            Some(shift),
+            dt,
+            &mut st.stress[g],
+            &mut st.eps_p[g],
+        );
         st.plastic_work += dwp * jm[g];
         st.internal_energy += 0.5 * jm[g] * dw;
     }
@@ -163,7 +177,7 @@ pub fn update<const W: usize>(
     let mut j1 = [z; 8];
     let mut vol = z;
     let mut pj = z;
-    let mut jmin = Lanes::splat(f64::INFINITY);
+    let mut jmin = z.splat_like(f64::INFINITY);
     for g in 0..8 {
         let (n, det) = cofactor_rows(&natural_columns(&a1, gauss_point(g)));
         // SAFETY: slot g < 8 of the array, written once.
@@ -220,13 +234,137 @@ pub fn update<const W: usize>(
     }
 }
 
+/// The B-bar hexahedron as an element of the element loop.
+#[derive(Debug, Clone, Copy)]
+pub struct BBarHex;
+
+impl Element for BBarHex {
+    const POINTS: usize = 8;
+
+    /// B-bar elements W at a time: gather nodes and the eight points' state into lanes,
+    /// update ([`update`]), scatter state and forces back. Lanes past the batch end repeat
+    /// its last element and are discarded.
+    #[inline(always)]
+    fn lane_loop<H: Hardening, const W: usize>(
+        isa: LaneIsa<W>,
+        law: &H,
+        b: &mut Batch<'_>,
+        inp: StepInput<'_>,
+        base: usize,
+    ) -> BatchResult {
+        let StepInput { x, v, dt, mat, .. } = inp;
+        let n = b.conn.len();
+        let mut best = (f64::INFINITY, base);
+        let mut k0 = 0;
+        while k0 < n {
+            let idx: [usize; W] = build(|l| (k0 + l).min(n - 1));
+            let live = (n - k0).min(W);
+            let (mut xe, mut ve) = (MaybeUninit::uninit(), MaybeUninit::uninit());
+            let (xe, ve) = gather_nodes(isa, &idx, b.conn, x, v, &mut xe, &mut ve);
+            // The state as rows of the point array transposed into lanes (Lanes::load_rows):
+            // every index is a local element < n of this batch's slices (points: eight per
+            // element, eight f64 each, repr(C): stress, eps_p, volume). The lane state is built
+            // from them directly, with no zero fill first (a 3.7 KB `memset` call per group).
+            debug_assert!(b.pts.len() == 8 * n && b.wp.len() == n && b.ie.len() == n);
+            let pp = b.pts.as_mut_ptr().cast::<f64>();
+            let mut st = MaybeUninit::<State<W>>::uninit();
+            let sp = st.as_mut_ptr();
+            // SAFETY: as above (rows of 8 f64 inside the slice); every field of `st` is written
+            // once, through raw pointers to its own storage, before it is read.
+            let st = unsafe {
+                for g in 0..8 {
+                    let rows: [usize; W] = build(|l| 64 * idx[l] + 8 * g);
+                    let f: [Lanes<W>; 7] = Lanes::load_rows(isa, pp, &rows);
+                    let stress = std::ptr::addr_of_mut!((*sp).stress).cast::<[Lanes<W>; 6]>();
+                    stress.add(g).write([f[0], f[1], f[2], f[3], f[4], f[5]]);
+                    let eps_p = std::ptr::addr_of_mut!((*sp).eps_p).cast::<Lanes<W>>();
+                    eps_p.add(g).write(f[6]);
+                }
+                std::ptr::addr_of_mut!((*sp).plastic_work).write(contiguous(isa, b.wp, &idx));
+                std::ptr::addr_of_mut!((*sp).internal_energy).write(contiguous(isa, b.ie, &idx));
+                st.assume_init_mut()
+            };
+            prefetch_ahead(b.pts.as_ptr(), 8 * (k0 + 2 * W), 8 * W);
+            let out = update(xe, ve, dt, mat, law, st);
+            if live == W {
+                for g in 0..8 {
+                    let s = &st.stress[g];
+                    let cols = [
+                        s[0],
+                        s[1],
+                        s[2],
+                        s[3],
+                        s[4],
+                        s[5],
+                        st.eps_p[g],
+                        out.point_volume[g],
+                    ];
+                    let rows: [usize; W] = build(|l| 64 * (k0 + l) + 8 * g);
+                    // SAFETY: full group: W distinct elements k0.. < n, rows of 8 f64 in the slice.
+                    unsafe { Lanes::store_rows(&cols, pp, &rows) };
+                }
+                b.wp[k0..k0 + W].copy_from_slice(&st.plastic_work.0);
+                b.ie[k0..k0 + W].copy_from_slice(&st.internal_energy.0);
+            } else {
+                for l in 0..live {
+                    let k = k0 + l;
+                    for g in 0..8 {
+                        let ip = &mut b.pts[8 * k + g];
+                        for c in 0..6 {
+                            ip.stress[c] = st.stress[g][c].0[l];
+                        }
+                        ip.eps_p = st.eps_p[g].0[l];
+                        ip.volume = out.point_volume[g].0[l];
+                    }
+                    b.wp[k] = st.plastic_work.0[l];
+                    b.ie[k] = st.internal_energy.0[l];
+                }
+            }
+            let r = LaneResult {
+                force: &out.force,
+                volume: out.volume,
+                min_jacobian: out.min_jacobian,
+                dt_crit: out.dt_crit,
+            };
+            finish_lanes(&r, b, k0, live, base, &mut best)?;
+            k0 += W;
+        }
+        Ok(best)
+    }
+
+    #[inline(always)]
+    fn time_arithmetic<H: Hardening, const W: usize>(
+        isa: LaneIsa<W>,
+        law: &H,
+        b: &ElementBlock,
+        xe: &[Vec3<W>; 8],
+        ve: &[Vec3<W>; 8],
+        idx: &[usize; W],
+        dt: f64,
+        repeats: u32,
+    ) -> std::time::Duration {
+        let lane = |f: &dyn Fn(usize) -> f64| isa.lanes(std::array::from_fn(f));
+        let mat = &b.material;
+        let pt = |l: usize, g: usize| &b.points[8 * idx[l] + g];
+        let st0 = State::<W> {
+            stress: std::array::from_fn(|g| std::array::from_fn(|c| lane(&|l| pt(l, g).stress[c]))),
+            eps_p: std::array::from_fn(|g| lane(&|l| pt(l, g).eps_p)),
+            plastic_work: lane(&|l| b.plastic_work[idx[l]]),
+            internal_energy: lane(&|l| b.internal_energy[idx[l]]),
+        };
+        time_updates!(repeats, xe, ve, st0, |st, xr, vr| update(
+            xr, vr, dt, mat, law, &mut st
+        ))
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::fe::{
+        elements::hex_one_point_lanes::tests::{assert_forces_match, four_elements, lanes},
         elements::{ElementStateMut, IntegrationPoint},
         hex_bbar,
-        hex_one_point_lanes::tests::{assert_forces_match, four_elements, lanes},
     };
     use crate::material::Material;
 
@@ -236,16 +374,20 @@ mod tests {
     #[test]
     fn lanes_match_the_per_element_kernel() {
         let mat = J2Material::new(&Material::preset("copper-fe").unwrap(), false);
+        let crate::fe::materials::Law::Bilinear(law) = mat.law else {
+            panic!("copper-fe hardens linearly")
+        };
         let h = 1e-3;
         // Lane 1 moves rigidly (spin, no strain); the others stretch hard and yield.
         let (xs, vs) = four_elements(0x0bad_cafe_2468_1357, h, 1, 50.0, [4.0, 2.0, 3.0], 0.3);
         let dt = 2e-8;
         let mut x = xs;
+        let z = crate::fe::simd::LaneIsa::<4>::detect().unwrap().splat(0.0);
         let mut st = State::<4> {
-            stress: [[Lanes([0.0; 4]); 6]; 8],
-            eps_p: [Lanes([0.0; 4]); 8],
-            plastic_work: Lanes([0.0; 4]),
-            internal_energy: Lanes([0.0; 4]),
+            stress: [[z; 6]; 8],
+            eps_p: [z; 8],
+            plastic_work: z,
+            internal_energy: z,
         };
         let mut refs = [([IntegrationPoint::default(); 8], 0.0, 0.0); 4];
         let mut yielded = [false; 4];
@@ -257,7 +399,7 @@ mod tests {
                     }
                 }
             }
-            let out = update(&lanes(&x), &lanes(&vs), dt, &mat, &mut st);
+            let out = update(&lanes(&x), &lanes(&vs), dt, &mat, &law, &mut st);
             for l in 0..4 {
                 let r = &mut refs[l];
                 let mut hg = [[0.0; 3]; 4];

@@ -4,11 +4,10 @@
 //! of elements in parallel (rayon) and writes one force block per element, so the result does
 //! not depend on the number of threads.
 
-use super::{
-    hex_bbar_lanes as bp, hex_one_point_lanes as op,
-    lanes::{build, Lanes, Vec3},
-    model::Formulation,
-    plasticity::J2Material,
+use crate::fe::{
+    elements::{Element, ElementVisitor, Formulation},
+    materials::{Hardening, J2Material, LawVisitor},
+    simd::{build, Kernel, KernelPath, LaneIsa, LaneKernel, Lanes, Vec3},
     tensor::Sym,
 };
 use rayon::prelude::*;
@@ -24,9 +23,7 @@ const MIN_BATCHES_PER_TASK: usize = 8;
 /// State at one integration point (`repr(C)`: eight f64 in this order, so the lane kernels
 /// read W points as W rows of eight f64 and transpose them into lanes, `Lanes::load_rows`).
 /// Aligned to 64 bytes, so that a point is exactly one cache line and one aligned 512-bit
-/// row: unaligned, every row straddled two lines (B-bar, which moves eight rows per
-/// element each way, ran about 12 ns per element-cycle slower on Zen 4:
-/// docs/performance.md, thirteenth session; `twoball bench machine` row
+/// row (unaligned, every row straddles two lines; `twoball bench machine` row
 /// `row_update_512_offset_16b` against `_0b` shows the cost per row).
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 #[repr(C, align(64))]
@@ -92,6 +89,8 @@ pub struct ElementBlock {
     pub volume: Vec<f64>,
     /// Critical time step per element, s.
     pub dt_crit: Vec<f64>,
+    /// The kernel path of the element loop (the widest the CPU has, within a cap).
+    pub kernel: Kernel,
 }
 
 impl ElementBlock {
@@ -120,15 +119,19 @@ impl ElementBlock {
             hourglass_energy: vec![0.0; n],
             volume: vec![0.0; n],
             dt_crit: vec![f64::INFINITY; n],
+            kernel: Kernel::widest(KernelPath::Avx512),
         }
+    }
+
+    /// Runs the element loop on the widest kernel path this CPU supports, at most `cap`
+    /// (results are the same bits on every path; only the speed differs).
+    pub fn set_kernel_cap(&mut self, cap: KernelPath) {
+        self.kernel = Kernel::widest(cap);
     }
 
     /// Integration points per element of a formulation.
     pub fn points_for(f: Formulation) -> usize {
-        match f {
-            Formulation::OnePoint => 1,
-            Formulation::BBar => 8,
-        }
+        f.points()
     }
 
     /// Integration points per element of this block.
@@ -173,6 +176,7 @@ impl ElementBlock {
         let mat = self.material;
         let hg = self.hourglass_coeff;
         let form = self.formulation;
+        let kernel = self.kernel;
         let first = self.first + range.start;
         let r = range.clone();
         let rp = range.start * npe..range.end * npe;
@@ -215,6 +219,7 @@ impl ElementBlock {
                     mat: &mat,
                     hg,
                     form,
+                    kernel,
                 };
                 element_batch(&mut batch, inp, base)
             })
@@ -270,6 +275,7 @@ impl ElementBlock {
             mat: &self.material,
             hg: self.hourglass_coeff,
             form: self.formulation,
+            kernel: self.kernel,
         };
         let mut best = (f64::INFINITY, usize::MAX);
         let mut k = range.start;
@@ -329,20 +335,20 @@ impl ElementBlock {
 }
 
 /// One batch of elements of the element loop: its slices of every state array.
-struct Batch<'a> {
-    conn: &'a [[u32; 8]],
-    pts: &'a mut [IntegrationPoint],
-    wp: &'a mut [f64],
-    ie: &'a mut [f64],
-    hgq: &'a mut [[[f64; 3]; 4]],
-    ehg: &'a mut [f64],
-    vol: &'a mut [f64],
-    dtc: &'a mut [f64],
-    f: Forces<'a>,
+pub(crate) struct Batch<'a> {
+    pub(crate) conn: &'a [[u32; 8]],
+    pub(crate) pts: &'a mut [IntegrationPoint],
+    pub(crate) wp: &'a mut [f64],
+    pub(crate) ie: &'a mut [f64],
+    pub(crate) hgq: &'a mut [[[f64; 3]; 4]],
+    pub(crate) ehg: &'a mut [f64],
+    pub(crate) vol: &'a mut [f64],
+    pub(crate) dtc: &'a mut [f64],
+    pub(crate) f: Forces<'a>,
 }
 
 /// Where a batch puts its elements' internal forces.
-enum Forces<'a> {
+pub(crate) enum Forces<'a> {
     /// One 8-node force block per element of the batch (parallel loops: the blocks are
     /// summed per node afterwards, in element order).
     Blocks(&'a mut [[[f64; 3]; 8]]),
@@ -353,15 +359,15 @@ enum Forces<'a> {
 }
 
 /// Result of a batch: smallest critical step and its element, or the first failing element.
-type BatchResult = Result<(f64, usize), (usize, ElementFailure)>;
+pub(crate) type BatchResult = Result<(f64, usize), (usize, ElementFailure)>;
 
 /// What a lane group's update hands back for every lane: nodal forces (N), volume (m³),
 /// smallest Jacobian (m³, ≤ 0 or NaN: inverted) and Courant limit (s).
-struct LaneResult<'r, const W: usize> {
-    force: &'r [Vec3<W>; 8],
-    volume: Lanes<W>,
-    min_jacobian: Lanes<W>,
-    dt_crit: Lanes<W>,
+pub(crate) struct LaneResult<'r, const W: usize> {
+    pub(crate) force: &'r [Vec3<W>; 8],
+    pub(crate) volume: Lanes<W>,
+    pub(crate) min_jacobian: Lanes<W>,
+    pub(crate) dt_crit: Lanes<W>,
 }
 
 /// Checks the `live` lanes of a group starting at local element `k0`, records their volume,
@@ -369,7 +375,7 @@ struct LaneResult<'r, const W: usize> {
 /// that is inverted or has a non-finite force, as the per-element check would (a failing
 /// group's forces are then not all written: the solver stops anyway).
 #[inline(always)]
-fn finish_lanes<const W: usize>(
+pub(crate) fn finish_lanes<const W: usize>(
     r: &LaneResult<'_, W>,
     b: &mut Batch<'_>,
     k0: usize,
@@ -378,7 +384,7 @@ fn finish_lanes<const W: usize>(
     best: &mut (f64, usize),
 ) -> std::result::Result<(), (usize, ElementFailure)> {
     // Σ 0·f over the 24 force components: ±0 when all are finite, NaN when one is ±∞ or NaN.
-    let mut nonfinite = Lanes::splat(0.0);
+    let mut nonfinite = r.volume.splat_like(0.0);
     for fi in r.force {
         for c in fi {
             nonfinite += *c * 0.0;
@@ -446,100 +452,10 @@ fn finish_lanes<const W: usize>(
     Ok(())
 }
 
-/// B-bar elements W at a time: gather nodes and the eight points' state into lanes, update
-/// ([`bp::update`]), scatter state and forces back. Lanes past the batch end repeat its last
-/// element and are discarded.
-#[inline(always)]
-fn bbar_lanes<const W: usize>(
-    b: &mut Batch<'_>,
-    x: &[[f64; 3]],
-    v: &[[f64; 3]],
-    dt: f64,
-    mat: &J2Material,
-    base: usize,
-) -> BatchResult {
-    let n = b.conn.len();
-    let mut best = (f64::INFINITY, base);
-    let mut k0 = 0;
-    while k0 < n {
-        let idx: [usize; W] = build(|l| (k0 + l).min(n - 1));
-        let live = (n - k0).min(W);
-        let (mut xe, mut ve) = (MaybeUninit::uninit(), MaybeUninit::uninit());
-        let (xe, ve) = gather_nodes(&idx, b.conn, x, v, &mut xe, &mut ve);
-        // The state as rows of the point array transposed into lanes (Lanes::load_rows):
-        // every index is a local element < n of this batch's slices (points: eight per
-        // element, eight f64 each, repr(C): stress, eps_p, volume). The lane state is built
-        // from them directly, with no zero fill first (a 3.7 KB `memset` call per group).
-        debug_assert!(b.pts.len() == 8 * n && b.wp.len() == n && b.ie.len() == n);
-        let pp = b.pts.as_mut_ptr().cast::<f64>();
-        let mut st = MaybeUninit::<bp::State<W>>::uninit();
-        let sp = st.as_mut_ptr();
-        // SAFETY: as above (rows of 8 f64 inside the slice); every field of `st` is written
-        // once, through raw pointers to its own storage, before it is read.
-        let st = unsafe {
-            for g in 0..8 {
-                let rows: [usize; W] = build(|l| 64 * idx[l] + 8 * g);
-                let f: [Lanes<W>; 7] = Lanes::load_rows(pp, &rows);
-                let stress = std::ptr::addr_of_mut!((*sp).stress).cast::<[Lanes<W>; 6]>();
-                stress.add(g).write([f[0], f[1], f[2], f[3], f[4], f[5]]);
-                let eps_p = std::ptr::addr_of_mut!((*sp).eps_p).cast::<Lanes<W>>();
-                eps_p.add(g).write(f[6]);
-            }
-            std::ptr::addr_of_mut!((*sp).plastic_work).write(contiguous(b.wp, &idx));
-            std::ptr::addr_of_mut!((*sp).internal_energy).write(contiguous(b.ie, &idx));
-            st.assume_init_mut()
-        };
-        prefetch_ahead(b.pts.as_ptr(), 8 * (k0 + 2 * W), 8 * W);
-        let out = bp::update(xe, ve, dt, mat, st);
-        if live == W {
-            for g in 0..8 {
-                let s = &st.stress[g];
-                let cols = [
-                    s[0],
-                    s[1],
-                    s[2],
-                    s[3],
-                    s[4],
-                    s[5],
-                    st.eps_p[g],
-                    out.point_volume[g],
-                ];
-                let rows: [usize; W] = build(|l| 64 * (k0 + l) + 8 * g);
-                // SAFETY: full group: W distinct elements k0.. < n, rows of 8 f64 in the slice.
-                unsafe { Lanes::store_rows(&cols, pp, &rows) };
-            }
-            b.wp[k0..k0 + W].copy_from_slice(&st.plastic_work.0);
-            b.ie[k0..k0 + W].copy_from_slice(&st.internal_energy.0);
-        } else {
-            for l in 0..live {
-                let k = k0 + l;
-                for g in 0..8 {
-                    let ip = &mut b.pts[8 * k + g];
-                    for c in 0..6 {
-                        ip.stress[c] = st.stress[g][c].0[l];
-                    }
-                    ip.eps_p = st.eps_p[g].0[l];
-                    ip.volume = out.point_volume[g].0[l];
-                }
-                b.wp[k] = st.plastic_work.0[l];
-                b.ie[k] = st.internal_energy.0[l];
-            }
-        }
-        let r = LaneResult {
-            force: &out.force,
-            volume: out.volume,
-            min_jacobian: out.min_jacobian,
-            dt_crit: out.dt_crit,
-        };
-        finish_lanes(&r, b, k0, live, base, &mut best)?;
-        k0 += W;
-    }
-    Ok(best)
-}
-
 impl ElementBlock {
     /// Time of the lane kernel's arithmetic alone, ns per element: the block's first lane
-    /// group (eight elements on the AVX-512 path, four on the others: [`kernel_path`]) with its nodes `x` (m), `v` (m/s)
+    /// group (eight elements on the AVX-512 path, four on the others: [`ElementBlock::kernel`])
+    /// with its nodes `x` (m), `v` (m/s)
     /// and state loaded once, then updated `repeats` times with step `dt` (s) while every
     /// input stays in registers and L1 (the state is restored every 64 updates so that it
     /// stays near the block's own). No node gathers, state loads or stores, checks or force
@@ -557,92 +473,137 @@ impl ElementBlock {
         assert!(repeats > 0, "no repeats to time");
         let lanes = self.conn.len().min(8);
         self.assert_nodes_below(0..lanes, x.len().min(v.len()));
-        // SAFETY: kernel_path returns only paths this CPU supports.
-        unsafe { arithmetic_on(kernel_path(), self, x, v, dt, repeats) }
+        self.kernel.run(ArithmeticAlone {
+            b: self,
+            x,
+            v,
+            dt,
+            repeats,
+        })
+    }
+}
+
+/// [`ElementBlock::time_arithmetic_alone`] as a lane-generic kernel.
+struct ArithmeticAlone<'a> {
+    b: &'a ElementBlock,
+    x: &'a [[f64; 3]],
+    v: &'a [[f64; 3]],
+    dt: f64,
+    repeats: u32,
+}
+
+impl LaneKernel for ArithmeticAlone<'_> {
+    type Output = f64;
+    #[inline(always)]
+    fn run<const W: usize>(self, isa: LaneIsa<W>) -> f64 {
+        let b = self.b;
+        b.material.law.with(ArithmeticLaw { isa, a: self })
+    }
+}
+
+/// [`ArithmeticAlone`] on W lanes, for the block's hardening law.
+struct ArithmeticLaw<'a, const W: usize> {
+    isa: LaneIsa<W>,
+    a: ArithmeticAlone<'a>,
+}
+
+impl<const W: usize> LawVisitor for ArithmeticLaw<'_, W> {
+    type Output = f64;
+    #[inline(always)]
+    fn visit<H: Hardening>(self, law: &H) -> f64 {
+        let a = self.a;
+        arithmetic_lanes(self.isa, law, a.b, a.x, a.v, a.dt, a.repeats)
     }
 }
 
 /// [`ElementBlock::time_arithmetic_alone`] on W lanes (inlined into its caller's target
 /// features, as the element loop is).
 #[inline(always)]
-fn arithmetic_lanes<const W: usize>(
+fn arithmetic_lanes<H: Hardening, const W: usize>(
+    isa: LaneIsa<W>,
+    law: &H,
     b: &ElementBlock,
     x: &[[f64; 3]],
     v: &[[f64; 3]],
     dt: f64,
     repeats: u32,
 ) -> f64 {
-    use std::hint::black_box;
     let n = b.conn.len();
     // Set-up by local closures and plain indexing, none shared with the element loop: a
     // shared helper (or one of its closures) would get a second caller, and the compiler
     // could then leave it out of line in the element loop too.
     let idx: [usize; W] = std::array::from_fn(|l| l.min(n - 1));
-    let lane = |f: &dyn Fn(usize) -> f64| Lanes::<W>(std::array::from_fn(f));
+    let lane = |f: &dyn Fn(usize) -> f64| isa.lanes(std::array::from_fn(f));
     let xe: [Vec3<W>; 8] = std::array::from_fn(|i| {
         std::array::from_fn(|d| lane(&|l| x[b.conn[idx[l]][i] as usize][d]))
     });
     let ve: [Vec3<W>; 8] = std::array::from_fn(|i| {
         std::array::from_fn(|d| lane(&|l| v[b.conn[idx[l]][i] as usize][d]))
     });
-    let mat = &b.material;
-    // The timing loop, as a macro so that it expands in place: a helper taking the kernel
-    // call as a closure could see that closure compiled out of line, without the target
-    // features, and time the wrong code. Every update's output goes through black_box (to
-    // the stack, as the element loop's forces do), so none of the arithmetic can be
-    // optimised out; the state restarts every 64 updates, so it does not drift far from the
-    // state of a real step.
-    macro_rules! time_updates {
-        ($st0:expr, |$st:ident, $xr:ident, $vr:ident| $update:expr) => {{
-            let st0 = $st0;
-            let mut $st = st0;
-            let start = std::time::Instant::now();
-            for r in 0..repeats {
-                if r % 64 == 0 {
-                    $st = st0;
-                }
-                let ($xr, $vr) = (black_box(&xe), black_box(&ve));
-                black_box(&$update);
-            }
-            start.elapsed()
-        }};
-    }
-    let elapsed = match b.formulation {
-        Formulation::OnePoint => {
-            let st0 = op::State::<W> {
-                stress: std::array::from_fn(|c| lane(&|l| b.points[idx[l]].stress[c])),
-                eps_p: lane(&|l| b.points[idx[l]].eps_p),
-                hourglass: std::array::from_fn(|a| {
-                    std::array::from_fn(|c| lane(&|l| b.hourglass[idx[l]][a][c]))
-                }),
-                plastic_work: lane(&|l| b.plastic_work[idx[l]]),
-                internal_energy: lane(&|l| b.internal_energy[idx[l]]),
-                hourglass_energy: lane(&|l| b.hourglass_energy[idx[l]]),
-            };
-            time_updates!(st0, |st, xr, vr| op::update(
-                xr,
-                vr,
-                dt,
-                mat,
-                b.hourglass_coeff,
-                &mut st
-            ))
-        }
-        Formulation::BBar => {
-            let pt = |l: usize, g: usize| &b.points[8 * idx[l] + g];
-            let st0 = bp::State::<W> {
-                stress: std::array::from_fn(|g| {
-                    std::array::from_fn(|c| lane(&|l| pt(l, g).stress[c]))
-                }),
-                eps_p: std::array::from_fn(|g| lane(&|l| pt(l, g).eps_p)),
-                plastic_work: lane(&|l| b.plastic_work[idx[l]]),
-                internal_energy: lane(&|l| b.internal_energy[idx[l]]),
-            };
-            time_updates!(st0, |st, xr, vr| bp::update(xr, vr, dt, mat, &mut st))
-        }
-    };
+    let elapsed = b.formulation.with(TimeArithmetic {
+        isa,
+        law,
+        b,
+        xe: &xe,
+        ve: &ve,
+        idx: &idx,
+        dt,
+        repeats,
+    });
     elapsed.as_secs_f64() * 1e9 / (f64::from(repeats) * W as f64)
 }
+
+/// [`Element::time_arithmetic`] of the block's formulation.
+struct TimeArithmetic<'a, H, const W: usize> {
+    isa: LaneIsa<W>,
+    law: &'a H,
+    b: &'a ElementBlock,
+    xe: &'a [Vec3<W>; 8],
+    ve: &'a [Vec3<W>; 8],
+    idx: &'a [usize; W],
+    dt: f64,
+    repeats: u32,
+}
+
+impl<H: Hardening, const W: usize> ElementVisitor for TimeArithmetic<'_, H, W> {
+    type Output = std::time::Duration;
+    #[inline(always)]
+    fn visit<E: Element>(self) -> std::time::Duration {
+        E::time_arithmetic(
+            self.isa,
+            self.law,
+            self.b,
+            self.xe,
+            self.ve,
+            self.idx,
+            self.dt,
+            self.repeats,
+        )
+    }
+}
+
+/// Times `repeats` updates of the lane state `$st0` (restarted every 64 updates, so that it
+/// does not drift far from a real step's) by `$update`, with `$st`, `$xr`, `$vr` bound to
+/// the state and the nodal lanes `$xe`, `$ve` (through `black_box`, as is every update's
+/// output, so none of the arithmetic can be optimised out). A macro, so that it expands in
+/// place: a helper taking the update as a closure could see that closure compiled out of
+/// line, without the target features, and time the wrong code.
+macro_rules! time_updates {
+    ($repeats:expr, $xe:expr, $ve:expr, $st0:expr, |$st:ident, $xr:ident, $vr:ident| $update:expr) => {{
+        let st0 = $st0;
+        let mut $st = st0;
+        let start = std::time::Instant::now();
+        for r in 0..$repeats {
+            if r % 64 == 0 {
+                $st = st0;
+            }
+            let ($xr, $vr) = (std::hint::black_box($xe), std::hint::black_box($ve));
+            std::hint::black_box(&$update);
+        }
+        start.elapsed()
+    }};
+}
+pub(crate) use time_updates;
 
 /// The largest of `a` (0 if empty). The baseline x86-64 target has no unsigned 32-bit vector
 /// maximum, so the loop is compiled for AVX2 where the CPU has it (eight lanes per
@@ -669,14 +630,14 @@ fn max_index(a: &[u32]) -> u32 {
 /// Lane l = `a[idx[l]]` for one f64 per element: a plain vector load when `idx` is a run
 /// of consecutive elements (every full group), else W loads.
 #[inline(always)]
-fn contiguous<const W: usize>(a: &[f64], idx: &[usize; W]) -> Lanes<W> {
+pub(crate) fn contiguous<const W: usize>(isa: LaneIsa<W>, a: &[f64], idx: &[usize; W]) -> Lanes<W> {
     let k0 = idx[0];
     if idx[W - 1] == k0 + W - 1 {
         let mut r = [0.0; W];
         r.copy_from_slice(&a[k0..k0 + W]);
-        return Lanes(r);
+        return isa.lanes(r);
     }
-    Lanes(build(|l| a[idx[l]]))
+    isa.lanes(build(|l| a[idx[l]]))
 }
 
 /// Nodal coordinates and velocities of the elements `idx` (local indices into `conn`) into
@@ -684,7 +645,8 @@ fn contiguous<const W: usize>(a: &[f64], idx: &[usize; W]) -> Lanes<W> {
 /// registers). Writes every slot of `xe` and `ve` and returns them initialised: the
 /// caller's arrays need no zero fill first (it was a 1.5 KB `memset` call per lane group).
 #[inline(always)]
-fn gather_nodes<'e, const W: usize>(
+pub(crate) fn gather_nodes<'e, const W: usize>(
+    isa: LaneIsa<W>,
     idx: &[usize; W],
     conn: &[[u32; 8]],
     x: &[[f64; 3]],
@@ -698,308 +660,87 @@ fn gather_nodes<'e, const W: usize>(
     );
     for i in 0..8 {
         let nodes: [u32; W] = build(|l| conn[idx[l]][i]);
-        // SAFETY: update_range checked every node index of the range < len of x and v; 8
-        // lanes only run in the AVX-512 kernel. Slot i < 8 of the [Vec3; 8] arrays, each
-        // written once.
+        // SAFETY: update_range checked every node index of the range < len of x and v.
+        // Slot i < 8 of the [Vec3; 8] arrays, each written once.
         unsafe {
-            xq.add(i).write(Lanes::load_vec3(x.as_ptr(), &nodes));
-            vq.add(i).write(Lanes::load_vec3(v.as_ptr(), &nodes));
+            xq.add(i).write(Lanes::load_vec3(isa, x.as_ptr(), &nodes));
+            vq.add(i).write(Lanes::load_vec3(isa, v.as_ptr(), &nodes));
         }
     }
     // SAFETY: all eight slots of both arrays were written above.
     unsafe { (xe.assume_init_ref(), ve.assume_init_ref()) }
 }
 
-/// Asks the CPU to bring `count` items of `T` from `base[first..]` into the L2 cache (one
-/// prefetch hint per 64-byte line). The lane loops call it for the element state two lane
-/// groups ahead: the state streams through once per step (28 MB for the benchmark's B-bar
-/// ball, more than the L3), and on AMD's Zen 4 the hardware prefetchers do not keep up with
-/// it among the loop's other streams (measured: B-bar −28 ns, one-point −8 ns per
-/// element-cycle; hints into L1 gained less, the kernels' spills need it). The items may lie
-/// past the slice `base` points into (the next batch's, or past the block's end), since a
-/// prefetch hint reads nothing and cannot fault.
-#[inline(always)]
-fn prefetch_ahead<T>(base: *const T, first: usize, count: usize) {
-    #[cfg(target_arch = "x86_64")]
-    {
-        use std::arch::x86_64::{_mm_prefetch, _MM_HINT_T1};
-        let start = base.wrapping_add(first).cast::<i8>();
-        let bytes = count * std::mem::size_of::<T>();
-        let mut off = 0;
-        while off < bytes {
-            // SAFETY: a prefetch hint has no architectural effect and never faults.
-            unsafe { _mm_prefetch::<_MM_HINT_T1>(start.wrapping_add(off)) };
-            off += 64;
-        }
-    }
-    #[cfg(not(target_arch = "x86_64"))]
-    let _ = (base, first, count);
-}
-
 /// What every element of a batch needs besides its own state.
 #[derive(Clone, Copy)]
-struct StepInput<'a> {
+pub(crate) struct StepInput<'a> {
     /// Nodal coordinates at t^{n+1}, m.
-    x: &'a [[f64; 3]],
+    pub(crate) x: &'a [[f64; 3]],
     /// Nodal velocities at t^{n+1/2}, m/s.
-    v: &'a [[f64; 3]],
+    pub(crate) v: &'a [[f64; 3]],
     /// Step, s.
-    dt: f64,
-    mat: &'a J2Material,
+    pub(crate) dt: f64,
+    pub(crate) mat: &'a J2Material,
     /// Hourglass coefficient (one-point hex; 0 = off).
-    hg: f64,
-    form: Formulation,
+    pub(crate) hg: f64,
+    pub(crate) form: Formulation,
+    /// The kernel path (with its instruction-set token).
+    pub(crate) kernel: Kernel,
 }
 
-/// Which build of the lane kernels an element loop runs. Results are the same bits on every
-/// path (see [`super::lanes`]); only the speed differs.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum KernelPath {
-    /// Eight lanes, AVX-512 (x86-64 with AVX-512F, AVX2 and FMA).
-    Avx512,
-    /// Four lanes, AVX2 (x86-64 with AVX2 and FMA).
-    Avx2,
-    /// Four lanes as plain arrays, compiled for the baseline target (any CPU).
-    Portable,
-}
-
-impl KernelPath {
-    /// Elements per lane group.
-    pub fn lanes(self) -> usize {
-        match self {
-            KernelPath::Avx512 => 8,
-            KernelPath::Avx2 | KernelPath::Portable => 4,
-        }
-    }
-}
-
-/// The widest kernel path allowed (the cap on [`kernel_path`]), process-wide (0: no cap,
-/// 1: at most AVX2, 2: portable); set by [`limit_kernel_path`].
-static PATH_LIMIT: std::sync::atomic::AtomicU8 = std::sync::atomic::AtomicU8::new(0);
-
-/// Caps the kernel every element loop of this process uses at `widest` (the CPU still has
-/// to support it): to measure and test, on one machine, the paths other CPUs take
-/// (`twoball bench kernel --kernel`). [`KernelPath::Avx512`] removes the cap. Process-wide:
-/// it slows every solver of the process that runs after it (results stay the same bits).
-pub fn limit_kernel_path(widest: KernelPath) {
-    let code = match widest {
-        KernelPath::Avx512 => 0,
-        KernelPath::Avx2 => 1,
-        KernelPath::Portable => 2,
-    };
-    PATH_LIMIT.store(code, std::sync::atomic::Ordering::Relaxed);
-}
-
-/// The kernel the element loop runs: the widest this CPU supports, within the cap of
-/// [`limit_kernel_path`].
-pub fn kernel_path() -> KernelPath {
-    let limit = PATH_LIMIT.load(std::sync::atomic::Ordering::Relaxed);
-    #[cfg(target_arch = "x86_64")]
-    {
-        let avx2 = std::is_x86_feature_detected!("avx2") && std::is_x86_feature_detected!("fma");
-        choose_path(
-            limit,
-            avx2,
-            avx2 && std::is_x86_feature_detected!("avx512f"),
-        )
-    }
-    #[cfg(not(target_arch = "x86_64"))]
-    choose_path(limit, false, false)
-}
-
-/// The kernel path for cap `limit` (as stored in `PATH_LIMIT`) on a CPU with (`avx2`:
-/// AVX2 and FMA) and (`avx512`: also AVX-512F).
-fn choose_path(limit: u8, avx2: bool, avx512: bool) -> KernelPath {
-    if limit == 0 && avx512 {
-        KernelPath::Avx512
-    } else if limit <= 1 && avx2 {
-        KernelPath::Avx2
-    } else {
-        KernelPath::Portable
-    }
-}
-
-/// Defines `unsafe fn $name(path: KernelPath, args…) -> $ret`, which runs the lane-generic
-/// `$inner::<W>(args…)` on `path`: eight lanes compiled for AVX-512, four for AVX2, or four
-/// as plain arrays. One place for the target-feature entry points of every lane loop, so
-/// each is compiled (and `$inner` inlined) for exactly the features its path checked.
-///
-/// Safety of the generated function: the CPU must support `path` ([`kernel_path`] only
-/// returns paths it supports).
-macro_rules! on_kernel_path {
-    ($(#[$doc:meta])* fn $name:ident($($arg:ident: $ty:ty),*) -> $ret:ty => $inner:ident) => {
-        $(#[$doc])*
-        unsafe fn $name(path: KernelPath, $($arg: $ty),*) -> $ret {
-            #[cfg(target_arch = "x86_64")]
-            {
-                #[target_feature(enable = "avx512f,avx2,fma")]
-                unsafe fn avx512($($arg: $ty),*) -> $ret {
-                    $inner::<8>($($arg),*)
-                }
-                #[target_feature(enable = "avx2,fma")]
-                unsafe fn avx2($($arg: $ty),*) -> $ret {
-                    // A 32-byte-aligned local on the stack makes the compiler realign this
-                    // frame, so that its 256-bit stack slots are aligned wherever the caller's
-                    // stack pointer is (the AVX-512 entry realigns by itself).
-                    #[repr(align(32))]
-                    struct Aligned32(u8);
-                    let frame = Aligned32(std::hint::black_box(0));
-                    std::hint::black_box(&frame.0);
-                    $inner::<4>($($arg),*)
-                }
-                match path {
-                    // SAFETY: the caller guarantees the CPU supports `path`.
-                    KernelPath::Avx512 => return avx512($($arg),*),
-                    KernelPath::Avx2 => return avx2($($arg),*),
-                    KernelPath::Portable => {}
-                }
-            }
-            let _ = path;
-            $inner::<4>($($arg),*)
-        }
-    };
-}
-
-on_kernel_path! {
-    /// One batch of elements on kernel `path` ([`element_lanes`]).
-    fn element_batch_on(b: &mut Batch<'_>, inp: StepInput<'_>, base: usize) -> BatchResult
-        => element_lanes
-}
-
-on_kernel_path! {
-    /// [`ElementBlock::time_arithmetic_alone`] on kernel `path` ([`arithmetic_lanes`]).
-    fn arithmetic_on(b: &ElementBlock, x: &[[f64; 3]], v: &[[f64; 3]], dt: f64, repeats: u32)
-        -> f64 => arithmetic_lanes
-}
-
-/// One batch of elements on the kernel [`kernel_path`] chooses.
+/// One batch of elements on the block's kernel path.
 fn element_batch(b: &mut Batch<'_>, inp: StepInput<'_>, base: usize) -> BatchResult {
-    // SAFETY: kernel_path returns only paths this CPU supports.
-    unsafe { element_batch_on(kernel_path(), b, inp, base) }
+    inp.kernel.run(ElementLoop { b, inp, base })
 }
 
-/// The lane loop of the batch's formulation (both inline into the caller's target features).
-#[inline(always)]
-fn element_lanes<const W: usize>(
-    b: &mut Batch<'_>,
-    inp: StepInput<'_>,
+/// One batch of the element loop as a lane-generic kernel.
+struct ElementLoop<'a, 'b> {
+    b: &'a mut Batch<'b>,
+    inp: StepInput<'a>,
     base: usize,
-) -> BatchResult {
-    let StepInput {
-        x,
-        v,
-        dt,
-        mat,
-        hg,
-        form,
-    } = inp;
-    match form {
-        Formulation::OnePoint => one_point_lanes::<W>(b, x, v, dt, mat, hg, base),
-        Formulation::BBar => bbar_lanes::<W>(b, x, v, dt, mat, base),
+}
+
+impl LaneKernel for ElementLoop<'_, '_> {
+    type Output = BatchResult;
+    #[inline(always)]
+    fn run<const W: usize>(self, isa: LaneIsa<W>) -> BatchResult {
+        let mat = self.inp.mat;
+        mat.law.with(LawLoop { isa, lp: self })
     }
 }
 
-/// Gathers W elements (`idx`: local element per lane) into lanes, updates them, scatters
-/// state and forces back. Lanes past the batch end repeat its last element and are discarded.
-#[inline(always)]
-fn one_point_lanes<const W: usize>(
-    b: &mut Batch<'_>,
-    x: &[[f64; 3]],
-    v: &[[f64; 3]],
-    dt: f64,
-    mat: &J2Material,
-    hg: f64,
-    base: usize,
-) -> BatchResult {
-    let n = b.conn.len();
-    let mut best = (f64::INFINITY, base);
-    let mut k0 = 0;
-    while k0 < n {
-        let idx: [usize; W] = build(|l| (k0 + l).min(n - 1));
-        let live = (n - k0).min(W);
-        // Gather nodal coordinates and velocities and the element state into lanes (plain
-        // loops: no closure or generic helper is left out of the AVX2 kernel).
-        let (mut xe, mut ve) = (MaybeUninit::uninit(), MaybeUninit::uninit());
-        let (xe, ve) = gather_nodes(&idx, b.conn, x, v, &mut xe, &mut ve);
-        // The state as rows transposed into lanes (Lanes::load_rows): every index is a local
-        // element < n of this batch's slices, whose lengths are n (points: eight f64 each,
-        // repr(C): stress, eps_p, volume; hourglass: twelve f64 each). The lane state is
-        // built from them directly, with no zero fill first (a 1.4 KB `memset` call per
-        // group, 2 % of a subcycled default-scene run, whose level ranges are short).
-        debug_assert!(b.pts.len() == n && b.hgq.len() == n && b.wp.len() == n);
-        let (pp, hp) = (
-            b.pts.as_mut_ptr().cast::<f64>(),
-            b.hgq.as_mut_ptr().cast::<f64>(),
-        );
-        let mut st = MaybeUninit::<op::State<W>>::uninit();
-        let sp = st.as_mut_ptr();
-        // SAFETY: as above (rows of 8 and 12 f64 inside their slices); every field of `st`
-        // is written once, through raw pointers to its own storage, before it is read.
-        let st = unsafe {
-            let f: [Lanes<W>; 7] = Lanes::load_rows(pp, &build(|l| 8 * idx[l]));
-            std::ptr::addr_of_mut!((*sp).stress).write([f[0], f[1], f[2], f[3], f[4], f[5]]);
-            std::ptr::addr_of_mut!((*sp).eps_p).write(f[6]);
-            let h0: [Lanes<W>; 8] = Lanes::load_rows(hp, &build(|l| 12 * idx[l]));
-            let h1: [Lanes<W>; 4] = Lanes::load_rows(hp, &build(|l| 12 * idx[l] + 8));
-            let q = std::ptr::addr_of_mut!((*sp).hourglass).cast::<Lanes<W>>();
-            for (k, h) in h0.iter().chain(&h1).enumerate() {
-                q.add(k).write(*h);
-            }
-            std::ptr::addr_of_mut!((*sp).plastic_work).write(contiguous(b.wp, &idx));
-            std::ptr::addr_of_mut!((*sp).internal_energy).write(contiguous(b.ie, &idx));
-            std::ptr::addr_of_mut!((*sp).hourglass_energy).write(contiguous(b.ehg, &idx));
-            st.assume_init_mut()
-        };
-        prefetch_ahead(b.pts.as_ptr(), k0 + 2 * W, W);
-        prefetch_ahead(b.hgq.as_ptr(), k0 + 2 * W, W);
-        let out = op::update(xe, ve, dt, mat, hg, st);
-        if live == W {
-            let s = &st.stress;
-            let cols = [s[0], s[1], s[2], s[3], s[4], s[5], st.eps_p, out.volume];
-            let q = &st.hourglass;
-            let h0 = [
-                q[0][0], q[0][1], q[0][2], q[1][0], q[1][1], q[1][2], q[2][0], q[2][1],
-            ];
-            let h1 = [q[2][2], q[3][0], q[3][1], q[3][2]];
-            // SAFETY: full group: W distinct elements k0.. < n, rows inside the slices.
-            unsafe {
-                Lanes::store_rows(&cols, pp, &build(|l| 8 * (k0 + l)));
-                Lanes::store_rows(&h0, hp, &build(|l| 12 * (k0 + l)));
-                Lanes::store_rows(&h1, hp, &build(|l| 12 * (k0 + l) + 8));
-            }
-            b.wp[k0..k0 + W].copy_from_slice(&st.plastic_work.0);
-            b.ie[k0..k0 + W].copy_from_slice(&st.internal_energy.0);
-            b.ehg[k0..k0 + W].copy_from_slice(&st.hourglass_energy.0);
-        } else {
-            for l in 0..live {
-                let k = k0 + l;
-                let ip = &mut b.pts[k];
-                for c in 0..6 {
-                    ip.stress[c] = st.stress[c].0[l];
-                }
-                ip.eps_p = st.eps_p.0[l];
-                ip.volume = out.volume.0[l];
-                b.wp[k] = st.plastic_work.0[l];
-                b.ie[k] = st.internal_energy.0[l];
-                b.ehg[k] = st.hourglass_energy.0[l];
-                for a in 0..4 {
-                    for c in 0..3 {
-                        b.hgq[k][a][c] = st.hourglass[a][c].0[l];
-                    }
-                }
-            }
-        }
-        // One point: the element volume is its only Jacobian.
-        let r = LaneResult {
-            force: &out.force,
-            volume: out.volume,
-            min_jacobian: out.volume,
-            dt_crit: out.dt_crit,
-        };
-        finish_lanes(&r, b, k0, live, base, &mut best)?;
-        k0 += W;
+/// [`ElementLoop`] on W lanes, for the batch's hardening law.
+struct LawLoop<'a, 'b, const W: usize> {
+    isa: LaneIsa<W>,
+    lp: ElementLoop<'a, 'b>,
+}
+
+impl<const W: usize> LawVisitor for LawLoop<'_, '_, W> {
+    type Output = BatchResult;
+    #[inline(always)]
+    fn visit<H: Hardening>(self, law: &H) -> BatchResult {
+        let form = self.lp.inp.form;
+        form.with(FormLoop {
+            isa: self.isa,
+            law,
+            lp: self.lp,
+        })
     }
-    Ok(best)
+}
+
+/// [`LawLoop`] for the batch's formulation: its lane loop ([`Element::lane_loop`]).
+struct FormLoop<'a, 'b, 'h, H, const W: usize> {
+    isa: LaneIsa<W>,
+    law: &'h H,
+    lp: ElementLoop<'a, 'b>,
+}
+
+impl<H: Hardening, const W: usize> ElementVisitor for FormLoop<'_, '_, '_, H, W> {
+    type Output = BatchResult;
+    #[inline(always)]
+    fn visit<E: Element>(self) -> BatchResult {
+        E::lane_loop(self.isa, self.law, self.lp.b, self.lp.inp, self.lp.base)
+    }
 }
 
 #[cfg(test)]
@@ -1178,95 +919,57 @@ mod tests {
         }
     }
 
-    /// The cap of `limit_kernel_path` only narrows the path, and never past what the CPU has.
-    #[test]
-    fn kernel_path_choice_respects_cap_and_cpu() {
-        use KernelPath::*;
-        for (limit, avx2, avx512, want) in [
-            (0, true, true, Avx512),
-            (0, true, false, Avx2),
-            (0, false, false, Portable),
-            (1, true, true, Avx2),
-            (1, false, false, Portable),
-            (2, true, true, Portable),
-            (2, true, false, Portable),
-        ] {
-            assert_eq!(
-                choose_path(limit, avx2, avx512),
-                want,
-                "{limit} {avx2} {avx512}"
-            );
-        }
-    }
-
-    /// The AVX-512 kernel (eight lanes), the AVX2 kernel (four) and the portable one (four,
-    /// plain arrays) compute the same forces and state, bit for bit: AVX2 against portable
-    /// wherever the CPU has AVX2 and FMA, and AVX-512 against both where it also has
-    /// AVX-512F.
-    #[cfg(target_arch = "x86_64")]
+    /// Every kernel path this CPU supports (AVX-512 with eight lanes, AVX2 and portable
+    /// with four) computes the same forces (as force blocks and added into nodal rows),
+    /// critical steps and state, bit for bit, for both elements over yielding steps. On a
+    /// CPU with fewer paths the test compares the ones it has.
     #[test]
     fn every_kernel_path_gives_the_same_bits() {
-        let avx2 = std::is_x86_feature_detected!("avx2") && std::is_x86_feature_detected!("fma");
-        let avx512 = avx2 && std::is_x86_feature_detected!("avx512f");
-        if !avx2 {
-            eprintln!("skipped: this CPU lacks AVX2/FMA");
-            return;
-        }
+        let paths = Kernel::all_supported();
+        assert_eq!(paths.last().map(|k| k.path()), Some(KernelPath::Portable));
+        eprintln!(
+            "kernel paths on this CPU: {:?}",
+            paths.iter().map(|k| k.path()).collect::<Vec<_>>()
+        );
         for form in [Formulation::OnePoint, Formulation::BBar] {
-            let (mut a, mut x, v) = yielding_block(form, 6000.0);
-            let mut b = a.clone();
-            let mut c = a.clone();
-            let n = a.conn.len();
+            let (blk, x0, v) = yielding_block(form, 6000.0);
+            let n = blk.conn.len();
             let dt = 1e-8;
-            let run = |blk: &mut ElementBlock, x: &[[f64; 3]], path: KernelPath| {
-                let mut f = vec![[[0.0; 3]; 8]; n];
-                let mut batch = Batch {
-                    conn: &blk.conn,
-                    pts: &mut blk.points,
-                    wp: &mut blk.plastic_work,
-                    ie: &mut blk.internal_energy,
-                    hgq: &mut blk.hourglass,
-                    ehg: &mut blk.hourglass_energy,
-                    vol: &mut blk.volume,
-                    dtc: &mut blk.dt_crit,
-                    f: Forces::Blocks(&mut f),
-                };
-                let inp = StepInput {
-                    x,
-                    v: &v,
-                    dt,
-                    mat: &blk.material,
-                    hg: blk.hourglass_coeff,
-                    form: blk.formulation,
-                };
-                // SAFETY: the CPU features were checked above; node indices are in range.
-                let r = unsafe { element_batch_on(path, &mut batch, inp, 0) };
-                (r.unwrap(), f)
-            };
-            for _ in 0..20 {
-                advance(&mut x, &v, dt);
-                let (ra, fa) = run(&mut a, &x, KernelPath::Avx2);
-                // Without AVX-512 the second copy runs the portable path again.
-                let wide = if avx512 {
-                    KernelPath::Avx512
-                } else {
-                    KernelPath::Portable
-                };
-                let (rb, fb) = run(&mut b, &x, wide);
-                let (rc, fc) = run(&mut c, &x, KernelPath::Portable);
-                let fbits = |f: &[[[f64; 3]; 8]]| -> Vec<u64> {
-                    f.iter().flatten().flatten().map(|c| c.to_bits()).collect()
-                };
-                for (r, f, blk, path) in [(rb, &fb, &b, "AVX-512"), (rc, &fc, &c, "portable")] {
-                    assert_eq!((ra.0.to_bits(), ra.1), (r.0.to_bits(), r.1), "{path}");
-                    assert_eq!(fbits(&fa), fbits(f), "{form:?}, {path}: forces differ");
-                    assert_eq!(bits(&a), bits(blk), "{form:?}, {path}: state differs");
+            // (forces as blocks, forces into nodes, final state bits, critical steps) per path.
+            let run = |kernel: Kernel| {
+                let (mut a, mut b) = (blk.clone(), blk.clone());
+                a.kernel = kernel;
+                b.kernel = kernel;
+                let mut x = x0.clone();
+                let (mut fa, mut fb, mut steps) = (Vec::new(), Vec::new(), Vec::new());
+                for _ in 0..20 {
+                    advance(&mut x, &v, dt);
+                    let mut blocks = vec![[[0.0; 3]; 8]; n];
+                    let da = a.update(&x, &v, dt, &mut blocks).unwrap();
+                    let mut direct = vec![[0.0; 4]; x.len()];
+                    let db = b
+                        .update_range_into_nodes(0..n, &x, &v, dt, &mut direct)
+                        .unwrap();
+                    steps.push((da.0.to_bits(), da.1, db.0.to_bits(), db.1));
+                    fa.extend(blocks.iter().flatten().flatten().map(|c| c.to_bits()));
+                    fb.extend(direct.iter().flatten().map(|c| c.to_bits()));
                 }
+                assert!(
+                    a.points.iter().any(|p| p.eps_p > 0.0),
+                    "{form:?} must yield"
+                );
+                (fa, fb, bits(&a), bits(&b), steps)
+            };
+            let want = run(Kernel::Portable(crate::fe::simd::Portable));
+            for &k in &paths {
+                let got = run(k);
+                let path = k.path();
+                assert!(got.0 == want.0, "{form:?}, {path:?}: force blocks differ");
+                assert!(got.1 == want.1, "{form:?}, {path:?}: nodal forces differ");
+                assert!(got.2 == want.2, "{form:?}, {path:?}: state differs");
+                assert!(got.3 == want.3, "{form:?}, {path:?}: state (nodes) differs");
+                assert_eq!(got.4, want.4, "{form:?}, {path:?}: steps differ");
             }
-            assert!(
-                a.points.iter().any(|p| p.eps_p > 0.0),
-                "{form:?} must yield"
-            );
         }
     }
 }

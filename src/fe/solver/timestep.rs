@@ -10,7 +10,7 @@ use crate::mesh::topology::HEX_FACES;
 pub fn quad_area(p0: [f64; 3], p1: [f64; 3], p2: [f64; 3], p3: [f64; 3]) -> f64 {
     let d1 = [p2[0] - p0[0], p2[1] - p0[1], p2[2] - p0[2]];
     let d2 = [p3[0] - p1[0], p3[1] - p1[1], p3[2] - p1[2]];
-    let c = super::tensor::cross(d1, d2);
+    let c = crate::fe::tensor::cross(d1, d2);
     0.5 * (c[0] * c[0] + c[1] * c[1] + c[2] * c[2]).sqrt()
 }
 

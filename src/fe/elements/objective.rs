@@ -9,7 +9,7 @@
 //! and only differs at large shear strains (spurious oscillation of Jaumann in simple shear
 //! beyond ~100 % strain), which the ball impact never reaches.
 
-use super::tensor::{Mat3, Sym};
+use crate::fe::tensor::{Mat3, Sym};
 
 /// Rotation increment ΔR = (I − Ω/2)⁻¹ (I + Ω/2) for the spin increment Ω = W Δt, given by its
 /// axial vector `w` (Ω v = w × v, rad). ΔR is orthogonal exactly (Cayley transform):
@@ -64,7 +64,7 @@ mod tests {
             }
         }
         // The Cayley angle is 2 atan(|w|/2), about |w| for small |w|; axis is w.
-        let rw = super::super::tensor::mat_vec(&r, w);
+        let rw = crate::fe::tensor::mat_vec(&r, w);
         for k in 0..3 {
             assert!((rw[k] - w[k]).abs() < 1e-14);
         }

@@ -4,10 +4,10 @@
 //! since the previous lap to the named phase. Time spent between two steps (the caller's
 //! history output and stop checks) is charged to [`Phase::Outside`] by the lap at the start of
 //! the next step. Off by default: then a lap is one predictable branch, no clock read.
-//! Switched on for every solver built afterwards by [`set_enabled`]; each solver adds its
-//! totals to a process-wide table when dropped ([`take_totals`] reads and clears it).
+//! Switched on per solver by its settings (`Settings::profile`); each profiled solver adds its
+//! totals to a process-wide table when dropped ([`take_totals`] reads and clears it), so that
+//! a study that builds its solvers internally can be profiled.
 
-use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::Mutex;
 use std::time::Instant;
 
@@ -122,22 +122,11 @@ impl Totals {
     }
 }
 
-static ENABLED: AtomicBool = AtomicBool::new(false);
 static TOTALS: Mutex<Totals> = Mutex::new(Totals {
     seconds: [0.0; 7],
     steps: 0,
     element_cycles: 0,
 });
-
-/// Switches profiling on or off for solvers built from now on.
-pub fn set_enabled(on: bool) {
-    ENABLED.store(on, Ordering::Relaxed);
-}
-
-/// Whether solvers built now profile themselves.
-pub fn enabled() -> bool {
-    ENABLED.load(Ordering::Relaxed)
-}
 
 /// The totals of every profiled solver dropped so far; clears them.
 pub fn take_totals() -> Totals {
@@ -154,10 +143,10 @@ pub struct Profile {
 }
 
 impl Profile {
-    /// A timer for a model of `elements` elements, on if [`enabled`].
-    pub fn new(elements: usize) -> Self {
+    /// A timer for a model of `elements` elements, timing if `on`.
+    pub fn new(elements: usize, on: bool) -> Self {
         Profile {
-            last: enabled().then(Instant::now),
+            last: on.then(Instant::now),
             totals: Totals::default(),
             elements: elements as u64,
         }

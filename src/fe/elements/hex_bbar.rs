@@ -4,14 +4,14 @@
 //! has one volumetric constraint instead of eight and does not lock. This is the ANSYS
 //! SOLID185 default the paper used. There is no plain 2x2x2 option on purpose.
 
-use super::{
+use crate::fe::{
+    elements::hex_one_point::ElementOutput,
+    elements::objective::{hughes_winget, rotate_symmetric},
+    elements::shape::{gauss_points_2x2x2, natural_derivatives, spatial_gradients},
     elements::ElementStateMut,
-    hex_one_point::ElementOutput,
-    objective::{hughes_winget, rotate_symmetric},
-    plasticity::J2Material,
-    shape::{gauss_points_2x2x2, natural_derivatives, spatial_gradients},
+    materials::J2Material,
+    solver::timestep::characteristic_length,
     tensor::{ddot, deviator, spin_vector, sym_part, sym_vec, trace},
-    timestep::characteristic_length,
 };
 use std::sync::OnceLock;
 
@@ -34,7 +34,7 @@ pub fn gauss_gradients(x: &[[f64; 3]; 8]) -> ([[[f64; 3]; 8]; 8], [f64; 8]) {
 }
 
 /// Updates one B-bar element from t^n to t^{n+1} (arguments as
-/// [`super::hex_one_point::update`]; `st.points` has 8 entries, one per Gauss point).
+/// [`crate::fe::elements::hex_one_point::update`]; `st.points` has 8 entries, one per Gauss point).
 ///
 /// At each Gauss point g: L̄_g = L_g + (div_mean − tr L_g)/3 I with
 /// div_mean = Σ_g J_g tr L_g / Σ_g J_g, all on the mid-step configuration; the stress is rotated
@@ -90,7 +90,7 @@ pub fn update(
         let rot = hughes_winget(spin_vector(l).map(|e| e * dt));
         ip.stress = rotate_symmetric(&rot, &ip.stress);
         let before = ip.stress;
-        let dwp = mat.update(&mut ip.stress, &mut ip.eps_p, &d);
+        let dwp = mat.update(&mut ip.stress, &mut ip.eps_p, &d, dt);
         *plastic_work += dwp * jm[p];
         *internal_energy += 0.5 * jm[p] * (ddot(&before, &d) + ddot(&ip.stress, &d));
     }

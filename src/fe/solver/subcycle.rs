@@ -2,11 +2,11 @@
 //! Mullen 1979; stability: Smolinski, Sleith & Belytschko 1996), with LS-DYNA's power-of-two
 //! step classes.
 //!
-//! - Fine step h: the single-step solver's step (safety × smallest element Courant limit, or
+//! - Fine step h: the single-step solver's step (time_step_factor × smallest element Courant limit, or
 //!   an interaction's limit, with the same growth hysteresis).
 //! - Node level L_i: the node is integrated with its own step 2^{L_i} h, the largest that
-//!   every element around it allows (2^L h ≤ safety × its Courant limit) up to a cap; nodes an
-//!   interaction may act on ([`super::interaction::Interaction::active_nodes`]) have level 0.
+//!   every element around it allows (2^L h ≤ time_step_factor × its Courant limit) up to a cap; nodes an
+//!   interaction may act on ([`crate::fe::solver::interaction::Interaction::active_nodes`]) have level 0.
 //! - Element update level u_e = min of its nodes' levels: an element is updated whenever one
 //!   of its nodes is due, with its own step 2^{u_e} h, from its nodes' synchronised
 //!   positions; a coarser node of it has not been kicked since its last update, so it drifted
@@ -34,7 +34,7 @@
 //! The resonance instability of impulse (r-RESPA-type) schemes, where a coarse element kicks a
 //! fine node once per coarse step, is absent because a fine node only ever sees fresh forces.
 
-use super::elements::{ElementBlock, ElementFailure};
+use crate::fe::elements::{ElementBlock, ElementFailure};
 use serde::{Deserialize, Serialize};
 use std::ops::Range;
 
@@ -84,7 +84,7 @@ pub struct SubcycleReport {
     pub synchronisations: u64,
 }
 
-/// The level of an element whose stable step (safety included) is `limit` (s) for the fine
+/// The level of an element whose stable step (time_step_factor included) is `limit` (s) for the fine
 /// step `h` (s): the largest k ≤ `cap` with 2^k h (1 + `margin`) ≤ `limit`, or 0 if none.
 pub fn level_for(limit: f64, h: f64, margin: f64, cap: u32) -> u32 {
     let mut k = 0;
@@ -157,7 +157,7 @@ pub struct Subcycler {
 
 impl Subcycler {
     /// Levels for elements whose current Courant limits are in `blocks[..].dt_crit` (all
-    /// evaluated at the same instant), stable-step safety factor `safety`, fine step `h` (s),
+    /// evaluated at the same instant), stable-step time-step factor `time_step_factor`, fine step `h` (s),
     /// highest level `cap`; `pinned_nodes[i]` marks nodes an interaction may act on (held at
     /// level 0). The state
     /// is a synchronisation: every node and element counts as just updated.
@@ -166,7 +166,7 @@ impl Subcycler {
         blocks: &[ElementBlock],
         x: &[[f64; 3]],
         pinned_nodes: &[bool],
-        safety: f64,
+        time_step_factor: f64,
         h: f64,
         cap: u32,
     ) -> Subcycler {
@@ -202,7 +202,7 @@ impl Subcycler {
             },
         };
         // The first levels need no climbing margin: nothing has moved yet.
-        s.synchronise(blocks, safety, h, 0.0);
+        s.synchronise(blocks, time_step_factor, h, 0.0);
         s.open_intervals(x, h, h);
         for (w, &k) in s.w_open.iter_mut().zip(&s.node_level) {
             *w = (1u64 << k) as f64;
@@ -342,7 +342,7 @@ impl Subcycler {
     /// Chooses the levels for the coming intervals and the fine step, after the due
     /// elements were updated: at a synchronisation h = `choose_h(h_taken)` and every node
     /// takes its level afresh (climbing only with [`CLIMB_MARGIN`]); otherwise h stays unless
-    /// a due node's elements or `interaction_limit` (s, safety included) need less (then h
+    /// a due node's elements or `interaction_limit` (s, time_step_factor included) need less (then h
     /// drops to that, as the single-step solver's step does), and due nodes whose elements'
     /// limits fell drop level(s). Sets the closing (actual interval, plus the trapezoid
     /// correction if h changed during it) and opening (new level) weights of the due nodes
@@ -352,7 +352,7 @@ impl Subcycler {
         &mut self,
         blocks: &[ElementBlock],
         x: &[[f64; 3]],
-        safety: f64,
+        time_step_factor: f64,
         h_taken: f64,
         interaction_limit: f64,
         choose_h: impl FnOnce(f64) -> f64,
@@ -375,11 +375,11 @@ impl Subcycler {
         }
         let h = if self.synchronising() {
             let h = choose_h(h_taken);
-            self.synchronise(blocks, safety, h, CLIMB_MARGIN);
+            self.synchronise(blocks, time_step_factor, h, CLIMB_MARGIN);
             self.report.synchronisations += 1;
             h
         } else {
-            self.drop_levels(blocks, safety, h_taken, interaction_limit)
+            self.drop_levels(blocks, time_step_factor, h_taken, interaction_limit)
         };
         // The due set is unchanged by level drops (only due nodes drop, and stay due); its
         // order may have changed.
@@ -413,13 +413,13 @@ impl Subcycler {
     }
 
     /// Per node, the smallest over its elements of the largest k with 2^k h (1 + `margin`)
-    /// within the element's limit (safety `safety`, fine step `h`), and the same without the
+    /// within the element's limit (time_step_factor `time_step_factor`, fine step `h`), and the same without the
     /// margin; 0 if pinned. One pass over the elements (each evaluates its two levels once)
     /// instead of a walk per node.
     fn fitting_levels(
         &self,
         blocks: &[ElementBlock],
-        safety: f64,
+        time_step_factor: f64,
         h: f64,
         margin: f64,
     ) -> (Vec<u32>, Vec<u32>) {
@@ -427,8 +427,8 @@ impl Subcycler {
         let (mut climb, mut fit) = (vec![self.cap; n], vec![self.cap; n]);
         for b in blocks {
             for (c, &d) in b.conn.iter().zip(&b.dt_crit) {
-                let kc = level_for(safety * d, h, margin, self.cap);
-                let kf = level_for(safety * d, h, 0.0, self.cap);
+                let kc = level_for(time_step_factor * d, h, margin, self.cap);
+                let kf = level_for(time_step_factor * d, h, 0.0, self.cap);
                 for &i in c {
                     let i = i as usize;
                     climb[i] = climb[i].min(kc);
@@ -445,8 +445,8 @@ impl Subcycler {
     }
 
     /// All node levels afresh for fine step `h` (climbing only with `margin`); counter reset.
-    fn synchronise(&mut self, blocks: &[ElementBlock], safety: f64, h: f64, margin: f64) {
-        let (climb, fit) = self.fitting_levels(blocks, safety, h, margin);
+    fn synchronise(&mut self, blocks: &[ElementBlock], time_step_factor: f64, h: f64, margin: f64) {
+        let (climb, fit) = self.fitting_levels(blocks, time_step_factor, h, margin);
         let mut changed = self.runs.is_empty();
         for i in 0..self.node_level.len() {
             let cur = (self.node_level[i] as u32).min(self.cap);
@@ -479,7 +479,7 @@ impl Subcycler {
     fn drop_levels(
         &mut self,
         blocks: &[ElementBlock],
-        safety: f64,
+        time_step_factor: f64,
         h_taken: f64,
         interaction_limit: f64,
     ) -> f64 {
@@ -488,7 +488,7 @@ impl Subcycler {
         for runs in &self.runs[..=last] {
             for (b, r) in runs {
                 for &d in &blocks[*b].dt_crit[r.clone()] {
-                    need = need.min(safety * d);
+                    need = need.min(time_step_factor * d);
                 }
             }
         }
@@ -510,7 +510,7 @@ impl Subcycler {
             for (b, r) in runs {
                 let blk = &blocks[*b];
                 for k in r.clone() {
-                    let limit = safety * blk.dt_crit[k];
+                    let limit = time_step_factor * blk.dt_crit[k];
                     if cut == 0 || (1u64 << cut) as f64 * h <= limit {
                         continue;
                     }
@@ -647,7 +647,7 @@ impl Subcycler {
 
 impl Subcycler {
     /// The largest ratio, over nodes, of the node's own step 2^L `h` (s) to the smallest
-    /// current Courant limit (no safety factor) of its elements: above 1 a node would run
+    /// current Courant limit (no time_step_factor factor) of its elements: above 1 a node would run
     /// unstable. A diagnostic for tests.
     pub fn worst_step_ratio(
         &self,

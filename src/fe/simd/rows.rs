@@ -2,11 +2,9 @@
 //! aligned 256-bit vector.
 //!
 //! The one-thread element loop adds every node's internal force into its row with one
-//! 256-bit load, add and store (`lanes::add_node_rows`). A `Vec<[f64; 4]>` is only 8-byte
-//! aligned (in practice 16 bytes past a page for large arrays), so every row then straddles
-//! a 32-byte boundary and every second one a cache line. Aligned, the one-point bench step
-//! ran 99.0 → 95.6 ns per element-cycle on Zen 4 (`python3 scripts/kernel_ab.py`,
-//! docs/performance.md, thirteenth session).
+//! 256-bit load, add and store (`Lanes::add_node_rows`). A `Vec<[f64; 4]>` is only 8-byte
+//! aligned, so every row would straddle a 32-byte boundary and every second one a cache
+//! line (docs/performance.md has the measured cost).
 
 use std::ops::{Deref, DerefMut};
 

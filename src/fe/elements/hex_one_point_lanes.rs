@@ -1,4 +1,4 @@
-//! The one-point hexahedron of [`super::hex_one_point`], computed for W elements at once
+//! The one-point hexahedron of [`crate::fe::elements::hex_one_point`], computed for W elements at once
 //! (SIMD lanes) and in "mode space", which needs about half the arithmetic.
 //!
 //! Mode space: a trilinear hex maps x(ξ, η, ζ) = Σ_I N_I(ξ) x_I = (1/8) Σ_k A_k h_k(ξ) with the
@@ -22,17 +22,27 @@
 //! are grouped into lanes; they equal the per-element kernel up to round-off (different, not
 //! less accurate, operation order; checked to 1e-12 relative in the tests).
 
-use super::{
-    lanes::{cross, dot, select, Lanes, Vec3},
-    plasticity::J2Material,
+use crate::fe::elements::block::{
+    contiguous, finish_lanes, gather_nodes, time_updates, Batch, BatchResult, ElementBlock,
+    LaneResult, StepInput,
+};
+use crate::fe::elements::formulation::Element;
+use crate::fe::simd::{build, prefetch::prefetch_ahead, LaneIsa};
+use crate::fe::{
+    materials::{
+        j2::{ddot_lanes as ddot, update_lanes},
+        Hardening, J2Material,
+    },
+    simd::{cross, dot, Lanes, Vec3},
 };
 use crate::mesh::topology::HEX_FACES;
+use std::mem::MaybeUninit;
 
 /// Mode vectors A_k = Σ_I h_k(ξ_I) p_I (k = 0..7: 1, ξ, η, ζ, ηζ, ζξ, ξη, ξηζ) of nodal
 /// vectors `p` (gmsh node order), by three butterfly stages (ξ pairs, η pairs, ζ pairs).
 #[inline(always)]
 pub fn modes<const W: usize>(p: &[Vec3<W>; 8]) -> [Vec3<W>; 8] {
-    let z = Lanes::splat(0.0);
+    let z = p[0][0].splat_like(0.0);
     let mut a = [[z; 3]; 8];
     for c in 0..3 {
         // ξ pairs (0,1), (3,2), (4,5), (7,6): sums and ξ-differences.
@@ -59,7 +69,7 @@ pub fn modes<const W: usize>(p: &[Vec3<W>; 8]) -> [Vec3<W>; 8] {
 /// Nodal vectors p_I = Σ_k h_k(ξ_I) f_k from mode vectors `f` (the transpose of [`modes`]).
 #[inline(always)]
 pub fn nodes_from_modes<const W: usize>(f: &[Vec3<W>; 8]) -> [Vec3<W>; 8] {
-    let z = Lanes::splat(0.0);
+    let z = f[0][0].splat_like(0.0);
     let mut p = [[z; 3]; 8];
     for c in 0..3 {
         // ζ = −1 (index 0) and ζ = +1 (index 1): coefficients of 1, η, ξ, ξη.
@@ -101,7 +111,7 @@ pub fn volume_gradient<const W: usize>(a: &[Vec3<W>; 8]) -> (Lanes<W>, [Vec3<W>;
     let c24 = cross(&a[2], &a[4]);
     // Plain loops, no closures: a closure the compiler leaves out of line (it may, once the
     // kernel is instantiated in more than one place) runs its lane arithmetic as calls.
-    let mut g = [[Lanes::default(); 3]; 6];
+    let mut g = [[a[0][0].splat_like(0.0); 3]; 6];
     for k in 0..3 {
         g[0][k] = 3.0 * c23[k] + c65[k];
         g[1][k] = 3.0 * c31[k] + c46[k];
@@ -123,7 +133,7 @@ fn velocity_gradient<const W: usize>(
     g: &[Vec3<W>; 6],
     rv: Lanes<W>,
 ) -> [Vec3<W>; 3] {
-    let mut l = [[Lanes::default(); 3]; 3];
+    let mut l = [[rv.splat_like(0.0); 3]; 3];
     for i in 0..3 {
         for j in 0..3 {
             let mut s = u[1][i] * g[0][j];
@@ -137,13 +147,13 @@ fn velocity_gradient<const W: usize>(
 }
 
 /// The Hughes-Winget rotation increment for the spin increment with axial vector `w`
-/// (lane-wise [`super::objective::hughes_winget`]).
+/// (lane-wise [`crate::fe::elements::objective::hughes_winget`]).
 #[inline(always)]
 pub fn hughes_winget<const W: usize>(w: &Vec3<W>) -> [Vec3<W>; 3] {
     let a = [0.5 * w[0], 0.5 * w[1], 0.5 * w[2]];
     let aa = a[0] * a[0] + a[1] * a[1] + a[2] * a[2];
-    let f = Lanes::splat(2.0) / (aa + 1.0);
-    let one = Lanes::splat(1.0);
+    let f = aa.splat_like(2.0) / (aa + 1.0);
+    let one = aa.splat_like(1.0);
     [
         [
             f * (a[0] * a[0] - aa) + one,
@@ -167,13 +177,13 @@ pub fn hughes_winget<const W: usize>(w: &Vec3<W>) -> [Vec3<W>; 3] {
 #[inline(always)]
 pub fn rotate_symmetric<const W: usize>(r: &[Vec3<W>; 3], s: &[Lanes<W>; 6]) -> [Lanes<W>; 6] {
     let m = [[s[0], s[3], s[5]], [s[3], s[1], s[4]], [s[5], s[4], s[2]]];
-    let mut t = [[Lanes::default(); 3]; 3];
+    let mut t = [[s[0].splat_like(0.0); 3]; 3];
     for i in 0..3 {
         for j in 0..3 {
             t[i][j] = r[i][0] * m[0][j] + r[i][1] * m[1][j] + r[i][2] * m[2][j];
         }
     }
-    let mut out = [Lanes::default(); 6];
+    let mut out = [s[0].splat_like(0.0); 6];
     for (o, (i, j)) in out
         .iter_mut()
         .zip([(0, 0), (1, 1), (2, 2), (0, 1), (1, 2), (2, 0)])
@@ -183,60 +193,6 @@ pub fn rotate_symmetric<const W: usize>(r: &[Vec3<W>; 3], s: &[Lanes<W>; 6]) -> 
     out
 }
 
-/// a : b of two symmetric tensors (Voigt, tensor shears).
-#[inline(always)]
-pub fn ddot<const W: usize>(a: &[Lanes<W>; 6], b: &[Lanes<W>; 6]) -> Lanes<W> {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2] + 2.0 * (a[3] * b[3] + a[4] * b[4] + a[5] * b[5])
-}
-
-/// Lane-wise [`J2Material::update`]: elastic predictor, and the radial return only when some
-/// lane yields (elastic lanes then get a zero correction). Returns the plastic work per unit
-/// volume, J/m³.
-#[inline(always)]
-pub fn j2_update<const W: usize>(
-    mat: &J2Material,
-    stress: &mut [Lanes<W>; 6],
-    eps_p: &mut Lanes<W>,
-    deps: &[Lanes<W>; 6],
-) -> Lanes<W> {
-    let tr = deps[0] + deps[1] + deps[2];
-    let two_g = 2.0 * mat.shear;
-    let lt = mat.lambda * tr;
-    for k in 0..3 {
-        stress[k] += lt + two_g * deps[k];
-    }
-    for k in 3..6 {
-        stress[k] += two_g * deps[k];
-    }
-    let zero = Lanes::splat(0.0);
-    if mat.elastic_only {
-        return zero;
-    }
-    let m = (stress[0] + stress[1] + stress[2]) / 3.0;
-    let s = [
-        stress[0] - m,
-        stress[1] - m,
-        stress[2] - m,
-        stress[3],
-        stress[4],
-        stress[5],
-    ];
-    let q = (1.5 * ddot(&s, &s)).sqrt();
-    let sy = mat.yield0 + mat.hardening * *eps_p;
-    let yields = q.gt(sy);
-    if !yields.iter().any(|&y| y) {
-        return zero;
-    }
-    let dp = select(yields, (q - sy) / (3.0 * mat.shear + mat.hardening), zero);
-    // Elastic lanes divide by their own q only to be multiplied by dp = 0: select guards q = 0.
-    let scale = select(yields, (3.0 * mat.shear * dp) / q, zero);
-    for k in 0..6 {
-        stress[k] -= scale * s[k];
-    }
-    *eps_p += dp;
-    dp * (sy + 0.5 * mat.hardening * dp)
-}
-
 /// One integration point over the step, lane-wise: strain increment D Δt and spin increment
 /// W Δt from the velocity gradient `l` (1/s; `shift`, 1/s, is added to the normal rates: the
 /// B-bar volumetric correction), Hughes-Winget rotation of `stress` (Pa), J2 update of
@@ -244,8 +200,9 @@ pub fn j2_update<const W: usize>(
 /// point), the plastic work per unit volume (J/m³) and σ:DΔt summed at the start and the end
 /// of the step (J/m³; half of it is the trapezoidal internal-energy increment per volume).
 #[inline(always)]
-pub fn point_update<const W: usize>(
+pub fn point_update<H: Hardening, const W: usize>(
     mat: &J2Material,
+    law: &H,
     l: &[Vec3<W>; 3],
     shift: Option<Lanes<W>>,
     dt: f64,
@@ -275,7 +232,7 @@ pub fn point_update<const W: usize>(
     let rot = hughes_winget(&w);
     *stress = rotate_symmetric(&rot, stress);
     let before = *stress;
-    let dwp = j2_update(mat, stress, eps_p, &d);
+    let dwp = update_lanes(mat, law, stress, eps_p, &d, dt);
     (rot, dwp, ddot(&before, &d) + ddot(stress, &d))
 }
 
@@ -309,23 +266,24 @@ pub struct Output<const W: usize> {
 
 /// Advances W one-point elements from t^n to t^{n+1}: nodal coordinates `x1` = x^{n+1} (m),
 /// velocities `v` = v^{n+1/2} (m/s), step `dt` (s, 0 = evaluate only), hourglass coefficient
-/// `hg` (0 = off). The same physics as [`super::hex_one_point::update`]: velocity gradient on
+/// `hg` (0 = off). The same physics as [`crate::fe::elements::hex_one_point::update`]: velocity gradient on
 /// the mid-step configuration, Hughes-Winget rotation of stress and hourglass forces, J2
 /// update, forces on x^{n+1}. An inverted lane returns a non-positive volume and
 /// meaningless forces.
 #[inline(always)]
-pub fn update<const W: usize>(
+pub fn update<H: Hardening, const W: usize>(
     x1: &[Vec3<W>; 8],
     v: &[Vec3<W>; 8],
     dt: f64,
     mat: &J2Material,
+    law: &H,
     hg: f64,
     st: &mut State<W>,
 ) -> Output<W> {
     let a1 = modes(x1);
     let u = modes(v);
     let half = 0.5 * dt;
-    let mut am = [[Lanes::default(); 3]; 8];
+    let mut am = [[x1[0][0].splat_like(0.0); 3]; 8];
     for k in 0..8 {
         for c in 0..3 {
             am[k][c] = a1[k][c] - half * u[k][c];
@@ -334,7 +292,7 @@ pub fn update<const W: usize>(
     let (vhm, gm) = volume_gradient(&am);
     let vm = vhm * (1.0 / 192.0);
     let l = velocity_gradient(&u, &gm, vhm.recip());
-    let (rot, dwp, dw) = point_update(mat, &l, None, dt, &mut st.stress, &mut st.eps_p);
+    let (rot, dwp, dw) = point_update(mat, law, &l, None, dt, &mut st.stress, &mut st.eps_p);
     for q in st.hourglass.iter_mut() {
         let r = *q;
         for i in 0..3 {
@@ -350,13 +308,13 @@ pub fn update<const W: usize>(
     let s = st.stress;
     let sigma = [[s[0], s[3], s[5]], [s[3], s[1], s[4]], [s[5], s[4], s[2]]];
     // P = (V σ − M)/V̂ with M = (1/8) Σ_α Q_α ⊗ A_{α+4} (the hourglass part of −γ Q).
-    let mut p = [[Lanes::default(); 3]; 3];
+    let mut p = [[v1.splat_like(0.0); 3]; 3];
     for i in 0..3 {
         for j in 0..3 {
             p[i][j] = v1 * sigma[i][j];
         }
     }
-    let z = Lanes::splat(0.0);
+    let z = v1.splat_like(0.0);
     let mut fm = [[z; 3]; 8];
     if hg > 0.0 {
         let l1 = velocity_gradient(&u, &g1, r1);
@@ -408,7 +366,7 @@ pub fn update<const W: usize>(
 }
 
 /// Courant limit L_e / c (s) with L_e = volume / largest face area (the lane-wise
-/// [`super::timestep::characteristic_length`]; a face's area is half the cross product of its
+/// [`crate::fe::solver::timestep::characteristic_length`]; a face's area is half the cross product of its
 /// diagonals), for nodal coordinates `x1` (m), element `volume` (m³) and `wave_speed` (m/s).
 #[inline(always)]
 pub fn critical_step<const W: usize>(
@@ -416,10 +374,10 @@ pub fn critical_step<const W: usize>(
     volume: Lanes<W>,
     wave_speed: f64,
 ) -> Lanes<W> {
-    let mut a2 = Lanes::splat(0.0);
+    let mut a2 = volume.splat_like(0.0);
     for f in HEX_FACES {
-        let mut d1 = [Lanes::default(); 3];
-        let mut d2 = [Lanes::default(); 3];
+        let mut d1 = [a2; 3];
+        let mut d2 = [a2; 3];
         for c in 0..3 {
             d1[c] = x1[f[2]][c] - x1[f[0]][c];
             d2[c] = x1[f[3]][c] - x1[f[1]][c];
@@ -429,6 +387,153 @@ pub fn critical_step<const W: usize>(
     }
     let amax = 0.5 * a2.sqrt();
     volume / amax * (1.0 / wave_speed)
+}
+
+/// The one-point hexahedron as an element of the element loop.
+#[derive(Debug, Clone, Copy)]
+pub struct OnePointHex;
+
+impl Element for OnePointHex {
+    const POINTS: usize = 1;
+
+    /// Gathers W elements (`idx`: local element per lane) into lanes, updates them
+    /// ([`update`]), scatters state and forces back. Lanes past the batch end repeat its last
+    /// element and are discarded.
+    #[inline(always)]
+    fn lane_loop<H: Hardening, const W: usize>(
+        isa: LaneIsa<W>,
+        law: &H,
+        b: &mut Batch<'_>,
+        inp: StepInput<'_>,
+        base: usize,
+    ) -> BatchResult {
+        let StepInput {
+            x, v, dt, mat, hg, ..
+        } = inp;
+        let n = b.conn.len();
+        let mut best = (f64::INFINITY, base);
+        let mut k0 = 0;
+        while k0 < n {
+            let idx: [usize; W] = build(|l| (k0 + l).min(n - 1));
+            let live = (n - k0).min(W);
+            // Gather nodal coordinates and velocities and the element state into lanes (plain
+            // loops: no closure or generic helper is left out of the AVX2 kernel).
+            let (mut xe, mut ve) = (MaybeUninit::uninit(), MaybeUninit::uninit());
+            let (xe, ve) = gather_nodes(isa, &idx, b.conn, x, v, &mut xe, &mut ve);
+            // The state as rows transposed into lanes (Lanes::load_rows): every index is a local
+            // element < n of this batch's slices, whose lengths are n (points: eight f64 each,
+            // repr(C): stress, eps_p, volume; hourglass: twelve f64 each). The lane state is
+            // built from them directly, with no zero fill first (a 1.4 KB `memset` call per
+            // group, 2 % of a subcycled default-scene run, whose level ranges are short).
+            debug_assert!(b.pts.len() == n && b.hgq.len() == n && b.wp.len() == n);
+            let (pp, hp) = (
+                b.pts.as_mut_ptr().cast::<f64>(),
+                b.hgq.as_mut_ptr().cast::<f64>(),
+            );
+            let mut st = MaybeUninit::<State<W>>::uninit();
+            let sp = st.as_mut_ptr();
+            // SAFETY: as above (rows of 8 and 12 f64 inside their slices); every field of `st`
+            // is written once, through raw pointers to its own storage, before it is read.
+            let st = unsafe {
+                let f: [Lanes<W>; 7] = Lanes::load_rows(isa, pp, &build(|l| 8 * idx[l]));
+                std::ptr::addr_of_mut!((*sp).stress).write([f[0], f[1], f[2], f[3], f[4], f[5]]);
+                std::ptr::addr_of_mut!((*sp).eps_p).write(f[6]);
+                let h0: [Lanes<W>; 8] = Lanes::load_rows(isa, hp, &build(|l| 12 * idx[l]));
+                let h1: [Lanes<W>; 4] = Lanes::load_rows(isa, hp, &build(|l| 12 * idx[l] + 8));
+                let q = std::ptr::addr_of_mut!((*sp).hourglass).cast::<Lanes<W>>();
+                for (k, h) in h0.iter().chain(&h1).enumerate() {
+                    q.add(k).write(*h);
+                }
+                std::ptr::addr_of_mut!((*sp).plastic_work).write(contiguous(isa, b.wp, &idx));
+                std::ptr::addr_of_mut!((*sp).internal_energy).write(contiguous(isa, b.ie, &idx));
+                std::ptr::addr_of_mut!((*sp).hourglass_energy).write(contiguous(isa, b.ehg, &idx));
+                st.assume_init_mut()
+            };
+            prefetch_ahead(b.pts.as_ptr(), k0 + 2 * W, W);
+            prefetch_ahead(b.hgq.as_ptr(), k0 + 2 * W, W);
+            let out = update(xe, ve, dt, mat, law, hg, st);
+            if live == W {
+                let s = &st.stress;
+                let cols = [s[0], s[1], s[2], s[3], s[4], s[5], st.eps_p, out.volume];
+                let q = &st.hourglass;
+                let h0 = [
+                    q[0][0], q[0][1], q[0][2], q[1][0], q[1][1], q[1][2], q[2][0], q[2][1],
+                ];
+                let h1 = [q[2][2], q[3][0], q[3][1], q[3][2]];
+                // SAFETY: full group: W distinct elements k0.. < n, rows inside the slices.
+                unsafe {
+                    Lanes::store_rows(&cols, pp, &build(|l| 8 * (k0 + l)));
+                    Lanes::store_rows(&h0, hp, &build(|l| 12 * (k0 + l)));
+                    Lanes::store_rows(&h1, hp, &build(|l| 12 * (k0 + l) + 8));
+                }
+                b.wp[k0..k0 + W].copy_from_slice(&st.plastic_work.0);
+                b.ie[k0..k0 + W].copy_from_slice(&st.internal_energy.0);
+                b.ehg[k0..k0 + W].copy_from_slice(&st.hourglass_energy.0);
+            } else {
+                for l in 0..live {
+                    let k = k0 + l;
+                    let ip = &mut b.pts[k];
+                    for c in 0..6 {
+                        ip.stress[c] = st.stress[c].0[l];
+                    }
+                    ip.eps_p = st.eps_p.0[l];
+                    ip.volume = out.volume.0[l];
+                    b.wp[k] = st.plastic_work.0[l];
+                    b.ie[k] = st.internal_energy.0[l];
+                    b.ehg[k] = st.hourglass_energy.0[l];
+                    for a in 0..4 {
+                        for c in 0..3 {
+                            b.hgq[k][a][c] = st.hourglass[a][c].0[l];
+                        }
+                    }
+                }
+            }
+            // One point: the element volume is its only Jacobian.
+            let r = LaneResult {
+                force: &out.force,
+                volume: out.volume,
+                min_jacobian: out.volume,
+                dt_crit: out.dt_crit,
+            };
+            finish_lanes(&r, b, k0, live, base, &mut best)?;
+            k0 += W;
+        }
+        Ok(best)
+    }
+
+    #[inline(always)]
+    fn time_arithmetic<H: Hardening, const W: usize>(
+        isa: LaneIsa<W>,
+        law: &H,
+        b: &ElementBlock,
+        xe: &[Vec3<W>; 8],
+        ve: &[Vec3<W>; 8],
+        idx: &[usize; W],
+        dt: f64,
+        repeats: u32,
+    ) -> std::time::Duration {
+        let lane = |f: &dyn Fn(usize) -> f64| isa.lanes(std::array::from_fn(f));
+        let mat = &b.material;
+        let st0 = State::<W> {
+            stress: std::array::from_fn(|c| lane(&|l| b.points[idx[l]].stress[c])),
+            eps_p: lane(&|l| b.points[idx[l]].eps_p),
+            hourglass: std::array::from_fn(|a| {
+                std::array::from_fn(|c| lane(&|l| b.hourglass[idx[l]][a][c]))
+            }),
+            plastic_work: lane(&|l| b.plastic_work[idx[l]]),
+            internal_energy: lane(&|l| b.internal_energy[idx[l]]),
+            hourglass_energy: lane(&|l| b.hourglass_energy[idx[l]]),
+        };
+        time_updates!(repeats, xe, ve, st0, |st, xr, vr| update(
+            xr,
+            vr,
+            dt,
+            mat,
+            law,
+            b.hourglass_coeff,
+            &mut st
+        ))
+    }
 }
 
 #[cfg(test)]
@@ -523,7 +628,13 @@ pub(crate) mod tests {
     }
 
     pub(crate) fn lanes<const W: usize>(e: &[[[f64; 3]; 8]; W]) -> [Vec3<W>; 8] {
-        std::array::from_fn(|i| std::array::from_fn(|c| Lanes(std::array::from_fn(|l| e[l][i][c]))))
+        std::array::from_fn(|i| {
+            std::array::from_fn(|c| {
+                crate::fe::simd::LaneIsa::<W>::detect()
+                    .unwrap()
+                    .lanes(std::array::from_fn(|l| e[l][i][c]))
+            })
+        })
     }
 
     #[test]
@@ -533,7 +644,7 @@ pub(crate) mod tests {
         for _ in 0..20 {
             let x = distorted(&mut s, 1e-3);
             let (vh, g) = volume_gradient(&modes(&lanes(&[x])));
-            let mut f = [[Lanes([0.0]); 3]; 8];
+            let mut f = [[vh.splat_like(0.0); 3]; 8];
             f[1..7].copy_from_slice(&g);
             let dv = nodes_from_modes(&f);
             let mut vq = 0.0;
@@ -564,9 +675,10 @@ pub(crate) mod tests {
 
     #[test]
     fn modes_round_trip_is_eight_times_identity() {
+        let one = crate::fe::simd::LaneIsa::<1>::detect().unwrap();
         let mut s = 12345;
         let p: [Vec3<1>; 8] =
-            std::array::from_fn(|_| std::array::from_fn(|_| Lanes([rnd(&mut s)])));
+            std::array::from_fn(|_| std::array::from_fn(|_| one.lanes([rnd(&mut s)])));
         let back = nodes_from_modes(&modes(&p));
         for i in 0..8 {
             for c in 0..3 {
@@ -580,18 +692,22 @@ pub(crate) mod tests {
     #[test]
     fn lanes_match_the_per_element_kernel() {
         let mat = J2Material::new(&Material::preset("copper-fe").unwrap(), false);
+        let crate::fe::materials::Law::Bilinear(law) = mat.law else {
+            panic!("copper-fe hardens linearly")
+        };
         let h = 1e-3;
         // Lane 2 moves rigidly (no yield); the others stretch hard (yield within a few steps).
         let (xs, vs) = four_elements(0xdead_beef_1234_5678, h, 2, 60.0, [5.0, 0.0, 3.0], 0.0);
         let dt = 2e-8;
         let mut x = xs;
+        let z = crate::fe::simd::LaneIsa::<4>::detect().unwrap().splat(0.0);
         let mut st = State::<4> {
-            stress: [Lanes([0.0; 4]); 6],
-            eps_p: Lanes([0.0; 4]),
-            hourglass: [[Lanes([0.0; 4]); 3]; 4],
-            plastic_work: Lanes([0.0; 4]),
-            internal_energy: Lanes([0.0; 4]),
-            hourglass_energy: Lanes([0.0; 4]),
+            stress: [z; 6],
+            eps_p: z,
+            hourglass: [[z; 3]; 4],
+            plastic_work: z,
+            internal_energy: z,
+            hourglass_energy: z,
         };
         let mut refs = [(
             [crate::fe::elements::IntegrationPoint::default()],
@@ -609,7 +725,7 @@ pub(crate) mod tests {
                     }
                 }
             }
-            let out = update(&lanes(&x), &lanes(&vs), dt, &mat, 0.05, &mut st);
+            let out = update(&lanes(&x), &lanes(&vs), dt, &mat, &law, 0.05, &mut st);
             for l in 0..4 {
                 let r = &mut refs[l];
                 let o = hex_one_point::update(

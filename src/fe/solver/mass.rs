@@ -2,8 +2,10 @@
 //! 2x2x2 Gauss points (exact for the trilinear hex). Row-summing conserves total mass and
 //! linear momentum and makes M⁻¹ trivial, which is what makes central differences explicit.
 
-use super::shape::{gauss_points_2x2x2, natural_derivatives, shape_functions, spatial_gradients};
 use crate::error::{Error, Result};
+use crate::fe::elements::shape::{
+    gauss_points_2x2x2, natural_derivatives, shape_functions, spatial_gradients,
+};
 
 /// Row-sum lumped masses (kg) of one element with coordinates `x` (m) and density `rho`
 /// (kg/m³). Fails with [`Error::Numerical`] if the element is inverted at a Gauss point.

@@ -9,13 +9,13 @@
 //! The γ vectors are orthogonal to every linear velocity field, so rigid motion and uniform
 //! strain never excite hourglass forces (patch test passes with hourglass control on).
 
-use super::{
+use crate::fe::{
+    elements::objective::{hughes_winget, rotate_symmetric},
+    elements::shape::NODE_XI,
     elements::ElementStateMut,
-    objective::{hughes_winget, rotate_symmetric},
-    plasticity::J2Material,
-    shape::NODE_XI,
+    materials::J2Material,
+    solver::timestep::characteristic_length,
     tensor::{ddot, mat_vec, spin_vector, sym_part, sym_vec},
-    timestep::characteristic_length,
 };
 
 /// The hourglass base vectors h_α: ηζ, ζξ, ξη, ξηζ evaluated at the nodes.
@@ -178,7 +178,7 @@ pub fn update(
         *q = mat_vec(&rot, *q);
     }
     let before = ip.stress;
-    let dwp = mat.update(&mut ip.stress, &mut ip.eps_p, &d);
+    let dwp = mat.update(&mut ip.stress, &mut ip.eps_p, &d, dt);
     *plastic_work += dwp * vm;
     // Stress power with the mid-step stress (trapezoid): V (σⁿ + σⁿ⁺¹)/2 : Δε.
     *internal_energy += 0.5 * vm * (ddot(&before, &d) + ddot(&ip.stress, &d));
@@ -226,7 +226,7 @@ pub fn update(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::fe::shape::{gauss_points_2x2x2, natural_derivatives, spatial_gradients};
+    use crate::fe::elements::shape::{gauss_points_2x2x2, natural_derivatives, spatial_gradients};
 
     fn distorted() -> [[f64; 3]; 8] {
         let mut x = NODE_XI.map(|p| p.map(|c| 0.5 * (c + 1.0)));

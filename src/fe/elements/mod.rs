@@ -1,0 +1,19 @@
+//! Elements: the element block with its loop ([`block`]: gather, kernel, scatter, in lane
+//! groups), and each hexahedron formulation with its scalar reference kernel beside its lane
+//! kernel ([`hex_one_point`] and [`hex_one_point_lanes`], [`hex_bbar`] and
+//! [`hex_bbar_lanes`]), on the shape functions ([`shape`]) and objective rates
+//! ([`objective`]). A formulation is registered in [`formulation`]: the one place that maps
+//! its name to its code.
+
+pub mod block;
+pub mod formulation;
+pub mod hex_bbar;
+pub mod hex_bbar_lanes;
+pub mod hex_one_point;
+pub mod hex_one_point_lanes;
+pub mod objective;
+pub mod shape;
+
+pub use block::*;
+pub use formulation::Formulation;
+pub(crate) use formulation::{Element, ElementVisitor};

@@ -1,0 +1,18 @@
+//! Materials of the element kernels: J2 (von Mises) plasticity with isotropic elasticity
+//! ([`j2`]), and the hardening laws it returns to, behind one trait ([`hardening`]):
+//! linear ([`bilinear`]), Ludwik/Swift power law ([`power`]) and Johnson-Cook with its rate
+//! term ([`johnson_cook`]), registered in [`law`].
+
+pub mod bilinear;
+pub mod hardening;
+pub mod j2;
+pub mod johnson_cook;
+pub mod law;
+pub mod power;
+
+pub use bilinear::Bilinear;
+pub use hardening::Hardening;
+pub use j2::J2Material;
+pub use johnson_cook::JohnsonCook;
+pub use law::{Law, LawVisitor};
+pub use power::Power;
