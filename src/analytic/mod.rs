@@ -9,6 +9,8 @@ pub mod damping_index;
 pub mod friction;
 pub mod hertz;
 pub mod history;
+pub mod impact;
+pub mod laws;
 pub mod parametric;
 mod quadrature;
 pub mod three_phase;
