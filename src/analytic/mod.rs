@@ -10,6 +10,7 @@ pub mod friction;
 pub mod hertz;
 pub mod history;
 pub mod impact;
+pub mod law_fit;
 pub mod laws;
 pub mod parametric;
 mod quadrature;

@@ -8,6 +8,8 @@ mod bench;
 mod bench_machine;
 mod bench_profile;
 mod bench_study;
+mod laws;
+mod laws_fit;
 mod mesh;
 mod run;
 mod stress;
@@ -46,6 +48,8 @@ pub enum Command {
     Report(sweep::ReportArgs),
     /// Stability matrix of extreme scenes: every case completes cleanly or stops with a reason.
     Stress(stress::StressArgs),
+    /// Contact laws: list them, `laws run` one impact under a law, `laws fit` calibrate one.
+    Laws(laws::LawsArgs),
 }
 
 /// Runs the command line and returns the process exit code.
@@ -78,6 +82,7 @@ where
         Command::Bench(a) => bench::run(a),
         Command::Report(a) => sweep::report(a),
         Command::Stress(a) => stress::run(a),
+        Command::Laws(a) => laws::run(a),
     };
     // The command runs on a worker of the thread pool: the solver's parallel loops (a dozen
     // per time step) then fork and join inside the pool instead of handing work from the
