@@ -22,7 +22,8 @@ pub struct LawFitArgs {
     /// CSV (head-on rows of --diameter and --mesh), or a directory holding `fe.csv`.
     #[arg(long, value_name = "CSV_OR_DIR")]
     pub against: PathBuf,
-    /// Free parameter (repeatable) [default: every parameter of the law but `tension`].
+    /// Free parameter (repeatable) [default: every parameter of the law but `tension` and
+    /// `R_star` (only E* √R* is identifiable from head-on data)].
     #[arg(long = "free", value_name = "KEY")]
     pub free: Vec<String>,
     /// Fix a parameter, KEY=VALUE in SI units; repeatable.
@@ -94,7 +95,7 @@ pub fn run(a: LawFitArgs, registry: &Registry) -> Result<()> {
     let free: Vec<String> = if a.free.is_empty() {
         spec.params
             .iter()
-            .filter(|p| p.key != "tension")
+            .filter(|p| p.key != "tension" && p.key != "R_star")
             .map(|p| p.key.to_string())
             .collect()
     } else {
