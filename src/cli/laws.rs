@@ -333,3 +333,41 @@ pub fn run(a: LawsArgs) -> Result<()> {
         Some(LawsCommand::Fit(f)) => super::laws_fit::run(f, &registry),
     }
 }
+
+/// Command line of `twoball laws …` alone (for programs that add laws).
+#[derive(Debug, clap::Parser)]
+#[command(name = "twoball laws")]
+struct LawsCli {
+    #[command(flatten)]
+    laws: LawsArgs,
+}
+
+/// Runs `twoball laws …` with `args` (the first is the program name) against `registry`
+/// (the built-in laws plus a program's own) and returns the exit code: how an example or a
+/// researcher's program runs its law through `laws run` and `laws fit`.
+pub fn main_with<I, T>(args: I, registry: &Registry) -> i32
+where
+    I: IntoIterator<Item = T>,
+    T: Into<std::ffi::OsString> + Clone,
+{
+    use clap::Parser;
+    let cli = match LawsCli::try_parse_from(args) {
+        Ok(c) => c,
+        Err(e) => {
+            let _ = e.print();
+            return e.exit_code();
+        }
+    };
+    let result = match cli.laws.command {
+        None => list(registry),
+        Some(LawsCommand::Run(r)) => run_with(r, registry),
+        Some(LawsCommand::Fit(f)) => super::laws_fit::run(f, registry),
+    };
+    match result {
+        Ok(()) => 0,
+        Err(e) => {
+            eprintln!("error: {e}");
+            1
+        }
+    }
+}

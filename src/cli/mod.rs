@@ -17,6 +17,8 @@ mod sweep;
 
 use clap::{Parser, Subcommand};
 
+pub use laws::main_with as laws_main_with;
+
 /// twoball: finite-element verifier for the collision of two elastic-plastic balls.
 #[derive(Debug, Parser)]
 #[command(name = "twoball", version, about, long_about = None)]
