@@ -91,8 +91,8 @@ pub fn check() -> (f64, f64, f64, f64, f64) {
     let m = Material::preset("copper-fe").expect("preset");
     let b = Body::ball(m, 0.02, "ball").expect("ball");
     let pair = ContactPair::between(&b, &b, m.mu);
-    let params = Params::resolve(SPEC.name, SPEC.params, &[("n".into(), 2.0)], &pair)
-        .expect("parameters");
+    let params =
+        Params::resolve(SPEC.name, SPEC.params, &[("n".into(), 2.0)], &pair).expect("parameters");
     let law = (SPEC.build)(&pair, &params);
     let r = integrate(
         &b,

@@ -75,8 +75,14 @@ fn linear_dashpot_fit_recovers_its_parameters_and_exports_parse_back() {
     let data = synthetic(tmp.as_path(), "linear-dashpot", &over);
     let out = tmp.as_path().join("fit");
     let (ok, stdout, stderr) = twoball(&[
-        "laws", "fit", "--law", "linear-dashpot", "--against",
-        data.to_str().unwrap(), "--out", out.to_str().unwrap(),
+        "laws",
+        "fit",
+        "--law",
+        "linear-dashpot",
+        "--against",
+        data.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
     ]);
     assert!(ok, "{stdout}{stderr}");
     let f = fitted(&out);
@@ -118,18 +124,31 @@ fn walton_braun_export_maps_the_unloading_stiffness() {
     let data = synthetic(tmp.as_path(), "walton-braun", &over);
     let out = tmp.as_path().join("fit");
     let (ok, stdout, stderr) = twoball(&[
-        "laws", "fit", "--law", "walton-braun", "--against",
-        data.to_str().unwrap(), "--out", out.to_str().unwrap(),
+        "laws",
+        "fit",
+        "--law",
+        "walton-braun",
+        "--against",
+        data.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
     ]);
     assert!(ok, "{stdout}{stderr}");
     let f = fitted(&out);
     let e = f["params"]["e"].as_f64().unwrap();
     let k = f["params"]["k"].as_f64().unwrap();
-    assert!((e - 0.45).abs() < 1e-5 && (k - 2e7).abs() < 1e-5 * 2e7, "{e} {k}");
+    assert!(
+        (e - 0.45).abs() < 1e-5 && (k - 2e7).abs() < 1e-5 * 2e7,
+        "{e} {k}"
+    );
     let lig = std::fs::read_to_string(out.join("liggghts.in")).unwrap();
-    assert!((value_after(&lig, "kn2k2Max peratomtypepair 1") - 1.0 / (e * e)).abs() < 1e-8 / (e * e));
+    assert!(
+        (value_after(&lig, "kn2k2Max peratomtypepair 1") - 1.0 / (e * e)).abs() < 1e-8 / (e * e)
+    );
     let mer = std::fs::read_to_string(out.join("mercurydpm.cpp")).unwrap();
-    assert!((value_after(&mer, "setUnloadingStiffnessMax") - k / (e * e)).abs() < 1e-8 * k / (e * e));
+    assert!(
+        (value_after(&mer, "setUnloadingStiffnessMax") - k / (e * e)).abs() < 1e-8 * k / (e * e)
+    );
     assert!((value_after(&mer, "setLoadingStiffness") - k).abs() < 1e-8 * k);
 }
 
@@ -141,12 +160,20 @@ fn the_sweep_csv_is_read_as_head_on_fe_data() {
     let mut v: Vec<f64> = obs.iter().map(|o| o.speed).collect();
     v.sort_by(f64::total_cmp);
     assert_eq!(v, vec![0.5, 1.0, 2.0, 2.5, 3.5]);
-    assert!(obs.iter().all(|o| o.e > 0.0 && o.e < 1.0 && o.delta_max > 0.0));
+    assert!(obs
+        .iter()
+        .all(|o| o.e > 0.0 && o.e < 1.0 && o.delta_max > 0.0));
     let tmp = tmpdir("sweep");
     let out = tmp.as_path().join("fit");
     let (ok, stdout, stderr) = twoball(&[
-        "laws", "fit", "--law", "thornton", "--against", "verification/ansys/sweep.csv",
-        "--out", out.to_str().unwrap(),
+        "laws",
+        "fit",
+        "--law",
+        "thornton",
+        "--against",
+        "verification/ansys/sweep.csv",
+        "--out",
+        out.to_str().unwrap(),
     ]);
     assert!(ok, "{stdout}{stderr}");
     assert!(fitted(&out)["sigma"]["p_y"].as_f64().unwrap() > 0.0);
@@ -158,14 +185,31 @@ fn bad_fit_input_is_one_clear_error() {
     let bad = tmp.as_path().join("bad.csv");
     std::fs::write(&bad, "v_r [m/s],e [-],delta_max [m]\n1.0,abc,1e-5\n").unwrap();
     let (ok, _, err) = twoball(&[
-        "laws", "fit", "--law", "thornton", "--against", bad.to_str().unwrap(),
-        "--out", tmp.as_path().to_str().unwrap(),
+        "laws",
+        "fit",
+        "--law",
+        "thornton",
+        "--against",
+        bad.to_str().unwrap(),
+        "--out",
+        tmp.as_path().to_str().unwrap(),
     ]);
     assert!(!ok);
     assert!(err.contains("column e [-] = 'abc'"), "{err}");
     let (ok, _, err) = twoball(&[
-        "laws", "fit", "--law", "thornton", "--free", "k", "--against",
-        "verification/ansys/sweep.csv", "--out", tmp.as_path().to_str().unwrap(),
+        "laws",
+        "fit",
+        "--law",
+        "thornton",
+        "--free",
+        "k",
+        "--against",
+        "verification/ansys/sweep.csv",
+        "--out",
+        tmp.as_path().to_str().unwrap(),
     ]);
-    assert!(!ok && err.contains("--free") && err.contains("p_y"), "{err}");
+    assert!(
+        !ok && err.contains("--free") && err.contains("p_y"),
+        "{err}"
+    );
 }

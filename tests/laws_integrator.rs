@@ -106,10 +106,30 @@ fn the_three_phase_law_on_the_seam_is_the_closed_form_model() {
         let n = NormalImpact::solve(pair.hertz, pair.yield_pressure, v).unwrap();
         let rel = |a: f64, b: f64| (a - b).abs() / b.abs();
         assert!(rel(r.e, n.e) < 1e-6, "e {} vs {}", r.e, n.e);
-        assert!(rel(r.delta_end, n.delta_p) < 1e-6, "delta_p {} vs {}", r.delta_end, n.delta_p);
-        assert!(rel(r.contact_duration, n.t3) < 1e-6, "t3 {} vs {}", r.contact_duration, n.t3);
-        assert!(rel(r.time_of_max, n.t2) < 1e-6, "t2 {} vs {}", r.time_of_max, n.t2);
-        assert!(rel(r.phase_times[0], n.t1) < 1e-6, "t1 {} vs {}", r.phase_times[0], n.t1);
+        assert!(
+            rel(r.delta_end, n.delta_p) < 1e-6,
+            "delta_p {} vs {}",
+            r.delta_end,
+            n.delta_p
+        );
+        assert!(
+            rel(r.contact_duration, n.t3) < 1e-6,
+            "t3 {} vs {}",
+            r.contact_duration,
+            n.t3
+        );
+        assert!(
+            rel(r.time_of_max, n.t2) < 1e-6,
+            "t2 {} vs {}",
+            r.time_of_max,
+            n.t2
+        );
+        assert!(
+            rel(r.phase_times[0], n.t1) < 1e-6,
+            "t1 {} vs {}",
+            r.phase_times[0],
+            n.t1
+        );
     }
 }
 
@@ -124,7 +144,11 @@ fn integrated_coulomb_impulse_is_the_rigid_closed_form() {
         let n = NormalImpact::solve(pair.hertz, pair.yield_pressure, 1.0).unwrap();
         let closed = tangential_impact(&n, 0.3, vt).impulse;
         let rel = (r.tangential_impulse - closed).abs() / closed.abs();
-        assert!(rel < 1e-6, "vt = {vt}: {} vs {closed} ({rel:e})", r.tangential_impulse);
+        assert!(
+            rel < 1e-6,
+            "vt = {vt}: {} vs {closed} ({rel:e})",
+            r.tangential_impulse
+        );
     }
 }
 
@@ -147,8 +171,16 @@ fn thornton_restitution_is_thorntons_published_formula() {
             * (x / (x + 2.0 * (1.2 - 0.2 * x * x).sqrt())).powf(0.25);
         let r = run(&reg, &b, "thornton", "coulomb", [v, 0.0], &[]);
         let cf = law.closed_form(v, h.mass).unwrap();
-        assert!((cf.e - published).abs() < 1e-12, "v/v_y = {ratio}: {} vs {published}", cf.e);
-        assert!((r.e - published).abs() < 1e-6 * published, "{} vs {published}", r.e);
+        assert!(
+            (cf.e - published).abs() < 1e-12,
+            "v/v_y = {ratio}: {} vs {published}",
+            cf.e
+        );
+        assert!(
+            (r.e - published).abs() < 1e-6 * published,
+            "{} vs {published}",
+            r.e
+        );
     }
 }
 
@@ -168,7 +200,11 @@ fn kuwabara_kono_follows_the_viscoelastic_series() {
         let r = run(&reg, &b, "kuwabara-kono", "coulomb", [v, 0.0], &over);
         let series = 1.0 - 1.15344 * small + 0.79826 * small * small;
         // Third-order term: |e − series| ~ small³.
-        assert!((r.e - series).abs() < 2.0 * small.powi(3), "{small}: {} vs {series}", r.e);
+        assert!(
+            (r.e - series).abs() < 2.0 * small.powi(3),
+            "{small}: {} vs {series}",
+            r.e
+        );
     }
 }
 
@@ -182,7 +218,10 @@ fn hertz_damped_restitution_does_not_depend_on_speed() {
         .iter()
         .map(|&v| run(&reg, &b, "hertz-damped", "coulomb", [v, 0.0], &[]).e)
         .collect();
-    assert!((e[0] - e[2]).abs() < 1e-7 && (e[1] - e[2]).abs() < 1e-7, "{e:?}");
+    assert!(
+        (e[0] - e[2]).abs() < 1e-7 && (e[1] - e[2]).abs() < 1e-7,
+        "{e:?}"
+    );
 }
 
 #[test]
@@ -193,7 +232,10 @@ fn mindlin_coulomb_gives_tangential_rebound_and_tends_to_no_slip() {
     // (its period is shorter than the contact): the slip after is neither 0 nor larger.
     let r = run(&reg, &b, "hertz", "mindlin-coulomb", [1.0, 0.02], &[]);
     let et = r.tangential_restitution().unwrap();
-    assert!(et.abs() > 0.1 && et.abs() < 1.0, "tangential restitution {et}");
+    assert!(
+        et.abs() > 0.1 && et.abs() < 1.0,
+        "tangential restitution {et}"
+    );
     // Coulomb alone can only bring the slip to 0.
     let c = run(&reg, &b, "hertz", "coulomb", [1.0, 0.02], &[]);
     assert!(c.tangential_restitution().unwrap().abs() < 1e-9);
@@ -204,10 +246,18 @@ fn mindlin_coulomb_gives_tangential_rebound_and_tends_to_no_slip() {
     let (t1, _) = reg.build_tangential("mindlin-coulomb", &[], &pair).unwrap();
     let (t2, _) = reg.build_tangential("mindlin", &[], &pair).unwrap();
     let go = |t: &dyn twoball::analytic::laws::TangentialLaw| {
-        integrate(&b.0, &b.1, [0.5, 0.1], [-0.5, -0.1], n.as_ref(), t, DEFAULT_TOLERANCE)
-            .unwrap()
-            .unwrap()
-            .slip_after
+        integrate(
+            &b.0,
+            &b.1,
+            [0.5, 0.1],
+            [-0.5, -0.1],
+            n.as_ref(),
+            t,
+            DEFAULT_TOLERANCE,
+        )
+        .unwrap()
+        .unwrap()
+        .slip_after
     };
     let (a, bb) = (go(t1.as_ref()), go(t2.as_ref()));
     assert!((a - bb).abs() < 1e-5 * bb.abs(), "{a} vs {bb}");

@@ -302,7 +302,8 @@ impl System<'_> {
         let df_dr = (self.force(mode, d, r + er) - self.force(mode, d, r - er)) / (2.0 * er);
         let f_rate = df_dd * r + df_dr * acc;
         let kt = self.tangential.stiffness(d);
-        let kt_slope = (self.tangential.stiffness(d + ed) - self.tangential.stiffness(d - ed).max(0.0))
+        let kt_slope = (self.tangential.stiffness(d + ed)
+            - self.tangential.stiffness(d - ed).max(0.0))
             / (2.0 * ed);
         let xi = s * self.mu * f.max(0.0) / kt;
         s * (kt_slope * r * xi + kt * y[4]) - self.mu * f_rate
@@ -344,7 +345,11 @@ pub fn integrate(
         }
     }
     if !(tolerance > 0.0 && tolerance < 1e-2) {
-        return Err(Error::invalid("tolerance", tolerance, "0 < tolerance < 0.01"));
+        return Err(Error::invalid(
+            "tolerance",
+            tolerance,
+            "0 < tolerance < 0.01",
+        ));
     }
     let speed = v1[0] - v2[0];
     if !(speed > 0.0) {
@@ -371,7 +376,11 @@ pub fn integrate(
         mass: pair.mass,
         tangential_mass,
         speed,
-        thresholds: normal.thresholds().into_iter().filter(|&d| d > 0.0).collect(),
+        thresholds: normal
+            .thresholds()
+            .into_iter()
+            .filter(|&d| d > 0.0)
+            .collect(),
         rigid_tangential: tangential.stiffness(delta_ref) == 0.0,
         mu,
         scale: [delta_ref, speed, e_ref, u_ref * t_ref, u_ref, e_ref],
@@ -460,10 +469,7 @@ pub fn integrate(
                 delta_max = y[0];
                 time_of_max = t;
                 let force = sys.raw_force(&mode, y[0], 0.0);
-                mode.normal = NormalMode::Unloading(Turn {
-                    delta: y[0],
-                    force,
-                });
+                mode.normal = NormalMode::Unloading(Turn { delta: y[0], force });
                 y[1] = y[1].min(0.0);
             }
             Event::Threshold => {

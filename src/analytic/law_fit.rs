@@ -118,7 +118,10 @@ pub fn read_observations(
         if !(o.speed > 0.0 && o.e > 0.0 && o.delta_max > 0.0) {
             return Err(Error::invalid(
                 format!("{source} observation"),
-                format!("v_r = {}, e = {}, delta_max = {}", o.speed, o.e, o.delta_max),
+                format!(
+                    "v_r = {}, e = {}, delta_max = {}",
+                    o.speed, o.e, o.delta_max
+                ),
                 "v_r > 0, e > 0, delta_max > 0",
             ));
         }
@@ -201,7 +204,11 @@ pub fn fit(
     fixed: &[(String, f64)],
 ) -> Result<Fit> {
     if obs.is_empty() {
-        return Err(Error::invalid("observations", 0, "at least one head-on impact"));
+        return Err(Error::invalid(
+            "observations",
+            0,
+            "at least one head-on impact",
+        ));
     }
     let base = Params::resolve(spec.name, spec.params, fixed, pair)?;
     let mut names: Vec<&'static str> = vec![];
@@ -250,7 +257,12 @@ pub fn fit(
             let h = 1e-6;
             t[j] += h;
             let rj = residuals(&t)?;
-            cols.push(rj.iter().zip(r).map(|(a, b)| (a - b) / h).collect::<Vec<_>>());
+            cols.push(
+                rj.iter()
+                    .zip(r)
+                    .map(|(a, b)| (a - b) / h)
+                    .collect::<Vec<_>>(),
+            );
         }
         Ok(cols)
     };

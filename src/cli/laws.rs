@@ -127,8 +127,16 @@ pub fn run_law(a: &LawRunArgs, registry: &Registry) -> Result<LawRun> {
         registry.build_tangential(&a.tangential, &parse_params("--tparam", &a.tparam)?, &pair)?;
     let v1 = [a.ball.v1, a.ball.v1t];
     let v2 = [v2n, a.ball.v2t];
-    let impact = integrate(&b1, &b2, v1, v2, normal.as_ref(), tang.as_ref(), a.tolerance)
-        .map_err(|e| Error::Numerical(format!("law {}: {e}", a.law)))?;
+    let impact = integrate(
+        &b1,
+        &b2,
+        v1,
+        v2,
+        normal.as_ref(),
+        tang.as_ref(),
+        a.tolerance,
+    )
+    .map_err(|e| Error::Numerical(format!("law {}: {e}", a.law)))?;
     Ok(LawRun {
         bodies: (b1, b2),
         v: (v1, v2),
@@ -213,7 +221,10 @@ fn write_curve(i: &LawImpact, path: &std::path::Path) -> Result<()> {
     for p in &i.history {
         let row = [p.t, p.delta, p.rate, p.force, p.tangential_force, p.slip];
         if let Some(v) = row.iter().find(|v| !v.is_finite()) {
-            return Err(Error::Numerical(format!("contact history: {v} at t = {}", p.t)));
+            return Err(Error::Numerical(format!(
+                "contact history: {v} at t = {}",
+                p.t
+            )));
         }
         let cells: Vec<String> = row.iter().map(|v| format!("{v:.9e}")).collect();
         s.push_str(&cells.join(","));

@@ -61,13 +61,21 @@ fn num(x: f64) -> Value {
 pub fn run(a: LawFitArgs, registry: &Registry) -> Result<()> {
     let spec = *registry.normal(&a.law)?;
     let m = Material::preset(&a.material).map_err(|_| {
-        Error::invalid("--material", &a.material, format!("one of {}", PRESET_NAMES.join(", ")))
+        Error::invalid(
+            "--material",
+            &a.material,
+            format!("one of {}", PRESET_NAMES.join(", ")),
+        )
     })?;
     if !(a.diameter.is_finite() && a.diameter > 0.0) {
         return Err(Error::invalid("--diameter", a.diameter, "> 0 m, finite"));
     }
     if !(a.vmin >= 0.0 && a.vmax > a.vmin) {
-        return Err(Error::invalid("--vmax", a.vmax, format!("> --vmin = {}", a.vmin)));
+        return Err(Error::invalid(
+            "--vmax",
+            a.vmax,
+            format!("> --vmin = {}", a.vmin),
+        ));
     }
     let b = Body::ball(m, a.diameter, "ball1")?;
     let pair = ContactPair::between(&b, &b, m.mu);

@@ -37,10 +37,10 @@ impl ContactPair {
             (Some(a), _) => Some(*a),
             (None, m) => m.copied(),
         };
-        let (youngs, tangent, poisson, yield_strength) = soft.map_or(
-            (f64::INFINITY, f64::INFINITY, 0.0, f64::INFINITY),
-            |m| (m.youngs, m.tangent, m.nu, m.yield_strength),
-        );
+        let (youngs, tangent, poisson, yield_strength) = soft
+            .map_or((f64::INFINITY, f64::INFINITY, 0.0, f64::INFINITY), |m| {
+                (m.youngs, m.tangent, m.nu, m.yield_strength)
+            });
         ContactPair {
             hertz: HertzPair::between(b1, b2),
             shear_modulus: 1.0 / (shear(b1) + shear(b2)),

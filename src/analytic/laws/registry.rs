@@ -87,10 +87,13 @@ impl Registry {
 
     /// The tangential law called `name`; the error lists the known names.
     pub fn tangential(&self, name: &str) -> Result<&TangentialSpec> {
-        self.tangential.iter().find(|s| s.name == name).ok_or_else(|| {
-            let names: Vec<&str> = self.tangential.iter().map(|s| s.name).collect();
-            Error::invalid("--tangential", name, format!("one of {}", names.join(", ")))
-        })
+        self.tangential
+            .iter()
+            .find(|s| s.name == name)
+            .ok_or_else(|| {
+                let names: Vec<&str> = self.tangential.iter().map(|s| s.name).collect();
+                Error::invalid("--tangential", name, format!("one of {}", names.join(", ")))
+            })
     }
 
     /// Builds normal law `name` for `pair` with parameter `overrides` (key, value).

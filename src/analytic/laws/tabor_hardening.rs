@@ -49,7 +49,8 @@ impl TaborHardening {
                 return 0.0;
             }
             c * (self.yield_strength * (1.0 - self.tangent / self.youngs) * (b - a)
-                + 0.2 * self.tangent / self.radius.sqrt() * (2.0 / 3.0)
+                + 0.2 * self.tangent / self.radius.sqrt()
+                    * (2.0 / 3.0)
                     * (b * b.sqrt() - a * a.sqrt()))
         };
         flat(a, b.min(sh)) + rising(a.max(sh), b)
