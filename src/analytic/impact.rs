@@ -352,7 +352,7 @@ pub fn integrate(
         ));
     }
     let speed = v1[0] - v2[0];
-    if !(speed > 0.0) {
+    if speed.is_nan() || speed <= 0.0 {
         return Ok(None);
     }
     let pair = HertzPair::between(b1, b2);
@@ -407,7 +407,7 @@ pub fn integrate(
         }
         h = h.min(h_max);
         let (y1, err) = sys.step(&mode, &y, h, tolerance);
-        if !(err <= 1.0) {
+        if err.is_nan() || err > 1.0 {
             if !err.is_finite() && h < 1e-12 * t_ref {
                 return Err(Error::Numerical(format!(
                     "contact law returned a non-finite force near delta = {:e} m, rate = {:e} m/s",

@@ -176,12 +176,14 @@ fn solve(mut a: Vec<Vec<f64>>, mut b: Vec<f64>) -> Option<Vec<f64>> {
         }
         a.swap(c, p);
         b.swap(c, p);
-        for r in c + 1..n {
-            let f = a[r][c] / a[c][c];
-            for k in c..n {
-                a[r][k] -= f * a[c][k];
+        let (top, rest) = a.split_at_mut(c + 1);
+        let pivot = &top[c];
+        for (i, row) in rest.iter_mut().enumerate() {
+            let f = row[c] / pivot[c];
+            for (x, p) in row.iter_mut().zip(pivot.iter()).skip(c) {
+                *x -= f * p;
             }
-            b[r] -= f * b[c];
+            b[c + 1 + i] -= f * b[c];
         }
     }
     let mut x = vec![0.0; n];
@@ -217,7 +219,11 @@ pub fn fit(
             let keys: Vec<&str> = spec.params.iter().map(|p| p.key).collect();
             Error::invalid("--free", f, format!("one of {}", keys.join(", ")))
         })?;
-        if names.contains(&s.key) || s.min < 0.0 || !(base.get(s.key) > 0.0) {
+        if names.contains(&s.key)
+            || s.min < 0.0
+            || base.get(s.key).is_nan()
+            || base.get(s.key) <= 0.0
+        {
             return Err(Error::invalid(
                 "--free",
                 f,

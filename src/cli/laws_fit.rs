@@ -122,7 +122,7 @@ pub fn run(a: LawFitArgs, registry: &Registry) -> Result<()> {
         csv.push_str(&format!("{v:.9e},{e:.9e},{d:.9e},{t:.9e}\n"));
     }
     write_atomic(a.out.join("e_of_v.csv"), csv.as_bytes())?;
-    let exports = dem_exports(&spec.name.to_string(), &f.params, &pair, m.nu, m.rho, m.mu);
+    let exports = dem_exports(spec.name, &f.params, &pair, m.nu, m.rho, m.mu);
     for (name, text) in &exports {
         write_atomic(a.out.join(name), text.as_bytes())?;
     }

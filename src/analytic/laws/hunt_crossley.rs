@@ -37,7 +37,7 @@ fn phi(chi: f64, u: f64) -> f64 {
 /// Closed form of F = K δ^{3/2}(1 + χ δ̇) at approach speed v (m/s), mass m (kg); `None` when
 /// χ v ≥ 1 (the force would pull before δ returns to 0, outside the closed form).
 pub fn closed_form(k: f64, chi: f64, v: f64, m: f64) -> Option<ClosedForm> {
-    if !(chi * v < 1.0) || chi <= 0.0 {
+    if (chi * v).is_nan() || chi * v >= 1.0 || chi <= 0.0 {
         return None;
     }
     let target = phi(chi, v);
