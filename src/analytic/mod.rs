@@ -1,4 +1,5 @@
-//! The analytical collision model of Li, Yang & Shi (2019): Hertz compression, elastoplastic
+//! The analytical collision model of Li, Yang & Shi (2019) and the contact-law laboratory
+//! (`laws`, `impact`, `law_fit`): Hertz compression, elastoplastic
 //! compression, elastic recovery, the friction revision, the particle damping index and the
 //! paper's parametric studies. Pure functions of SI inputs; no I/O except the parametric
 //! writers.
@@ -9,6 +10,9 @@ pub mod damping_index;
 pub mod friction;
 pub mod hertz;
 pub mod history;
+pub mod impact;
+pub mod law_fit;
+pub mod laws;
 pub mod parametric;
 mod quadrature;
 pub mod three_phase;

@@ -199,7 +199,7 @@ fn apply(mut m: Material, o: &MaterialOverrides) -> Material {
 }
 
 /// The two bodies described by the flags.
-fn bodies(a: &AnalyticArgs) -> Result<(Body, Body)> {
+pub(super) fn bodies(a: &AnalyticArgs) -> Result<(Body, Body)> {
     for (flag, d) in [
         ("--diameter", Some(a.diameter)),
         ("--diameter2", a.diameter2),

@@ -11,6 +11,8 @@ mod bench;
 mod bench_machine;
 mod bench_profile;
 mod bench_study;
+mod laws;
+mod laws_fit;
 mod mesh;
 mod report;
 mod run;
@@ -18,6 +20,8 @@ mod stress;
 mod sweep;
 
 use clap::{CommandFactory, FromArgMatches, Parser, Subcommand};
+
+pub use laws::main_with as laws_main_with;
 
 /// twoball: finite-element verifier for the collision of two elastic-plastic balls.
 #[derive(Debug, Parser)]
@@ -50,6 +54,8 @@ pub enum Command {
     Report(report::ReportArgs),
     /// Stability matrix of extreme scenes: every case completes cleanly or stops with a reason.
     Stress(stress::StressArgs),
+    /// Contact laws: list them, `laws run` one impact under a law, `laws fit` calibrate one.
+    Laws(laws::LawsArgs),
 }
 
 /// Whether `arg` takes a number (its value parser is that of a numeric type).
@@ -120,6 +126,7 @@ where
         Command::Bench(a) => bench::run(a),
         Command::Report(a) => report::run(a),
         Command::Stress(a) => stress::run(a),
+        Command::Laws(a) => laws::run(a),
     };
     // The command runs on a worker of the thread pool: the solver's parallel loops (a dozen
     // per time step) then fork and join inside the pool instead of handing work from the

@@ -1,0 +1,511 @@
+//! Calibration of a normal contact law: least squares on the relative errors of e and δ_max
+//! over a set of head-on impacts (Levenberg-Marquardt in the logarithms of the free
+//! parameters, uncertainties from the covariance s²(JᵀJ)⁻¹), and the export of the fitted
+//! parameters in the input syntax of DEM codes that ship the law.
+
+use super::body::Body;
+use super::impact::integrate;
+use super::laws::coulomb::Coulomb;
+use super::laws::{ContactPair, NormalSpec, Params};
+use crate::error::{Error, Result};
+
+/// One measured (or FE) head-on impact.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Observation {
+    /// Relative normal approach speed v_r, m/s.
+    pub speed: f64,
+    /// Coefficient of restitution.
+    pub e: f64,
+    /// Maximum approach, m.
+    pub delta_max: f64,
+}
+
+/// Column of `header` named exactly `name`.
+fn column(header: &[&str], name: &str) -> Option<usize> {
+    header.iter().position(|h| h.trim() == name)
+}
+
+/// Reads observations from CSV text. Two layouts are accepted: the general one with columns
+/// `v_r [m/s]`, `e [-]`, `delta_max [m]` (any others ignored), and a `twoball sweep` CSV
+/// (head-on rows with status `done`, columns `v1n [m/s]`, `v2n [m/s]`, `v1t [m/s]`,
+/// `v2t [m/s]`, `e_fe [-]`, `delta_max_fe [m]`), filtered to `diameter` (m, if given) and
+/// `mesh` (if given). `source` names the input in errors.
+pub fn read_observations(
+    text: &str,
+    source: &str,
+    diameter: Option<f64>,
+    mesh: Option<&str>,
+) -> Result<Vec<Observation>> {
+    let mut lines = text.lines().filter(|l| !l.trim().is_empty());
+    let header: Vec<&str> = lines
+        .next()
+        .ok_or_else(|| Error::Parse(format!("{source}: empty file")))?
+        .split(',')
+        .collect();
+    let num = |row: &[&str], i: usize, line: usize| -> Result<f64> {
+        let cell = row.get(i).copied().unwrap_or("").trim();
+        cell.parse::<f64>()
+            .ok()
+            .filter(|v| v.is_finite())
+            .ok_or_else(|| {
+                Error::Parse(format!(
+                    "{source} line {line}: column {} = '{cell}' is not a finite number",
+                    header[i].trim()
+                ))
+            })
+    };
+    let mut out = vec![];
+    if let (Some(iv), Some(ie), Some(id)) = (
+        column(&header, "v_r [m/s]"),
+        column(&header, "e [-]"),
+        column(&header, "delta_max [m]"),
+    ) {
+        for (k, l) in lines.enumerate() {
+            let row: Vec<&str> = l.split(',').collect();
+            out.push(Observation {
+                speed: num(&row, iv, k + 2)?,
+                e: num(&row, ie, k + 2)?,
+                delta_max: num(&row, id, k + 2)?,
+            });
+        }
+    } else {
+        let need = [
+            "status",
+            "diameter [m]",
+            "v1n [m/s]",
+            "v2n [m/s]",
+            "v1t [m/s]",
+            "v2t [m/s]",
+            "e_fe [-]",
+            "delta_max_fe [m]",
+        ];
+        let mut idx = vec![];
+        for n in need {
+            idx.push(column(&header, n).ok_or_else(|| {
+                Error::Parse(format!(
+                    "{source}: no column '{n}' (expected either v_r [m/s], e [-], delta_max [m] \
+                     or a twoball sweep CSV)"
+                ))
+            })?);
+        }
+        let im = column(&header, "mesh");
+        for (k, l) in lines.enumerate() {
+            let row: Vec<&str> = l.split(',').collect();
+            if row.get(idx[0]).map(|s| s.trim()) != Some("done") {
+                continue;
+            }
+            if let (Some(m), Some(i)) = (mesh, im) {
+                if row.get(i).map(|s| s.trim()) != Some(m) {
+                    continue;
+                }
+            }
+            let line = k + 2;
+            let d = num(&row, idx[1], line)?;
+            if diameter.is_some_and(|want| (d - want).abs() > 1e-9 * want) {
+                continue;
+            }
+            if num(&row, idx[4], line)? != 0.0 || num(&row, idx[5], line)? != 0.0 {
+                continue;
+            }
+            out.push(Observation {
+                speed: num(&row, idx[2], line)? - num(&row, idx[3], line)?,
+                e: num(&row, idx[6], line)?,
+                delta_max: num(&row, idx[7], line)?,
+            });
+        }
+    }
+    for o in &out {
+        if !(o.speed > 0.0 && o.e > 0.0 && o.delta_max > 0.0) {
+            return Err(Error::invalid(
+                format!("{source} observation"),
+                format!(
+                    "v_r = {}, e = {}, delta_max = {}",
+                    o.speed, o.e, o.delta_max
+                ),
+                "v_r > 0, e > 0, delta_max > 0",
+            ));
+        }
+    }
+    Ok(out)
+}
+
+/// A fitted law.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Fit {
+    /// All parameters, fitted ones at their optimum.
+    pub params: Params,
+    /// Free parameter names.
+    pub free: Vec<&'static str>,
+    /// One-standard-deviation uncertainty of each free parameter (same units; NaN if there
+    /// are no more residuals than free parameters).
+    pub sigma: Vec<f64>,
+    /// Root-mean-square relative residual over e and δ_max.
+    pub rms: f64,
+    /// Per observation: (observation, fitted e, fitted δ_max).
+    pub rows: Vec<(Observation, f64, f64)>,
+}
+
+/// e and δ_max of law `spec` with `params` for the pair of `b1`, `b2` at approach speed v.
+pub fn predict(
+    spec: &NormalSpec,
+    pair: &ContactPair,
+    params: &Params,
+    b1: &Body,
+    b2: &Body,
+    speed: f64,
+) -> Result<(f64, f64, f64)> {
+    let law = (spec.build)(pair, params);
+    let (v1, v2) = if b2.is_wall() {
+        ([speed, 0.0], [0.0, 0.0])
+    } else {
+        ([0.5 * speed, 0.0], [-0.5 * speed, 0.0])
+    };
+    let r = integrate(b1, b2, v1, v2, law.as_ref(), &Coulomb { mu: 0.0 }, 1e-9)?
+        .ok_or_else(|| Error::invalid("speed", speed, "> 0 m/s"))?;
+    Ok((r.e, r.delta_max, r.contact_duration))
+}
+
+/// Solves the small dense system A x = b (Gaussian elimination, partial pivoting); `None` if
+/// singular.
+fn solve(mut a: Vec<Vec<f64>>, mut b: Vec<f64>) -> Option<Vec<f64>> {
+    let n = b.len();
+    for c in 0..n {
+        let p = (c..n).max_by(|&i, &j| a[i][c].abs().total_cmp(&a[j][c].abs()))?;
+        if a[p][c].abs() < 1e-300 {
+            return None;
+        }
+        a.swap(c, p);
+        b.swap(c, p);
+        let (top, rest) = a.split_at_mut(c + 1);
+        let pivot = &top[c];
+        for (i, row) in rest.iter_mut().enumerate() {
+            let f = row[c] / pivot[c];
+            for (x, p) in row.iter_mut().zip(pivot.iter()).skip(c) {
+                *x -= f * p;
+            }
+            b[c + 1 + i] -= f * b[c];
+        }
+    }
+    let mut x = vec![0.0; n];
+    for r in (0..n).rev() {
+        let s: f64 = (r + 1..n).map(|k| a[r][k] * x[k]).sum();
+        x[r] = (b[r] - s) / a[r][r];
+    }
+    Some(x)
+}
+
+/// Fits the `free` parameters of `spec` (others at `fixed` overrides or defaults) to `obs`.
+/// Errors: no observations, an unknown or duplicate free key, a law that fails to integrate.
+pub fn fit(
+    spec: &NormalSpec,
+    pair: &ContactPair,
+    b1: &Body,
+    b2: &Body,
+    obs: &[Observation],
+    free: &[String],
+    fixed: &[(String, f64)],
+) -> Result<Fit> {
+    if obs.is_empty() {
+        return Err(Error::invalid(
+            "observations",
+            0,
+            "at least one head-on impact",
+        ));
+    }
+    let base = Params::resolve(spec.name, spec.params, fixed, pair)?;
+    let mut names: Vec<&'static str> = vec![];
+    for f in free {
+        let s = spec.params.iter().find(|p| p.key == f).ok_or_else(|| {
+            let keys: Vec<&str> = spec.params.iter().map(|p| p.key).collect();
+            Error::invalid("--free", f, format!("one of {}", keys.join(", ")))
+        })?;
+        if names.contains(&s.key)
+            || s.min < 0.0
+            || base.get(s.key).is_nan()
+            || base.get(s.key) <= 0.0
+        {
+            return Err(Error::invalid(
+                "--free",
+                f,
+                "distinct keys of positive parameters",
+            ));
+        }
+        names.push(s.key);
+    }
+    let make = |theta: &[f64]| -> Result<Params> {
+        let mut over: Vec<(String, f64)> = base.iter().map(|(k, v)| (k.to_string(), v)).collect();
+        for (k, t) in names.iter().zip(theta) {
+            let s = spec.params.iter().find(|p| p.key == *k).expect("declared");
+            let v = t.exp().clamp(s.min.max(1e-300), s.max);
+            over.push((k.to_string(), v));
+        }
+        Params::resolve(spec.name, spec.params, &over, pair)
+    };
+    let residuals = |theta: &[f64]| -> Result<Vec<f64>> {
+        let p = make(theta)?;
+        let mut r = Vec::with_capacity(2 * obs.len());
+        for o in obs {
+            let (e, d, _) = predict(spec, pair, &p, b1, b2, o.speed)?;
+            r.push((e - o.e) / o.e);
+            r.push((d - o.delta_max) / o.delta_max);
+        }
+        Ok(r)
+    };
+    let ssr = |r: &[f64]| r.iter().map(|x| x * x).sum::<f64>();
+    let mut theta: Vec<f64> = names.iter().map(|k| base.get(k).ln()).collect();
+    let mut r = residuals(&theta)?;
+    let mut lambda = 1e-3;
+    let np = names.len();
+    let jacobian = |theta: &[f64], r: &[f64]| -> Result<Vec<Vec<f64>>> {
+        let mut cols = vec![];
+        for j in 0..np {
+            let mut t = theta.to_vec();
+            let h = 1e-6;
+            t[j] += h;
+            let rj = residuals(&t)?;
+            cols.push(
+                rj.iter()
+                    .zip(r)
+                    .map(|(a, b)| (a - b) / h)
+                    .collect::<Vec<_>>(),
+            );
+        }
+        Ok(cols)
+    };
+    let normal = |cols: &[Vec<f64>]| -> Vec<Vec<f64>> {
+        (0..np)
+            .map(|i| {
+                (0..np)
+                    .map(|j| cols[i].iter().zip(&cols[j]).map(|(a, b)| a * b).sum())
+                    .collect()
+            })
+            .collect()
+    };
+    for _ in 0..if np == 0 { 0 } else { 60 } {
+        let cols = jacobian(&theta, &r)?;
+        let jtj = normal(&cols);
+        let g: Vec<f64> = cols
+            .iter()
+            .map(|c| -c.iter().zip(&r).map(|(a, b)| a * b).sum::<f64>())
+            .collect();
+        let mut improved = false;
+        for _ in 0..20 {
+            let mut a = jtj.clone();
+            for (i, row) in a.iter_mut().enumerate() {
+                row[i] += lambda * jtj[i][i].max(1e-12);
+            }
+            let Some(step) = solve(a, g.clone()) else {
+                lambda *= 10.0;
+                continue;
+            };
+            let trial: Vec<f64> = theta.iter().zip(&step).map(|(t, s)| t + s).collect();
+            let rt = residuals(&trial)?;
+            if ssr(&rt) < ssr(&r) {
+                let gain = (ssr(&r) - ssr(&rt)) / ssr(&r).max(1e-300);
+                theta = trial;
+                r = rt;
+                lambda = (lambda / 3.0).max(1e-12);
+                improved = gain > 1e-12;
+                break;
+            }
+            lambda *= 4.0;
+        }
+        if !improved {
+            break;
+        }
+    }
+    let params = make(&theta)?;
+    let dof = r.len() as f64 - np as f64;
+    let sigma = if np == 0 {
+        vec![]
+    } else if dof > 0.0 {
+        let cols = jacobian(&theta, &r)?;
+        let jtj = normal(&cols);
+        let s2 = ssr(&r) / dof;
+        (0..np)
+            .map(|j| {
+                let mut unit = vec![0.0; np];
+                unit[j] = 1.0;
+                solve(jtj.clone(), unit).map_or(f64::NAN, |col| {
+                    (s2 * col[j]).max(0.0).sqrt() * params.get(names[j])
+                })
+            })
+            .collect()
+    } else {
+        vec![f64::NAN; np]
+    };
+    let mut rows = vec![];
+    for o in obs {
+        let (e, d, _) = predict(spec, pair, &params, b1, b2, o.speed)?;
+        rows.push((*o, e, d));
+    }
+    Ok(Fit {
+        params,
+        free: names,
+        sigma,
+        rms: (ssr(&r) / r.len() as f64).sqrt(),
+        rows,
+    })
+}
+
+/// DEM input snippets for a fitted law: (file name, text) for each code that ships it, with
+/// comments saying what maps exactly and what does not. `youngs_factor` converts the pair's
+/// effective modulus to the per-ball Young's modulus the codes take (2(1 − ν²) for two equal
+/// balls); `poisson`, `density`, `mu` are the balls'. Empty for a law no code ships.
+pub fn dem_exports(
+    law: &str,
+    params: &Params,
+    pair: &ContactPair,
+    poisson: f64,
+    density: f64,
+    mu: f64,
+) -> Vec<(&'static str, String)> {
+    let m = pair.hertz.mass;
+    let header = |code: &str| {
+        format!(
+            "# {code} input for twoball law '{law}' fitted by `twoball laws fit` (SI units).\n\
+             # Pair: E* = {:.9e} Pa, R* = {:.9e} m, m* = {:.9e} kg.\n",
+            pair.hertz.modulus, pair.hertz.radius, m
+        )
+    };
+    match law {
+        "linear-dashpot" => {
+            let k = params.get("k");
+            let e = params.get("e");
+            let c = 2.0 * super::laws::linear_dashpot::damping_ratio(e) * (k * m).sqrt();
+            let tension = params.get("tension") >= 0.5;
+            vec![
+                (
+                    "liggghts.in",
+                    format!(
+                        "{}# Maps exactly: kn and gamman (LIGGGHTS multiplies gamman by m*); limitForce {} \
+                         matches tension = {}.\n# Does not map: LIGGGHTS's tangential spring (kt) is not fitted.\n\
+                         pair_style gran model hooke/stiffness tangential history limitForce {}\n\
+                         pair_coeff * *\n\
+                         fix m1 all property/global kn peratomtypepair 1 {:.9e}\n\
+                         fix m2 all property/global kt peratomtypepair 1 {:.9e}\n\
+                         fix m3 all property/global gamman peratomtypepair 1 {:.9e}\n\
+                         fix m4 all property/global gammat peratomtypepair 1 0.0\n\
+                         fix m5 all property/global coefficientFriction peratomtypepair 1 {:.9e}\n",
+                        header("LIGGGHTS"),
+                        if tension { "off" } else { "on" },
+                        u8::from(tension),
+                        if tension { "off" } else { "on" },
+                        k,
+                        2.0 / 7.0 * k,
+                        c / m,
+                        mu
+                    ),
+                ),
+                (
+                    "mercurydpm.cpp",
+                    format!(
+                        "{}// Maps exactly: stiffness k and dissipation c (F = k delta + c delta_dot).\n\
+                         // Does not map: MercuryDPM never clips the force ({}).\n\
+                         LinearViscoelasticSpecies species;\n\
+                         species.setDensity({:.9e});\n\
+                         species.setStiffness({:.9e});\n\
+                         species.setDissipation({:.9e});\n",
+                        header("MercuryDPM").replace('#', "//"),
+                        if tension { "same as tension = 1" } else { "tension = 0 differs" },
+                        density,
+                        k,
+                        c
+                    ),
+                ),
+            ]
+        }
+        "hertz-damped" => {
+            let e_star = params.get("E_star");
+            let e = params.get("e");
+            let tension = params.get("tension") >= 0.5;
+            vec![
+                (
+                    "liggghts.in",
+                    format!(
+                        "{}# Maps exactly: youngsModulus (E = 2(1 - nu^2) E* for two equal balls), \
+                         coefficientRestitution, limitForce {} (tension = {}).\n\
+                         # Does not map: a fitted R_star other than the balls' (LIGGGHTS takes R from the particles).\n\
+                         pair_style gran model hertz tangential history limitForce {}\n\
+                         pair_coeff * *\n\
+                         fix m1 all property/global youngsModulus peratomtype {:.9e}\n\
+                         fix m2 all property/global poissonsRatio peratomtype {:.9e}\n\
+                         fix m3 all property/global coefficientRestitution peratomtypepair 1 {:.9e}\n\
+                         fix m4 all property/global coefficientFriction peratomtypepair 1 {:.9e}\n",
+                        header("LIGGGHTS"),
+                        if tension { "off" } else { "on" },
+                        u8::from(tension),
+                        if tension { "off" } else { "on" },
+                        e_star * 2.0 * (1.0 - poisson * poisson),
+                        poisson,
+                        e,
+                        mu
+                    ),
+                ),
+                (
+                    "mercurydpm.cpp",
+                    format!(
+                        "{}// Maps exactly: the effective elastic modulus E*.\n\
+                         // Does not map: MercuryDPM's Hertzian dissipation constant is not the Tsuji/LIGGGHTS\n\
+                         // one; setting it from the same restitution gives a different e (rerun `twoball laws run`).\n\
+                         HertzianViscoelasticNormalSpecies species;\n\
+                         species.setDensity({:.9e});\n\
+                         species.setEffectiveElasticModulusAndRestitutionCoefficient({:.9e}, {:.9e});\n",
+                        header("MercuryDPM").replace('#', "//"),
+                        density,
+                        e_star,
+                        e
+                    ),
+                ),
+            ]
+        }
+        "walton-braun" => {
+            let k1 = params.get("k");
+            let e = params.get("e");
+            vec![
+                (
+                    "liggghts.in",
+                    format!(
+                        "{}# Maps exactly: kn = k1 (hooke/stiffness) and the unloading stiffness k2 = k1/e^2 through\n\
+                         # kn2k2Max = 1/e^2 once the overlap exceeds phiF times the diameter (phiF tiny makes it exact).\n\
+                         # Does not map: LIGGGHTS's adhesive branch (kn2kc) is switched off with a huge ratio.\n\
+                         pair_style gran model hooke/hysteresis tangential history\n\
+                         pair_coeff * *\n\
+                         fix m1 all property/global kn peratomtypepair 1 {:.9e}\n\
+                         fix m2 all property/global kt peratomtypepair 1 {:.9e}\n\
+                         fix m3 all property/global gamman peratomtypepair 1 0.0\n\
+                         fix m4 all property/global gammat peratomtypepair 1 0.0\n\
+                         fix m5 all property/global kn2k2Max peratomtypepair 1 {:.9e}\n\
+                         fix m6 all property/global kn2kc peratomtypepair 1 1.0e12\n\
+                         fix m7 all property/global phiF peratomtypepair 1 1.0e-12\n\
+                         fix m8 all property/global coefficientFriction peratomtypepair 1 {:.9e}\n",
+                        header("LIGGGHTS"),
+                        k1,
+                        2.0 / 7.0 * k1,
+                        1.0 / (e * e),
+                        mu
+                    ),
+                ),
+                (
+                    "mercurydpm.cpp",
+                    format!(
+                        "{}// Maps exactly: loading stiffness k1 and maximum unloading stiffness k2 = k1/e^2, reached\n\
+                         // at once with a tiny penetration depth max; no cohesion, no dissipation.\n\
+                         LinearPlasticViscoelasticNormalSpecies species;\n\
+                         species.setDensity({:.9e});\n\
+                         species.setLoadingStiffness({:.9e});\n\
+                         species.setUnloadingStiffnessMax({:.9e});\n\
+                         species.setCohesionStiffness(0.0);\n\
+                         species.setPenetrationDepthMax(1.0e-12);\n\
+                         species.setDissipation(0.0);\n",
+                        header("MercuryDPM").replace('#', "//"),
+                        density,
+                        k1,
+                        k1 / (e * e)
+                    ),
+                ),
+            ]
+        }
+        _ => vec![],
+    }
+}

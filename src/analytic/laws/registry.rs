@@ -1,0 +1,122 @@
+//! The list of laws: each law file exports a spec; the registry finds them by name and builds
+//! them for a pair.
+
+use super::pair::ContactPair;
+use super::params::{ParamSpec, Params};
+use super::{NormalLaw, TangentialLaw};
+use crate::error::{Error, Result};
+
+/// Description and constructor of a normal law.
+#[derive(Clone, Copy)]
+pub struct NormalSpec {
+    /// Name used by `--law`, e.g. `thornton`.
+    pub name: &'static str,
+    /// One-line description.
+    pub title: &'static str,
+    /// Original source (authors, year, journal).
+    pub source: &'static str,
+    /// DEM codes that ship the law (as documented by them), or `none`.
+    pub dem_codes: &'static str,
+    /// Parameters with units, ranges and defaults.
+    pub params: &'static [ParamSpec],
+    /// Builds the law for a pair from resolved parameters.
+    pub build: fn(&ContactPair, &Params) -> Box<dyn NormalLaw>,
+}
+
+/// Description and constructor of a tangential law.
+#[derive(Clone, Copy)]
+pub struct TangentialSpec {
+    /// Name used by `--tangential`, e.g. `mindlin`.
+    pub name: &'static str,
+    /// One-line description.
+    pub title: &'static str,
+    /// Original source.
+    pub source: &'static str,
+    /// DEM codes that ship the law, or `none`.
+    pub dem_codes: &'static str,
+    /// Parameters with units, ranges and defaults.
+    pub params: &'static [ParamSpec],
+    /// Builds the law for a pair from resolved parameters.
+    pub build: fn(&ContactPair, &Params) -> Box<dyn TangentialLaw>,
+}
+
+/// The laws known to a run: the built-in ones plus any a program adds.
+#[derive(Clone)]
+pub struct Registry {
+    /// Normal laws, in listing order.
+    pub normal: Vec<NormalSpec>,
+    /// Tangential laws, in listing order.
+    pub tangential: Vec<TangentialSpec>,
+}
+
+impl Registry {
+    /// Every law of the crate.
+    pub fn builtin() -> Self {
+        use super::*;
+        Registry {
+            normal: vec![
+                hertz::SPEC,
+                linear_dashpot::SPEC,
+                hertz_damped::SPEC,
+                hunt_crossley::SPEC,
+                lankarani_nikravesh::SPEC,
+                kuwabara_kono::SPEC,
+                walton_braun::SPEC,
+                thornton::SPEC,
+                jackson_green::SPEC,
+                tabor_hardening::SPEC,
+                li_yang_shi::SPEC,
+            ],
+            tangential: vec![coulomb::SPEC, mindlin::SPEC, mindlin_coulomb::SPEC],
+        }
+    }
+
+    /// Adds (or replaces, by name) a normal law.
+    pub fn add_normal(&mut self, spec: NormalSpec) {
+        self.normal.retain(|s| s.name != spec.name);
+        self.normal.push(spec);
+    }
+
+    /// The normal law called `name`; the error lists the known names.
+    pub fn normal(&self, name: &str) -> Result<&NormalSpec> {
+        self.normal.iter().find(|s| s.name == name).ok_or_else(|| {
+            let names: Vec<&str> = self.normal.iter().map(|s| s.name).collect();
+            Error::invalid("--law", name, format!("one of {}", names.join(", ")))
+        })
+    }
+
+    /// The tangential law called `name`; the error lists the known names.
+    pub fn tangential(&self, name: &str) -> Result<&TangentialSpec> {
+        self.tangential
+            .iter()
+            .find(|s| s.name == name)
+            .ok_or_else(|| {
+                let names: Vec<&str> = self.tangential.iter().map(|s| s.name).collect();
+                Error::invalid("--tangential", name, format!("one of {}", names.join(", ")))
+            })
+    }
+
+    /// Builds normal law `name` for `pair` with parameter `overrides` (key, value).
+    pub fn build_normal(
+        &self,
+        name: &str,
+        overrides: &[(String, f64)],
+        pair: &ContactPair,
+    ) -> Result<(Box<dyn NormalLaw>, Params)> {
+        let spec = self.normal(name)?;
+        let params = Params::resolve(spec.name, spec.params, overrides, pair)?;
+        Ok(((spec.build)(pair, &params), params))
+    }
+
+    /// Builds tangential law `name` for `pair` with parameter `overrides` (key, value).
+    pub fn build_tangential(
+        &self,
+        name: &str,
+        overrides: &[(String, f64)],
+        pair: &ContactPair,
+    ) -> Result<(Box<dyn TangentialLaw>, Params)> {
+        let spec = self.tangential(name)?;
+        let params = Params::resolve(spec.name, spec.params, overrides, pair)?;
+        Ok(((spec.build)(pair, &params), params))
+    }
+}

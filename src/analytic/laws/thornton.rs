@@ -1,0 +1,118 @@
+//! Thornton (1997) elastic-perfectly plastic spheres: Hertz until the centre pressure reaches
+//! the limiting pressure p_y (δ_y = R*(π p_y/(2E*))²), then F = F_y + π p_y R* (δ − δ_y);
+//! unloading is Hertzian with an enlarged radius R_p = 4E* a_p³/(3F_max), a_p² = R* δ_max,
+//! F = (4/3) E* √R_p (δ − δ_p)^{3/2}, δ_p = δ_max − a_p²/R_p.
+//!
+//! Closed form: the loading work is (2/5) F_y δ_y + F_y x + ½ π p_y R* x² (x = δ_max − δ_y);
+//! the unloading returns (2/5) F_max (δ_max − δ_p), so e² = that / (½ m* v²).
+
+use super::{ClosedForm, ContactPair, NormalLaw, NormalSpec, ParamSpec, Params, Turn};
+use std::f64::consts::PI;
+
+/// Thornton's elastic-perfectly plastic law.
+#[derive(Debug, Clone, Copy)]
+pub struct Thornton {
+    /// E*, Pa.
+    pub modulus: f64,
+    /// R*, m.
+    pub radius: f64,
+    /// Limiting contact pressure p_y, Pa.
+    pub limit_pressure: f64,
+}
+
+impl Thornton {
+    /// Yield approach δ_y = R*(π p_y/(2E*))², m.
+    pub fn yield_approach(&self) -> f64 {
+        self.radius * (PI * self.limit_pressure / (2.0 * self.modulus)).powi(2)
+    }
+
+    fn hertz(&self, delta: f64) -> f64 {
+        4.0 / 3.0 * self.modulus * self.radius.sqrt() * delta.max(0.0).powf(1.5)
+    }
+}
+
+/// Unloading of a Thornton-type law from `turn`: enlarged radius R_p (m) and permanent
+/// approach δ_p (m), with contact radius a_p² = R δ_max at the turn (R, E in m, Pa).
+pub fn enlarged_radius(modulus: f64, radius: f64, turn: &Turn) -> (f64, f64) {
+    let a2 = radius * turn.delta;
+    let rp = 4.0 * modulus * a2 * a2.sqrt() / (3.0 * turn.force);
+    (rp, turn.delta - a2 / rp)
+}
+
+/// Force on the enlarged-radius Hertz unloading curve, N.
+pub fn enlarged_unloading(modulus: f64, radius: f64, delta: f64, turn: &Turn) -> f64 {
+    if turn.force <= 0.0 {
+        return 0.0;
+    }
+    let (rp, dp) = enlarged_radius(modulus, radius, turn);
+    4.0 / 3.0 * modulus * rp.sqrt() * (delta - dp).max(0.0).powf(1.5)
+}
+
+impl NormalLaw for Thornton {
+    fn loading(&self, delta: f64, _rate: f64, _speed: f64) -> f64 {
+        let dy = self.yield_approach();
+        if delta <= dy {
+            self.hertz(delta)
+        } else {
+            self.hertz(dy) + PI * self.limit_pressure * self.radius * (delta - dy)
+        }
+    }
+
+    fn unloading(&self, delta: f64, _rate: f64, _speed: f64, turn: &Turn) -> f64 {
+        enlarged_unloading(self.modulus, self.radius, delta, turn)
+    }
+
+    fn thresholds(&self) -> Vec<f64> {
+        vec![self.yield_approach()]
+    }
+
+    fn closed_form(&self, speed: f64, mass: f64) -> Option<ClosedForm> {
+        let e0 = 0.5 * mass * speed * speed;
+        let dy = self.yield_approach();
+        let fy = self.hertz(dy);
+        let wy = 0.4 * fy * dy;
+        let delta_max = if e0 <= wy {
+            (1.25 * e0 / (4.0 / 3.0 * self.modulus * self.radius.sqrt())).powf(0.4)
+        } else {
+            let c = PI * self.limit_pressure * self.radius;
+            let x = 2.0 * (e0 - wy) / (fy + (fy * fy + 2.0 * c * (e0 - wy)).sqrt());
+            dy + x
+        };
+        let turn = Turn {
+            delta: delta_max,
+            force: self.loading(delta_max, 0.0, speed),
+        };
+        let (_, dp) = enlarged_radius(self.modulus, self.radius, &turn);
+        let back = 0.4 * turn.force * (delta_max - dp);
+        Some(ClosedForm {
+            e: (back / e0).sqrt().min(1.0),
+            delta_max,
+        })
+    }
+}
+
+/// Limiting-pressure parameter shared by the Thornton-type laws: default the pair's σ_p.
+pub const LIMIT_PRESSURE: ParamSpec = ParamSpec {
+    key: "p_y",
+    unit: "Pa",
+    doc: "limiting contact pressure (default: the pair's sigma_p = (1 + pi/2) sigma_s, as the three-phase model)",
+    min: 1.0,
+    max: 1e13,
+    default: |p| p.yield_pressure.min(1e13),
+};
+
+/// The law's description.
+pub const SPEC: NormalSpec = NormalSpec {
+    name: "thornton",
+    title: "Thornton elastic-perfectly plastic: Hertz, linear plastic loading at p_y, Hertz unloading with enlarged radius",
+    source: "C. Thornton, J. Appl. Mech. 64 (1997) 383-386",
+    dem_codes: "LIGGGHTS (thornton_ning without adhesion), MFIX-DEM variants; not EDEM, MercuryDPM, Yade",
+    params: &[LIMIT_PRESSURE],
+    build: |pair: &ContactPair, p: &Params| {
+        Box::new(Thornton {
+            modulus: pair.hertz.modulus,
+            radius: pair.hertz.radius,
+            limit_pressure: p.get("p_y"),
+        })
+    },
+};

@@ -1,0 +1,384 @@
+//! `twoball laws`: list the contact laws; `laws run`: one impact under a chosen normal and
+//! tangential law (same ball, speed and JSON flags as `twoball analytic`); `laws fit`: fit a
+//! law's parameters to restitution and maximum-approach data and export them for DEM codes.
+
+use super::analytic::{bodies, AnalyticArgs};
+use crate::analytic::collision::pair_friction;
+use crate::analytic::friction::{normal_energy_loss, revised_eta, zhang_energy_loss};
+use crate::analytic::impact::{integrate, LawImpact, DEFAULT_TOLERANCE};
+use crate::analytic::laws::{ContactPair, Params, Registry};
+use crate::analytic::Body;
+use crate::atomic::write_atomic;
+use crate::error::{Error, Result};
+use crate::material::Material;
+use clap::{Args, Subcommand};
+use serde_json::{json, Map, Value};
+
+/// Arguments of `twoball laws`.
+#[derive(Debug, Args)]
+pub struct LawsArgs {
+    /// What to do (none: list the laws with their parameters and sources).
+    #[command(subcommand)]
+    pub command: Option<LawsCommand>,
+}
+
+/// The `laws` subcommands.
+#[derive(Debug, Subcommand)]
+pub enum LawsCommand {
+    /// One impact under a normal and a tangential contact law, integrated with error control.
+    Run(LawRunArgs),
+    /// Fit a law's parameters to e and delta_max over a speed range; write e(v) and DEM input.
+    Fit(super::laws_fit::LawFitArgs),
+}
+
+/// Arguments of `twoball laws run`.
+#[derive(Debug, Args)]
+pub struct LawRunArgs {
+    /// Normal contact law (see `twoball laws`).
+    #[arg(long)]
+    pub law: String,
+    /// Override a normal-law parameter, KEY=VALUE in SI units; repeatable.
+    #[arg(long = "param", value_name = "KEY=VALUE")]
+    pub param: Vec<String>,
+    /// Tangential contact law.
+    #[arg(long, default_value = "coulomb")]
+    pub tangential: String,
+    /// Override a tangential-law parameter, KEY=VALUE in SI units; repeatable.
+    #[arg(long = "tparam", value_name = "KEY=VALUE")]
+    pub tparam: Vec<String>,
+    /// Relative error of one integrator step.
+    #[arg(long, default_value_t = DEFAULT_TOLERANCE)]
+    pub tolerance: f64,
+    /// Balls, speeds and output (as `twoball analytic`; --curve writes every integrator step
+    /// and event, --samples does not apply).
+    #[command(flatten)]
+    pub ball: AnalyticArgs,
+}
+
+/// Parses `KEY=VALUE` strings of flag `flag` into (key, value) pairs.
+pub(super) fn parse_params(flag: &str, items: &[String]) -> Result<Vec<(String, f64)>> {
+    items
+        .iter()
+        .map(|s| {
+            let (k, v) = s.split_once('=').ok_or_else(|| {
+                Error::Parse(format!("{flag} {s}: expected KEY=VALUE, e.g. {flag} e=0.7"))
+            })?;
+            let x: f64 = v
+                .trim()
+                .parse()
+                .map_err(|_| Error::Parse(format!("{flag} {s}: value '{v}' is not a number")))?;
+            Ok((k.trim().to_string(), x))
+        })
+        .collect()
+}
+
+/// Finite numbers as JSON numbers, anything else as null.
+fn num(x: f64) -> Value {
+    if x.is_finite() {
+        json!(x)
+    } else {
+        Value::Null
+    }
+}
+
+fn params_json(p: &Params) -> Value {
+    let mut m = Map::new();
+    for (k, v) in p.iter() {
+        m.insert(k.to_string(), num(v));
+    }
+    Value::Object(m)
+}
+
+/// One impact of the flags' bodies under the flags' laws.
+pub struct LawRun {
+    /// Ball 1 and body 2.
+    pub bodies: (Body, Body),
+    /// Velocities before, [normal, tangential], m/s.
+    pub v: ([f64; 2], [f64; 2]),
+    /// Friction coefficient of the pair.
+    pub mu: f64,
+    /// Resolved normal and tangential parameters.
+    pub params: (Params, Params),
+    /// The integrated impact (None: no approach).
+    pub impact: Option<LawImpact>,
+}
+
+/// Runs `a` against `registry` (the built-in laws, or more).
+pub fn run_law(a: &LawRunArgs, registry: &Registry) -> Result<LawRun> {
+    let (b1, b2) = bodies(&a.ball)?;
+    let v2n = a.ball.v2.unwrap_or(if b2.is_wall() { 0.0 } else { -1.0 });
+    let mu = match a.ball.mu {
+        Some(mu) if !(mu.is_finite() && mu >= 0.0) => {
+            return Err(Error::invalid("--mu", mu, ">= 0, finite"))
+        }
+        Some(mu) => mu,
+        None => pair_friction(&b1, &b2),
+    };
+    if b2.is_wall() && (v2n != 0.0 || a.ball.v2t != 0.0) {
+        return Err(Error::invalid(
+            "--v2",
+            v2n,
+            "0 with --wall (a half-space does not move)",
+        ));
+    }
+    let pair = ContactPair::between(&b1, &b2, mu);
+    let (normal, np) = registry.build_normal(&a.law, &parse_params("--param", &a.param)?, &pair)?;
+    let (tang, tp) =
+        registry.build_tangential(&a.tangential, &parse_params("--tparam", &a.tparam)?, &pair)?;
+    let v1 = [a.ball.v1, a.ball.v1t];
+    let v2 = [v2n, a.ball.v2t];
+    let impact = integrate(
+        &b1,
+        &b2,
+        v1,
+        v2,
+        normal.as_ref(),
+        tang.as_ref(),
+        a.tolerance,
+    )
+    .map_err(|e| Error::Numerical(format!("law {}: {e}", a.law)))?;
+    Ok(LawRun {
+        bodies: (b1, b2),
+        v: (v1, v2),
+        mu,
+        params: (np, tp),
+        impact,
+    })
+}
+
+/// The `--json` object: the keys of `twoball analytic --json` plus the law's own.
+pub fn run_json(a: &LawRunArgs, r: &LawRun) -> Value {
+    let (b1, b2) = &r.bodies;
+    let (v1, v2) = r.v;
+    let pair = ContactPair::between(b1, b2, r.mu);
+    let mut out = json!({
+        "law": a.law,
+        "tangential_law": a.tangential,
+        "params": params_json(&r.params.0),
+        "tangential_params": params_json(&r.params.1),
+        "impact": r.impact.is_some(),
+        "v_r": num(v1[0] - v2[0]),
+        "e_star": num(pair.hertz.modulus),
+        "r_star": num(pair.hertz.radius),
+        "m_star": num(pair.hertz.mass),
+        "sigma_p": num(pair.yield_pressure),
+        "mu": num(r.mu),
+        "m1": num(b1.mass()),
+        "m2": num(b2.mass()),
+        "tangential_exit": Value::Null,
+    });
+    let Some(i) = &r.impact else {
+        return out;
+    };
+    let two_pi = 2.0 * std::f64::consts::PI;
+    let m = i.pair.mass;
+    let vr = i.approach_speed;
+    let ke_n = crate::analytic::friction::kinetic(b1.mass(), v1[0])
+        + crate::analytic::friction::kinetic(b2.mass(), v2[0]);
+    let extra = json!({
+        "yielded": !i.phase_times.is_empty(),
+        "e": num(i.e),
+        "v1_after": num(i.v1_after[0]),
+        "v2_after": num(i.v2_after[0]),
+        "v1t_after": num(i.v1_after[1]),
+        "v2t_after": num(i.v2_after[1]),
+        "w1_after": num(i.spin_after[0]),
+        "w2_after": num(i.spin_after[1]),
+        "delta1": i.phase_times.first().and_then(|t| i.history.iter().find(|s| s.t == *t)).map_or(Value::Null, |s| num(s.delta)),
+        "delta2": num(i.delta_max),
+        "delta_p": num(i.delta_end),
+        "t1": i.phase_times.first().map_or(Value::Null, |t| num(*t)),
+        "t2": num(i.time_of_max),
+        "t3": num(i.contact_duration),
+        "v_r_after": num(i.rebound_speed),
+        "peak_force": num(i.peak_force),
+        "eta": num(normal_energy_loss(m, i.e, vr) / (two_pi * ke_n)),
+        "eta_friction": num(revised_eta(b1.mass(), b2.mass(), v1, v2, i.e, r.mu)),
+        "eta_impulse": num((i.energy_before - i.energy_after) / (two_pi * i.energy_before)),
+        "zhang_loss": num(zhang_energy_loss(m, i.e, r.mu, vr, v1[1] - v2[1])),
+        "energy_before": num(i.energy_before),
+        "energy_after": num(i.energy_after),
+        "delta_max": num(i.delta_max),
+        "contact_duration": num(i.contact_duration),
+        "work_normal": num(i.work_normal),
+        "work_tangential": num(i.work_tangential),
+        "energy_residual": num(i.energy_residual()),
+        "tangential_restitution": i.tangential_restitution().map_or(Value::Null, num),
+        "normal_impulse": num(i.normal_impulse),
+        "tangential_impulse": num(i.tangential_impulse),
+        "steps": i.steps,
+    });
+    if let (Value::Object(o), Value::Object(e)) = (&mut out, extra) {
+        o.extend(e);
+    }
+    out
+}
+
+fn write_curve(i: &LawImpact, path: &std::path::Path) -> Result<()> {
+    let mut s = String::from(
+        "t_s,delta_m,delta_dot_m_per_s,force_N,tangential_force_N,slip_speed_m_per_s\n",
+    );
+    for p in &i.history {
+        let row = [p.t, p.delta, p.rate, p.force, p.tangential_force, p.slip];
+        if let Some(v) = row.iter().find(|v| !v.is_finite()) {
+            return Err(Error::Numerical(format!(
+                "contact history: {v} at t = {}",
+                p.t
+            )));
+        }
+        let cells: Vec<String> = row.iter().map(|v| format!("{v:.9e}")).collect();
+        s.push_str(&cells.join(","));
+        s.push('\n');
+    }
+    write_atomic(path, s.as_bytes())
+}
+
+fn print_run(a: &LawRunArgs, r: &LawRun) {
+    println!(
+        "Contact law {} + {} (integrated, relative step tolerance {:e}), SI units",
+        a.law, a.tangential, a.tolerance
+    );
+    let show = |p: &Params| {
+        p.iter()
+            .map(|(k, v)| format!("{k} = {v:.6e}"))
+            .collect::<Vec<_>>()
+            .join(", ")
+    };
+    println!("normal parameters:     {}", show(&r.params.0));
+    println!("tangential parameters: {}", show(&r.params.1));
+    let Some(i) = &r.impact else {
+        println!("impact: none (v_r = v1 - v2 <= 0: the bodies separate); velocities unchanged");
+        return;
+    };
+    println!(
+        "restitution   e = {:.9}   (v_r = {:.6} -> {:.6} m/s)",
+        i.e, i.approach_speed, i.rebound_speed
+    );
+    println!(
+        "max approach  delta_max = {:.6e} m at t = {:.6e} s; at separation delta = {:.6e} m",
+        i.delta_max, i.time_of_max, i.delta_end
+    );
+    println!(
+        "contact       t_c = {:.6e} s, peak force = {:.6e} N, {} phase change(s), {} steps",
+        i.contact_duration,
+        i.peak_force,
+        i.phase_times.len(),
+        i.steps
+    );
+    println!(
+        "after:  v1 = ({:+.6}, {:+.6}) m/s, v2 = ({:+.6}, {:+.6}) m/s, spins = ({:+.4}, {:+.4}) rad/s",
+        i.v1_after[0], i.v1_after[1], i.v2_after[0], i.v2_after[1], i.spin_after[0], i.spin_after[1]
+    );
+    if let Some(et) = i.tangential_restitution() {
+        println!("tangential restitution of the contact points = {et:.6}");
+    }
+    println!(
+        "energy: before {:.6e} J, after {:.6e} J, normal work {:.6e} J, tangential work {:.6e} J, residual {:.1e}",
+        i.energy_before, i.energy_after, i.work_normal, i.work_tangential, i.energy_residual()
+    );
+}
+
+/// `twoball laws run` with `registry`.
+pub fn run_with(a: LawRunArgs, registry: &Registry) -> Result<()> {
+    let r = run_law(&a, registry)?;
+    if let (Some(path), Some(i)) = (&a.ball.curve, &r.impact) {
+        write_curve(i, path)?;
+    }
+    if a.ball.json {
+        println!("{}", run_json(&a, &r));
+    } else {
+        print_run(&a, &r);
+        if let (Some(path), Some(_)) = (&a.ball.curve, &r.impact) {
+            println!("contact history written to {}", path.display());
+        }
+    }
+    Ok(())
+}
+
+fn list(registry: &Registry) -> Result<()> {
+    let m = Material::preset("copper-fe")?;
+    let b = Body::ball(m, 0.02, "ball")?;
+    let pair = ContactPair::between(&b, &b, m.mu);
+    println!("Contact laws (defaults shown for two copper-fe balls, D = 20 mm)");
+    println!("\nNormal laws (--law NAME, --param KEY=VALUE):");
+    for s in &registry.normal {
+        println!("\n  {:<20} {}", s.name, s.title);
+        println!("  {:<20} source: {}", "", s.source);
+        println!("  {:<20} DEM codes: {}", "", s.dem_codes);
+        for p in s.params {
+            println!(
+                "  {:<20}   {} [{}] = {:.6e}: {}",
+                "",
+                p.key,
+                p.unit,
+                (p.default)(&pair),
+                p.doc
+            );
+        }
+    }
+    println!("\nTangential laws (--tangential NAME, --tparam KEY=VALUE):");
+    for s in &registry.tangential {
+        println!("\n  {:<20} {}", s.name, s.title);
+        println!("  {:<20} source: {}", "", s.source);
+        println!("  {:<20} DEM codes: {}", "", s.dem_codes);
+        for p in s.params {
+            println!(
+                "  {:<20}   {} [{}] = {:.6e}: {}",
+                "",
+                p.key,
+                p.unit,
+                (p.default)(&pair),
+                p.doc
+            );
+        }
+    }
+    Ok(())
+}
+
+/// `twoball laws …`.
+pub fn run(a: LawsArgs) -> Result<()> {
+    let registry = Registry::builtin();
+    match a.command {
+        None => list(&registry),
+        Some(LawsCommand::Run(r)) => run_with(r, &registry),
+        Some(LawsCommand::Fit(f)) => super::laws_fit::run(f, &registry),
+    }
+}
+
+/// Command line of `twoball laws …` alone (for programs that add laws).
+#[derive(Debug, clap::Parser)]
+#[command(name = "twoball laws")]
+struct LawsCli {
+    #[command(flatten)]
+    laws: LawsArgs,
+}
+
+/// Runs `twoball laws …` with `args` (the first is the program name) against `registry`
+/// (the built-in laws plus a program's own) and returns the exit code: how an example or a
+/// researcher's program runs its law through `laws run` and `laws fit`.
+pub fn main_with<I, T>(args: I, registry: &Registry) -> i32
+where
+    I: IntoIterator<Item = T>,
+    T: Into<std::ffi::OsString> + Clone,
+{
+    use clap::Parser;
+    let cli = match LawsCli::try_parse_from(args) {
+        Ok(c) => c,
+        Err(e) => {
+            let _ = e.print();
+            return e.exit_code();
+        }
+    };
+    let result = match cli.laws.command {
+        None => list(registry),
+        Some(LawsCommand::Run(r)) => run_with(r, registry),
+        Some(LawsCommand::Fit(f)) => super::laws_fit::run(f, registry),
+    };
+    match result {
+        Ok(()) => 0,
+        Err(e) => {
+            eprintln!("error: {e}");
+            1
+        }
+    }
+}
