@@ -22,8 +22,7 @@ fn scene(sets: &[&str]) -> Scene {
 fn run(s: &Scene) -> RunReport {
     let opts = RunOptions {
         history_rows: 400,
-        progress: false,
-        snapshot_dir: None,
+        ..RunOptions::default()
     };
     run_scene(s, &opts).unwrap()
 }

@@ -24,8 +24,7 @@ fn strings(sets: &[&str]) -> Vec<String> {
 fn run(s: &Scene) -> RunReport {
     let opts = RunOptions {
         history_rows: 400,
-        progress: false,
-        snapshot_dir: None,
+        ..RunOptions::default()
     };
     run_scene(s, &opts).unwrap()
 }

@@ -18,9 +18,9 @@
 
 pub mod bench;
 pub mod cost;
+pub mod figures;
 pub mod interrupt;
 pub mod number;
-pub mod figures;
 pub mod outcome;
 pub mod plots;
 pub mod progress;
