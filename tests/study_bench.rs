@@ -101,13 +101,38 @@ fn stdout_of(args: &[&str]) -> String {
 #[test]
 fn kernel_phases_report_arithmetic_within_the_element_phase() {
     let small = ["bench", "kernel", "--size-per-d", "0.2", "--steps", "3"];
+    // Two wall-clock timings taken one after the other: on a loaded machine one of them can
+    // be stretched by another process. The bounds must hold in one of three attempts.
+    let mut failures = Vec::new();
+    for _ in 0..3 {
+        match arithmetic_within_element_phase(&small) {
+            Ok(()) => break,
+            Err(why) => failures.push(why),
+        }
+    }
+    assert!(failures.len() < 3, "{}", failures.join("\n---\n"));
     let text = stdout_of(
         &[
             &small[..],
-            &["--repeats", "1", "--threads", "1", "--phases"],
+            &["--repeats", "1", "--threads", "2", "--kernel", "portable"],
         ]
         .concat(),
     );
+    assert!(text.contains("kernel Portable"), "{text}");
+    let two_threads: Vec<&str> = text.lines().filter(|l| l.contains(",2,")).collect();
+    assert_eq!(two_threads.len(), 2, "{text}");
+    for l in two_threads {
+        assert!(
+            l.ends_with(",yes"),
+            "two threads differ from one on the portable path: {l}"
+        );
+    }
+}
+
+/// One `bench kernel --phases` run: Err with the reason when the probe's arithmetic is not
+/// within (0.1, 1.5) of the element phase for both formulations.
+fn arithmetic_within_element_phase(small: &[&str]) -> Result<(), String> {
+    let text = stdout_of(&[small, &["--repeats", "1", "--threads", "1", "--phases"]].concat());
     let last_number = |line: &str| -> f64 {
         line.split_whitespace()
             .rev()
@@ -128,29 +153,16 @@ fn kernel_phases_report_arithmetic_within_the_element_phase() {
     assert_eq!(alone.len(), 2, "{text}");
     for (p, a) in phases.iter().zip(&alone) {
         assert!(a.is_finite(), "{text}");
-        assert!(
-            *a > 0.1 * p,
-            "arithmetic alone {a} ns under a tenth of the element phase {p} ns:\n{text}"
-        );
-        assert!(
-            *a < 1.5 * p,
-            "arithmetic alone {a} ns above the element phase {p} ns:\n{text}"
-        );
+        if *a <= 0.1 * p {
+            return Err(format!(
+                "arithmetic alone {a} ns under a tenth of the element phase {p} ns:\n{text}"
+            ));
+        }
+        if *a >= 1.5 * p {
+            return Err(format!(
+                "arithmetic alone {a} ns above the element phase {p} ns:\n{text}"
+            ));
+        }
     }
-    let text = stdout_of(
-        &[
-            &small[..],
-            &["--repeats", "1", "--threads", "2", "--kernel", "portable"],
-        ]
-        .concat(),
-    );
-    assert!(text.contains("kernel Portable"), "{text}");
-    let two_threads: Vec<&str> = text.lines().filter(|l| l.contains(",2,")).collect();
-    assert_eq!(two_threads.len(), 2, "{text}");
-    for l in two_threads {
-        assert!(
-            l.ends_with(",yes"),
-            "two threads differ from one on the portable path: {l}"
-        );
-    }
+    Ok(())
 }
