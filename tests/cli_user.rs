@@ -449,7 +449,10 @@ fn the_analytical_table_reads_plainly() {
     assert!(text(&o.stdout).contains("\nwall: rigid half-space"));
     for (set, named) in [
         ("yield=-5", "invalid --set yield = -5"),
-        ("ball2.material.yield=-5", "invalid ball2.material.yield = -5"),
+        (
+            "ball2.material.yield=-5",
+            "invalid ball2.material.yield = -5",
+        ),
     ] {
         let o = twoball().args(["analytic", "--set", set]).output().unwrap();
         assert_eq!(o.status.code(), Some(1));
