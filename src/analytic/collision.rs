@@ -5,6 +5,7 @@
 //! spins are about n × t, rad/s. No initial spin.
 
 use super::body::Body;
+use super::exchange::{exchange, Exchange};
 use super::friction::{
     kinetic, normal_energy_loss, revised_eta, tangential_energy_loss, tangential_impact,
     zhang_energy_loss, TangentialImpact,
@@ -129,31 +130,12 @@ pub fn collide_with_mu(
     let jn = (1.0 + e) * pair.mass * vr;
     let tang = tangential_impact(&normal, mu, v1[1] - v2[1]);
     let jt = tang.impulse;
-    let v1_after = [v1[0] - jn / m1, v1[1] - jt / m1];
-    let v2_after = [v2[0] + jn / m2, v2[1] + jt / m2];
-    // Friction −J_t t at +R₁ n on ball 1 and +J_t t at −R₂ n on ball 2: both spin by −R J_t/I.
-    let spin = |b: &Body| {
-        if b.is_wall() {
-            0.0
-        } else {
-            // + 0.0 turns −0 into 0 for printing.
-            -b.radius() * jt / b.moment_of_inertia() + 0.0
-        }
-    };
-    let spin_after = [spin(b1), spin(b2)];
-    let rot = |b: &Body, w: f64| {
-        if w == 0.0 {
-            0.0
-        } else {
-            0.5 * b.moment_of_inertia() * w * w
-        }
-    };
-    let energy_after = kinetic(m1, v1_after[0])
-        + kinetic(m1, v1_after[1])
-        + kinetic(m2, v2_after[0])
-        + kinetic(m2, v2_after[1])
-        + rot(b1, spin_after[0])
-        + rot(b2, spin_after[1]);
+    let Exchange {
+        v1_after,
+        v2_after,
+        spin_after,
+        energy_after,
+    } = exchange(b1, b2, v1, v2, jn, jt);
     let two_pi = 2.0 * std::f64::consts::PI;
     let ke_n_before = kinetic(m1, v1[0]) + kinetic(m2, v2[0]);
     let eta = normal_energy_loss(pair.mass, e, vr) / (two_pi * ke_n_before);

@@ -9,6 +9,7 @@
 //! (|k_t ξ| = μF) and slip → stick, and separation (F = 0, or δ = 0 for a law that may pull).
 
 use super::body::Body;
+use super::exchange::{exchange, Exchange};
 use super::friction::kinetic;
 use super::hertz::HertzPair;
 use super::laws::{NormalLaw, TangentialLaw, Turn};
@@ -502,31 +503,14 @@ pub fn integrate(
     let normal_impulse = pair.mass * (speed + rebound);
     let tangential_impulse = tangential_mass * (slip0 - y[4]);
     let (m1, m2) = (b1.mass(), b2.mass());
-    let v1_after = [v1[0] - normal_impulse / m1, v1[1] - tangential_impulse / m1];
-    let v2_after = [v2[0] + normal_impulse / m2, v2[1] + tangential_impulse / m2];
-    let spin = |b: &Body| {
-        if b.is_wall() {
-            0.0
-        } else {
-            -b.radius() * tangential_impulse / b.moment_of_inertia() + 0.0
-        }
-    };
-    let spin_after = [spin(b1), spin(b2)];
-    let rot = |b: &Body, w: f64| {
-        if w == 0.0 {
-            0.0
-        } else {
-            0.5 * b.moment_of_inertia() * w * w
-        }
-    };
     let energy_before =
         kinetic(m1, v1[0]) + kinetic(m1, v1[1]) + kinetic(m2, v2[0]) + kinetic(m2, v2[1]);
-    let energy_after = kinetic(m1, v1_after[0])
-        + kinetic(m1, v1_after[1])
-        + kinetic(m2, v2_after[0])
-        + kinetic(m2, v2_after[1])
-        + rot(b1, spin_after[0])
-        + rot(b2, spin_after[1]);
+    let Exchange {
+        v1_after,
+        v2_after,
+        spin_after,
+        energy_after,
+    } = exchange(b1, b2, v1, v2, normal_impulse, tangential_impulse);
     let peak_force = history.iter().map(|s| s.force).fold(0.0, f64::max);
     Ok(Some(LawImpact {
         pair,

@@ -7,6 +7,7 @@
 pub mod body;
 pub mod collision;
 pub mod damping_index;
+pub mod exchange;
 pub mod friction;
 pub mod hertz;
 pub mod history;

@@ -6,7 +6,7 @@ use super::analytic::{bodies, AnalyticArgs};
 use crate::analytic::collision::pair_friction;
 use crate::analytic::friction::{normal_energy_loss, revised_eta, zhang_energy_loss};
 use crate::analytic::impact::{integrate, LawImpact, DEFAULT_TOLERANCE};
-use crate::analytic::laws::{ContactPair, Params, Registry};
+use crate::analytic::laws::{ContactPair, ParamSpec, Params, Registry};
 use crate::analytic::Body;
 use crate::atomic::write_atomic;
 use crate::error::{Error, Result};
@@ -278,6 +278,31 @@ fn print_run(a: &LawRunArgs, r: &LawRun) {
     );
 }
 
+/// Prints one law of the list: name, title, source, DEM codes, and each parameter with its
+/// unit and its default for `pair`.
+fn print_spec(
+    name: &str,
+    title: &str,
+    source: &str,
+    dem_codes: &str,
+    params: &[ParamSpec],
+    pair: &ContactPair,
+) {
+    println!("\n  {name:<20} {title}");
+    println!("  {:<20} source: {source}", "");
+    println!("  {:<20} DEM codes: {dem_codes}", "");
+    for p in params {
+        println!(
+            "  {:<20}   {} [{}] = {:.6e}: {}",
+            "",
+            p.key,
+            p.unit,
+            (p.default)(pair),
+            p.doc
+        );
+    }
+}
+
 /// `twoball laws run` with `registry`.
 pub fn run_with(a: LawRunArgs, registry: &Registry) -> Result<()> {
     let r = run_law(&a, registry)?;
@@ -302,35 +327,11 @@ fn list(registry: &Registry) -> Result<()> {
     println!("Contact laws (defaults shown for two copper-fe balls, D = 20 mm)");
     println!("\nNormal laws (--law NAME, --param KEY=VALUE):");
     for s in &registry.normal {
-        println!("\n  {:<20} {}", s.name, s.title);
-        println!("  {:<20} source: {}", "", s.source);
-        println!("  {:<20} DEM codes: {}", "", s.dem_codes);
-        for p in s.params {
-            println!(
-                "  {:<20}   {} [{}] = {:.6e}: {}",
-                "",
-                p.key,
-                p.unit,
-                (p.default)(&pair),
-                p.doc
-            );
-        }
+        print_spec(s.name, s.title, s.source, s.dem_codes, s.params, &pair);
     }
     println!("\nTangential laws (--tangential NAME, --tparam KEY=VALUE):");
     for s in &registry.tangential {
-        println!("\n  {:<20} {}", s.name, s.title);
-        println!("  {:<20} source: {}", "", s.source);
-        println!("  {:<20} DEM codes: {}", "", s.dem_codes);
-        for p in s.params {
-            println!(
-                "  {:<20}   {} [{}] = {:.6e}: {}",
-                "",
-                p.key,
-                p.unit,
-                (p.default)(&pair),
-                p.doc
-            );
-        }
+        print_spec(s.name, s.title, s.source, s.dem_codes, s.params, &pair);
     }
     Ok(())
 }
