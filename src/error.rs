@@ -30,6 +30,9 @@ pub enum Error {
     /// A computation went numerically wrong (instability, non-finite value); the message
     /// names where, when and the likely cause.
     Numerical(String),
+    /// The explicit integration created energy beyond the solver's limit: the measured
+    /// values; the layer that knows the input's key names adds the advice.
+    EnergyGrowth(Box<EnergyGrowth>),
     /// An external program (gmsh, ccx) is missing or failed.
     External(String),
     /// Work is not finished (a sweep with cases still missing); the message says what is left.
@@ -98,10 +101,41 @@ impl fmt::Display for Error {
             Error::Parse(m) => write!(f, "{m}"),
             Error::Io { path, source } => write!(f, "{path}: {source}"),
             Error::Numerical(m) => write!(f, "numerical failure: {m}"),
+            Error::EnergyGrowth(g) => write!(f, "numerical failure: {g}"),
             Error::External(m) => write!(f, "{m}"),
             Error::Incomplete(m) => write!(f, "{m}"),
             Error::Interrupted(m) => write!(f, "interrupted {m}"),
         }
+    }
+}
+
+/// Energy created by the explicit integration, as measured when the solver stopped.
+#[derive(Debug, Clone, PartialEq)]
+pub struct EnergyGrowth {
+    /// Energy created, as a fraction of the start energy.
+    pub created: f64,
+    /// The solver's limit on that fraction.
+    pub limit: f64,
+    /// Time, s.
+    pub time: f64,
+    /// Step number.
+    pub step: u64,
+    /// The fastest node (where an instability shows first) and its speed, m/s.
+    pub fastest_node: (usize, f64),
+    /// What controls the stable time step (an element or an interaction, by name).
+    pub controlled_by: String,
+}
+
+impl fmt::Display for EnergyGrowth {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let (node, speed) = self.fastest_node;
+        write!(
+            f,
+            "energy grew by {:.3e} of its start value (limit {:.3e}) at t = {:.6e} s, step {} \
+             (fastest node {node}, {speed:.3e} m/s; step controlled by {}): energy grows, the \
+             time step is too large for an element or the penalty is too stiff",
+            self.created, self.limit, self.time, self.step, self.controlled_by
+        )
     }
 }
 

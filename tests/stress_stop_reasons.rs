@@ -20,10 +20,15 @@ fn block_model(v: impl Fn([f64; 3]) -> [f64; 3]) -> Model {
 
 /// Runs at most `steps` steps and returns the stop message (panics if the run never stops).
 fn stop_message(model: Model, settings: Settings, steps: usize) -> String {
+    stop_error(model, settings, steps).to_string()
+}
+
+/// Runs at most `steps` steps and returns the stop (panics if the run never stops).
+fn stop_error(model: Model, settings: Settings, steps: usize) -> twoball::Error {
     let mut s = Solver::new(model, vec![], settings).expect("valid start");
     for _ in 0..steps {
         if let Err(e) = s.step() {
-            return e.to_string();
+            return e;
         }
     }
     panic!("the run did not stop within {steps} steps");
@@ -82,11 +87,31 @@ fn energy_growth_names_the_node_time_and_cause() {
     };
     // Tiny amplitude: the relative energy error grows long before any element inverts.
     let shake = |x: [f64; 3]| [1e-6 * (x[1] - 0.5 * SIDE) / SIDE, 5e-7 * (x[0] / SIDE), 0.0];
-    let msg = stop_message(block_model(shake), settings, 10_000);
+    let err = stop_error(block_model(shake), settings, 10_000);
+    // The solver reports numbers; only the study, which knows the scene, names its keys.
+    let twoball::Error::EnergyGrowth(g) = &err else {
+        panic!("not an energy-growth stop: {err}")
+    };
+    assert!(g.created > g.limit && g.limit == 0.1, "{g:?}");
+    assert!(
+        g.time > 0.0 && g.step > 0 && g.fastest_node.1 > 0.0,
+        "{g:?}"
+    );
+    let msg = err.to_string();
     assert!(msg.contains("energy grew by"), "{msg}");
     assert!(msg.contains("node "), "{msg}");
     assert!(has_time(&msg), "{msg}");
     assert!(msg.contains("time step is too large"), "{msg}");
+    assert!(
+        !msg.contains("solver.") && !msg.contains("contact."),
+        "{msg}"
+    );
+    let advised = twoball::study::simulate::advice(err).to_string();
+    assert!(advised.starts_with(&msg), "{advised}");
+    assert!(
+        advised.ends_with("lower solver.time_step_factor or contact.penalty_factor"),
+        "{advised}"
+    );
 }
 
 #[test]

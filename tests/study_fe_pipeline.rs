@@ -196,3 +196,36 @@ fn half_model_matches_the_full_model() {
         0.005,
     );
 }
+
+/// The phase timer's totals are the run's own: handed back with its results when asked for
+/// (steps and element updates those of the run), absent otherwise, and two profiled runs in
+/// one process do not see each other's time.
+#[test]
+fn phase_totals_belong_to_the_run() {
+    let s = scene(&COARSE);
+    let Approach::Impact(t) = approach(&s).unwrap() else {
+        panic!("no impact")
+    };
+    let (an, _) = twoball::study::outcome::analytic_outcome(&s, &t).unwrap();
+    let profiled = || {
+        simulate(
+            &s,
+            &t,
+            an.contact_duration,
+            &RunOptions {
+                history_rows: 50,
+                profile: true,
+                ..RunOptions::default()
+            },
+        )
+        .unwrap()
+    };
+    let (a, b) = (profiled(), profiled());
+    for sim in [&a, &b] {
+        let p = sim.phases.expect("a profiled run returns its phase totals");
+        assert_eq!(p.steps, sim.steps);
+        assert_eq!(p.element_cycles, sim.element_cycles);
+        assert!(p.sum() > 0.0 && p.sum() <= sim.wall_time_s, "{p:?}");
+    }
+    assert!(run(&s).phases.is_none());
+}

@@ -8,7 +8,6 @@
 
 mod analytic;
 mod bench;
-mod bench_machine;
 mod bench_profile;
 mod bench_study;
 mod laws;

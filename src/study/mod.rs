@@ -2,6 +2,9 @@
 //!
 //! - [`outcome`]: the quantities both models produce, and the analytical answer for a scene;
 //! - [`bench`]: run time against error on a mesh/element/time-step ladder;
+//! - [`bench_kernel`]: the explicit step's cost per element, threads, determinism;
+//! - [`bench_profile`]: where a scene's run spends its wall time, phase by phase;
+//! - [`bench_machine`]: this machine's ceilings (FMA throughput, memory bandwidth);
 //! - [`sweep`]: resumable, shardable parameter sweeps (the paper's ANSYS study);
 //! - [`cost`]: estimated cost of a case, shards balanced by it;
 //! - [`slurm`]: a sweep as a Slurm job array;
@@ -11,12 +14,14 @@
 //! - [`plots`]: SVG charts for the report;
 //! - [`figures`]: CSV and SVG files of the paper's parametric figures;
 //! - [`snapshots`]: `.vtu` snapshots of a run for ParaView;
-//! - [`atomic`]: crash-safe file output;
 //! - [`progress`]: progress on stderr (a bar on a terminal, plain lines elsewhere);
 //! - [`interrupt`]: Ctrl-C stops a job cleanly;
 //! - [`warnings`]: results a user should not trust blindly, each said in one line.
 
 pub mod bench;
+pub mod bench_kernel;
+pub mod bench_machine;
+pub mod bench_profile;
 pub mod cost;
 pub mod figures;
 pub mod interrupt;

@@ -16,6 +16,7 @@ use crate::fe::contact::{
 use crate::fe::explicit::{Settings, Solver};
 use crate::fe::interaction::Interaction;
 use crate::fe::model::Model;
+use crate::fe::profile::Totals;
 use crate::fe::subcycle::SubcycleReport;
 use crate::mesh::ball::{ball, BallSpec, Cut};
 use crate::mesh::Mesh;
@@ -240,6 +241,9 @@ pub struct Simulation {
     /// History rows.
     #[serde(skip)]
     pub history: Vec<HistoryRow>,
+    /// Seconds per phase of the solver's steps (`RunOptions::profile` runs only).
+    #[serde(skip)]
+    pub phases: Option<Totals>,
 }
 
 /// Options of a single FE run.
@@ -254,7 +258,7 @@ pub struct RunOptions {
     /// Folder for the scene's `.vtu` snapshots (`output.vtu_snapshots` of them); none
     /// written without it.
     pub snapshot_dir: Option<std::path::PathBuf>,
-    /// Time the solver's phases (`fe::profile`; totals from `fe::profile::take_totals`).
+    /// Time the solver's phases (`fe::profile`; the totals are [`Simulation::phases`]).
     pub profile: bool,
 }
 
@@ -757,7 +761,7 @@ pub fn simulate(
                 t - pre
             )));
             }
-            solver.step()?;
+            solver.step().map_err(advice)?;
         }
         bar.finish();
         if let Some(s) = &mut snapshots {
@@ -813,6 +817,7 @@ pub fn simulate(
             wall_time_s: start.elapsed().as_secs_f64(),
             max_penetration,
             history,
+            phases: opts.profile.then(|| solver.profile().totals()),
         })
     };
     // A small model is built and run on one thread, away from any caller's pool (a sweep's).
@@ -826,6 +831,17 @@ pub fn simulate(
     let solver = Solver::new(model, interactions, settings)?;
     let work = elements_per_step(elements, &solver.subcycling());
     with_threads_for(work, move || run(solver))
+}
+
+/// A solver error in the scene's terms: the energy-growth stop gets the scene keys that
+/// cure it; other errors pass unchanged.
+pub fn advice(e: Error) -> Error {
+    match e {
+        Error::EnergyGrowth(g) => Error::Numerical(format!(
+            "{g}: lower solver.time_step_factor or contact.penalty_factor"
+        )),
+        other => other,
+    }
 }
 
 /// Element updates in one step of a model of `elements` elements, on average: all of them

@@ -5,7 +5,7 @@
 //! Updated Lagrangian: positions x are current coordinates, stresses are Cauchy stresses in
 //! the current frame; every array is allocated once in [`Solver::new`].
 
-use crate::error::{Error, Result};
+use crate::error::{EnergyGrowth, Error, Result};
 use crate::fe::{
     elements::{ElementBlock, ElementFailure},
     materials::J2Material,
@@ -416,7 +416,7 @@ impl Solver {
     /// up the levels and replaces the first accelerations by the level-weighted kicks.
     fn start_subcycling(&mut self) -> Result<()> {
         let why_not = match self.settings.subcycling {
-            Subcycling::Off => Some("off (solver.subcycling = off)".to_string()),
+            Subcycling::Off => Some("off (setting)".to_string()),
             _ if self.settings.fixed_dt.is_some() => Some("off: fixed time step".to_string()),
             _ => None,
         };
@@ -985,26 +985,24 @@ impl Solver {
             });
     }
 
-    /// The stop message for energy created by the integration: names the fastest node (where
-    /// an instability shows first), the time and the likely causes.
+    /// The stop for energy created by the integration (`created`, a fraction of the start
+    /// energy): the fastest node (where an instability shows first), the time and what
+    /// controls the step, as numbers.
     fn energy_growth_error(&self, created: f64) -> Error {
-        let (node, speed) = self
+        let fastest_node = self
             .v
             .iter()
             .enumerate()
             .map(|(i, v)| (i, (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt()))
             .fold((0, -1.0), |a, b| if b.1 > a.1 { b } else { a });
-        Error::Numerical(format!(
-            "energy grew by {:.3e} of its start value (limit {:.3e}) at t = {:.6e} s, step {} \
-             (fastest node {node}, {speed:.3e} m/s; step controlled by {}): energy grows, the \
-             time step is too large for an element or the penalty is too stiff: lower \
-             solver.time_step_factor or contact.penalty_factor",
+        Error::EnergyGrowth(Box::new(EnergyGrowth {
             created,
-            self.settings.energy_growth,
-            self.t,
-            self.step,
-            self.controlling()
-        ))
+            limit: self.settings.energy_growth,
+            time: self.t,
+            step: self.step,
+            fastest_node,
+            controlled_by: self.controlling(),
+        }))
     }
 
     fn controlling(&self) -> String {

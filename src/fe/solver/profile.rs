@@ -4,11 +4,10 @@
 //! since the previous lap to the named phase. Time spent between two steps (the caller's
 //! history output and stop checks) is charged to [`Phase::Outside`] by the lap at the start of
 //! the next step. Off by default: then a lap is one predictable branch, no clock read.
-//! Switched on per solver by its settings (`Settings::profile`); each profiled solver adds its
-//! totals to a process-wide table when dropped ([`take_totals`] reads and clears it), so that
-//! a study that builds its solvers internally can be profiled.
+//! Switched on per solver by its settings (`Settings::profile`); the totals belong to the
+//! solver ([`Profile::totals`]), and a study that builds its solvers internally hands them
+//! back with its results.
 
-use std::sync::Mutex;
 use std::time::Instant;
 
 /// The phases of an explicit step.
@@ -78,14 +77,6 @@ impl Totals {
         self.seconds[p as usize]
     }
 
-    fn add(&mut self, o: &Totals) {
-        for (a, b) in self.seconds.iter_mut().zip(&o.seconds) {
-            *a += b;
-        }
-        self.steps += o.steps;
-        self.element_cycles += o.element_cycles;
-    }
-
     /// A text table: phase, seconds, share, ns per element-cycle.
     pub fn table(&self) -> String {
         let total = self.sum();
@@ -120,18 +111,6 @@ impl Totals {
         );
         out
     }
-}
-
-static TOTALS: Mutex<Totals> = Mutex::new(Totals {
-    seconds: [0.0; 7],
-    steps: 0,
-    element_cycles: 0,
-});
-
-/// The totals of every profiled solver dropped so far; clears them.
-pub fn take_totals() -> Totals {
-    let mut t = TOTALS.lock().unwrap_or_else(|e| e.into_inner());
-    std::mem::take(&mut *t)
 }
 
 /// One solver's phase timer.
@@ -181,15 +160,6 @@ impl Profile {
     }
 }
 
-impl Drop for Profile {
-    fn drop(&mut self) {
-        if self.last.is_some() && self.totals.steps > 0 {
-            let mut t = TOTALS.lock().unwrap_or_else(|e| e.into_inner());
-            t.add(&self.totals);
-        }
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -219,7 +189,5 @@ mod tests {
         assert!(t.get(Phase::Gather) < t.get(Phase::Contact));
         assert_eq!((t.steps, t.element_cycles), (1, 10));
         assert!(t.table().contains("contact (search + forces)"));
-        // Keep the process-wide table clean for other tests.
-        on.last = None;
     }
 }

@@ -1,4 +1,4 @@
-//! `twoball bench machine`: the two ceilings of a roofline for this machine, measured with
+//! The machine-ceiling harness of `twoball bench machine`: the two ceilings of a roofline for this machine, measured with
 //! small kernels: floating-point throughput per core (independent chains on 4-wide f64
 //! vectors, and on 8-wide ones where the CPU has AVX-512, fused and as separate multiply +
 //! add) and memory bandwidth (STREAM-style triad a = b + s c on arrays sized for L2, L3, the
@@ -9,18 +9,10 @@
 //! cache line and when it straddles two (why the point array is 64-byte aligned).
 
 use crate::error::{Error, Result};
-use clap::Args;
 use rayon::prelude::*;
 use std::hint::black_box;
+use std::io::Write;
 use std::time::Instant;
-
-/// Arguments of `twoball bench machine`.
-#[derive(Debug, Args)]
-pub struct MachineArgs {
-    /// Repetitions per measurement (the best is reported, as STREAM does).
-    #[arg(long, default_value_t = 5)]
-    pub repeats: usize,
-}
 
 /// Independent accumulators: enough to hide the FMA latency (4 cycles) on 2 pipes.
 const CHAINS: usize = 12;
@@ -317,55 +309,66 @@ fn triad(n: usize, chunk: usize, passes: usize) -> f64 {
     (passes * n * 24) as f64 / t.elapsed().as_secs_f64()
 }
 
-/// Runs `twoball bench machine`.
-pub fn machine(a: MachineArgs) -> Result<()> {
-    if a.repeats == 0 {
+/// Measures the ceilings, best of `repeats` each, and writes them to `out` as CSV
+/// (`measure,threads,value,unit`) after a `#` header line.
+///
+/// Errors: `repeats` = 0 ([`Error::Invalid`] naming `--repeats`); a thread pool that cannot
+/// be built; a failed write to `out`.
+pub fn machine(repeats: usize, out: &mut impl Write) -> Result<()> {
+    if repeats == 0 {
         return Err(Error::invalid("--repeats", 0, "at least 1"));
     }
     let all = std::thread::available_parallelism().map_or(1, |n| n.get());
-    println!("# twoball bench machine: best of {} repeats", a.repeats);
+    writeln!(out, "# twoball bench machine: best of {} repeats", repeats).map_err(put)?;
     let rounds = 20_000_000;
     let (mut fused, mut sep) = (0.0f64, 0.0f64);
-    for _ in 0..a.repeats {
+    for _ in 0..repeats {
         let (f, s) = flops(rounds);
         fused = fused.max(f);
         sep = sep.max(s);
     }
-    println!("measure,threads,value,unit");
-    println!("fma_throughput,1,{:.2},Gflop/s", fused * 1e-9);
-    println!("mul_add_separate,1,{:.2},Gflop/s", sep * 1e-9);
+    writeln!(out, "measure,threads,value,unit").map_err(put)?;
+    writeln!(out, "fma_throughput,1,{:.2},Gflop/s", fused * 1e-9).map_err(put)?;
+    writeln!(out, "mul_add_separate,1,{:.2},Gflop/s", sep * 1e-9).map_err(put)?;
     let mut wide: Option<(f64, f64)> = None;
-    for _ in 0..a.repeats {
+    for _ in 0..repeats {
         if let Some((f, s)) = flops_512(rounds) {
             let w = wide.get_or_insert((0.0, 0.0));
             *w = (w.0.max(f), w.1.max(s));
         }
     }
     if let Some((f, s)) = wide {
-        println!("fma_throughput_avx512,1,{:.2},Gflop/s", f * 1e-9);
-        println!("mul_add_separate_avx512,1,{:.2},Gflop/s", s * 1e-9);
+        writeln!(out, "fma_throughput_avx512,1,{:.2},Gflop/s", f * 1e-9).map_err(put)?;
+        writeln!(out, "mul_add_separate_avx512,1,{:.2},Gflop/s", s * 1e-9).map_err(put)?;
     }
-    let gather = (0..a.repeats)
+    let gather = (0..repeats)
         .filter_map(|_| gather_512(20_000))
         .reduce(f64::min);
     if let Some(g) = gather {
-        println!("gather_avx512,1,{:.3},ns per 8-lane gather", g * 1e9);
+        writeln!(out, "gather_avx512,1,{:.3},ns per 8-lane gather", g * 1e9).map_err(put)?;
     }
-    let rows = (0..a.repeats)
+    let rows = (0..repeats)
         .filter_map(|_| rows_512(20_000))
         .reduce(f64::min);
     if let Some(r) = rows {
-        println!("node_rows_avx512,1,{:.3},ns per 8-lane vector", r * 1e9);
+        writeln!(
+            out,
+            "node_rows_avx512,1,{:.3},ns per 8-lane vector",
+            r * 1e9
+        )
+        .map_err(put)?;
     }
     for offset in [0, 16] {
-        let t = (0..a.repeats)
+        let t = (0..repeats)
             .filter_map(|_| row_update_512(offset, 200))
             .reduce(f64::min);
         if let Some(t) = t {
-            println!(
+            writeln!(
+                out,
                 "row_update_512_offset_{offset}b,1,{:.3},ns per 64-byte row",
                 t * 1e9
-            );
+            )
+            .map_err(put)?;
         }
     }
     // 24 MB: about the working set of `bench kernel`'s default 55 000-element ball.
@@ -384,16 +387,21 @@ pub fn machine(a: MachineArgs) -> Result<()> {
                 .map_err(|e| Error::External(format!("thread pool: {e}")))?;
             let chunk = n.div_ceil(threads);
             let mut best = 0.0f64;
-            for _ in 0..a.repeats {
+            for _ in 0..repeats {
                 best = best.max(pool.install(|| triad(n, chunk, passes)));
             }
-            println!("{label},{threads},{:.2},GB/s", best * 1e-9);
+            writeln!(out, "{label},{threads},{:.2},GB/s", best * 1e-9).map_err(put)?;
             if all == 1 {
                 break;
             }
         }
     }
     Ok(())
+}
+
+/// A failed write of the results.
+fn put(e: std::io::Error) -> Error {
+    Error::io("standard output", e)
 }
 
 #[cfg(test)]
