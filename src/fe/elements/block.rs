@@ -10,6 +10,7 @@ use crate::fe::{
     simd::{build, Kernel, KernelPath, LaneIsa, LaneKernel, Lanes, Vec3},
     tensor::Sym,
 };
+use rayon::iter::Either;
 use rayon::prelude::*;
 use std::mem::MaybeUninit;
 
@@ -77,6 +78,9 @@ pub struct ElementBlock {
     pub conn: Vec<[u32; 8]>,
     /// Integration points, `points_per_element` per element.
     pub points: Vec<IntegrationPoint>,
+    /// The hardening law's history ([`Hardening::HISTORY`] values per point, in the order
+    /// of `points`; empty for a law without history).
+    pub history: Vec<f64>,
     /// Plastic work per element, J.
     pub plastic_work: Vec<f64>,
     /// Internal energy ∫ V σ:D dt per element (elastic stored + plastic), J.
@@ -113,6 +117,7 @@ impl ElementBlock {
             hourglass_coeff,
             conn,
             points: vec![IntegrationPoint::default(); n * npe],
+            history: vec![0.0; n * npe * material.law.history_per_point()],
             plastic_work: vec![0.0; n],
             internal_energy: vec![0.0; n],
             hourglass: vec![[[0.0; 3]; 4]; n],
@@ -137,6 +142,18 @@ impl ElementBlock {
     /// Integration points per element of this block.
     pub fn points_per_element(&self) -> usize {
         Self::points_for(self.formulation)
+    }
+
+    /// History values of the block's hardening law per integration point.
+    pub fn history_per_point(&self) -> usize {
+        self.material.law.history_per_point()
+    }
+
+    /// The history of integration point `p` (`points` index): the law's
+    /// [`Hardening::HISTORY`] values. Panics if `p` is out of range.
+    pub fn point_history(&self, p: usize) -> &[f64] {
+        let nh = self.history_per_point();
+        &self.history[p * nh..(p + 1) * nh]
     }
 
     /// Runs the element loop: advances every element's state with positions `x` = x^{n+1},
@@ -181,9 +198,21 @@ impl ElementBlock {
         let r = range.clone();
         let rp = range.start * npe..range.end * npe;
         self.assert_nodes_below(r.clone(), x.len().min(v.len()));
+        // The law's history per batch; a law without history gets an empty slice per batch.
+        let nh = self.history_per_point();
+        let hist = if nh == 0 {
+            Either::Left(
+                (0..range.len().div_ceil(BATCH))
+                    .into_par_iter()
+                    .map(|_| <&mut [f64]>::default()),
+            )
+        } else {
+            Either::Right(self.history[rp.start * nh..rp.end * nh].par_chunks_mut(BATCH * npe * nh))
+        };
         let res = (
             self.conn[r.clone()].par_chunks(BATCH),
             self.points[rp].par_chunks_mut(BATCH * npe),
+            hist,
             self.plastic_work[r.clone()].par_chunks_mut(BATCH),
             self.internal_energy[r.clone()].par_chunks_mut(BATCH),
             self.hourglass[r.clone()].par_chunks_mut(BATCH),
@@ -199,11 +228,12 @@ impl ElementBlock {
             // any result.
             .with_min_len(MIN_BATCHES_PER_TASK)
             .enumerate()
-            .map(|(b, (conn, pts, wp, ie, hgq, ehg, vol, dtc, f))| {
+            .map(|(b, (conn, pts, hist, wp, ie, hgq, ehg, vol, dtc, f))| {
                 let base = first + b * BATCH;
                 let mut batch = Batch {
                     conn,
                     pts,
+                    hist,
                     wp,
                     ie,
                     hgq,
@@ -267,6 +297,7 @@ impl ElementBlock {
         f_int: &mut [[f64; 4]],
     ) -> Result<(f64, usize), (usize, ElementFailure)> {
         let npe = self.points_per_element();
+        let nh = self.history_per_point();
         self.assert_nodes_below(range.clone(), x.len().min(v.len()).min(f_int.len()));
         let inp = StepInput {
             x,
@@ -284,6 +315,7 @@ impl ElementBlock {
             let mut batch = Batch {
                 conn: &self.conn[k..e],
                 pts: &mut self.points[k * npe..e * npe],
+                hist: &mut self.history[k * npe * nh..e * npe * nh],
                 wp: &mut self.plastic_work[k..e],
                 ie: &mut self.internal_energy[k..e],
                 hgq: &mut self.hourglass[k..e],
@@ -338,6 +370,8 @@ impl ElementBlock {
 pub(crate) struct Batch<'a> {
     pub(crate) conn: &'a [[u32; 8]],
     pub(crate) pts: &'a mut [IntegrationPoint],
+    /// The law's history of the batch's points ([`Hardening::HISTORY`] values each).
+    pub(crate) hist: &'a mut [f64],
     pub(crate) wp: &'a mut [f64],
     pub(crate) ie: &'a mut [f64],
     pub(crate) hgq: &'a mut [[[f64; 3]; 4]],
@@ -739,7 +773,29 @@ impl<H: Hardening, const W: usize> ElementVisitor for FormLoop<'_, '_, '_, H, W>
     type Output = BatchResult;
     #[inline(always)]
     fn visit<E: Element>(self) -> BatchResult {
-        E::lane_loop(self.isa, self.law, self.lp.b, self.lp.inp, self.lp.base)
+        if H::HISTORY == 0 {
+            return E::lane_loop(self.isa, self.law, self.lp.b, self.lp.inp, self.lp.base);
+        }
+        let start: Vec<f64> = self.lp.b.pts.iter().map(|p| p.eps_p).collect();
+        let r = E::lane_loop(self.isa, self.law, self.lp.b, self.lp.inp, self.lp.base);
+        if r.is_ok() {
+            record_history(self.law, self.lp.b, &start, self.lp.inp.dt);
+        }
+        r
+    }
+}
+
+/// Hands every point of the batch `b` its step to the law's history: `start` holds each
+/// point's ε_p before the step, `dt` is the step (s).
+fn record_history<H: Hardening>(law: &H, b: &mut Batch<'_>, start: &[f64], dt: f64) {
+    debug_assert_eq!(b.hist.len(), H::HISTORY * b.pts.len());
+    for ((p, h), &e0) in b
+        .pts
+        .iter()
+        .zip(b.hist.chunks_exact_mut(H::HISTORY))
+        .zip(start)
+    {
+        law.update_history(h, e0, p.eps_p - e0, dt);
     }
 }
 
@@ -856,6 +912,75 @@ mod tests {
             })
             .collect();
         (blk, mesh.nodes, v)
+    }
+
+    /// The history seam: a law with history (the test law [`Counting`], linear hardening
+    /// that counts each point's plastic steps and keeps its highest plastic strain rate)
+    /// gets a history array sized from its declaration, and the element loop feeds it every
+    /// point's step on both update paths, both formulations and every kernel path: the
+    /// counts and rates are those of the ε_p path of the same run under the bilinear law,
+    /// and the history changes no other bit of the state.
+    #[test]
+    fn a_law_with_history_keeps_it_per_point_through_the_element_loop() {
+        use crate::fe::materials::{counting::Counting, Law};
+        let dt = 1e-8;
+        for form in [Formulation::OnePoint, Formulation::BBar] {
+            let (plain, x0, v) = yielding_block(form, 6000.0);
+            let Law::Bilinear(bl) = plain.material.law else {
+                panic!("copper-fe hardens linearly")
+            };
+            let mut counting = plain.clone();
+            counting.material.law = Law::Counting(Counting(bl));
+            let counting = ElementBlock::new(0, 0, counting.conn, form, counting.material, 0.05);
+            assert_eq!(plain.history.len(), 0);
+            assert_eq!(counting.history.len(), 2 * plain.points.len());
+            let n = plain.conn.len();
+            // The bilinear run: its state bits, and per point the plastic steps and the
+            // highest Δε_p/Δt.
+            let mut a = plain.clone();
+            let mut x = x0.clone();
+            let mut want = vec![[0.0f64; 2]; a.points.len()];
+            for _ in 0..20 {
+                advance(&mut x, &v, dt);
+                let before: Vec<f64> = a.points.iter().map(|p| p.eps_p).collect();
+                a.update(&x, &v, dt, &mut vec![[[0.0; 3]; 8]; n]).unwrap();
+                for ((w, p), e0) in want.iter_mut().zip(&a.points).zip(before) {
+                    let dp = p.eps_p - e0;
+                    w[0] += if dp > 0.0 { 1.0 } else { 0.0 };
+                    w[1] = w[1].max(dp / dt);
+                }
+            }
+            // A count that is the same everywhere would not show that each point keeps its own.
+            assert!(
+                want.iter().any(|w| w[0] > 1.0) && want.iter().any(|w| w[0] != want[0][0]),
+                "{form:?}: want points that flowed in several steps, and differing counts"
+            );
+            for &k in &Kernel::all_supported() {
+                let (mut b, mut c) = (counting.clone(), counting.clone());
+                b.kernel = k;
+                c.kernel = k;
+                let mut x = x0.clone();
+                for _ in 0..20 {
+                    advance(&mut x, &v, dt);
+                    b.update(&x, &v, dt, &mut vec![[[0.0; 3]; 8]; n]).unwrap();
+                    c.update_range_into_nodes(0..n, &x, &v, dt, &mut vec![[0.0; 4]; x.len()])
+                        .unwrap();
+                }
+                let path = k.path();
+                for blk in [&b, &c] {
+                    assert!(bits(blk) == bits(&a), "{form:?}, {path:?}: state differs");
+                    for (p, w) in want.iter().enumerate() {
+                        let h = blk.point_history(p);
+                        assert_eq!(h[0], w[0], "{form:?}, {path:?}: point {p} plastic steps");
+                        assert_eq!(
+                            h[1].to_bits(),
+                            w[1].to_bits(),
+                            "{form:?}, {path:?}: point {p} rate"
+                        );
+                    }
+                }
+            }
+        }
     }
 
     fn bits(b: &ElementBlock) -> Vec<u64> {

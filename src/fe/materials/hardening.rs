@@ -11,7 +11,23 @@ use crate::fe::simd::{select, Lanes};
 /// A law implements the scalar methods; the lane methods default to the scalar ones lane by
 /// lane (bit for bit the scalar result), and a law whose return has a closed form overrides
 /// them with vector arithmetic (as [`super::Bilinear`] does).
+///
+/// A law that keeps history at each integration point declares how many values
+/// ([`Hardening::HISTORY`]) and updates them in [`Hardening::update_history`]; the element
+/// block keeps them in an array of their own beside the point rows, so that a law without
+/// history (every built-in one) costs nothing.
 pub trait Hardening: Copy + std::fmt::Debug + Send + Sync {
+    /// History values the law keeps per integration point (0: none).
+    const HISTORY: usize = 0;
+
+    /// Updates one integration point's `history` ([`Hardening::HISTORY`] values, zero at
+    /// the start of a run) after the point's step: `eps_p` is the equivalent plastic strain
+    /// at the start of the step, `dp` its increment over the step (ε_p at the end minus
+    /// `eps_p`; 0 when the point stayed elastic), `dt` the step, s. The element loop calls
+    /// it for every point it advances, on every kernel path. Default: nothing.
+    #[inline(always)]
+    fn update_history(&self, _history: &mut [f64], _eps_p: f64, _dp: f64, _dt: f64) {}
+
     /// Flow stress at `eps_p` and a plastic strain rate no higher than the law's reference
     /// rate (the elastic check), Pa.
     fn static_yield(&self, eps_p: f64) -> f64;

@@ -20,6 +20,9 @@ pub enum Law {
     Power(Power),
     /// Johnson-Cook with its strain-rate term.
     JohnsonCook(JohnsonCook),
+    /// Linear hardening that keeps history (tests of the history seam only).
+    #[cfg(test)]
+    Counting(super::counting::Counting),
 }
 
 /// Code generic over the hardening law, run by [`Law::with`] for the stored law's type.
@@ -89,6 +92,11 @@ impl Law {
         self.with(InitialYield)
     }
 
+    /// History values the law keeps per integration point ([`Hardening::HISTORY`]).
+    pub fn history_per_point(&self) -> usize {
+        self.with(HistoryPerPoint)
+    }
+
     /// Runs `v` with this law's concrete type (one match, here, for every generic caller).
     #[inline(always)]
     pub fn with<V: LawVisitor>(&self, v: V) -> V::Output {
@@ -96,6 +104,8 @@ impl Law {
             Law::Bilinear(h) => v.visit(h),
             Law::Power(h) => v.visit(h),
             Law::JohnsonCook(h) => v.visit(h),
+            #[cfg(test)]
+            Law::Counting(h) => v.visit(h),
         }
     }
 }
@@ -107,5 +117,15 @@ impl LawVisitor for InitialYield {
     type Output = f64;
     fn visit<H: Hardening>(self, law: &H) -> f64 {
         law.static_yield(0.0)
+    }
+}
+
+/// [`Law::history_per_point`] as a visitor.
+struct HistoryPerPoint;
+
+impl LawVisitor for HistoryPerPoint {
+    type Output = usize;
+    fn visit<H: Hardening>(self, _law: &H) -> usize {
+        H::HISTORY
     }
 }

@@ -4,6 +4,8 @@
 //! term ([`johnson_cook`]), registered in [`law`].
 
 pub mod bilinear;
+#[cfg(test)]
+pub mod counting;
 pub mod hardening;
 pub mod j2;
 pub mod johnson_cook;

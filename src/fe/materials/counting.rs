@@ -1,0 +1,53 @@
+//! A test law with history (compiled in tests only): linear hardening that also counts, at
+//! each integration point, the steps in which the point flowed plastically and keeps the
+//! highest plastic strain rate it saw. It proves the history seam: the block sizes its
+//! history array from [`Hardening::HISTORY`] and the element loop feeds every point's step
+//! to [`Hardening::update_history`], on every kernel path.
+
+use super::{bilinear::Bilinear, hardening::Hardening};
+use crate::fe::simd::Lanes;
+
+/// [`Bilinear`] hardening with two history values per point: plastic steps (a count) and
+/// the highest plastic strain rate Δε_p/Δt, 1/s.
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
+pub struct Counting(pub Bilinear);
+
+impl Hardening for Counting {
+    const HISTORY: usize = 2;
+
+    #[inline(always)]
+    fn static_yield(&self, eps_p: f64) -> f64 {
+        self.0.static_yield(eps_p)
+    }
+
+    #[inline(always)]
+    fn plastic_increment(&self, q: f64, sy: f64, eps_p: f64, shear: f64, dt: f64) -> (f64, f64) {
+        self.0.plastic_increment(q, sy, eps_p, shear, dt)
+    }
+
+    #[inline(always)]
+    fn static_yield_lanes<const W: usize>(&self, eps_p: Lanes<W>) -> Lanes<W> {
+        self.0.static_yield_lanes(eps_p)
+    }
+
+    #[inline(always)]
+    fn plastic_increment_lanes<const W: usize>(
+        &self,
+        yields: [bool; W],
+        q: Lanes<W>,
+        sy: Lanes<W>,
+        eps_p: Lanes<W>,
+        shear: f64,
+        dt: f64,
+    ) -> (Lanes<W>, Lanes<W>) {
+        self.0
+            .plastic_increment_lanes(yields, q, sy, eps_p, shear, dt)
+    }
+
+    fn update_history(&self, history: &mut [f64], _eps_p: f64, dp: f64, dt: f64) {
+        if dp > 0.0 {
+            history[0] += 1.0;
+        }
+        history[1] = history[1].max(dp / dt);
+    }
+}
