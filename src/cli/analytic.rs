@@ -6,10 +6,8 @@ use crate::analytic::damping_index::{
     ReadingScore, Table1Row, TABLE1_SPEEDS, ZETA_TABLE_SCALE,
 };
 use crate::analytic::friction::TangentialExit;
-use crate::analytic::history::history;
 use crate::analytic::parametric::all_figures;
 use crate::analytic::{collide_with_mu, Body, Collision};
-use crate::atomic::write_atomic;
 use crate::error::{Error, Result};
 use crate::material::{Material, MaterialOverrides, PRESET_NAMES};
 use crate::study::number::sci;
@@ -387,30 +385,6 @@ fn collision_warnings(c: &Collision) -> Vec<Warning> {
         .map_or_else(Vec::new, |n| analytic_warnings(n.delta2, c.pair.radius))
 }
 
-fn write_curve(c: &Collision, path: &std::path::Path, samples: usize) -> Result<()> {
-    if samples < 2 {
-        return Err(Error::invalid("--samples", samples, ">= 2"));
-    }
-    let mut s = String::from("t_s,delta_m,delta_dot_m_per_s,force_N\n");
-    if let Some(n) = &c.normal {
-        for p in history(n, samples) {
-            for v in [p.t, p.delta, p.delta_dot, p.force] {
-                if !v.is_finite() {
-                    return Err(Error::Numerical(format!(
-                        "contact history: {v} at t = {}",
-                        p.t
-                    )));
-                }
-            }
-            s.push_str(&format!(
-                "{:.9e},{:.9e},{:.9e},{:.9e}\n",
-                p.t, p.delta, p.delta_dot, p.force
-            ));
-        }
-    }
-    write_atomic(path, s.as_bytes())
-}
-
 /// `twoball analytic`.
 pub fn run_analytic(a: AnalyticArgs) -> Result<()> {
     let (b1, b2) = bodies(&a)?;
@@ -443,7 +417,7 @@ pub fn run_analytic(a: AnalyticArgs) -> Result<()> {
     }
     let c = collide_with_mu(&b1, &b2, [a.v1, a.v1t], [v2n, a.v2t], mu)?;
     if let Some(path) = &a.curve {
-        write_curve(&c, path, a.samples)?;
+        crate::study::curves::write_analytic_curve(&c, path, a.samples)?;
     }
     let warnings = collision_warnings(&c);
     crate::study::warnings::print(&warnings);

@@ -8,7 +8,6 @@ use crate::analytic::friction::{normal_energy_loss, revised_eta, zhang_energy_lo
 use crate::analytic::impact::{integrate, LawImpact, DEFAULT_TOLERANCE};
 use crate::analytic::laws::{ContactPair, ParamSpec, Params, Registry};
 use crate::analytic::Body;
-use crate::atomic::write_atomic;
 use crate::error::{Error, Result};
 use crate::material::Material;
 use clap::{Args, Subcommand};
@@ -214,25 +213,6 @@ pub fn run_json(a: &LawRunArgs, r: &LawRun) -> Value {
     out
 }
 
-fn write_curve(i: &LawImpact, path: &std::path::Path) -> Result<()> {
-    let mut s = String::from(
-        "t_s,delta_m,delta_dot_m_per_s,force_N,tangential_force_N,slip_speed_m_per_s\n",
-    );
-    for p in &i.history {
-        let row = [p.t, p.delta, p.rate, p.force, p.tangential_force, p.slip];
-        if let Some(v) = row.iter().find(|v| !v.is_finite()) {
-            return Err(Error::Numerical(format!(
-                "contact history: {v} at t = {}",
-                p.t
-            )));
-        }
-        let cells: Vec<String> = row.iter().map(|v| format!("{v:.9e}")).collect();
-        s.push_str(&cells.join(","));
-        s.push('\n');
-    }
-    write_atomic(path, s.as_bytes())
-}
-
 fn print_run(a: &LawRunArgs, r: &LawRun) {
     println!(
         "Contact law {} + {} (integrated, relative step tolerance {:e}), SI units",
@@ -307,7 +287,7 @@ fn print_spec(
 pub fn run_with(a: LawRunArgs, registry: &Registry) -> Result<()> {
     let r = run_law(&a, registry)?;
     if let (Some(path), Some(i)) = (&a.ball.curve, &r.impact) {
-        write_curve(i, path)?;
+        crate::study::curves::write_law_curve(i, path)?;
     }
     if a.ball.json {
         println!("{}", run_json(&a, &r));

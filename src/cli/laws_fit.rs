@@ -1,15 +1,15 @@
-//! `twoball laws fit`: fit a normal law's free parameters to head-on e and δ_max data and
-//! write what a DEM user needs (fit.json, e_of_v.csv, DEM input snippets).
+//! `twoball laws fit`: fit a normal law's free parameters to head-on e and δ_max data; the
+//! files a DEM user needs (fit.json, e_of_v.csv, DEM input snippets) are written by
+//! `study::law_fit_files`.
 
 use super::laws::parse_params;
-use crate::analytic::law_fit::{dem_exports, fit, predict, read_observations};
+use crate::analytic::law_fit::{fit, read_observations};
 use crate::analytic::laws::{ContactPair, Registry};
 use crate::analytic::Body;
-use crate::atomic::write_atomic;
 use crate::error::{Error, Result};
 use crate::material::{Material, PRESET_NAMES};
+use crate::study::law_fit_files::{write_fit_files, FitSetting};
 use clap::Args;
-use serde_json::{json, Value};
 use std::path::PathBuf;
 
 /// Arguments of `twoball laws fit`.
@@ -47,14 +47,6 @@ pub struct LawFitArgs {
     /// Output directory (created if missing).
     #[arg(long, value_name = "DIR")]
     pub out: PathBuf,
-}
-
-fn num(x: f64) -> Value {
-    if x.is_finite() {
-        json!(x)
-    } else {
-        Value::Null
-    }
 }
 
 /// Runs `laws fit` against `registry`.
@@ -111,48 +103,19 @@ pub fn run(a: LawFitArgs, registry: &Registry) -> Result<()> {
     };
     let fixed = parse_params("--param", &a.param)?;
     let f = fit(&spec, &pair, &b, &b, &obs, &free, &fixed)?;
-    std::fs::create_dir_all(&a.out).map_err(|e| Error::io(&a.out, e))?;
-    // Tabulated e(v_n) over the data range widened to 0.01..10 m/s, 41 log-spaced speeds.
-    let lo = obs.iter().map(|o| o.speed).fold(0.01, f64::min);
-    let hi = obs.iter().map(|o| o.speed).fold(10.0, f64::max);
-    let mut csv = String::from("v_r [m/s],e [-],delta_max [m],contact_duration [s]\n");
-    for i in 0..41 {
-        let v = lo * (hi / lo).powf(i as f64 / 40.0);
-        let (e, d, t) = predict(&spec, &pair, &f.params, &b, &b, v)?;
-        csv.push_str(&format!("{v:.9e},{e:.9e},{d:.9e},{t:.9e}\n"));
-    }
-    write_atomic(a.out.join("e_of_v.csv"), csv.as_bytes())?;
-    let exports = dem_exports(spec.name, &f.params, &pair, m.nu, m.rho, m.mu);
-    for (name, text) in &exports {
-        write_atomic(a.out.join(name), text.as_bytes())?;
-    }
-    let rows: Vec<Value> = f
-        .rows
-        .iter()
-        .map(|(o, e, d)| {
-            json!({"v_r": num(o.speed), "e_data": num(o.e), "e_fit": num(*e),
-                   "e_rel_error": num((e - o.e) / o.e),
-                   "delta_max_data": num(o.delta_max), "delta_max_fit": num(*d),
-                   "delta_max_rel_error": num((d - o.delta_max) / o.delta_max)})
-        })
-        .collect();
-    let report = json!({
-        "law": spec.name,
-        "source": source,
-        "material": a.material,
-        "diameter": a.diameter,
-        "params": f.params.iter().map(|(k, v)| (k.to_string(), num(v))).collect::<serde_json::Map<_, _>>(),
-        "free": f.free,
-        "sigma": f.free.iter().zip(&f.sigma).map(|(k, s)| (k.to_string(), num(*s))).collect::<serde_json::Map<_, _>>(),
-        "rms_relative_residual": num(f.rms),
-        "rows": rows,
-        "dem_exports": exports.iter().map(|(n, _)| *n).collect::<Vec<_>>(),
-    });
-    write_atomic(
-        a.out.join("fit.json"),
-        serde_json::to_string_pretty(&report)
-            .map_err(|e| Error::Parse(e.to_string()))?
-            .as_bytes(),
+    let exports = write_fit_files(
+        &a.out,
+        &FitSetting {
+            spec: &spec,
+            pair: &pair,
+            ball: &b,
+            material: &m,
+            material_name: &a.material,
+            diameter: a.diameter,
+            source: &source,
+        },
+        &obs,
+        &f,
     )?;
     println!(
         "Fitted {} to {} head-on impacts from {source} (D = {} m, {}):",
@@ -183,10 +146,7 @@ pub fn run(a: LawFitArgs, registry: &Registry) -> Result<()> {
     println!(
         "wrote {}/fit.json, e_of_v.csv{}",
         a.out.display(),
-        exports
-            .iter()
-            .map(|(n, _)| format!(", {n}"))
-            .collect::<String>()
+        exports.iter().map(|n| format!(", {n}")).collect::<String>()
     );
     Ok(())
 }

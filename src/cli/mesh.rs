@@ -2,11 +2,10 @@
 
 use crate::error::{Error, Result};
 use crate::mesh::ball::{ball, BallSpec, Cut};
-use crate::mesh::quality::{boundary_flux, summary, MeshSummary};
-use crate::mesh::{msh, vtu, Mesh};
+use crate::mesh::quality::{summary, MeshSummary};
+use crate::mesh::{gmsh, msh, vtu, Mesh};
 use clap::{Args, Subcommand};
 use std::path::{Path, PathBuf};
-use std::process::Command;
 
 /// Arguments of `twoball mesh`.
 #[derive(Debug, Args)]
@@ -125,103 +124,41 @@ fn run_check(c: CheckArgs) -> Result<()> {
     report(&loaded.mesh, &c.file, c.json)
 }
 
-/// Runs gmsh into a temporary file next to the output, reads and checks it (hexahedra only,
-/// no inverted elements, closed outward boundary), then renames it into place.
+/// Parses the `--set` pairs and runs gmsh (`mesh::gmsh`), then prints the summary.
 fn run_gmsh(g: GmshArgs) -> Result<()> {
-    if !g.geo.is_file() {
-        return Err(Error::invalid(
-            "geo",
-            g.geo.display(),
-            "an existing .geo file",
-        ));
-    }
     if output_format(&g.output)? != Format::Msh {
         return Err(Error::invalid("output", g.output.display(), "a .msh file"));
     }
-    let mut cmd = Command::new(&g.gmsh);
-    cmd.arg(&g.geo).args(["-3", "-format", "msh41"]);
-    for s in &g.set {
-        let (name, value) = s
-            .split_once('=')
-            .ok_or_else(|| Error::invalid("--set", s, "NAME=VALUE"))?;
-        let ok_name =
-            !name.is_empty() && name.chars().all(|c| c.is_ascii_alphanumeric() || c == '_');
-        let v: f64 = value
-            .trim()
-            .parse()
-            .map_err(|_| Error::invalid("--set", s, "NAME=number"))?;
-        if !ok_name || !v.is_finite() {
-            return Err(Error::invalid(
-                "--set",
-                s,
-                "NAME=VALUE with a plain name and a finite number",
-            ));
-        }
-        cmd.args(["-setnumber", name, &format!("{v:e}")]);
-    }
-    let tmp = temp_next_to(&g.output);
-    cmd.arg("-o").arg(&tmp);
-    let out = cmd.output().map_err(|e| {
-        if e.kind() == std::io::ErrorKind::NotFound {
-            Error::External(format!(
-                "gmsh not found ({}): install it (Debian/Ubuntu: apt-get install gmsh; or \
-                 pip install gmsh) or pass --gmsh PATH",
-                g.gmsh.display()
-            ))
-        } else {
-            Error::External(format!("cannot run {}: {e}", g.gmsh.display()))
-        }
-    })?;
-    let cleanup = || {
-        let _ = std::fs::remove_file(&tmp);
-    };
-    if !out.status.success() || !tmp.is_file() {
-        cleanup();
-        let text = String::from_utf8_lossy(&out.stdout).to_string()
-            + &String::from_utf8_lossy(&out.stderr);
-        let tail: Vec<&str> = text
-            .lines()
-            .filter(|l| l.contains("rror"))
-            .take(5)
-            .collect();
-        return Err(Error::External(format!(
-            "gmsh failed on {} ({}): {}",
-            g.geo.display(),
-            out.status,
-            if tail.is_empty() {
-                text.lines().last().unwrap_or("").to_string()
-            } else {
-                tail.join(" | ")
-            }
-        )));
-    }
-    let loaded = match msh::read(&tmp) {
-        Ok(l) => l,
-        Err(e) => {
-            cleanup();
-            return Err(e);
-        }
-    };
+    let sets = g
+        .set
+        .iter()
+        .map(|s| parse_set(s))
+        .collect::<Result<Vec<_>>>()?;
+    let loaded = gmsh::run(&g.gmsh, &g.geo, &sets, &g.output)?;
     for w in &loaded.warnings {
         eprintln!("warning: {w}");
     }
-    let s = summary(&loaded.mesh);
-    let flux = boundary_flux(&loaded.mesh);
-    let closed = s.volume > 0.0 && (flux - 3.0 * s.volume).abs() <= 1e-6 * 3.0 * s.volume;
-    if !closed {
-        cleanup();
-        return Err(Error::Numerical(format!(
-            "gmsh mesh of {} has an open or inconsistently oriented boundary (surface integral \
-             of x.n = {flux:e}, 3V = {:e})",
-            g.geo.display(),
-            3.0 * s.volume
-        )));
-    }
-    std::fs::rename(&tmp, &g.output).map_err(|e| {
-        cleanup();
-        Error::io(&g.output, e)
-    })?;
     report(&loaded.mesh, &g.output, g.json)
+}
+
+/// One `--set NAME=VALUE` of `mesh gmsh`: a plain name and a finite number.
+fn parse_set(s: &str) -> Result<(String, f64)> {
+    let (name, value) = s
+        .split_once('=')
+        .ok_or_else(|| Error::invalid("--set", s, "NAME=VALUE"))?;
+    let ok_name = !name.is_empty() && name.chars().all(|c| c.is_ascii_alphanumeric() || c == '_');
+    let v: f64 = value
+        .trim()
+        .parse()
+        .map_err(|_| Error::invalid("--set", s, "NAME=number"))?;
+    if !ok_name || !v.is_finite() {
+        return Err(Error::invalid(
+            "--set",
+            s,
+            "NAME=VALUE with a plain name and a finite number",
+        ));
+    }
+    Ok((name.to_string(), v))
 }
 
 #[derive(Debug, PartialEq)]
@@ -240,18 +177,6 @@ fn output_format(p: &Path) -> Result<Format> {
             "a file name ending in .msh or .vtu",
         )),
     }
-}
-
-fn temp_next_to(p: &Path) -> PathBuf {
-    let name = p
-        .file_name()
-        .map(|n| n.to_string_lossy().into_owned())
-        .unwrap_or_default();
-    let dir = match p.parent() {
-        Some(d) if !d.as_os_str().is_empty() => d.to_path_buf(),
-        _ => PathBuf::from("."),
-    };
-    dir.join(format!(".{name}.{}.tmp.msh", std::process::id()))
 }
 
 fn report(mesh: &Mesh, file: &Path, json: bool) -> Result<()> {

@@ -6,6 +6,7 @@
 
 pub mod ball;
 pub mod block;
+pub mod gmsh;
 pub mod meridian;
 pub mod msh;
 pub mod quality;

@@ -1,5 +1,6 @@
-//! The machine-ceiling harness of `twoball bench machine`: the two ceilings of a roofline for this machine, measured with
-//! small kernels: floating-point throughput per core (independent chains on 4-wide f64
+//! The machine-ceiling harness of `twoball bench machine`: the two ceilings of a roofline
+//! for this machine, measured with small kernels: floating-point throughput per core
+//! (independent chains on 4-wide f64
 //! vectors, and on 8-wide ones where the CPU has AVX-512, fused and as separate multiply +
 //! add) and memory bandwidth (STREAM-style triad a = b + s c on arrays sized for L2, L3, the
 //! working set of `bench kernel` and main memory, 1 thread and all threads), and the

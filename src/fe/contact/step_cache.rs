@@ -5,7 +5,7 @@ use std::cell::Cell;
 /// The last stable step (s) an interaction computed and the nodal mass array it was computed
 /// for (address and length). Penalty limits depend only on the node laws and the masses, and
 /// both are constants of a run once the first step has set the laws, so the minimum over the
-/// surface nodes need not be recomputed at every step (it was 1.7 % of a default-scene run).
+/// surface nodes need not be recomputed at every step.
 /// The owner clears it whenever a law or a partner mass it used changes.
 #[derive(Debug, Clone, Default)]
 pub struct StepCache(Cell<Option<(f64, usize, usize)>>);

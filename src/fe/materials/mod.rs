@@ -1,7 +1,8 @@
 //! Materials of the element kernels: J2 (von Mises) plasticity with isotropic elasticity
 //! ([`j2`]), and the hardening laws it returns to, behind one trait ([`hardening`]):
 //! linear ([`bilinear`]), Ludwik/Swift power law ([`power`]) and Johnson-Cook with its rate
-//! term ([`johnson_cook`]), registered in [`law`].
+//! term ([`johnson_cook`]), registered in [`law`]; a law may keep history at each integration
+//! point ([`Hardening::HISTORY`]).
 
 pub mod bilinear;
 #[cfg(test)]
