@@ -1,5 +1,7 @@
 //! Meshes and loads shared by the axisymmetric tests.
 #![allow(dead_code)]
+// Index loops follow the mesh numbering (ray p, layer l): keep them.
+#![allow(clippy::needless_range_loop)]
 
 use std::f64::consts::PI;
 use twoball::fe::axisym::section::SectionModel;
@@ -8,7 +10,11 @@ use twoball::material::Material;
 
 /// A structured mesh (nodes, counter-clockwise quads) of the map `f(s, t)` on
 /// [0, 1]² with `ns` x `nt` cells; node (i, j) has index j (ns + 1) + i.
-pub fn mapped(ns: usize, nt: usize, f: impl Fn(f64, f64) -> [f64; 2]) -> (Vec<[f64; 2]>, Vec<[u32; 4]>) {
+pub fn mapped(
+    ns: usize,
+    nt: usize,
+    f: impl Fn(f64, f64) -> [f64; 2],
+) -> (Vec<[f64; 2]>, Vec<[u32; 4]>) {
     let mut nodes = Vec::new();
     for j in 0..=nt {
         for i in 0..=ns {
@@ -197,12 +203,28 @@ pub fn test_ball(radius: f64, pole: f64, far: f64) -> twoball::mesh::meridian::M
     };
     for j in 0..2 * n {
         for i in 0..n {
-            push([core(i, j), core(i + 1, j), core(i + 1, j + 1), core(i, j + 1)], &nodes);
+            push(
+                [
+                    core(i, j),
+                    core(i + 1, j),
+                    core(i + 1, j + 1),
+                    core(i, j + 1),
+                ],
+                &nodes,
+            );
         }
     }
     for l in 0..m {
         for p in 0..k {
-            push([ring(l, p), ring(l, p + 1), ring(l + 1, p + 1), ring(l + 1, p)], &nodes);
+            push(
+                [
+                    ring(l, p),
+                    ring(l, p + 1),
+                    ring(l + 1, p + 1),
+                    ring(l + 1, p),
+                ],
+                &nodes,
+            );
         }
     }
     let boundary: Vec<[u32; 2]> = (0..k).map(|p| [ring(m, p), ring(m, p + 1)]).collect();
@@ -217,4 +239,3 @@ pub fn test_ball(radius: f64, pole: f64, far: f64) -> twoball::mesh::meridian::M
     mesh.segment_sets.insert("contact".into(), contact);
     mesh
 }
-

@@ -134,7 +134,7 @@ pub struct ImpactResult {
     pub pulse: Vec<(f64, f64)>,
 }
 
-/// Hertz's contact duration 2.87 (m*²/(R*² E*⁴ v))^{1/5} (s) of a ball of radius `radius`
+/// Hertz's contact duration 2.87 (m*²/(R* E*² v))^{1/5} (s) of a ball of radius `radius`
 /// (m) and mass `ball_mass` (kg) against the target (the pair for the mirror ball; the
 /// second ball's mass `mass2`, kg, for [`Target::Ball`]): the scale of the stop rule and the
 /// history interval.
@@ -154,7 +154,7 @@ pub fn hertz_duration(h: &HeadOn, radius: f64, ball_mass: f64, mass2: f64) -> f6
             )
         }
     };
-    2.868 * (m_star * m_star / (r_star * r_star * e_star.powi(4) * v)).powf(0.2)
+    2.868 * (m_star * m_star / (r_star * e_star * e_star * v)).powf(0.2)
 }
 
 /// `mesh` mirrored about z = 0 and shifted by `shift` along z (m): quads and segments
@@ -167,7 +167,11 @@ fn mirrored(mesh: &MeridianMesh, shift: f64) -> MeridianMesh {
     for q in &mut m.quads {
         *q = [q[0], q[3], q[2], q[1]];
     }
-    for s in m.boundary.iter_mut().chain(m.segment_sets.values_mut().flatten()) {
+    for s in m
+        .boundary
+        .iter_mut()
+        .chain(m.segment_sets.values_mut().flatten())
+    {
         *s = [s[1], s[0]];
     }
     m
@@ -197,17 +201,23 @@ impl HeadOn {
         if !(self.speed.is_finite() && self.speed > 0.0) {
             return Err(Error::invalid("speed", self.speed, "> 0 m/s, finite"));
         }
-        let radius = self.mesh.nodes.iter().map(|p| p[1]).fold(f64::MIN, f64::max);
-        if !(radius > 0.0) {
-            return Err(Error::invalid("mesh", radius, "a ball with its pole at z = R > 0"));
+        let radius = self
+            .mesh
+            .nodes
+            .iter()
+            .map(|p| p[1])
+            .fold(f64::MIN, f64::max);
+        if radius.is_nan() || radius <= 0.0 {
+            return Err(Error::invalid(
+                "mesh",
+                radius,
+                "a ball with its pole at z = R > 0",
+            ));
         }
         let mat = J2Material::new(&self.material, self.elastic_only);
         let n1 = self.mesh.nodes.len();
         let contact_of = |m: &MeridianMesh| -> Vec<[u32; 2]> {
-            m.segment_sets
-                .get("contact")
-                .unwrap_or(&m.boundary)
-                .clone()
+            m.segment_sets.get("contact").unwrap_or(&m.boundary).clone()
         };
         let seg1 = contact_of(&self.mesh);
         let (model, contact): (SectionModel, Box<dyn SectionContact>) = match &self.target {
@@ -236,7 +246,9 @@ impl HeadOn {
                 let mut quads = self.mesh.quads.clone();
                 quads.extend(m2.quads.iter().map(|q| q.map(|i| i + n1 as u32)));
                 let mut model = SectionModel::new(nodes, quads, mat);
-                model.materials.push(J2Material::new(&o.material, o.elastic_only));
+                model
+                    .materials
+                    .push(J2Material::new(&o.material, o.elastic_only));
                 for e in self.mesh.quads.len()..model.quads.len() {
                     model.material_of[e] = 1;
                 }

@@ -229,7 +229,10 @@ mod tests {
         let mut v = 0.0;
         for a in 0..n {
             for b in 0..n {
-                let xi = [-1.0 + (2 * a + 1) as f64 / n as f64, -1.0 + (2 * b + 1) as f64 / n as f64];
+                let xi = [
+                    -1.0 + (2 * a + 1) as f64 / n as f64,
+                    -1.0 + (2 * b + 1) as f64 / n as f64,
+                ];
                 let p = point(&x, xi, 4.0 / (n * n) as f64);
                 v += p.grad.volume;
             }
@@ -254,7 +257,11 @@ mod tests {
     #[test]
     fn axis_element_has_finite_operators() {
         let (g, _) = mean_gradient(&distorted());
-        assert!(g.hoop.iter().chain(g.b.iter().flatten()).all(|c| c.is_finite()));
+        assert!(g
+            .hoop
+            .iter()
+            .chain(g.b.iter().flatten())
+            .all(|c| c.is_finite()));
         let l = characteristic_length(&distorted());
         assert!(l > 0.0 && l < 1.0);
         let sq = [[1.0, 0.0], [2.0, 0.0], [2.0, 1.0], [1.0, 1.0]];

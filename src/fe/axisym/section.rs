@@ -76,7 +76,11 @@ impl SectionModel {
 
     fn check(&self) -> Result<()> {
         let n = self.nodes.len();
-        if let Some(p) = self.nodes.iter().find(|p| !(p[0] >= 0.0 && p[1].is_finite())) {
+        if let Some(p) = self
+            .nodes
+            .iter()
+            .find(|p| !(p[0] >= 0.0 && p[1].is_finite()))
+        {
             return Err(Error::invalid("mesh.nodes.r", p[0], "r >= 0, finite"));
         }
         for (e, q) in self.quads.iter().enumerate() {
@@ -105,7 +109,11 @@ impl SectionModel {
             ));
         }
         if !(self.damping.is_finite() && self.damping >= 0.0) {
-            return Err(Error::invalid("solver.damping", self.damping, ">= 0, finite"));
+            return Err(Error::invalid(
+                "solver.damping",
+                self.damping,
+                ">= 0, finite",
+            ));
         }
         let lens = [self.velocity.len(), self.fixed.len(), self.loads.len()];
         if lens.iter().any(|&l| l != n) || self.material_of.len() != self.quads.len() {
@@ -179,7 +187,7 @@ impl SectionSolver {
                 omega[i as usize] = omega[i as usize].max(w);
             }
         }
-        if let Some(i) = mass.iter().position(|&m| !(m > 0.0)) {
+        if let Some(i) = mass.iter().position(|&m| m.is_nan() || m <= 0.0) {
             return Err(Error::invalid(
                 format!("mesh.nodes[{i}]"),
                 "no element",
