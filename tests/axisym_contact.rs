@@ -163,11 +163,11 @@ fn default_scene_ladder() {
     use twoball::fe::axisym::element::QuadFormulation;
     use twoball::Material;
     let r = DIAMETER / 2.0;
-    for form in [
-        QuadFormulation::default(),
-        QuadFormulation::SelectiveReduced,
-    ] {
-        for pole in [DIAMETER / 200.0, DIAMETER / 1000.0, DIAMETER / 2000.0] {
+    for pole in [DIAMETER / 200.0, DIAMETER / 1000.0, DIAMETER / 2000.0] {
+        for form in [
+            QuadFormulation::default(),
+            QuadFormulation::SelectiveReduced,
+        ] {
             let mesh = test_ball(r, pole, DIAMETER / 20.0);
             let mut h = HeadOn::new(
                 mesh,
