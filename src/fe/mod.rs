@@ -12,6 +12,7 @@
 //! - [`model`] (what the solver is given) and [`tensor`] (small tensor algebra).
 // Index loops mirror the index notation of the formulas (σ_ij B_Ij, ...): keep them.
 #![allow(clippy::needless_range_loop)]
+pub mod axisym;
 pub mod contact;
 pub mod elements;
 pub mod linear;

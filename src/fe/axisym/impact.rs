@@ -1,0 +1,389 @@
+//! A head-on impact on the meridian section, run end to end: a ball (its section with the
+//! contact pole at (0, +R), centre at the origin) moving along +z against the symmetry plane
+//! of two equal balls or against a rigid wall, started at first touch and stopped like the
+//! 3D study: once the ball separates and the contact force has been zero for a hold time.
+//! Reports what the 3D study reports: the coefficient of restitution, the maximum approach,
+//! the contact duration, the peak force, the energy terms, the energy error and history rows.
+
+use super::element::QuadFormulation;
+use super::plane::{RigidPlane, Side};
+use super::section::{SectionContact, SectionModel, SectionSolver};
+use super::segment::{Boundary, SegmentPair};
+use crate::error::{Error, Result};
+use crate::fe::contact::pulse::pulse_duration;
+use crate::fe::materials::J2Material;
+use crate::material::Material;
+use crate::mesh::meridian::MeridianMesh;
+use serde::Serialize;
+use std::time::Instant;
+
+/// What the ball hits.
+#[derive(Debug, Clone)]
+pub enum Target {
+    /// An identical ball moving the opposite way: the frictionless symmetry plane between
+    /// them. Approach, force and restitution are those of the pair.
+    MirrorBall,
+    /// A rigid frictionless wall.
+    RigidWall,
+    /// Another ball, meshed too, with node-to-segment contact between the two sections.
+    Ball(Box<OtherBall>),
+}
+
+/// The second ball of a two-ball head-on impact.
+#[derive(Debug, Clone)]
+pub struct OtherBall {
+    /// Its meridian mesh, in the same convention as the first ball's (pole at (0, +R₂),
+    /// centre at the origin); it is mirrored and placed above the first ball's pole.
+    pub mesh: MeridianMesh,
+    /// Its material.
+    pub material: Material,
+    /// Skip plasticity.
+    pub elastic_only: bool,
+    /// Its speed towards the first ball, m/s (≥ 0).
+    pub speed: f64,
+}
+
+/// A head-on impact of one ball section.
+#[derive(Debug, Clone)]
+pub struct HeadOn {
+    /// Meridian mesh of the ball: half-disc of radius R centred at the origin, contact pole at
+    /// (0, +R), contact segments in `segment_sets["contact"]` (or the whole boundary).
+    pub mesh: MeridianMesh,
+    /// The ball's material.
+    pub material: Material,
+    /// Skip plasticity (elastic ball).
+    pub elastic_only: bool,
+    /// Speed of the ball towards the target, m/s (> 0): half the relative speed for
+    /// [`Target::MirrorBall`], the first ball's own for [`Target::Ball`].
+    pub speed: f64,
+    /// What the ball hits.
+    pub target: Target,
+    /// Element formulation.
+    pub formulation: QuadFormulation,
+    /// Penalty factor FKN (k = FKN E A / h).
+    pub fkn: f64,
+    /// Hold time of the separation rule as a fraction of the expected (Hertz) duration.
+    pub hold_fraction: f64,
+    /// History rows over the expected contact duration.
+    pub history_rows: usize,
+    /// Factor on the stable step (0 < f ≤ 1).
+    pub time_step_factor: f64,
+}
+
+/// One history row (whole system; for [`Target::MirrorBall`] the pair).
+#[derive(Debug, Clone, Copy, Default, PartialEq, Serialize)]
+pub struct ImpactRow {
+    /// Time since first touch, s.
+    pub t: f64,
+    /// Approach of the centres of mass since first touch, m.
+    pub delta: f64,
+    /// Normal contact force, N.
+    pub normal_force: f64,
+    /// Approach speed of the centres of mass (of the pair for the mirror ball), m/s.
+    pub v_cm: f64,
+    /// Kinetic energy, J.
+    pub kinetic: f64,
+    /// Elastic strain energy, J.
+    pub elastic: f64,
+    /// Plastic work, J.
+    pub plastic: f64,
+    /// Hourglass energy, J.
+    pub hourglass: f64,
+    /// Energy stored in the contact springs, J.
+    pub contact_stored: f64,
+    /// Total of the above, J.
+    pub total: f64,
+}
+
+/// The outcome of a head-on impact.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct ImpactResult {
+    /// Coefficient of restitution: separation over approach speed of the centres of mass.
+    pub e: f64,
+    /// Maximum approach of the centres of mass, m.
+    pub delta_max: f64,
+    /// Contact duration (first force to the fitted end of the pulse), s.
+    pub contact_duration: f64,
+    /// Peak normal force (raw, of the steps), N.
+    pub peak_force: f64,
+    /// Largest relative drift of the total energy over the run.
+    pub energy_error: f64,
+    /// Largest penetration into the plane, m.
+    pub max_penetration: f64,
+    /// Plastic work at the end (whole system), J.
+    pub plastic: f64,
+    /// Kinetic energy before the impact (whole system), J.
+    pub initial_kinetic: f64,
+    /// Quads and nodes of the simulated section.
+    pub elements: usize,
+    /// Nodes of the simulated section.
+    pub nodes: usize,
+    /// Steps taken.
+    pub steps: u64,
+    /// Initial stable step, s.
+    pub dt: f64,
+    /// Why the run stopped.
+    pub stop_reason: String,
+    /// Wall time of the run, s.
+    pub wall_time_s: f64,
+    /// History rows.
+    #[serde(skip)]
+    pub history: Vec<ImpactRow>,
+    /// The force pulse (t in s, F in N) of the steps with a contact force.
+    #[serde(skip)]
+    pub pulse: Vec<(f64, f64)>,
+}
+
+/// Hertz's contact duration 2.87 (m*²/(R* E*² v))^{1/5} (s) of a ball of radius `radius`
+/// (m) and mass `ball_mass` (kg) against the target (the pair for the mirror ball; the
+/// second ball's mass `mass2`, kg, for [`Target::Ball`]): the scale of the stop rule and the
+/// history interval.
+pub fn hertz_duration(h: &HeadOn, radius: f64, ball_mass: f64, mass2: f64) -> f64 {
+    let c1 = (1.0 - h.material.nu * h.material.nu) / h.material.youngs;
+    let (e_star, r_star, m_star, v) = match &h.target {
+        Target::MirrorBall => (0.5 / c1, radius / 2.0, ball_mass / 2.0, 2.0 * h.speed),
+        Target::RigidWall => (1.0 / c1, radius, ball_mass, h.speed),
+        Target::Ball(o) => {
+            let c2 = (1.0 - o.material.nu * o.material.nu) / o.material.youngs;
+            let r2 = o.mesh.nodes.iter().map(|p| p[1]).fold(f64::MIN, f64::max);
+            (
+                1.0 / (c1 + c2),
+                radius * r2 / (radius + r2),
+                ball_mass * mass2 / (ball_mass + mass2),
+                h.speed + o.speed,
+            )
+        }
+    };
+    2.868 * (m_star * m_star / (r_star * e_star * e_star * v)).powf(0.2)
+}
+
+/// `mesh` mirrored about z = 0 and shifted by `shift` along z (m): quads and segments
+/// re-ordered to stay counter-clockwise.
+fn mirrored(mesh: &MeridianMesh, shift: f64) -> MeridianMesh {
+    let mut m = mesh.clone();
+    for p in &mut m.nodes {
+        p[1] = shift - p[1];
+    }
+    for q in &mut m.quads {
+        *q = [q[0], q[3], q[2], q[1]];
+    }
+    for s in m
+        .boundary
+        .iter_mut()
+        .chain(m.segment_sets.values_mut().flatten())
+    {
+        *s = [s[1], s[0]];
+    }
+    m
+}
+
+impl HeadOn {
+    /// Defaults around `mesh`, `material` and `speed`: one-point quads, FKN = 10, the 3D
+    /// study's hold fraction 0.03, 200 history rows, step factor 0.9.
+    pub fn new(mesh: MeridianMesh, material: Material, speed: f64, target: Target) -> Self {
+        HeadOn {
+            mesh,
+            material,
+            elastic_only: false,
+            speed,
+            target,
+            formulation: QuadFormulation::default(),
+            fkn: 10.0,
+            hold_fraction: 0.03,
+            history_rows: 200,
+            time_step_factor: 0.9,
+        }
+    }
+
+    /// Runs the impact to separation.
+    pub fn run(&self) -> Result<ImpactResult> {
+        let start = Instant::now();
+        if !(self.speed.is_finite() && self.speed > 0.0) {
+            return Err(Error::invalid("speed", self.speed, "> 0 m/s, finite"));
+        }
+        let radius = self
+            .mesh
+            .nodes
+            .iter()
+            .map(|p| p[1])
+            .fold(f64::MIN, f64::max);
+        if radius.is_nan() || radius <= 0.0 {
+            return Err(Error::invalid(
+                "mesh",
+                radius,
+                "a ball with its pole at z = R > 0",
+            ));
+        }
+        let mat = J2Material::new(&self.material, self.elastic_only);
+        let n1 = self.mesh.nodes.len();
+        let contact_of = |m: &MeridianMesh| -> Vec<[u32; 2]> {
+            m.segment_sets.get("contact").unwrap_or(&m.boundary).clone()
+        };
+        let seg1 = contact_of(&self.mesh);
+        let (model, contact): (SectionModel, Box<dyn SectionContact>) = match &self.target {
+            Target::MirrorBall | Target::RigidWall => {
+                let mut model =
+                    SectionModel::new(self.mesh.nodes.clone(), self.mesh.quads.clone(), mat);
+                model.velocity = vec![[0.0, self.speed]; n1];
+                let plane = RigidPlane::new(
+                    &self.mesh,
+                    &seg1,
+                    radius,
+                    Side::Below,
+                    self.fkn,
+                    self.material.youngs,
+                )?;
+                (model, Box::new(plane) as Box<dyn SectionContact>)
+            }
+            Target::Ball(o) => {
+                if !(o.speed.is_finite() && o.speed >= 0.0) {
+                    return Err(Error::invalid("ball2.speed", o.speed, ">= 0 m/s, finite"));
+                }
+                let r2 = o.mesh.nodes.iter().map(|p| p[1]).fold(f64::MIN, f64::max);
+                let m2 = mirrored(&o.mesh, radius + r2);
+                let mut nodes = self.mesh.nodes.clone();
+                nodes.extend(&m2.nodes);
+                let mut quads = self.mesh.quads.clone();
+                quads.extend(m2.quads.iter().map(|q| q.map(|i| i + n1 as u32)));
+                let mut model = SectionModel::new(nodes, quads, mat);
+                model
+                    .materials
+                    .push(J2Material::new(&o.material, o.elastic_only));
+                for e in self.mesh.quads.len()..model.quads.len() {
+                    model.material_of[e] = 1;
+                }
+                let n2 = m2.nodes.len();
+                model.velocity = vec![[0.0, self.speed]; n1];
+                model.velocity.extend(vec![[0.0, -o.speed]; n2]);
+                let seg2 = contact_of(&m2);
+                let pair = SegmentPair::new(
+                    Boundary {
+                        mesh: &self.mesh,
+                        segments: &seg1,
+                        offset: 0,
+                    },
+                    Boundary {
+                        mesh: &m2,
+                        segments: &seg2,
+                        offset: n1,
+                    },
+                    self.fkn,
+                    self.material.youngs.min(o.material.youngs),
+                )?;
+                (model, Box::new(pair) as Box<dyn SectionContact>)
+            }
+        };
+        let mut model = model;
+        model.formulation = self.formulation;
+        model.time_step_factor = self.time_step_factor;
+        let mut solver = SectionSolver::new(model, vec![contact])?;
+        let n = solver.masses().len();
+        let ball_mass: f64 = solver.masses()[..n1].iter().sum();
+        let mass2: f64 = solver.masses()[n1..].iter().sum();
+        let duration = hertz_duration(self, radius, ball_mass, mass2);
+        let two = n > n1;
+        let (scale, pair) = match self.target {
+            Target::MirrorBall => (2.0, 2.0),
+            _ => (1.0, 1.0),
+        };
+        // Approach δ (m) and approach speed (m/s) of the centres of mass.
+        let approach = |s: &SectionSolver| -> (f64, f64) {
+            let z1 = s.axial_centre(0..n1);
+            let (p1, m1) = s.axial_momentum(0..n1);
+            if two {
+                let z2 = s.axial_centre(n1..n);
+                let (p2, m2) = s.axial_momentum(n1..n);
+                (z1 - z2, p1 / m1 - p2 / m2)
+            } else {
+                (pair * z1, pair * p1 / m1)
+            }
+        };
+        let hold = self.hold_fraction * duration;
+        let interval = duration / self.history_rows.max(2) as f64;
+        let (d0, u0) = approach(&solver);
+        let e0 = solver.energy();
+        let dt0 = solver.dt();
+        let mut history = Vec::new();
+        let mut pulse: Vec<(f64, f64)> = Vec::new();
+        let mut next_row = 0.0;
+        let mut drift: f64 = 0.0;
+        let mut apart_since: Option<f64> = None;
+        let mut max_pen: f64 = 0.0;
+        let mut delta_max: f64 = 0.0;
+        let t_cap = 30.0 * duration;
+        let stop_reason;
+        loop {
+            let t = solver.time();
+            let c = solver.contact_states()[0];
+            let en = solver.energy();
+            drift = drift.max((en.total - e0.total).abs() / e0.total);
+            let (d, u) = approach(&solver);
+            let delta = d - d0;
+            delta_max = delta_max.max(delta);
+            max_pen = max_pen.max(c.max_penetration);
+            if c.normal_force > 0.0 {
+                pulse.push((t, c.normal_force));
+            }
+            if t >= next_row {
+                let row = ImpactRow {
+                    t,
+                    delta,
+                    normal_force: c.normal_force,
+                    v_cm: u,
+                    kinetic: scale * en.kinetic,
+                    elastic: scale * (en.internal - en.plastic),
+                    plastic: scale * en.plastic,
+                    hourglass: scale * en.hourglass,
+                    contact_stored: scale * en.contact,
+                    total: scale * en.total,
+                };
+                if !en.total.is_finite() || !delta.is_finite() {
+                    return Err(Error::Numerical(format!(
+                        "non-finite state at t = {t:.6e} s (step {}): lower the time-step factor or the penalty factor",
+                        solver.steps()
+                    )));
+                }
+                history.push(row);
+                next_row = t + interval;
+            }
+            if !pulse.is_empty() && u < 0.0 && c.normal_force == 0.0 {
+                let since = *apart_since.get_or_insert(t);
+                if t - since >= hold {
+                    stop_reason = format!("separated: contact force zero for {hold:.3e} s");
+                    break;
+                }
+            } else {
+                apart_since = None;
+            }
+            if t > t_cap {
+                return Err(Error::Numerical(format!(
+                    "the ball had not separated after {t:.3e} s (30 Hertz durations)"
+                )));
+            }
+            solver.step()?;
+        }
+        let (_, u_end) = approach(&solver);
+        let contact_duration = pulse_duration(&pulse).unwrap_or_else(|| {
+            pulse.last().map_or(0.0, |l| l.0) - pulse.first().map_or(0.0, |f| f.0)
+        });
+        let en = solver.energy();
+        Ok(ImpactResult {
+            e: -u_end / u0,
+            delta_max,
+            contact_duration,
+            peak_force: pulse.iter().map(|p| p.1).fold(0.0, f64::max),
+            energy_error: drift,
+            max_penetration: max_pen,
+            plastic: scale * en.plastic,
+            initial_kinetic: scale * e0.kinetic,
+            elements: solver.states().len(),
+            nodes: n,
+            steps: solver.steps(),
+            dt: dt0,
+            stop_reason,
+            wall_time_s: start.elapsed().as_secs_f64(),
+            history,
+            pulse,
+        })
+    }
+}

@@ -1,0 +1,26 @@
+//! The axisymmetric (meridian-section) model of a head-on impact: the velocities lie on the
+//! line of centres, so the two balls (or a ball and a wall) deform as bodies of revolution
+//! and the problem is solved on the half-plane r ≥ 0 of the section (r, z).
+//!
+//! - [`quad`]: geometry of the 4-node ring element (shape functions, ring volume, the
+//!   volume-averaged operator, hourglass vector, characteristic length);
+//! - [`element`]: its update in two formulations (one point with hourglass control, and
+//!   selectively reduced B-bar), through the 3D objective rate and material seam;
+//! - [`mass`]: lumped ring masses;
+//! - [`section`]: the model and the explicit loop (Box 6.1), with energy accounting;
+//! - [`plane`]: penalty contact against a rigid plane z = const;
+//! - [`segment`]: two-pass node-to-segment penalty contact of two meridian boundaries;
+//! - [`impact`]: a head-on impact (mirror ball, rigid wall or a second ball) run end to end
+//!   (e, δ_max, contact duration, peak force,
+//!   energies, history).
+//!
+//! The kernels are scalar: a meridian mesh has hundreds to a few thousand quads, where lane
+//! kernels would save little against their complexity.
+
+pub mod element;
+pub mod impact;
+pub mod mass;
+pub mod plane;
+pub mod quad;
+pub mod section;
+pub mod segment;

@@ -1,0 +1,121 @@
+//! Penalty contact of a meridian boundary against a rigid frictionless plane z = z₀ (the
+//! symmetry plane of two equal balls in a head-on impact, or a rigid wall), with the 3D
+//! penalty rule: k_I = FKN · E · A_I / h_I, A_I the area of the ring the node carries,
+//! A_I = Σ_segments 2π l (2 r_I + r_J)/6 (the consistent ring area ∫ N_I 2π r ds of its
+//! segments of length l), h_I the thickness of the quads under it (area / segment length,
+//! averaged over its segments). Frictionless: a head-on impact has no tangential slip on the
+//! symmetry plane and no tangential load anywhere by symmetry about the axis.
+
+use super::section::{ContactState, SectionContact};
+use crate::error::{Error, Result};
+use crate::fe::contact::penalty::{normal_force, stable_step};
+use crate::mesh::meridian::MeridianMesh;
+use std::f64::consts::PI;
+
+/// Which side of the plane the body lies on.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Side {
+    /// The body lies at z ≤ z₀ (the plane stops motion towards +z).
+    Below,
+    /// The body lies at z ≥ z₀.
+    Above,
+}
+
+/// A rigid plane z = z₀ and the penalty springs of the boundary nodes that may touch it.
+#[derive(Debug, Clone)]
+pub struct RigidPlane {
+    z0: f64,
+    sign: f64,
+    nodes: Vec<usize>,
+    k: Vec<f64>,
+}
+
+/// Consistent ring areas (m²) and mean element thicknesses (m) of the nodes of `segments`.
+pub fn ring_areas_and_thickness(
+    mesh: &MeridianMesh,
+    segments: &[[u32; 2]],
+) -> Result<Vec<(usize, f64, f64)>> {
+    let mut acc: std::collections::BTreeMap<usize, (f64, f64, usize)> = Default::default();
+    for s in segments {
+        let (a, b) = (s[0] as usize, s[1] as usize);
+        let q = mesh
+            .quads
+            .iter()
+            .find(|q| q.contains(&s[0]) && q.contains(&s[1]))
+            .ok_or_else(|| {
+                Error::invalid(
+                    "mesh.segment",
+                    format!("{a}-{b}"),
+                    "a boundary segment that is an edge of a quad",
+                )
+            })?;
+        let x = q.map(|n| mesh.nodes[n as usize]);
+        let pa = mesh.nodes[a];
+        let pb = mesh.nodes[b];
+        let l = ((pb[0] - pa[0]).powi(2) + (pb[1] - pa[1]).powi(2)).sqrt();
+        let h = super::quad::area(&x) / l;
+        for (i, ri, rj) in [(a, pa[0], pb[0]), (b, pb[0], pa[0])] {
+            let e = acc.entry(i).or_insert((0.0, 0.0, 0));
+            e.0 += 2.0 * PI * l * (2.0 * ri + rj) / 6.0;
+            e.1 += h;
+            e.2 += 1;
+        }
+    }
+    Ok(acc
+        .into_iter()
+        .map(|(i, (a, h, n))| (i, a, h / n as f64))
+        .collect())
+}
+
+impl RigidPlane {
+    /// The plane z = `z0` (m) with the body on `side`, acting on the nodes of `segments` of
+    /// `mesh`, with penalty factor `fkn` (> 0) on Young's modulus `youngs` (Pa).
+    pub fn new(
+        mesh: &MeridianMesh,
+        segments: &[[u32; 2]],
+        z0: f64,
+        side: Side,
+        fkn: f64,
+        youngs: f64,
+    ) -> Result<Self> {
+        if !(fkn.is_finite() && fkn > 0.0) {
+            return Err(Error::invalid("contact.fkn", fkn, "FKN > 0, finite"));
+        }
+        let nh = ring_areas_and_thickness(mesh, segments)?;
+        Ok(RigidPlane {
+            z0,
+            sign: if side == Side::Below { 1.0 } else { -1.0 },
+            nodes: nh.iter().map(|t| t.0).collect(),
+            k: nh.iter().map(|t| fkn * youngs * t.1 / t.2).collect(),
+        })
+    }
+
+    /// The nodes (indices) and their spring stiffnesses, N/m.
+    pub fn springs(&self) -> impl Iterator<Item = (usize, f64)> + '_ {
+        self.nodes.iter().copied().zip(self.k.iter().copied())
+    }
+}
+
+impl SectionContact for RigidPlane {
+    fn add_forces(&mut self, x: &[[f64; 2]], f: &mut [[f64; 2]]) -> ContactState {
+        let mut s = ContactState::default();
+        for (&i, &k) in self.nodes.iter().zip(&self.k) {
+            let gap = self.sign * (self.z0 - x[i][1]);
+            let fz = normal_force(k, 0.0, gap, 0.0);
+            if fz > 0.0 {
+                f[i][1] -= self.sign * fz;
+                s.normal_force += fz;
+                s.stored += 0.5 * k * gap * gap;
+                s.active_nodes += 1;
+                s.max_penetration = s.max_penetration.max(-gap);
+            }
+        }
+        s
+    }
+
+    fn stable_step(&self, mass: &[f64], omega: &[f64]) -> f64 {
+        self.springs()
+            .map(|(i, k)| stable_step(k, mass[i], omega[i]))
+            .fold(f64::INFINITY, f64::min)
+    }
+}

@@ -1,0 +1,270 @@
+//! Geometry of the axisymmetric 4-node quadrilateral on the meridian section (r, z): bilinear
+//! shape functions, the ring volume V = ∫ 2π r dA, the volume-averaged gradient operator,
+//! the hourglass shape vector and the characteristic length of the Courant step.
+//!
+//! Coordinates map onto the 3D tensor slots as r → x, z → y, θ → z, so a stress or strain
+//! rate is the 3D [`Sym`](crate::fe::tensor::Sym) [rr, zz, θθ, rz, 0, 0].
+
+use std::f64::consts::PI;
+
+/// Natural coordinates (ξ, η) of the four nodes, counter-clockwise.
+pub const NODE_XI: [[f64; 2]; 4] = [[-1.0, -1.0], [1.0, -1.0], [1.0, 1.0], [-1.0, 1.0]];
+
+/// The 2x2 Gauss points (ξ, η), weight 1 each, in node order.
+pub const GAUSS_2X2: [[f64; 2]; 4] = {
+    let g = 0.577_350_269_189_625_8;
+    [[-g, -g], [g, -g], [g, g], [-g, g]]
+};
+
+/// The hourglass base vector h = ξη at the nodes.
+pub const HOURGLASS_BASE: [f64; 4] = [1.0, -1.0, 1.0, -1.0];
+
+/// The gradient operator of one integration point or of the whole element: for node I the
+/// radial and axial derivatives b_I (1/m) and the hoop factor N_I/r (1/m), and the ring
+/// volume `volume` (m³) it weights.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Gradient {
+    /// ∂N_I/∂r, ∂N_I/∂z per node, 1/m.
+    pub b: [[f64; 2]; 4],
+    /// N_I / r per node, 1/m (the hoop strain rate is Σ v_rI N_I / r).
+    pub hoop: [f64; 4],
+    /// Ring volume the operator stands for, m³ (2π r J w for a point; V for the element).
+    pub volume: f64,
+}
+
+/// One integration point of the element: its gradient and its radius.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Point {
+    /// Gradient operator and the point's ring-volume weight 2π r det J (m³).
+    pub grad: Gradient,
+    /// Radius of the point, m.
+    pub r: f64,
+    /// Jacobian determinant det ∂(r, z)/∂(ξ, η), m² (≤ 0: inverted element).
+    pub det_j: f64,
+}
+
+/// Shape functions N_I at (ξ, η) and their natural derivatives ∂N_I/∂ξ, ∂N_I/∂η.
+#[inline]
+pub fn shape(xi: [f64; 2]) -> ([f64; 4], [[f64; 2]; 4]) {
+    let mut n = [0.0; 4];
+    let mut d = [[0.0; 2]; 4];
+    for (i, p) in NODE_XI.iter().enumerate() {
+        n[i] = 0.25 * (1.0 + p[0] * xi[0]) * (1.0 + p[1] * xi[1]);
+        d[i] = [
+            0.25 * p[0] * (1.0 + p[1] * xi[1]),
+            0.25 * p[1] * (1.0 + p[0] * xi[0]),
+        ];
+    }
+    (n, d)
+}
+
+/// The point at natural coordinates `xi` of the quad with nodes `x` = [(r, z)] (m), with Gauss
+/// weight `w`. The gradient is meaningless when `det_j` ≤ 0; the hoop factor needs r > 0,
+/// which holds at every interior point of an element with r ≥ 0 and positive area.
+#[inline]
+pub fn point(x: &[[f64; 2]; 4], xi: [f64; 2], w: f64) -> Point {
+    let (n, d) = shape(xi);
+    let mut jac = [[0.0; 2]; 2];
+    let mut r = 0.0;
+    for i in 0..4 {
+        r += n[i] * x[i][0];
+        for a in 0..2 {
+            for c in 0..2 {
+                jac[a][c] += d[i][c] * x[i][a];
+            }
+        }
+    }
+    // jac[a][c] = ∂x_a/∂ξ_c.
+    let det_j = jac[0][0] * jac[1][1] - jac[0][1] * jac[1][0];
+    let inv = 1.0 / det_j;
+    let mut b = [[0.0; 2]; 4];
+    let mut hoop = [0.0; 4];
+    for i in 0..4 {
+        // ∂N/∂r = (∂N/∂ξ ∂z/∂η − ∂N/∂η ∂z/∂ξ)/J; ∂N/∂z = (∂N/∂η ∂r/∂ξ − ∂N/∂ξ ∂r/∂η)/J.
+        b[i] = [
+            (d[i][0] * jac[1][1] - d[i][1] * jac[1][0]) * inv,
+            (d[i][1] * jac[0][0] - d[i][0] * jac[0][1]) * inv,
+        ];
+        hoop[i] = n[i] / r;
+    }
+    Point {
+        grad: Gradient {
+            b,
+            hoop,
+            volume: 2.0 * PI * r * det_j * w,
+        },
+        r,
+        det_j,
+    }
+}
+
+/// The four 2x2 Gauss points of the quad `x` (m).
+#[inline]
+pub fn gauss_points(x: &[[f64; 2]; 4]) -> [Point; 4] {
+    GAUSS_2X2.map(|p| point(x, p, 1.0))
+}
+
+/// The volume-averaged gradient operator B̄_I = (1/V) ∫ B_I 2π r dA of the quad `x` (m),
+/// with V = ∫ 2π r dA the ring volume; integrated by 2x2 Gauss, which is exact for both
+/// (r det J and r ∂N/∂x det J are polynomials of degree ≤ 2 in each of ξ, η). It is the
+/// axisymmetric analogue of Flanagan & Belytschko's mean-strain operator: Σ_I B̄_I = 0 and
+/// Σ_I x_I ⊗ B̄_I = I, so linear velocity fields give their exact strain rate. Also returns
+/// the smallest Gauss-point Jacobian (m², ≤ 0: the element is inverted).
+#[inline]
+pub fn mean_gradient(x: &[[f64; 2]; 4]) -> (Gradient, f64) {
+    let pts = gauss_points(x);
+    mean_of(&pts)
+}
+
+/// [`mean_gradient`] from already evaluated Gauss points.
+#[inline]
+pub fn mean_of(pts: &[Point; 4]) -> (Gradient, f64) {
+    let mut g = Gradient {
+        b: [[0.0; 2]; 4],
+        hoop: [0.0; 4],
+        volume: 0.0,
+    };
+    let mut min_j = f64::INFINITY;
+    for p in pts {
+        let w = p.grad.volume;
+        g.volume += w;
+        min_j = min_j.min(p.det_j);
+        for i in 0..4 {
+            g.b[i][0] += w * p.grad.b[i][0];
+            g.b[i][1] += w * p.grad.b[i][1];
+            g.hoop[i] += w * p.grad.hoop[i];
+        }
+    }
+    let inv = 1.0 / g.volume;
+    for i in 0..4 {
+        g.b[i][0] *= inv;
+        g.b[i][1] *= inv;
+        g.hoop[i] *= inv;
+    }
+    (g, min_j)
+}
+
+/// Area of the quad `x`, m² (half the cross product of the diagonals; negative if clockwise).
+#[inline]
+pub fn area(x: &[[f64; 2]; 4]) -> f64 {
+    0.5 * ((x[2][0] - x[0][0]) * (x[3][1] - x[1][1]) - (x[3][0] - x[1][0]) * (x[2][1] - x[0][1]))
+}
+
+/// The 3D velocity gradient L (1/s; slots r, z, θ) of nodal velocities `v` = [(v_r, v_z)]
+/// (m/s) through the operator `g`: the in-plane block and the hoop rate v_r/r.
+#[inline]
+pub fn velocity_gradient(v: &[[f64; 2]; 4], g: &Gradient) -> crate::fe::tensor::Mat3 {
+    let mut l = [[0.0; 3]; 3];
+    for i in 0..4 {
+        l[0][0] += v[i][0] * g.b[i][0];
+        l[0][1] += v[i][0] * g.b[i][1];
+        l[1][0] += v[i][1] * g.b[i][0];
+        l[1][1] += v[i][1] * g.b[i][1];
+        l[2][2] += v[i][0] * g.hoop[i];
+    }
+    l
+}
+
+/// Adds the nodal forces V Bᵀσ (N, per radian-complete ring) of the stress `s` = [rr, zz, θθ,
+/// rz, ..] (Pa) through the operator `g` to `f`.
+#[inline]
+pub fn add_stress_forces(f: &mut [[f64; 2]; 4], s: &crate::fe::tensor::Sym, g: &Gradient) {
+    for i in 0..4 {
+        let b = g.b[i];
+        f[i][0] += g.volume * (s[0] * b[0] + s[3] * b[1] + s[2] * g.hoop[i]);
+        f[i][1] += g.volume * (s[3] * b[0] + s[1] * b[1]);
+    }
+}
+
+/// The Flanagan-Belytschko hourglass shape vector γ_I = (h_I − (Σ_J h_J x_J)·B̄_I)/4 of the
+/// quad `x` with mean operator `g`: orthogonal to every linear field (Σ γ_I = 0,
+/// Σ γ_I x_I = 0), so rigid motion and uniform strain excite no hourglass force.
+#[inline]
+pub fn hourglass_gamma(x: &[[f64; 2]; 4], g: &Gradient) -> [f64; 4] {
+    let mut hx = [0.0; 2];
+    for i in 0..4 {
+        hx[0] += HOURGLASS_BASE[i] * x[i][0];
+        hx[1] += HOURGLASS_BASE[i] * x[i][1];
+    }
+    std::array::from_fn(|i| 0.25 * (HOURGLASS_BASE[i] - hx[0] * g.b[i][0] - hx[1] * g.b[i][1]))
+}
+
+/// Characteristic length of the Courant step, m: area over the longest side, shortened by
+/// √2 near the axis where the hoop stiffness adds to the in-plane one (elements touching
+/// r = 0, whose hoop term N_I/r at the Gauss points exceeds the in-plane gradients). For a
+/// square of side h off the axis it is h.
+#[inline]
+pub fn characteristic_length(x: &[[f64; 2]; 4]) -> f64 {
+    let mut lmax: f64 = 0.0;
+    let mut rmin = f64::INFINITY;
+    for i in 0..4 {
+        let j = (i + 1) % 4;
+        let d = [x[j][0] - x[i][0], x[j][1] - x[i][1]];
+        lmax = lmax.max((d[0] * d[0] + d[1] * d[1]).sqrt());
+        rmin = rmin.min(x[i][0]);
+    }
+    let l = area(x) / lmax;
+    if rmin < l {
+        l / std::f64::consts::SQRT_2
+    } else {
+        l
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn distorted() -> [[f64; 2]; 4] {
+        [[0.0, 0.0], [1.1, -0.1], [1.3, 0.9], [0.0, 1.2]]
+    }
+
+    #[test]
+    fn mean_operator_reproduces_linear_fields_and_the_ring_volume() {
+        let x = [[0.3, 0.1], [1.1, -0.1], [1.3, 0.9], [0.2, 1.2]];
+        let (g, min_j) = mean_gradient(&x);
+        assert!(min_j > 0.0);
+        // Pappus: V = 2π r̄ A with r̄ the area centroid: check against a fine midpoint sum.
+        let n = 400;
+        let mut v = 0.0;
+        for a in 0..n {
+            for b in 0..n {
+                let xi = [
+                    -1.0 + (2 * a + 1) as f64 / n as f64,
+                    -1.0 + (2 * b + 1) as f64 / n as f64,
+                ];
+                let p = point(&x, xi, 4.0 / (n * n) as f64);
+                v += p.grad.volume;
+            }
+        }
+        assert!((g.volume - v).abs() < 1e-5 * v, "{} vs {v}", g.volume);
+        for a in 0..2 {
+            for c in 0..2 {
+                let s: f64 = (0..4).map(|i| x[i][a] * g.b[i][c]).sum();
+                assert!((s - if a == c { 1.0 } else { 0.0 }).abs() < 1e-13);
+            }
+        }
+        // Hoop: v_r = c r gives exactly c.
+        let s: f64 = (0..4).map(|i| x[i][0] * g.hoop[i]).sum();
+        assert!((s - 1.0).abs() < 1e-13);
+        let gam = hourglass_gamma(&x, &g);
+        assert!(gam.iter().sum::<f64>().abs() < 1e-14);
+        for a in 0..2 {
+            assert!((0..4).map(|i| gam[i] * x[i][a]).sum::<f64>().abs() < 1e-14);
+        }
+    }
+
+    #[test]
+    fn axis_element_has_finite_operators() {
+        let (g, _) = mean_gradient(&distorted());
+        assert!(g
+            .hoop
+            .iter()
+            .chain(g.b.iter().flatten())
+            .all(|c| c.is_finite()));
+        let l = characteristic_length(&distorted());
+        assert!(l > 0.0 && l < 1.0);
+        let sq = [[1.0, 0.0], [2.0, 0.0], [2.0, 1.0], [1.0, 1.0]];
+        assert!((characteristic_length(&sq) - 1.0).abs() < 1e-15);
+    }
+}

@@ -1,0 +1,435 @@
+//! The explicit loop of the meridian model, step for step Box 6.1 of Belytschko, Liu & Moran
+//! (2000) like the 3D solver: central differences in time, lumped ring masses, v_r = 0 on the
+//! axis, internal forces from the quads, contact forces from the [`SectionContact`]s, and the
+//! energy balance (kinetic, internal, plastic, hourglass, contact) checked every step.
+
+use super::element::{update, QuadFormulation, QuadState};
+use super::mass::element_masses;
+use crate::error::{Error, Result};
+use crate::fe::materials::J2Material;
+
+/// What a contact reports for one force evaluation.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct ContactState {
+    /// Total normal force of the whole ring, N.
+    pub normal_force: f64,
+    /// Energy stored in the penalty springs, J.
+    pub stored: f64,
+    /// Nodes in contact.
+    pub active_nodes: usize,
+    /// Largest penetration, m.
+    pub max_penetration: f64,
+}
+
+/// A contact on the section: adds its nodal forces (r, z; N) at positions `x` (m).
+pub trait SectionContact {
+    /// Adds the contact forces at `x` to `f` and reports the contact's state.
+    fn add_forces(&mut self, x: &[[f64; 2]], f: &mut [[f64; 2]]) -> ContactState;
+    /// Largest stable step (s) of the springs on nodal masses `mass` (kg) whose elements have
+    /// highest frequencies `omega` (rad/s).
+    fn stable_step(&self, mass: &[f64], omega: &[f64]) -> f64;
+}
+
+/// The meridian model: nodes, quads with their materials, initial velocities, supports and
+/// loads. Nodes with r = 0 are on the axis and get v_r = 0.
+#[derive(Debug, Clone)]
+pub struct SectionModel {
+    /// Node coordinates (r, z), m.
+    pub nodes: Vec<[f64; 2]>,
+    /// Quads, counter-clockwise node indices.
+    pub quads: Vec<[u32; 4]>,
+    /// Material index of each quad into `materials`.
+    pub material_of: Vec<usize>,
+    /// Materials.
+    pub materials: Vec<J2Material>,
+    /// Element formulation.
+    pub formulation: QuadFormulation,
+    /// Initial nodal velocities (v_r, v_z), m/s.
+    pub velocity: Vec<[f64; 2]>,
+    /// Fixed directions (r, z) of each node besides the axis condition.
+    pub fixed: Vec<[bool; 2]>,
+    /// Constant external nodal forces of the whole ring (r, z), N.
+    pub loads: Vec<[f64; 2]>,
+    /// Mass-proportional damping α (1/s; 0 for none): force −α m v.
+    pub damping: f64,
+    /// Factor on the stable step (0 < f ≤ 1).
+    pub time_step_factor: f64,
+}
+
+impl SectionModel {
+    /// A model of `nodes` and `quads` all of material `mat`, at rest, free, unloaded.
+    pub fn new(nodes: Vec<[f64; 2]>, quads: Vec<[u32; 4]>, mat: J2Material) -> Self {
+        let n = nodes.len();
+        SectionModel {
+            material_of: vec![0; quads.len()],
+            materials: vec![mat],
+            formulation: QuadFormulation::default(),
+            velocity: vec![[0.0; 2]; n],
+            fixed: vec![[false; 2]; n],
+            loads: vec![[0.0; 2]; n],
+            damping: 0.0,
+            time_step_factor: 0.9,
+            nodes,
+            quads,
+        }
+    }
+
+    fn check(&self) -> Result<()> {
+        let n = self.nodes.len();
+        if let Some(p) = self
+            .nodes
+            .iter()
+            .find(|p| !(p[0] >= 0.0 && p[1].is_finite()))
+        {
+            return Err(Error::invalid("mesh.nodes.r", p[0], "r >= 0, finite"));
+        }
+        for (e, q) in self.quads.iter().enumerate() {
+            if let Some(&i) = q.iter().find(|&&i| i as usize >= n) {
+                return Err(Error::invalid(
+                    format!("mesh.quads[{e}]"),
+                    i,
+                    format!("node indices < {n}"),
+                ));
+            }
+            let x = q.map(|i| self.nodes[i as usize]);
+            if super::quad::area(&x) <= 0.0 {
+                return Err(Error::invalid(
+                    format!("mesh.quads[{e}]"),
+                    format!("{q:?}"),
+                    "counter-clockwise nodes with positive area",
+                ));
+            }
+        }
+        let f = self.time_step_factor;
+        if !(f > 0.0 && f <= 1.0) {
+            return Err(Error::invalid(
+                "solver.time_step_factor",
+                f,
+                "0 < time_step_factor <= 1",
+            ));
+        }
+        if !(self.damping.is_finite() && self.damping >= 0.0) {
+            return Err(Error::invalid(
+                "solver.damping",
+                self.damping,
+                ">= 0, finite",
+            ));
+        }
+        let lens = [self.velocity.len(), self.fixed.len(), self.loads.len()];
+        if lens.iter().any(|&l| l != n) || self.material_of.len() != self.quads.len() {
+            return Err(Error::invalid(
+                "model",
+                format!("{lens:?}"),
+                format!("one velocity, support and load per node ({n})"),
+            ));
+        }
+        Ok(())
+    }
+}
+
+/// Energies of the section at one instant (whole ring), J.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct SectionEnergy {
+    /// ½ Σ m |v^n|², J.
+    pub kinetic: f64,
+    /// ½ Σ m v^{n−1/2}·v^{n+1/2}, J (the kinetic energy the scheme conserves).
+    pub kinetic_central: f64,
+    /// Stress power integrated in time, J (elastic + plastic).
+    pub internal: f64,
+    /// Plastic work, J.
+    pub plastic: f64,
+    /// Hourglass energy, J.
+    pub hourglass: f64,
+    /// Energy stored in the contact springs, J.
+    pub contact: f64,
+    /// Work of the loads and the damping on the body, J.
+    pub external_work: f64,
+    /// kinetic_central + internal + hourglass + contact − external work, J.
+    pub total: f64,
+}
+
+/// The explicit solver of a [`SectionModel`] with its contacts.
+pub struct SectionSolver {
+    model: SectionModel,
+    contacts: Vec<Box<dyn SectionContact>>,
+    x: Vec<[f64; 2]>,
+    v: Vec<[f64; 2]>,
+    v_half: Vec<[f64; 2]>,
+    a: Vec<[f64; 2]>,
+    mass: Vec<f64>,
+    omega: Vec<f64>,
+    axis: Vec<bool>,
+    states: Vec<QuadState>,
+    f_int: Vec<[f64; 2]>,
+    contact: Vec<ContactState>,
+    element_dt: f64,
+    dt: f64,
+    time: f64,
+    steps: u64,
+    kinetic_central: f64,
+    external_work: f64,
+}
+
+impl SectionSolver {
+    /// A solver at t = 0 for `model` with `contacts`; evaluates the initial forces.
+    pub fn new(model: SectionModel, contacts: Vec<Box<dyn SectionContact>>) -> Result<Self> {
+        model.check()?;
+        let n = model.nodes.len();
+        let mut mass = vec![0.0; n];
+        let mut omega = vec![0.0f64; n];
+        for (e, q) in model.quads.iter().enumerate() {
+            let x = q.map(|i| model.nodes[i as usize]);
+            let mat = &model.materials[model.material_of[e]];
+            let m = element_masses(&x, mat.rho);
+            let w = 2.0 * mat.wave_speed / super::quad::characteristic_length(&x);
+            for (k, &i) in q.iter().enumerate() {
+                mass[i as usize] += m[k];
+                omega[i as usize] = omega[i as usize].max(w);
+            }
+        }
+        if let Some(i) = mass.iter().position(|&m| m.is_nan() || m <= 0.0) {
+            return Err(Error::invalid(
+                format!("mesh.nodes[{i}]"),
+                "no element",
+                "every node in at least one quad",
+            ));
+        }
+        let axis = model.nodes.iter().map(|p| p[0] == 0.0).collect();
+        let mut s = SectionSolver {
+            x: model.nodes.clone(),
+            v: model.velocity.clone(),
+            v_half: model.velocity.clone(),
+            a: vec![[0.0; 2]; n],
+            states: vec![QuadState::default(); model.quads.len()],
+            f_int: vec![[0.0; 2]; n],
+            contact: Vec::new(),
+            element_dt: f64::INFINITY,
+            dt: 0.0,
+            time: 0.0,
+            steps: 0,
+            kinetic_central: 0.0,
+            external_work: 0.0,
+            mass,
+            omega,
+            axis,
+            contacts,
+            model,
+        };
+        s.constrain_velocities();
+        s.v_half = s.v.clone();
+        s.forces(0.0)?;
+        s.kinetic_central = s.kinetic();
+        s.dt = s.stable_step();
+        Ok(s)
+    }
+
+    fn constrain_velocities(&mut self) {
+        for i in 0..self.v.len() {
+            let fx = self.model.fixed[i];
+            if self.axis[i] || fx[0] {
+                self.v[i][0] = 0.0;
+            }
+            if fx[1] {
+                self.v[i][1] = 0.0;
+            }
+        }
+    }
+
+    /// Internal, contact, load and damping forces at the current x with v^{n+1/2} over `dt`;
+    /// sets the accelerations and returns the nodal resultant.
+    fn forces(&mut self, dt: f64) -> Result<()> {
+        let n = self.x.len();
+        let mut f_int = vec![[0.0; 2]; n];
+        let mut dt_min = f64::INFINITY;
+        for (e, q) in self.model.quads.iter().enumerate() {
+            let x = q.map(|i| self.x[i as usize]);
+            let v = q.map(|i| self.v_half[i as usize]);
+            let mat = &self.model.materials[self.model.material_of[e]];
+            let out = update(&x, &v, dt, mat, self.model.formulation, &mut self.states[e]);
+            if out.min_jacobian <= 0.0 {
+                return Err(Error::Numerical(format!(
+                    "quad {e} inverted at t = {:.6e} s (step {}): lower solver.time_step_factor or the penalty factor",
+                    self.time, self.steps
+                )));
+            }
+            dt_min = dt_min.min(out.dt_crit);
+            for (k, &i) in q.iter().enumerate() {
+                f_int[i as usize][0] += out.force[k][0];
+                f_int[i as usize][1] += out.force[k][1];
+            }
+        }
+        self.element_dt = dt_min;
+        let mut f_c = vec![[0.0; 2]; n];
+        self.contact = self
+            .contacts
+            .iter_mut()
+            .map(|c| c.add_forces(&self.x, &mut f_c))
+            .collect();
+        let alpha = self.model.damping;
+        for i in 0..n {
+            for c in 0..2 {
+                let f = self.model.loads[i][c] + f_c[i][c]
+                    - f_int[i][c]
+                    - alpha * self.mass[i] * self.v_half[i][c];
+                self.a[i][c] = f / self.mass[i];
+            }
+            if self.axis[i] || self.model.fixed[i][0] {
+                self.a[i][0] = 0.0;
+            }
+            if self.model.fixed[i][1] {
+                self.a[i][1] = 0.0;
+            }
+        }
+        self.f_int = f_int;
+        Ok(())
+    }
+
+    fn stable_step(&self) -> f64 {
+        let c = self
+            .contacts
+            .iter()
+            .map(|c| c.stable_step(&self.mass, &self.omega))
+            .fold(f64::INFINITY, f64::min);
+        self.model.time_step_factor * self.element_dt.min(c)
+    }
+
+    /// Advances one step of Box 6.1: v^{n+1/2} = v^n + Δt/2 a^n, x^{n+1} = x^n + Δt v^{n+1/2},
+    /// forces at t^{n+1}, v^{n+1} = v^{n+1/2} + Δt/2 a^{n+1}. The step is the stable step of
+    /// the current configuration.
+    pub fn step(&mut self) -> Result<()> {
+        let dt = self.dt;
+        let n = self.x.len();
+        let old_half = std::mem::take(&mut self.v_half);
+        let mut v_half = vec![[0.0; 2]; n];
+        for i in 0..n {
+            for c in 0..2 {
+                v_half[i][c] = self.v[i][c] + 0.5 * dt * self.a[i][c];
+            }
+            if self.axis[i] || self.model.fixed[i][0] {
+                v_half[i][0] = 0.0;
+            }
+            if self.model.fixed[i][1] {
+                v_half[i][1] = 0.0;
+            }
+        }
+        // Work of loads and damping over the step, with the mid-step velocity.
+        let alpha = self.model.damping;
+        let mut ext = 0.0;
+        let mut kc = 0.0;
+        for i in 0..n {
+            for c in 0..2 {
+                let vh = v_half[i][c];
+                ext += dt * vh * (self.model.loads[i][c] - alpha * self.mass[i] * vh);
+                self.x[i][c] += dt * vh;
+            }
+            if self.steps > 0 {
+                kc += 0.5
+                    * self.mass[i]
+                    * (old_half[i][0] * v_half[i][0] + old_half[i][1] * v_half[i][1]);
+            }
+        }
+        self.v_half = v_half;
+        self.time += dt;
+        self.steps += 1;
+        self.forces(dt)?;
+        for i in 0..n {
+            for c in 0..2 {
+                self.v[i][c] = self.v_half[i][c] + 0.5 * dt * self.a[i][c];
+            }
+        }
+        self.kinetic_central = if self.steps > 1 { kc } else { self.kinetic() };
+        self.external_work += ext;
+        self.dt = self.stable_step();
+        if !self.dt.is_finite() || self.dt <= 0.0 {
+            return Err(Error::Numerical(format!(
+                "stable step {:.3e} s at t = {:.6e} s",
+                self.dt, self.time
+            )));
+        }
+        Ok(())
+    }
+
+    fn kinetic(&self) -> f64 {
+        self.v
+            .iter()
+            .zip(&self.mass)
+            .map(|(v, m)| 0.5 * m * (v[0] * v[0] + v[1] * v[1]))
+            .sum()
+    }
+
+    /// The energies now, J.
+    pub fn energy(&self) -> SectionEnergy {
+        let mut e = SectionEnergy {
+            kinetic: self.kinetic(),
+            kinetic_central: self.kinetic_central,
+            external_work: self.external_work,
+            contact: self.contact.iter().map(|c| c.stored).sum(),
+            ..Default::default()
+        };
+        for s in &self.states {
+            e.internal += s.internal_energy;
+            e.plastic += s.plastic_work;
+            e.hourglass += s.hourglass_energy;
+        }
+        e.total = e.kinetic_central + e.internal + e.hourglass + e.contact - e.external_work;
+        e
+    }
+
+    /// Replaces the constant external nodal loads (whole rings, N) from the next step on;
+    /// `loads` has one entry per node (extra entries are ignored, missing ones keep theirs).
+    pub fn set_loads(&mut self, loads: Vec<[f64; 2]>) {
+        for (l, n) in self.model.loads.iter_mut().zip(loads) {
+            *l = n;
+        }
+    }
+
+    /// Time, s.
+    pub fn time(&self) -> f64 {
+        self.time
+    }
+    /// The step the next [`SectionSolver::step`] takes, s.
+    pub fn dt(&self) -> f64 {
+        self.dt
+    }
+    /// Steps taken.
+    pub fn steps(&self) -> u64 {
+        self.steps
+    }
+    /// Current coordinates (r, z), m.
+    pub fn positions(&self) -> &[[f64; 2]] {
+        &self.x
+    }
+    /// Full-step velocities v^n (v_r, v_z), m/s.
+    pub fn velocities(&self) -> &[[f64; 2]] {
+        &self.v
+    }
+    /// Lumped masses of the whole rings, kg.
+    pub fn masses(&self) -> &[f64] {
+        &self.mass
+    }
+    /// Internal nodal forces at the current state (whole rings), N.
+    pub fn internal_forces(&self) -> &[[f64; 2]] {
+        &self.f_int
+    }
+    /// Element states (stresses, plastic strains, energies).
+    pub fn states(&self) -> &[QuadState] {
+        &self.states
+    }
+    /// The contacts' states at the last force evaluation.
+    pub fn contact_states(&self) -> &[ContactState] {
+        &self.contact
+    }
+    /// Axial momentum Σ m v_z and mass Σ m of the nodes `nodes` (kg m/s, kg).
+    pub fn axial_momentum(&self, nodes: std::ops::Range<usize>) -> (f64, f64) {
+        nodes.fold((0.0, 0.0), |(p, m), i| {
+            (p + self.mass[i] * self.v[i][1], m + self.mass[i])
+        })
+    }
+    /// Mass-weighted mean z of the nodes `nodes` (the centre of mass along the axis), m.
+    pub fn axial_centre(&self, nodes: std::ops::Range<usize>) -> f64 {
+        let (s, m) = nodes.fold((0.0, 0.0), |(s, m), i| {
+            (s + self.mass[i] * self.x[i][1], m + self.mass[i])
+        });
+        s / m
+    }
+}
