@@ -2,6 +2,7 @@
 //!
 //! - [`outcome`]: the quantities both models produce, and the analytical answer for a scene;
 //! - [`bench`]: run time against error on a mesh/element/time-step ladder;
+//! - [`convergence`]: Richardson extrapolation, observed order and error estimates of a ladder;
 //! - [`sweep`]: resumable, shardable parameter sweeps (the paper's ANSYS study);
 //! - [`cost`]: estimated cost of a case, shards balanced by it;
 //! - [`slurm`]: a sweep as a Slurm job array;
@@ -17,6 +18,7 @@
 //! - [`warnings`]: results a user should not trust blindly, each said in one line.
 
 pub mod bench;
+pub mod convergence;
 pub mod cost;
 pub mod figures;
 pub mod interrupt;
