@@ -5,6 +5,8 @@
 //! - [`convergence`]: Richardson extrapolation, observed order and error estimates of a ladder;
 //! - [`sweep`]: resumable, shardable parameter sweeps (the paper's ANSYS study);
 //! - [`cost`]: estimated cost of a case, shards balanced by it;
+//! - [`error_estimate`]: a run's own error bar from a mesh ladder (a run closure per level);
+//! - [`error_honesty`]: whether the error estimates hold over a set of head-on cases;
 //! - [`slurm`]: a sweep as a Slurm job array;
 //! - [`sweep_status`]: cases done, failed, running and missing in a sweep folder;
 //! - [`simulate`]: the FE run (model, reductions, stop rule, reduction to rigid motion);
@@ -20,6 +22,8 @@
 pub mod bench;
 pub mod convergence;
 pub mod cost;
+pub mod error_estimate;
+pub mod error_honesty;
 pub mod figures;
 pub mod interrupt;
 pub mod number;
