@@ -95,7 +95,7 @@ pub struct Estimate {
 /// values, a non-finite value or a ratio not above 1.
 pub fn estimate(values: &[f64], ratio: f64) -> Option<Estimate> {
     let ok = values.len() >= 2 && values.iter().all(|v| v.is_finite());
-    if !ok || !(ratio.is_finite() && ratio > 1.0) {
+    if !(ok && ratio.is_finite() && ratio > 1.0) {
         return None;
     }
     let n = values.len();
