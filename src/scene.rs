@@ -17,6 +17,7 @@
 
 mod approach;
 mod overrides;
+pub mod pole;
 pub(crate) mod reader;
 
 pub use approach::{approach, Approach, Frame, Touch};
@@ -217,6 +218,8 @@ const REDUCTION_KEYS: [&str; 4] = [
 pub const DEFAULT_SIZE_PER_D: f64 = 1.0 / 6.0;
 /// Default pole element size as a fraction of the diameter: the contact patch (radius about
 /// D/25 at 1 m/s per ball) is then about eight elements across; D/100 left e 2.5 % off.
+/// Slower impacts refine it to their own contact radius ([`pole::physics_pole_size`]) unless
+/// the scene sets `pole_size`.
 pub const DEFAULT_POLE_SIZE_PER_D: f64 = 1.0 / 200.0;
 
 impl Default for Scene {
@@ -251,14 +254,14 @@ impl Scene {
     pub fn from_table(root: &Table, dir: &Path) -> Result<Scene> {
         let r = Reader::new("", root);
         r.only(&TOP_KEYS)?;
-        let ball = |key: &str| -> Result<BallScene> {
+        let ball = |key: &str| -> Result<(BallScene, bool)> {
             let b = r
                 .table(key)?
                 .ok_or_else(|| r.missing(key, "a table with material, diameter, velocity"))?;
             read_ball(b, dir)
         };
-        let ball1 = ball("ball1")?;
-        let ball2 = ball("ball2")?;
+        let (ball1, pole1_given) = ball("ball1")?;
+        let (ball2, pole2_given) = ball("ball2")?;
         let contact = read_contact(r.table("contact")?)?;
         let solver = read_solver(r.table("solver")?)?;
         let output = read_output(r.table("output")?)?;
@@ -273,7 +276,7 @@ impl Scene {
                 "missing required key {which}: give both balls a position or neither"
             )));
         }
-        let scene = Scene {
+        let mut scene = Scene {
             ball1,
             ball2,
             contact,
@@ -281,8 +284,28 @@ impl Scene {
             output,
             reduction,
         };
-        approach(&scene)?; // rejects overlapping balls
+        // Rejects overlapping balls; an impact refines the default pole mesh to its contact.
+        if let Approach::Impact(touch) = approach(&scene)? {
+            scene.refine_poles(touch.approach_speed, [!pole1_given, !pole2_given]);
+        }
         Ok(scene)
+    }
+
+    /// Applies the physics pole rule ([`pole::physics_pole_size`]) at relative approach speed
+    /// `speed` (m/s) to the built-in meshes of the balls flagged in `default_pole` (those whose
+    /// scene left `pole_size` unset); it only ever refines.
+    fn refine_poles(&mut self, speed: f64, default_pole: [bool; 2]) {
+        let rule = [
+            pole::physics_pole_size(&self.ball1, &self.ball2, speed),
+            pole::physics_pole_size(&self.ball2, &self.ball1, speed),
+        ];
+        for (k, ball) in [&mut self.ball1, &mut self.ball2].into_iter().enumerate() {
+            if let (true, MeshSettings::Builtin { pole_size, .. }) =
+                (default_pole[k], &mut ball.mesh)
+            {
+                *pole_size = pole_size.min(rule[k]);
+            }
+        }
     }
 
     /// Initial centre positions (m): as given, or touching at the origin along x.
@@ -316,7 +339,8 @@ impl Scene {
     }
 }
 
-fn read_ball(b: Reader<'_>, dir: &Path) -> Result<BallScene> {
+/// A ball and whether its scene set `mesh.pole_size` (else the physics rule may refine it).
+fn read_ball(b: Reader<'_>, dir: &Path) -> Result<(BallScene, bool)> {
     b.only(&BALL_KEYS)?;
     let (material, material_name) = read_material(&b)?;
     let diameter = b
@@ -338,8 +362,8 @@ fn read_ball(b: Reader<'_>, dir: &Path) -> Result<BallScene> {
         )?
         .unwrap_or([0.0; 3]);
     let position = b.vec3("position", |x| x.abs() <= 1e3, "|component| <= 1000 m")?;
-    let mesh = read_mesh(b.table("mesh")?, diameter, dir)?;
-    Ok(BallScene {
+    let (mesh, pole_given) = read_mesh(b.table("mesh")?, diameter, dir)?;
+    let ball = BallScene {
         material,
         material_name,
         diameter,
@@ -347,7 +371,8 @@ fn read_ball(b: Reader<'_>, dir: &Path) -> Result<BallScene> {
         angular_velocity,
         position,
         mesh,
-    })
+    };
+    Ok((ball, pole_given))
 }
 
 fn read_material(b: &Reader<'_>) -> Result<(Material, String)> {
@@ -456,12 +481,15 @@ fn read_hardening(h: &Reader<'_>, path: &str, yield0: f64) -> Result<Law> {
     })
 }
 
-fn read_mesh(m: Option<Reader<'_>>, d: f64, dir: &Path) -> Result<MeshSettings> {
+/// The mesh settings and whether `pole_size` was given.
+fn read_mesh(m: Option<Reader<'_>>, d: f64, dir: &Path) -> Result<(MeshSettings, bool)> {
     let default = MeshSettings::Builtin {
         size: d * DEFAULT_SIZE_PER_D,
         pole_size: d * DEFAULT_POLE_SIZE_PER_D,
     };
-    let Some(m) = m else { return Ok(default) };
+    let Some(m) = m else {
+        return Ok((default, false));
+    };
     m.only(&MESH_KEYS)?;
     let file = m.string("file")?;
     let size = m.f64(
@@ -504,7 +532,7 @@ fn read_mesh(m: Option<Reader<'_>>, d: f64, dir: &Path) -> Result<MeshSettings> 
             MeshSettings::Builtin { size, pole_size }
         }
     };
-    Ok(mesh)
+    Ok((mesh, pole.is_some()))
 }
 
 fn read_contact(c: Option<Reader<'_>>) -> Result<ContactSettings> {

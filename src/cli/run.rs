@@ -1,10 +1,12 @@
-//! `twoball run [SCENE] [--out DIR] [--set PATH=VALUE]... [--vtu-ascii]`: one scene, FE beside
-//! the analytical model.
+//! `twoball run [SCENE] [--out DIR] [--set PATH=VALUE]... [--vtu-ascii] [--error-estimate
+//! [--observed-order]] [--tolerance T [--max-refinements N]]`: one scene, FE beside the
+//! analytical model, optionally with its error bar from a mesh ladder.
 
 use crate::error::{Error, Result};
 use crate::scene::{Override, Scene, DEFAULT_SCENE};
+use crate::study::error_estimate::{LadderPlan, DEFAULT_MAX_REFINEMENTS};
 use crate::study::simulate::RunOptions;
-use crate::study::single::{run_scene, side_by_side, write_outputs};
+use crate::study::single::{run_scene, run_scene_with_estimate, side_by_side, write_outputs};
 use clap::Args;
 use std::path::{Path, PathBuf};
 use std::time::SystemTime;
@@ -23,6 +25,53 @@ pub struct RunArgs {
     /// Write the .vtu snapshots as ASCII text (default: compressed binary, as ParaView does).
     #[arg(long)]
     pub vtu_ascii: bool,
+    /// Also run the next-coarser mesh of the ladder (pole and bulk sizes doubled) and write
+    /// `error_estimate` in results.json (in 3D about 1.2 times the cost of the run).
+    #[arg(long)]
+    pub error_estimate: bool,
+    /// With --error-estimate: also run the mesh before that, for an observed order.
+    #[arg(long, requires = "error_estimate")]
+    pub observed_order: bool,
+    /// Refine along the ladder (halving pole and bulk sizes) until the error estimate of e is
+    /// at most this, e.g. 0.1% or 0.001; the results are the finest mesh's.
+    #[arg(long, value_name = "FRACTION|PERCENT%")]
+    pub tolerance: Option<String>,
+    /// With --tolerance: the most refinements beyond the scene's own mesh.
+    #[arg(long, default_value_t = DEFAULT_MAX_REFINEMENTS, requires = "tolerance")]
+    pub max_refinements: u32,
+}
+
+/// The ladder `--error-estimate`, `--observed-order` and `--tolerance` ask for (None: a
+/// single run).
+fn ladder_plan(a: &RunArgs) -> Result<Option<LadderPlan>> {
+    if let Some(t) = &a.tolerance {
+        return Ok(Some(LadderPlan::Tolerance {
+            tolerance: parse_tolerance(t)?,
+            max_refinements: a.max_refinements,
+        }));
+    }
+    Ok(match (a.error_estimate, a.observed_order) {
+        (false, _) => None,
+        (true, false) => Some(LadderPlan::TwoLevels),
+        (true, true) => Some(LadderPlan::ThreeLevels),
+    })
+}
+
+/// A relative tolerance: `0.1%` (a percentage) or `0.001` (a fraction), in (0, 1).
+fn parse_tolerance(text: &str) -> Result<f64> {
+    let t = text.trim();
+    let value = match t.strip_suffix('%') {
+        Some(p) => p.trim().parse::<f64>().map(|x| x / 100.0),
+        None => t.parse::<f64>(),
+    };
+    match value {
+        Ok(x) if x > 0.0 && x < 1.0 => Ok(x),
+        _ => Err(Error::invalid(
+            "--tolerance",
+            text,
+            "a fraction 0 < t < 1 or a percentage 0% < t < 100%, e.g. 0.1%",
+        )),
+    }
 }
 
 /// Runs `twoball run`.
@@ -50,7 +99,11 @@ pub fn run(a: RunArgs) -> Result<()> {
         eprintln!("note: output.vtu_snapshots needs --out DIR; no snapshots written");
     }
     let started = SystemTime::now();
-    let report = match run_scene(&scene, &opts) {
+    let plan = ladder_plan(&a)?;
+    let report = match plan.map_or_else(
+        || run_scene(&scene, &opts),
+        |p| run_scene_with_estimate(&scene, &opts, p),
+    ) {
         Err(Error::Interrupted(at)) => {
             let removed = a
                 .out
@@ -66,6 +119,9 @@ pub fn run(a: RunArgs) -> Result<()> {
         r => r?,
     };
     print!("{}", side_by_side(&report));
+    if let Some(est) = &report.error_estimate {
+        println!("{}", est.summary());
+    }
     crate::study::warnings::print(&report.warnings);
     if let Some(dir) = &a.out {
         write_outputs(&report, dir)?;
@@ -102,4 +158,19 @@ fn remove_partial_output(dir: &Path, started: SystemTime, created: bool) -> usiz
         let _ = std::fs::remove_dir(dir);
     }
     removed
+}
+
+#[cfg(test)]
+mod tests {
+    use super::parse_tolerance;
+
+    #[test]
+    fn tolerances_read_as_percent_or_fraction_and_bad_ones_are_named() {
+        assert_eq!(parse_tolerance("0.1%").unwrap(), 0.001);
+        assert_eq!(parse_tolerance("0.002").unwrap(), 0.002);
+        for bad in ["0%", "100%", "-1", "abc", "1.5", "nan"] {
+            let e = parse_tolerance(bad).unwrap_err().to_string();
+            assert!(e.contains("--tolerance") && e.contains(bad), "{e}");
+        }
+    }
 }

@@ -1,6 +1,8 @@
 //! One scene, both models: the FE run beside the analytical answer, with relative
 //! differences, written as results.json and history.csv.
 
+use super::error_estimate::LevelOutcome;
+use super::error_estimate::{mesh_sizes, run_ladder, scene_at_level, ErrorEstimate, LadderPlan};
 use super::number::sci;
 use super::outcome::{analytic_outcome, relative_difference, Outcome};
 use super::simulate::{simulate, RunOptions, Simulation, HISTORY_HEADER};
@@ -84,6 +86,10 @@ pub struct RunReport {
     pub relative_difference: Option<Differences>,
     /// Results not to take at face value, one line each (empty when none).
     pub warnings: Vec<Warning>,
+    /// The run's error bar from its mesh ladder (with `--error-estimate` or `--tolerance`);
+    /// the other results are those of the ladder's finest mesh.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub error_estimate: Option<ErrorEstimate>,
     /// The scene as run (presets and overrides resolved).
     pub scene: Scene,
 }
@@ -112,6 +118,7 @@ pub fn run_scene(scene: &Scene, opts: &RunOptions) -> Result<RunReport> {
                 analytic: None,
                 relative_difference: None,
                 warnings: Vec::new(),
+                error_estimate: None,
                 scene: scene.clone(),
             })
         }
@@ -142,8 +149,61 @@ pub fn run_scene(scene: &Scene, opts: &RunOptions) -> Result<RunReport> {
         fe: Some(sim),
         analytic: Some(an),
         warnings,
+        error_estimate: None,
         scene: scene.clone(),
     })
+}
+
+/// Runs `scene` on the mesh ladder `plan` ([`run_ladder`], each level a full run of
+/// [`run_scene`] on [`scene_at_level`]): the report of the finest mesh, with its
+/// `error_estimate` and `wall_time_s` the total over the ladder. A scene without impact gives
+/// its plain report. Snapshots, when asked, are those of the finest mesh (levels run coarse
+/// to fine and each overwrites the last).
+pub fn run_scene_with_estimate(
+    scene: &Scene,
+    opts: &RunOptions,
+    plan: LadderPlan,
+) -> Result<RunReport> {
+    if let Approach::NoImpact { .. } = approach(scene)? {
+        return run_scene(scene, opts);
+    }
+    let start = Instant::now();
+    let mut finest: Option<RunReport> = None;
+    let estimate = run_ladder(plan, |level| {
+        let (out, report) = run_level(scene, level, opts)?;
+        finest = Some(report);
+        Ok(out)
+    })?;
+    let mut report =
+        finest.ok_or_else(|| Error::Numerical("error estimate: the ladder ran no mesh".into()))?;
+    report.error_estimate = Some(estimate);
+    report.wall_time_s = start.elapsed().as_secs_f64();
+    Ok(report)
+}
+
+/// Runs `scene` on mesh level `level` of its ladder ([`scene_at_level`]): the level's
+/// figures and the full report. Fails for a scene without impact.
+pub fn run_level(
+    scene: &Scene,
+    level: i32,
+    opts: &RunOptions,
+) -> Result<(LevelOutcome, RunReport)> {
+    let s = scene_at_level(scene, level)?;
+    let report = run_scene(&s, opts)?;
+    let (pole_size, size) = mesh_sizes(&s);
+    let e = report
+        .e
+        .ok_or_else(|| Error::Numerical("the run reports no impact".into()))?;
+    let out = LevelOutcome {
+        level,
+        pole_size,
+        size,
+        e,
+        delta_max: report.delta_max,
+        contact_duration: report.contact_duration,
+        wall_time_s: report.wall_time_s,
+    };
+    Ok((out, report))
 }
 
 /// Element size at the contact pole of the built-in meshes (the coarser ball's), m; None
