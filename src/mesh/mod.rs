@@ -7,8 +7,10 @@
 pub mod ball;
 pub mod block;
 pub mod meridian;
+pub mod meridian_ball;
 pub mod msh;
 pub mod quality;
+pub mod section;
 pub mod topology;
 pub mod vtu;
 
