@@ -11,6 +11,8 @@ pub mod meridian_ball;
 pub mod msh;
 pub mod quality;
 pub mod section;
+pub mod section_msh;
+pub mod section_vtu;
 pub mod topology;
 pub mod vtu;
 
