@@ -157,27 +157,27 @@ fn spacing_slope0() -> f64 {
 const CORE_ROUNDING: f64 = 0.5;
 
 /// Geometry of one O-grid half-ball in local coordinates (u inward from the pole, v, w).
-struct Plan {
+pub(super) struct Plan {
     /// Ball radius, m.
-    r: f64,
+    pub(super) r: f64,
     /// Cells along a core edge (even); the core has n/2 cells in depth.
-    n: usize,
+    pub(super) n: usize,
     /// Core half-width, m.
-    a: f64,
+    pub(super) a: f64,
     /// Number of spherical layers.
-    layers: usize,
+    pub(super) layers: usize,
     /// Length scale of the core's depth correction (see [`core_point`]).
-    deepen: f64,
+    pub(super) deepen: f64,
 }
 
 impl Plan {
     /// Unrefined half-ball: core cells at the face centres of size `cell` (m).
-    fn uniform(r: f64, n: usize, cell: f64) -> Plan {
+    pub(super) fn uniform(r: f64, n: usize, cell: f64) -> Plan {
         Plan::with_core(r, n, cell * n as f64 / (2.0 * spacing_slope0()))
     }
 
     /// Half-ball refined at the pole: the shortest core edge is `h_pole` (m).
-    fn refined(r: f64, n: usize, h_pole: f64) -> Plan {
+    pub(super) fn refined(r: f64, n: usize, h_pole: f64) -> Plan {
         // Edges scale with a while the core is small against R: a few fixed-point steps on
         // the shortest edge of the mapped core give a = the requested pole size.
         let mut a = h_pole * n as f64 / (2.0 * spacing_slope0());
@@ -189,7 +189,7 @@ impl Plan {
         plan
     }
 
-    fn with_core(r: f64, n: usize, a: f64) -> Plan {
+    pub(super) fn with_core(r: f64, n: usize, a: f64) -> Plan {
         // Never bigger than fits comfortably inside the dome radius 2R.
         let a = a.min(1.25 * r);
         // Layers grow like the angular cell size so that cells stay cube-like; the ratio
@@ -364,7 +364,7 @@ fn cube_point(i: usize, j: usize, k: usize, n: usize) -> [f64; 3] {
 /// but pushed out along its ray by (1 + u / 2R)^2, which offsets the inversion's shrinking of
 /// deeper cells (its scale is (2R / (2R + u))^2 along the axis) so that the cells at the pole
 /// are as small as any.
-fn core_point(i: usize, j: usize, k: usize, n: usize, a: f64, deepen: f64) -> [f64; 3] {
+pub(super) fn core_point(i: usize, j: usize, k: usize, n: usize, a: f64, deepen: f64) -> [f64; 3] {
     let rounding = if deepen.is_finite() {
         0.0
     } else {
@@ -406,7 +406,7 @@ fn shortest_core_edge(r: f64, n: usize, a: f64, deepen: f64) -> f64 {
 
 /// Sphere inversion about the antipode Q = (-R, 0, 0) with radius 2R, applied to the local
 /// point (u, v, w) = Y - P: maps the half-ball around P onto the front half of the ball.
-fn invert(y: [f64; 3], r: f64) -> [f64; 3] {
+pub(super) fn invert(y: [f64; 3], r: f64) -> [f64; 3] {
     let d = [2.0 * r + y[0], y[1], y[2]];
     let f = 4.0 * r * r / (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
     [-r + f * d[0], f * d[1], f * d[2]]

@@ -6,6 +6,8 @@
 
 use std::collections::BTreeMap;
 
+pub use super::meridian_ball::{ball, SectionSpec};
+
 /// A mesh of 4-node quadrilaterals on the meridian half-plane r ≥ 0. Coordinates in metres.
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct MeridianMesh {

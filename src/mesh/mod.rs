@@ -8,8 +8,12 @@ pub mod ball;
 pub mod block;
 pub mod gmsh;
 pub mod meridian;
+pub mod meridian_ball;
 pub mod msh;
 pub mod quality;
+pub mod section;
+pub mod section_msh;
+pub mod section_vtu;
 pub mod topology;
 pub mod vtu;
 

@@ -8,8 +8,8 @@
 //! What becomes what: 8-node hexahedra (type 5) are the solid; 4-node quadrangles (type 3) in
 //! a physical group become the face set of that group's name (and the node set of their
 //! nodes); points (type 15) in a physical group add their node to the node set of that name;
-//! 2-node lines (type 1) are ignored; any other element type is an error. Hexahedra whose
-//! corners are all inverted (a mirrored node order) are reoriented with a warning; partly
+//! 2-node lines (type 1) are ignored (the meridian-section reader `section_msh` keeps them);
+//! any other element type is an error. Hexahedra whose corners are all inverted (a mirrored node order) are reoriented with a warning; partly
 //! inverted or degenerate ones are an error naming the element.
 
 use super::{quality::corner_scaled_jacobians, topology::boundary_faces, Mesh};
@@ -38,6 +38,11 @@ pub fn read(path: impl AsRef<Path>) -> Result<Loaded> {
 
 /// Parses the bytes of a MSH file; `name` is used in error messages.
 pub fn parse(bytes: &[u8], name: &str) -> Result<Loaded> {
+    assemble(parse_raw(bytes, name)?, name)
+}
+
+/// Reads the sections of a MSH file into [`Raw`], checking counts and references.
+pub(super) fn parse_raw(bytes: &[u8], name: &str) -> Result<Raw> {
     let mut c = Cur {
         b: bytes,
         pos: 0,
@@ -130,19 +135,20 @@ pub fn parse(bytes: &[u8], name: &str) -> Result<Loaded> {
             "{name}: no $MeshFormat section (not a MSH file?)"
         )));
     }
-    assemble(raw, name)
+    Ok(raw)
 }
 
 /// Everything read from the file, before it is checked and turned into a [`Mesh`].
 #[derive(Default)]
-struct Raw {
-    names: HashMap<(i32, i32), String>,
+pub(super) struct Raw {
+    pub(super) names: HashMap<(i32, i32), String>,
     /// Physical tags of each (dim, entity tag) (version 4.1).
     entity_phys: HashMap<(i32, i32), Vec<i32>>,
-    nodes: Vec<(u64, [f64; 3])>,
-    hexes: Vec<(u64, [u64; 8])>,
-    /// Quads and points with the physical groups they belong to.
-    quads: Vec<(u64, [u64; 4], Vec<i32>)>,
+    pub(super) nodes: Vec<(u64, [f64; 3])>,
+    pub(super) hexes: Vec<(u64, [u64; 8])>,
+    /// Quads, lines and points with the physical groups they belong to.
+    pub(super) quads: Vec<(u64, [u64; 4], Vec<i32>)>,
+    pub(super) lines: Vec<(u64, [u64; 2], Vec<i32>)>,
     points: Vec<(u64, u64, Vec<i32>)>,
 }
 
@@ -447,6 +453,7 @@ fn store(raw: &mut Raw, t: i32, tag: u64, nodes: &[u64], phys: Vec<i32>) {
             .quads
             .push((tag, [nodes[0], nodes[1], nodes[2], nodes[3]], phys)),
         15 => raw.points.push((tag, nodes[0], phys)),
+        1 => raw.lines.push((tag, [nodes[0], nodes[1]], phys)),
         _ => {}
     }
 }

@@ -236,16 +236,34 @@ fn field_array<'a>(f: &Field<'a>) -> Array<'a> {
     }
 }
 
-/// Checks the fields and the mesh for [`to_vtu_bytes`].
-fn check_all(mesh: &Mesh, point_fields: &[Field], cell_fields: &[Field]) -> Result<()> {
+/// An unstructured grid as the VTU writer takes it: points (m) and cells of one VTK type.
+pub(crate) struct Grid<'a> {
+    /// Point coordinates (x, y, z), m.
+    pub(crate) points: &'a [[f64; 3]],
+    /// Node indices of every cell, cell after cell.
+    pub(crate) connectivity: Vec<i64>,
+    /// Nodes per cell.
+    pub(crate) per_cell: usize,
+    /// VTK cell type (9 quad, 12 hexahedron).
+    pub(crate) cell_type: u8,
+}
+
+impl Grid<'_> {
+    fn cells(&self) -> usize {
+        self.connectivity.len() / self.per_cell
+    }
+}
+
+/// Checks the fields and the grid for [`grid_bytes`].
+fn check_all(grid: &Grid, point_fields: &[Field], cell_fields: &[Field]) -> Result<()> {
     for f in point_fields {
-        f.check(mesh.nodes.len(), "point")?;
+        f.check(grid.points.len(), "point")?;
     }
     for f in cell_fields {
-        f.check(mesh.hexes.len(), "cell")?;
+        f.check(grid.cells(), "cell")?;
     }
-    if let Some(i) = mesh
-        .nodes
+    if let Some(i) = grid
+        .points
         .iter()
         .position(|p| !p.iter().all(|v| v.is_finite()))
     {
@@ -267,7 +285,24 @@ pub fn to_vtu_bytes(
     time: Option<f64>,
     format: VtuFormat,
 ) -> Result<Vec<u8>> {
-    check_all(mesh, point_fields, cell_fields)?;
+    let grid = Grid {
+        points: &mesh.nodes,
+        connectivity: mesh.hexes.iter().flatten().map(|&n| n as i64).collect(),
+        per_cell: 8,
+        cell_type: 12,
+    };
+    grid_bytes(&grid, point_fields, cell_fields, time, format)
+}
+
+/// [`to_vtu_bytes`] for any [`Grid`].
+pub(crate) fn grid_bytes(
+    grid: &Grid,
+    point_fields: &[Field],
+    cell_fields: &[Field],
+    time: Option<f64>,
+    format: VtuFormat,
+) -> Result<Vec<u8>> {
+    check_all(grid, point_fields, cell_fields)?;
     if let Some(t) = time.filter(|t| !t.is_finite()) {
         return Err(Error::Numerical(format!(
             "time {t} is not finite; not written"
@@ -300,8 +335,8 @@ pub fn to_vtu_bytes(
     let _ = writeln!(
         s,
         "    <Piece NumberOfPoints=\"{}\" NumberOfCells=\"{}\">",
-        mesh.nodes.len(),
-        mesh.hexes.len()
+        grid.points.len(),
+        grid.cells()
     );
     s.push_str("      <PointData>\n");
     for f in point_fields {
@@ -315,7 +350,7 @@ pub fn to_vtu_bytes(
     data_array(
         &mut s,
         &mut appended,
-        &field_array(&Field::vectors("Points", &mesh.nodes)),
+        &field_array(&Field::vectors("Points", grid.points)),
         format,
     )?;
     s.push_str("      </Points>\n      <Cells>\n");
@@ -324,22 +359,26 @@ pub fn to_vtu_bytes(
             name: "connectivity",
             components: 1,
             tuples: None,
-            per_line: 8,
-            values: Values::I64(mesh.hexes.iter().flatten().map(|&n| n as i64).collect()),
+            per_line: grid.per_cell,
+            values: Values::I64(grid.connectivity.clone()),
         },
         Array {
             name: "offsets",
             components: 1,
             tuples: None,
             per_line: 1,
-            values: Values::I64((1..=mesh.hexes.len()).map(|e| 8 * e as i64).collect()),
+            values: Values::I64(
+                (1..=grid.cells())
+                    .map(|e| (grid.per_cell * e) as i64)
+                    .collect(),
+            ),
         },
         Array {
             name: "types",
             components: 1,
             tuples: None,
             per_line: 1,
-            values: Values::U8(vec![12; mesh.hexes.len()]),
+            values: Values::U8(vec![grid.cell_type; grid.cells()]),
         },
     ];
     for a in &cells {

@@ -1,0 +1,288 @@
+//! Graded all-quad meshes of a ball's meridian section (the half-disc r ≥ 0), refined toward
+//! the contact pole (r, z) = (0, +R).
+//!
+//! The section is the meridian slice of the 3D ball mesh ([`super::ball`]): the same circle
+//! inversion about the antipode (0, −R) maps a quarter-disc O-grid around the pole (a square
+//! core of pole-size cells wrapped by layers that grow geometrically) onto the front quarter
+//! z ≥ 0, and the back quarter is the mirror image of the unrefined construction, sharing its
+//! nodes on z = 0. Unrefined, the section's nodes are exactly the 3D quarter ball's nodes on
+//! its cut plane through the axis; refined, the core is scaled so that the quad at the pole
+//! has the requested size (the 3D mesher sizes its shortest edge instead, which differs from
+//! the pole edge by under 5 % once `pole_size` is below a fifth of the surface facet). The
+//! core square has two sides on the
+//! axis and the surface and the layers end on the axis with full quads, so no element
+//! degenerates into a triangle at r = 0.
+
+use super::ball::{core_point, invert, Plan, CONTACT_HALF_ANGLE_DEG, MAX_ELEMENTS};
+use super::meridian::MeridianMesh;
+use super::section::{boundary_edges, quad_area};
+use crate::error::{Error, Result};
+use std::collections::BTreeMap;
+use std::f64::consts::PI;
+
+/// What to mesh: the meridian section of a ball. Lengths in metres.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SectionSpec {
+    /// Ball diameter D, m.
+    pub diameter: f64,
+    /// Far-field element size h, m: an upper bound on element edges away from the pole, as
+    /// for the 3D mesher (the surface arc is cut into segments of about h / 2).
+    pub size: f64,
+    /// Element size at the contact pole, m; `None` meshes the section uniformly.
+    pub pole_size: Option<f64>,
+}
+
+/// Meshes the meridian half-disc of a ball of diameter `spec.diameter` centred at the origin
+/// with counter-clockwise 4-node quads, refined toward the pole (0, +R).
+///
+/// Sets: node set `axis` (every node with r = 0, exactly), segment and node sets `surface`
+/// (the whole arc, from the south pole to the north pole) and `contact` (the surface
+/// segments with at least one node within [`CONTACT_HALF_ANGLE_DEG`] of +z, seen from the
+/// centre, and their nodes). `boundary` is the arc (the axis is not a boundary), ordered from
+/// (0, −R) to (0, +R). Surface nodes lie on the circle to rounding. Output is deterministic.
+///
+/// Errors: non-finite or non-positive sizes, `size` above the radius or below radius / 600,
+/// `pole_size` above `size` or below `size / 10^4`, or more than [`MAX_ELEMENTS`] elements.
+pub fn ball(spec: &SectionSpec) -> Result<MeridianMesh> {
+    let d = spec.diameter;
+    if !(d.is_finite() && d > 0.0) {
+        return Err(Error::invalid("diameter", d, "a finite length > 0 m"));
+    }
+    let r = 0.5 * d;
+    let h = spec.size;
+    if !(h.is_finite() && h > 0.0 && h <= r) {
+        return Err(Error::invalid(
+            "size",
+            h,
+            format!("0 < size <= radius = {r} m"),
+        ));
+    }
+    let h0 = spec.pole_size.unwrap_or(h);
+    if !(h0.is_finite() && h0 <= h && h0 >= h * 1e-4) {
+        return Err(Error::invalid(
+            "pole_size",
+            h0,
+            format!("size/1e4 <= pole_size <= size = {h} m"),
+        ));
+    }
+    // Cells along a core edge of the 3D construction (even); the quarter core has n/2.
+    let n_raw = (PI * r / h * (1.0 - 1e-9)).ceil().max(4.0);
+    if n_raw > 2000.0 {
+        return Err(Error::invalid(
+            "size",
+            h,
+            format!("size >= radius / 600 = {:.4e} m", r / 600.0),
+        ));
+    }
+    let n = (n_raw as usize).div_ceil(2) * 2;
+    let facet = PI * r / (2.0 * n as f64);
+    let front = match spec.pole_size {
+        Some(p) if p < facet => refined(r, n, p),
+        _ => Plan::uniform(r, n, facet),
+    };
+    let back = Plan::uniform(r, n, facet);
+    let estimate = quads_of(&front) + quads_of(&back);
+    if estimate > MAX_ELEMENTS {
+        return Err(Error::invalid(
+            "pole_size",
+            h0,
+            format!(
+                "a pole size giving at most {MAX_ELEMENTS} elements (this one gives {estimate})"
+            ),
+        ));
+    }
+    let mut mesh = MeridianMesh::default();
+    let dome = build_quarter(&front, &mut mesh, false, None);
+    build_quarter(&back, &mut mesh, true, Some(&dome));
+    Ok(with_sets(mesh, r))
+}
+
+/// The refined front quarter: the 3D mesher's plan, with its core half-width corrected so
+/// that the quad at the pole (rather than the shortest edge of the 3D core, which for a mild
+/// refinement lies off the meridian plane) has edges of mean length `h_pole` (m).
+fn refined(r: f64, n: usize, h_pole: f64) -> Plan {
+    let mut a = Plan::refined(r, n, h_pole).a;
+    for _ in 0..50 {
+        let next = a * h_pole / pole_edge(r, n, a);
+        let done = (next - a).abs() <= 1e-12 * a;
+        a = next;
+        if done {
+            break;
+        }
+    }
+    let mut plan = Plan::with_core(r, n, a);
+    plan.deepen = 2.0 * r;
+    plan
+}
+
+/// Mean edge length (m) of the pole quad of a refined core of half-width `a` (m).
+fn pole_edge(r: f64, n: usize, a: f64) -> f64 {
+    let m = n / 2;
+    let corner = |i: usize, j: usize| {
+        let x = invert(core_point(i, m + j, m, n, a, 2.0 * r), r);
+        [x[1], x[0]]
+    };
+    let p = [corner(0, 0), corner(1, 0), corner(1, 1), corner(0, 1)];
+    (0..4)
+        .map(|i| {
+            let (s, t) = (p[i], p[(i + 1) % 4]);
+            ((s[0] - t[0]).powi(2) + (s[1] - t[1]).powi(2)).sqrt()
+        })
+        .sum::<f64>()
+        / 4.0
+}
+
+/// Quads of one quarter: the m × m core and `layers` rings of 2m cells (m = n/2).
+fn quads_of(plan: &Plan) -> usize {
+    let m = plan.n / 2;
+    m * m + plan.layers * 2 * m
+}
+
+/// Appends one quarter (the front z ≥ 0, or with `mirror` the back z ≤ 0) to `mesh`.
+/// `dome` (the front's node ids on z = 0, by ray index) makes the back share them. Returns
+/// this quarter's node ids on z = 0, from the axis to the equator.
+fn build_quarter(
+    plan: &Plan,
+    mesh: &mut MeridianMesh,
+    mirror: bool,
+    dome: Option<&[u32]>,
+) -> Vec<u32> {
+    let (n, m, r) = (plan.n, plan.n / 2, plan.r);
+    // Local coordinates (u inward from the pole along the axis, v away from the axis) of the
+    // core grid: the 3D core's slice w = 0, v >= 0.
+    let core_id = |i: usize, j: usize| i + (m + 1) * j;
+    let mut local = vec![[0.0; 2]; (m + 1) * (m + 1)];
+    for j in 0..=m {
+        for i in 0..=m {
+            let p = core_point(i, m + j, m, n, plan.a, plan.deepen);
+            local[core_id(i, j)] = [p[0], p[1]];
+        }
+    }
+    // The rays start on the core's outer sides: up the deep side u = a from the axis, then
+    // along the side v = a to the surface.
+    let mut pattern: Vec<usize> = (0..=m).map(|j| core_id(m, j)).collect();
+    pattern.extend((0..m).rev().map(|i| core_id(i, m)));
+    let np = pattern.len();
+    let big_l = plan.layers;
+    for l in 1..=big_l {
+        let frac = l as f64 / big_l as f64;
+        for &c in &pattern {
+            let t = local[c];
+            let len = (t[0] * t[0] + t[1] * t[1]).sqrt();
+            let rad = if l == big_l {
+                2.0 * r
+            } else {
+                len.powf(1.0 - frac) * (2.0 * r).powf(frac)
+            };
+            local.push(t.map(|x| x / len * rad));
+        }
+    }
+    let n_core = (m + 1) * (m + 1);
+    let dome_start = n_core + (big_l - 1) * np;
+    let mut global = Vec::with_capacity(local.len());
+    for (loc, y) in local.iter().enumerate() {
+        if loc >= dome_start {
+            if let Some(shared) = dome {
+                global.push(shared[loc - dome_start]);
+                continue;
+            }
+        }
+        let x = invert([y[0], y[1], 0.0], r);
+        let (mut rr, mut zz) = (x[1], x[0]);
+        if loc < n_core && loc % (m + 1) == 0 {
+            // The flat side u = 0 maps onto the circle: put it exactly there.
+            let len = (rr * rr + zz * zz).sqrt();
+            rr *= r / len;
+            zz *= r / len;
+        }
+        if loc >= dome_start {
+            zz = 0.0;
+        }
+        if y[1] == 0.0 {
+            rr = 0.0;
+        }
+        if mirror {
+            zz = -zz;
+        }
+        global.push(mesh.nodes.len() as u32);
+        mesh.nodes.push([rr, zz]);
+    }
+    let layer_node = |l: usize, p: usize| -> u32 {
+        if l == 0 {
+            global[pattern[p]]
+        } else {
+            global[n_core + (l - 1) * np + p]
+        }
+    };
+    let start = mesh.quads.len();
+    for j in 0..m {
+        for i in 0..m {
+            let q = [
+                core_id(i, j),
+                core_id(i + 1, j),
+                core_id(i + 1, j + 1),
+                core_id(i, j + 1),
+            ];
+            mesh.quads.push(q.map(|c| global[c]));
+        }
+    }
+    for p in 0..np - 1 {
+        for l in 1..=big_l {
+            // Outward along ray p, then around P the same way as the core's (u, v) order.
+            mesh.quads.push([
+                layer_node(l - 1, p),
+                layer_node(l, p),
+                layer_node(l, p + 1),
+                layer_node(l - 1, p + 1),
+            ]);
+        }
+    }
+    // The inversion reverses orientation (and the mirror reverses it back).
+    let corners = |q: &[u32; 4]| q.map(|i| mesh.nodes[i as usize]);
+    if quad_area(&corners(&mesh.quads[start])) < 0.0 {
+        for q in &mut mesh.quads[start..] {
+            *q = [q[0], q[3], q[2], q[1]];
+        }
+    }
+    (0..np).map(|p| global[dome_start + p]).collect()
+}
+
+/// Adds the boundary and the sets (see [`ball`]).
+fn with_sets(mut mesh: MeridianMesh, r: f64) -> MeridianMesh {
+    let nodes = &mesh.nodes;
+    let on_axis = |i: u32| nodes[i as usize][0] == 0.0;
+    let angle = |e: &[u32; 2]| {
+        let (a, b) = (nodes[e[0] as usize], nodes[e[1] as usize]);
+        (a[1] + b[1]).atan2(a[0] + b[0])
+    };
+    let mut arc: Vec<[u32; 2]> = boundary_edges(&mesh.quads)
+        .into_iter()
+        .filter(|e| !(on_axis(e[0]) && on_axis(e[1])))
+        .collect();
+    arc.sort_by(|a, b| angle(a).total_cmp(&angle(b)));
+    let cos_c = CONTACT_HALF_ANGLE_DEG.to_radians().cos();
+    let in_contact = |i: u32| nodes[i as usize][1] >= cos_c * r * (1.0 - 1e-12);
+    let contact: Vec<[u32; 2]> = arc
+        .iter()
+        .filter(|e| e.iter().any(|&i| in_contact(i)))
+        .copied()
+        .collect();
+    let nodes_of = |es: &[[u32; 2]]| {
+        let mut v: Vec<u32> = es.iter().flatten().copied().collect();
+        v.sort_unstable();
+        v.dedup();
+        v
+    };
+    let axis: Vec<u32> = (0..nodes.len() as u32).filter(|&i| on_axis(i)).collect();
+    let mut node_sets = BTreeMap::new();
+    node_sets.insert("axis".to_string(), axis);
+    node_sets.insert("contact".to_string(), nodes_of(&contact));
+    node_sets.insert("surface".to_string(), nodes_of(&arc));
+    let mut segment_sets = BTreeMap::new();
+    segment_sets.insert("contact".to_string(), contact);
+    segment_sets.insert("surface".to_string(), arc.clone());
+    mesh.boundary = arc;
+    mesh.node_sets = node_sets;
+    mesh.segment_sets = segment_sets;
+    mesh
+}
