@@ -14,6 +14,7 @@
 pub mod analytic;
 pub mod atomic;
 pub mod cli;
+pub mod damper;
 pub mod error;
 pub mod fe;
 pub mod material;

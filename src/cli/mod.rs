@@ -10,6 +10,7 @@ mod analytic;
 mod bench;
 mod bench_profile;
 mod bench_study;
+mod damper;
 mod laws;
 mod laws_fit;
 mod mesh;
@@ -55,6 +56,8 @@ pub enum Command {
     Stress(stress::StressArgs),
     /// Contact laws: list them, `laws run` one impact under a law, `laws fit` calibrate one.
     Laws(laws::LawsArgs),
+    /// Particle damper: the frame's free decay with balls in the box (paper Section 6).
+    Damper(damper::DamperArgs),
 }
 
 /// Whether `arg` takes a number (its value parser is that of a numeric type).
@@ -126,6 +129,7 @@ where
         Command::Report(a) => report::run(a),
         Command::Stress(a) => stress::run(a),
         Command::Laws(a) => laws::run(a),
+        Command::Damper(a) => damper::run(a),
     };
     // The command runs on a worker of the thread pool: the solver's parallel loops (a dozen
     // per time step) then fork and join inside the pool instead of handing work from the

@@ -1,0 +1,116 @@
+//! The damping ratio as a free-decay test reads it: the peaks of the response and the
+//! logarithmic decrement between them.
+
+use crate::error::{Error, Result};
+use std::f64::consts::PI;
+
+/// A positive maximum of a sampled response, refined by the parabola through the sample and
+/// its two neighbours.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Peak {
+    /// Time of the maximum, s.
+    pub time: f64,
+    /// Value there (the response's unit, e.g. m).
+    pub value: f64,
+}
+
+/// Frequency and damping ratio from a decay.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Decay {
+    /// Damped frequency: cycles over the time between the first and last peak, Hz.
+    pub frequency: f64,
+    /// Damping ratio ζ = Λ/√(4π² + Λ²), Λ the mean logarithmic decrement per cycle.
+    pub ratio: f64,
+    /// Cycles between the first and last peak used.
+    pub cycles: usize,
+    /// First and last peak used.
+    pub span: (Peak, Peak),
+}
+
+/// The positive local maxima of `values` sampled at `times` (s, ascending, same length).
+pub fn peaks(times: &[f64], values: &[f64]) -> Vec<Peak> {
+    let mut out = Vec::new();
+    for i in 1..values.len().saturating_sub(1) {
+        let (a, b, c) = (values[i - 1], values[i], values[i + 1]);
+        if b > 0.0 && b > a && b >= c {
+            let curvature = a - 2.0 * b + c;
+            let shift = if curvature < 0.0 {
+                (0.5 * (a - c) / curvature).clamp(-1.0, 1.0)
+            } else {
+                0.0
+            };
+            let h = 0.5 * (times[i + 1] - times[i - 1]);
+            out.push(Peak {
+                time: times[i] + shift * h,
+                value: b - 0.25 * (a - c) * shift,
+            });
+        }
+    }
+    out
+}
+
+/// The logarithmic decrement over the peaks in the window [t0, t1] (s): Λ = ln(x₀/x_n)/n
+/// over the first and last peak in it, ζ = Λ/√(4π² + Λ²), f = n/(t_n − t₀). Errors: fewer
+/// than two peaks in the window.
+pub fn log_decrement(peaks: &[Peak], window: (f64, f64)) -> Result<Decay> {
+    let inside: Vec<&Peak> = peaks
+        .iter()
+        .filter(|p| p.time >= window.0 && p.time <= window.1)
+        .collect();
+    if inside.len() < 2 {
+        return Err(Error::invalid(
+            "window",
+            format!("[{}, {}] s", window.0, window.1),
+            format!(
+                "a window holding at least two peaks (it holds {})",
+                inside.len()
+            ),
+        ));
+    }
+    let (first, last) = (*inside[0], *inside[inside.len() - 1]);
+    let n = inside.len() - 1;
+    let lambda = (first.value / last.value).ln() / n as f64;
+    Ok(Decay {
+        frequency: n as f64 / (last.time - first.time),
+        ratio: lambda / (4.0 * PI * PI + lambda * lambda).sqrt(),
+        cycles: n,
+        span: (first, last),
+    })
+}
+
+/// Damping ratio cycle by cycle: for each pair of successive peaks, the mean amplitude (the
+/// response's unit), the time midway (s) and ζ from their logarithmic decrement.
+pub fn cycle_ratios(peaks: &[Peak]) -> Vec<(f64, f64, f64)> {
+    peaks
+        .windows(2)
+        .map(|w| {
+            let lambda = (w[0].value / w[1].value).ln();
+            (
+                0.5 * (w[0].value + w[1].value),
+                0.5 * (w[0].time + w[1].time),
+                lambda / (4.0 * PI * PI + lambda * lambda).sqrt(),
+            )
+        })
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A sampled exponentially decaying cosine gives back its frequency and ratio.
+    #[test]
+    fn decaying_cosine_gives_its_frequency_and_ratio() {
+        let (fd, zeta): (f64, f64) = (1.69, 0.0045);
+        let wd = 2.0 * PI * fd;
+        let wn = wd / (1.0 - zeta * zeta).sqrt();
+        let t: Vec<f64> = (0..20000).map(|i| i as f64 * 1e-3).collect();
+        let x: Vec<f64> = t
+            .iter()
+            .map(|&t| (-zeta * wn * t).exp() * (wd * t).cos())
+            .collect();
+        let d = log_decrement(&peaks(&t, &x), (0.0, 20.0)).unwrap();
+        assert!((d.frequency / fd - 1.0).abs() < 1e-6, "{d:?}");
+        assert!((d.ratio / zeta - 1.0).abs() < 1e-4, "{d:?}");
+    }
+}

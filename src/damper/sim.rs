@@ -1,0 +1,431 @@
+//! The damper in motion: the state of the frame and the balls, one velocity-Verlet step, the
+//! contact forces of a step and the energy ledger.
+
+use super::cells::candidate_pairs;
+use super::contact::{Contact, Kinematics, Partner, StepWork};
+use super::energy::Ledger;
+use super::frame::Frame;
+use super::pairs::{PairLaws, PairTable};
+use super::scene::DamperScene;
+use super::timestep::time_step;
+use crate::analytic::laws::Registry;
+use crate::error::{Error, Result};
+use nalgebra::Vector3;
+use std::f64::consts::PI;
+
+/// Smallest characteristic impact speed the step is sized for, m/s.
+const MIN_SPEED: f64 = 0.1;
+
+/// One recorded instant.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Sample {
+    /// Time since release, s.
+    pub time: f64,
+    /// Frame displacement, m.
+    pub displacement: f64,
+    /// Frame velocity, m/s.
+    pub velocity: f64,
+    /// Frame acceleration, m/s².
+    pub acceleration: f64,
+    /// Horizontal force of the balls on the box, N.
+    pub ball_force: f64,
+    /// Number of open contacts.
+    pub contacts: usize,
+    /// The energy ledger.
+    pub ledger: Ledger,
+}
+
+/// The state of a running damper simulation.
+pub struct Simulation {
+    frame: Frame,
+    size: Vector3<f64>,
+    gravity: f64,
+    table: PairTable,
+    dt: f64,
+    cell: f64,
+    radius: Vec<f64>,
+    mass: Vec<f64>,
+    inertia: Vec<f64>,
+    /// Time since release, s.
+    pub time: f64,
+    /// Ball centres, m (inertial frame; the box's inner corner is at (X, 0, 0)).
+    pub position: Vec<Vector3<f64>>,
+    /// Ball velocities, m/s.
+    pub velocity: Vec<Vector3<f64>>,
+    /// Ball spins, rad/s.
+    pub spin: Vec<Vector3<f64>>,
+    /// Frame displacement X, m.
+    pub frame_x: f64,
+    /// Frame velocity, m/s.
+    pub frame_v: f64,
+    force: Vec<Vector3<f64>>,
+    torque: Vec<Vector3<f64>>,
+    frame_force: f64,
+    ball_force: f64,
+    damper_force: f64,
+    external_force: f64,
+    contacts: Vec<Contact>,
+    work_normal: f64,
+    work_tangential: f64,
+    structural: f64,
+    impulse: f64,
+    /// Steps taken.
+    pub steps: u64,
+}
+
+/// Predicted ball velocities, spins and frame velocity.
+type Predicted = (Vec<Vector3<f64>>, Vec<Vector3<f64>>, f64);
+
+fn cross(a: Vector3<f64>, b: Vector3<f64>) -> Vector3<f64> {
+    a.cross(&b)
+}
+
+impl Simulation {
+    /// The scene at release: frame at rest at its release displacement, balls at rest at
+    /// their positions in the displaced box. Errors: an invalid scene (one line naming the
+    /// field), an unknown law or parameter.
+    pub fn new(scene: &DamperScene, registry: &Registry) -> Result<Simulation> {
+        scene.validate()?;
+        let frame = scene.frame()?;
+        let table = PairTable::new(scene, registry)?;
+        let bodies = scene.bodies()?;
+        let size = Vector3::from(scene.container.size);
+        let speed = scene.impact_speed.unwrap_or_else(|| {
+            frame.natural_frequency() * scene.frame.release.abs()
+                + (2.0 * scene.gravity * size[2]).sqrt()
+        });
+        let period = 2.0 * PI / frame.natural_frequency();
+        let dt = time_step(
+            table.kinds(),
+            speed.max(MIN_SPEED),
+            scene.steps_per_period,
+            period,
+        );
+        let offset = Vector3::new(scene.frame.release, 0.0, 0.0);
+        let n = scene.balls.len();
+        let mut sim = Simulation {
+            frame,
+            size,
+            gravity: scene.gravity,
+            table,
+            dt,
+            cell: scene.balls.iter().map(|b| b.diameter).fold(0.0, f64::max),
+            radius: bodies.iter().map(|b| b.radius()).collect(),
+            mass: bodies.iter().map(|b| b.mass()).collect(),
+            inertia: bodies.iter().map(|b| b.moment_of_inertia()).collect(),
+            time: 0.0,
+            position: scene
+                .balls
+                .iter()
+                .map(|b| Vector3::from(b.position) + offset)
+                .collect(),
+            velocity: vec![Vector3::zeros(); n],
+            spin: vec![Vector3::zeros(); n],
+            frame_x: scene.frame.release,
+            frame_v: 0.0,
+            force: vec![Vector3::zeros(); n],
+            torque: vec![Vector3::zeros(); n],
+            frame_force: 0.0,
+            ball_force: 0.0,
+            damper_force: 0.0,
+            external_force: 0.0,
+            contacts: Vec::new(),
+            work_normal: 0.0,
+            work_tangential: 0.0,
+            structural: 0.0,
+            impulse: 0.0,
+            steps: 0,
+        };
+        sim.forces(0.0);
+        Ok(sim)
+    }
+
+    /// The time step, s.
+    pub fn dt(&self) -> f64 {
+        self.dt
+    }
+
+    /// The frame.
+    pub fn frame(&self) -> &Frame {
+        &self.frame
+    }
+
+    /// Ball radii, m.
+    pub fn radii(&self) -> &[f64] {
+        &self.radius
+    }
+
+    /// Open contacts (δ > 0).
+    pub fn contacts(&self) -> &[Contact] {
+        &self.contacts
+    }
+
+    /// Horizontal momentum of frame and balls, M V + Σ m vₓ, N·s.
+    pub fn momentum_x(&self) -> f64 {
+        self.frame.mass * self.frame_v
+            + self
+                .velocity
+                .iter()
+                .zip(&self.mass)
+                .map(|(v, m)| m * v.x)
+                .sum::<f64>()
+    }
+
+    /// Impulse of the frame's spring and damper since release (what the steps applied), N·s.
+    pub fn spring_damper_impulse(&self) -> f64 {
+        self.impulse
+    }
+
+    /// Total momentum of the balls Σ m v, N·s.
+    pub fn balls_momentum(&self) -> Vector3<f64> {
+        self.velocity
+            .iter()
+            .zip(&self.mass)
+            .map(|(v, m)| v * *m)
+            .sum()
+    }
+
+    /// Total angular momentum of the balls about the origin, Σ r × m v + I ω, N·m·s.
+    pub fn balls_angular_momentum(&self) -> Vector3<f64> {
+        (0..self.mass.len())
+            .map(|i| {
+                cross(self.position[i], self.velocity[i] * self.mass[i])
+                    + self.spin[i] * self.inertia[i]
+            })
+            .sum()
+    }
+
+    /// One velocity-Verlet step: half kick, drift, forces at the new positions (velocity
+    /// terms at velocities predicted to the end of the step from the last accelerations,
+    /// slip increments at the mid-step velocities), half kick.
+    pub fn step(&mut self) {
+        let h = 0.5 * self.dt;
+        self.kick(h);
+        for (x, v) in self.position.iter_mut().zip(&self.velocity) {
+            *x += v * self.dt;
+        }
+        self.frame_x += self.frame_v * self.dt;
+        self.forces(self.dt);
+        self.kick(h);
+        self.time += self.dt;
+        self.steps += 1;
+    }
+
+    fn kick(&mut self, h: f64) {
+        for i in 0..self.mass.len() {
+            self.velocity[i] += self.force[i] * (h / self.mass[i]);
+            self.spin[i] += self.torque[i] * (h / self.inertia[i]);
+        }
+        self.frame_v += self.frame_force * h / self.frame.mass;
+    }
+
+    /// Velocities predicted to the end of the step from the mid-step ones and the last
+    /// accelerations: (v, ω) of every ball and the frame's velocity.
+    fn predicted(&self, h: f64) -> (Vec<Vector3<f64>>, Vec<Vector3<f64>>, f64) {
+        let v = (0..self.mass.len())
+            .map(|i| self.velocity[i] + self.force[i] * (h / self.mass[i]))
+            .collect();
+        let w = (0..self.mass.len())
+            .map(|i| self.spin[i] + self.torque[i] * (h / self.inertia[i]))
+            .collect();
+        (v, w, self.frame_v + self.frame_force * h / self.frame.mass)
+    }
+
+    fn wall_kinematics(&self, i: usize, wall: usize, pred: &Predicted) -> Kinematics {
+        let p = self.position[i] - Vector3::new(self.frame_x, 0.0, 0.0);
+        let axis = wall / 2;
+        let high = wall % 2 == 1;
+        let mut normal = Vector3::zeros();
+        normal[axis] = if high { 1.0 } else { -1.0 };
+        let gap = if high {
+            self.size[axis] - p[axis]
+        } else {
+            p[axis]
+        };
+        let delta = self.radius[i] - gap;
+        // The contact point lies on the wall plane.
+        let r = gap;
+        let at = |v: &Vector3<f64>, w: &Vector3<f64>, frame: f64| {
+            v + cross(*w, normal * r) - Vector3::new(frame, 0.0, 0.0)
+        };
+        Kinematics {
+            normal,
+            lever: [r, 0.0],
+            delta,
+            relative: at(&pred.0[i], &pred.1[i], pred.2),
+            midstep: at(&self.velocity[i], &self.spin[i], self.frame_v),
+        }
+    }
+
+    fn ball_kinematics(&self, i: usize, j: usize, pred: &Predicted) -> Kinematics {
+        let d = self.position[j] - self.position[i];
+        let dist = d.norm();
+        let normal = d / dist;
+        let delta = self.radius[i] + self.radius[j] - dist;
+        // The contact point is midway through the overlap: the levers add up to the distance,
+        // so the friction torques conserve angular momentum.
+        let (ri, rj) = (self.radius[i] - 0.5 * delta, self.radius[j] - 0.5 * delta);
+        let at = |v: &[Vector3<f64>], w: &[Vector3<f64>]| {
+            v[i] + cross(w[i], normal * ri) - v[j] - cross(w[j], normal * (-rj))
+        };
+        Kinematics {
+            normal,
+            lever: [ri, rj],
+            delta,
+            relative: at(&pred.0, &pred.1),
+            midstep: at(&self.velocity, &self.spin),
+        }
+    }
+
+    fn laws(&self, c: &Contact) -> &PairLaws {
+        match c.partner {
+            Partner::Ball(j) => self.table.ball(c.ball, j),
+            Partner::Wall(_) => self.table.wall(c.ball),
+        }
+    }
+
+    /// Forces and torques at the present positions and (half-step) velocities; advances every
+    /// contact's history by `dt` and books the work of the step.
+    fn forces(&mut self, dt: f64) {
+        let n = self.mass.len();
+        let pred: Predicted = self.predicted(0.5 * dt);
+        for i in 0..n {
+            self.force[i] = Vector3::new(0.0, 0.0, -self.gravity * self.mass[i]);
+            self.torque[i] = Vector3::zeros();
+        }
+        let origin = Vector3::new(self.frame_x, 0.0, 0.0);
+        let pairs = if self.cell > 0.0 {
+            candidate_pairs(&self.position, origin, self.size, self.cell)
+        } else {
+            Vec::new()
+        };
+        let old = std::mem::take(&mut self.contacts);
+        let mut kept = vec![false; old.len()];
+        let mut open = Vec::with_capacity(old.len() + 4);
+        let mut p = 0;
+        let mut box_force = 0.0;
+        let mut work = StepWork::default();
+        for i in 0..n {
+            let mut candidates: Vec<(Partner, Kinematics)> = Vec::new();
+            while p < pairs.len() && pairs[p].0 == i {
+                let j = pairs[p].1;
+                candidates.push((Partner::Ball(j), self.ball_kinematics(i, j, &pred)));
+                p += 1;
+            }
+            for w in 0..6 {
+                candidates.push((Partner::Wall(w), self.wall_kinematics(i, w, &pred)));
+            }
+            for (partner, k) in candidates {
+                if k.delta <= 0.0 {
+                    continue;
+                }
+                let found = old.binary_search_by(|c| (c.ball, c.partner).cmp(&(i, partner)));
+                let mut c = match found {
+                    Ok(at) => {
+                        kept[at] = true;
+                        old[at].clone()
+                    }
+                    Err(_) => Contact::touch(i, partner, k.relative.dot(&k.normal)),
+                };
+                let laws = match partner {
+                    Partner::Ball(j) => self.table.ball(i, j),
+                    Partner::Wall(_) => self.table.wall(i),
+                };
+                let w = c.update(laws, &k, dt);
+                work.normal += w.normal;
+                work.tangential += w.tangential;
+                let on_ball = -k.normal * c.force + c.friction;
+                self.force[i] += on_ball;
+                self.torque[i] += cross(k.normal * k.lever[0], c.friction);
+                match partner {
+                    Partner::Ball(j) => {
+                        self.force[j] -= on_ball;
+                        self.torque[j] += cross(k.normal * k.lever[1], c.friction);
+                    }
+                    Partner::Wall(_) => box_force -= on_ball.x,
+                }
+                open.push(c);
+            }
+        }
+        for (c, kept) in old.iter().zip(kept) {
+            if !kept {
+                let w = c.release_work();
+                work.normal += w.normal;
+                work.tangential += w.tangential;
+            }
+        }
+        self.contacts = open;
+        self.work_normal += work.normal;
+        self.work_tangential += work.tangential;
+        let damper = -self.frame.damper_force(pred.2);
+        self.structural += 0.5 * (self.damper_force + damper) * self.frame_v * dt;
+        let external = self.frame.spring_force(self.frame_x) - damper;
+        self.impulse += 0.5 * dt * (self.external_force + external);
+        self.damper_force = damper;
+        self.external_force = external;
+        self.ball_force = box_force;
+        self.frame_force = external + box_force;
+    }
+
+    /// The energy ledger now (valid between steps).
+    pub fn ledger(&self) -> Ledger {
+        let (mut normal, mut tangential) = (0.0, 0.0);
+        for c in &self.contacts {
+            let (a, b) = c.stored(self.laws(c));
+            normal += a;
+            tangential += b;
+        }
+        let mut kinetic = 0.0;
+        let mut potential = 0.0;
+        for i in 0..self.mass.len() {
+            kinetic += 0.5 * self.mass[i] * self.velocity[i].norm_squared()
+                + 0.5 * self.inertia[i] * self.spin[i].norm_squared();
+            potential += self.mass[i] * self.gravity * (self.position[i].z - self.radius[i]);
+        }
+        Ledger {
+            frame_kinetic: 0.5 * self.frame.mass * self.frame_v * self.frame_v,
+            frame_spring: 0.5 * self.frame.stiffness * self.frame_x * self.frame_x,
+            balls_kinetic: kinetic,
+            balls_potential: potential,
+            contact_stored: normal + tangential,
+            contact_dissipated: self.work_normal - normal,
+            friction_dissipated: self.work_tangential - tangential,
+            structural_dissipated: self.structural,
+        }
+    }
+
+    /// The present instant as a sample.
+    pub fn sample(&self) -> Sample {
+        Sample {
+            time: self.time,
+            displacement: self.frame_x,
+            velocity: self.frame_v,
+            acceleration: self.frame_force / self.frame.mass,
+            ball_force: self.ball_force,
+            contacts: self.contacts.len(),
+            ledger: self.ledger(),
+        }
+    }
+
+    /// Runs to time `until` (s), recording a sample every `interval` (s) and at the start.
+    /// Errors: a non-finite state (names the time and the likely cause).
+    pub fn run(&mut self, until: f64, interval: f64) -> Result<Vec<Sample>> {
+        let mut samples = vec![self.sample()];
+        let mut next = self.time + interval;
+        while self.time + 0.5 * self.dt < until {
+            self.step();
+            if self.time + 0.5 * self.dt >= next {
+                next += interval;
+                let s = self.sample();
+                if !(s.displacement.is_finite() && s.ledger.total().is_finite()) {
+                    return Err(Error::Numerical(format!(
+                        "damper state not finite at t = {} s (step {} s too large for the contact law?)",
+                        self.time, self.dt
+                    )));
+                }
+                samples.push(s);
+            }
+        }
+        Ok(samples)
+    }
+}

@@ -1,0 +1,398 @@
+//! The particle-damper model against what it must reproduce: the empty frame's free decay,
+//! a ball's rebound on the box floor with its law's restitution, conservation of momentum
+//! and the closed energy balance; bad scenes as one-line errors.
+
+use twoball::analytic::laws::{ContactPair, Registry};
+use twoball::analytic::Body;
+use twoball::damper::{log_decrement, peaks, BallSpec, BoxSpec, DamperScene, Simulation};
+use twoball::Material;
+
+fn steel() -> Material {
+    Material::preset("steel").unwrap()
+}
+
+fn paper_box() -> BoxSpec {
+    BoxSpec {
+        size: [0.11, 0.045, 0.035],
+        material: steel(),
+    }
+}
+
+fn ball(material: Material, d: f64, p: [f64; 3]) -> BallSpec {
+    BallSpec {
+        material,
+        diameter: d,
+        position: p,
+    }
+}
+
+/// Nine 20 mm balls of `material` on the floor of the test box, rows of five and four with
+/// 2 mm gaps.
+fn nine(material: Material) -> Vec<BallSpec> {
+    (0..9)
+        .map(|k| {
+            let (ix, iy) = (k % 5, k / 5);
+            ball(
+                material,
+                0.02,
+                [
+                    0.011 + 0.022 * ix as f64 + 0.011 * iy as f64,
+                    0.011 + 0.022 * iy as f64,
+                    0.0101,
+                ],
+            )
+        })
+        .collect()
+}
+
+#[test]
+fn empty_frame_decays_at_its_frequency_and_damping_ratio() {
+    let mut scene = DamperScene::paper_frame(paper_box(), Vec::new());
+    scene.duration = 12.0;
+    let mut sim = Simulation::new(&scene, &Registry::builtin()).unwrap();
+    let s = sim.run(scene.duration, scene.sample_interval).unwrap();
+    let t: Vec<f64> = s.iter().map(|s| s.time).collect();
+    let x: Vec<f64> = s.iter().map(|s| s.displacement).collect();
+    let d = log_decrement(&peaks(&t, &x), (0.0, 12.0)).unwrap();
+    println!(
+        "empty frame: f = {} Hz, zeta = {}, {} cycles",
+        d.frequency, d.ratio, d.cycles
+    );
+    assert!(d.cycles >= 19);
+    assert!((d.frequency / 1.69 - 1.0).abs() < 1e-3, "{d:?}");
+    assert!((d.ratio / 0.0045 - 1.0).abs() < 1e-3, "{d:?}");
+    let last = s.last().unwrap().ledger;
+    let residual = last.residual(&s[0].ledger);
+    println!("empty frame: energy residual {residual}");
+    assert!(residual.abs() < 1e-5, "{last:?}");
+}
+
+/// A ball sent onto the floor at `v` (no gravity, frame at rest; with gravity dropped from
+/// `drop` m) leaves with speed e v, e from the law's own closed form for a ball on the steel
+/// half-space. Returns (measured, closed form).
+fn rebound(
+    law: &str,
+    params: &[(&str, f64)],
+    v: f64,
+    gravity: f64,
+    drop: f64,
+    steps: f64,
+) -> (f64, f64) {
+    let d = 0.02;
+    let mut scene = DamperScene::paper_frame(
+        BoxSpec {
+            size: [0.1, 0.1, 0.1],
+            material: steel(),
+        },
+        vec![ball(steel(), d, [0.05, 0.05, 0.5 * d + drop])],
+    );
+    scene.frame.release = 0.0;
+    scene.gravity = gravity;
+    scene.impact_speed = Some(v);
+    scene.steps_per_period = steps;
+    scene.laws.normal = law.into();
+    scene.laws.normal_params = params.iter().map(|(k, v)| (k.to_string(), *v)).collect();
+    let registry = Registry::builtin();
+    let mut sim = Simulation::new(&scene, &registry).unwrap();
+    if gravity == 0.0 {
+        sim.velocity[0].z = -v;
+    }
+    let mut before = None;
+    let mut touched = false;
+    while sim.time < 1.0 {
+        let v_prev = sim.velocity[0].z;
+        sim.step();
+        if !touched && !sim.contacts().is_empty() {
+            touched = true;
+            before = Some(-v_prev);
+        }
+        if touched && sim.contacts().is_empty() {
+            break;
+        }
+    }
+    let v_in = before.expect("the ball reached the floor");
+    let measured = sim.velocity[0].z / v_in;
+    let b = Body::ball(steel(), d, "ball").unwrap();
+    let wall = Body::HalfSpace { material: steel() };
+    let pair = ContactPair::between(&b, &wall, 0.1);
+    let overrides: Vec<(String, f64)> = scene.laws.normal_params.clone();
+    let (normal, _) = registry.build_normal(law, &overrides, &pair).unwrap();
+    let expected = normal
+        .closed_form(v_in, b.mass())
+        .expect("a law with a closed form")
+        .e;
+    (measured, expected)
+}
+
+/// Laws continuous at touch agree within 5e-4 at the default 60 steps per contact period.
+/// Walton-Braun's stiffness jumps fourfold at the turn, which the steps locate to O(dt²)
+/// (1.8e-3 in e at 60 steps), so it runs at 240; the linear dashpot's force jumps to c v at
+/// touch, an O(dt) error of when the jump happens (1.6e-3 in e at 60 steps), so it runs at
+/// 2000.
+#[test]
+fn a_ball_rebounds_from_the_floor_with_its_laws_restitution() {
+    let mut failures = Vec::new();
+    for (law, params, steps) in [
+        ("hertz", vec![], 60.0),
+        ("walton-braun", vec![("e", 0.5)], 240.0),
+        ("thornton", vec![], 60.0),
+        ("li-yang-shi", vec![], 60.0),
+        ("linear-dashpot", vec![("e", 0.6)], 2000.0),
+    ] {
+        for v in [0.3, 1.0] {
+            let (e, expected) = rebound(law, &params, v, 0.0, 1e-4, steps);
+            println!("{law} v = {v}: e = {e}, closed form {expected}");
+            if (e / expected - 1.0).abs() >= 5e-4 {
+                failures.push(format!("{law} at {v} m/s: {e} vs {expected}"));
+            }
+        }
+    }
+    assert!(failures.is_empty(), "{failures:?}");
+}
+
+#[test]
+fn a_dropped_ball_rebounds_with_its_laws_restitution_under_gravity() {
+    let (e, expected) = rebound("li-yang-shi", &[], 1.0, 9.81, 0.05, 60.0);
+    println!("dropped 50 mm: e = {e}, closed form {expected}");
+    assert!((e / expected - 1.0).abs() < 3e-3, "{e} vs {expected}");
+}
+
+#[test]
+fn horizontal_momentum_changes_only_by_spring_and_damper() {
+    let mut scene = DamperScene::paper_frame(paper_box(), nine(steel()));
+    scene.steps_per_period = 20.0;
+    let mut sim = Simulation::new(&scene, &Registry::builtin()).unwrap();
+    let p0 = sim.momentum_x();
+    let mut worst: f64 = 0.0;
+    let mut largest: f64 = 0.0;
+    for _ in 0..20 {
+        sim.run(sim.time + 0.05, 0.05).unwrap();
+        let drift = sim.momentum_x() - p0 - sim.spring_damper_impulse();
+        worst = worst.max(drift.abs());
+        largest = largest.max(sim.spring_damper_impulse().abs());
+    }
+    println!("momentum drift {worst} N s against impulse {largest} N s");
+    assert!(largest > 0.1);
+    assert!(worst < 1e-12 * largest.max(1.0), "{worst}");
+}
+
+#[test]
+fn ball_ball_contacts_conserve_momentum_and_angular_momentum() {
+    let mut scene = DamperScene::paper_frame(
+        BoxSpec {
+            size: [1.0, 1.0, 1.0],
+            material: steel(),
+        },
+        vec![
+            ball(steel(), 0.02, [0.45, 0.5, 0.5]),
+            ball(
+                Material::preset("glass").unwrap(),
+                0.015,
+                [0.55, 0.505, 0.503],
+            ),
+        ],
+    );
+    scene.frame.release = 0.0;
+    scene.gravity = 0.0;
+    scene.impact_speed = Some(2.0);
+    let mut sim = Simulation::new(&scene, &Registry::builtin()).unwrap();
+    sim.velocity[0] = nalgebra::Vector3::new(1.0, 0.1, 0.0);
+    sim.velocity[1] = nalgebra::Vector3::new(-1.0, 0.0, 0.05);
+    sim.spin[0] = nalgebra::Vector3::new(0.0, 0.0, 30.0);
+    let (p0, l0) = (sim.balls_momentum(), sim.balls_angular_momentum());
+    let mut touched = false;
+    while sim.time < 0.1 {
+        sim.step();
+        touched |= !sim.contacts().is_empty();
+    }
+    assert!(touched, "the balls collided");
+    let (p, l) = (sim.balls_momentum(), sim.balls_angular_momentum());
+    println!(
+        "dp = {}, dL = {}, L0 = {}",
+        (p - p0).norm(),
+        (l - l0).norm(),
+        l0.norm()
+    );
+    assert!((sim.spin[1]).norm() > 1.0, "friction spun the second ball");
+    assert!((p - p0).norm() < 1e-14, "{:?} vs {:?}", p, p0);
+    assert!((l - l0).norm() < 1e-10 * l0.norm(), "{:?} vs {:?}", l, l0);
+}
+
+#[test]
+fn energy_balance_closes_for_a_released_damper() {
+    for (law, tangential) in [
+        ("li-yang-shi", "mindlin-coulomb"),
+        ("hertz-damped", "coulomb"),
+    ] {
+        let mut scene = DamperScene::paper_frame(paper_box(), nine(steel()));
+        scene.laws.normal = law.into();
+        scene.laws.tangential = tangential.into();
+        let mut sim = Simulation::new(&scene, &Registry::builtin()).unwrap();
+        let s = sim.run(1.0, 0.01).unwrap();
+        let start = s[0].ledger;
+        let worst = s
+            .iter()
+            .map(|x| x.ledger.residual(&start).abs())
+            .fold(0.0, f64::max);
+        let end = s.last().unwrap().ledger;
+        println!("{law}/{tangential}: worst residual {worst}; end {end:?}");
+        assert!(end.contact_dissipated + end.friction_dissipated > 1e-4 * start.total());
+        assert!(worst < 0.01, "{worst}");
+    }
+}
+
+#[test]
+fn elastic_frictionless_contacts_dissipate_nothing() {
+    let mut scene = DamperScene::paper_frame(paper_box(), nine(steel()));
+    scene.laws.normal = "hertz".into();
+    scene.laws.mu_ball = Some(0.0);
+    scene.laws.mu_wall = Some(0.0);
+    scene.frame.damping_ratio = 0.0;
+    let mut sim = Simulation::new(&scene, &Registry::builtin()).unwrap();
+    let s = sim.run(1.0, 0.01).unwrap();
+    let start = s[0].ledger;
+    let end = s.last().unwrap().ledger;
+    let exchanged = s.iter().map(|x| x.ledger.balls_kinetic).fold(0.0, f64::max);
+    println!("hertz frictionless: {end:?}, largest ball KE {exchanged}");
+    assert!(exchanged > 1e-3 * start.total());
+    assert!(
+        end.contact_dissipated.abs() < 1e-3 * start.total(),
+        "{end:?}"
+    );
+    assert!(end.residual(&start).abs() < 1e-3, "{end:?}");
+}
+
+fn error_of(scene: &DamperScene) -> String {
+    match Simulation::new(scene, &Registry::builtin()) {
+        Ok(_) => panic!("accepted a bad scene"),
+        Err(e) => {
+            let e = e.to_string();
+            assert_eq!(e.lines().count(), 1, "{e}");
+            e
+        }
+    }
+}
+
+#[test]
+fn bad_scenes_get_one_line_errors_naming_the_field() {
+    let base = DamperScene::paper_frame(paper_box(), nine(steel()));
+    let mut s = base.clone();
+    s.balls[3].position = s.balls[2].position;
+    s.balls[3].position[2] += 0.005;
+    let e = error_of(&s);
+    assert!(
+        e.contains("balls[3].position") && e.contains("overlap"),
+        "{e}"
+    );
+
+    let mut s = base.clone();
+    s.balls[0].diameter = 0.05;
+    let e = error_of(&s);
+    assert!(
+        e.contains("balls[0].diameter = 0.05") && e.contains("0.035"),
+        "{e}"
+    );
+
+    let mut s = base.clone();
+    s.frame.mass = -5.76;
+    let e = error_of(&s);
+    assert!(e.contains("frame.mass = -5.76"), "{e}");
+
+    let mut s = base.clone();
+    s.balls[1].material.rho = -7800.0;
+    let e = error_of(&s);
+    assert!(e.contains("balls[1].material.rho = -7800"), "{e}");
+
+    let mut s = base.clone();
+    s.balls[4].position[0] = 0.2;
+    let e = error_of(&s);
+    assert!(e.contains("balls[4].position[0] = 0.2"), "{e}");
+
+    let mut s = base;
+    s.laws.normal = "nope".into();
+    let e = error_of(&s);
+    assert!(e.contains("nope"), "{e}");
+}
+
+fn twoball(args: &[&str]) -> std::process::Output {
+    std::process::Command::new(env!("CARGO_BIN_EXE_twoball"))
+        .args(args)
+        .output()
+        .unwrap()
+}
+
+#[test]
+fn damper_command_runs_table2_cases_and_writes_csv_with_units() {
+    let out = std::env::temp_dir().join(format!("twoball-damper-{}", std::process::id()));
+    let o = twoball(&[
+        "damper",
+        "verification/damper/table2.toml",
+        "--out",
+        out.to_str().unwrap(),
+        "--case",
+        "1-empty",
+        "--case",
+        "5-steel-3",
+        "--duration",
+        "1.5",
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let summary = std::fs::read_to_string(out.join("summary.csv")).unwrap();
+    assert!(
+        summary.starts_with("case,balls [-],ball_mass [kg]"),
+        "{summary}"
+    );
+    assert_eq!(summary.lines().count(), 3, "{summary}");
+    let history = std::fs::read_to_string(out.join("5-steel-3/history.csv")).unwrap();
+    assert!(history.starts_with("time [s],displacement [m]"));
+    assert!(history.lines().count() > 1400);
+    assert!(!history.contains("NaN"));
+    let cycles = std::fs::read_to_string(out.join("5-steel-3/cycles.csv")).unwrap();
+    assert!(cycles.starts_with("time [s],amplitude [m],damping_ratio [-]"));
+    std::fs::remove_dir_all(&out).unwrap();
+}
+
+#[test]
+fn damper_command_names_bad_input_in_one_line() {
+    let dir = std::env::temp_dir().join(format!("twoball-damper-bad-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let good = std::fs::read_to_string("verification/damper/table2.toml").unwrap();
+    for (edit, expect) in [
+        (
+            good.replace("count = 19", "count = 90"),
+            "case[6].balls.count = 90",
+        ),
+        (
+            good.replace("mass = 5.76", "mass = -5.76"),
+            "frame.mass = -5.76",
+        ),
+        (
+            good.replace("diameter = 0.015", "diameter = 0.05"),
+            "diameter = 0.05",
+        ),
+        (good.replace("release = 0.03", "relaese = 0.03"), "line 10"),
+    ] {
+        let path = dir.join("scene.toml");
+        std::fs::write(&path, edit).unwrap();
+        let o = twoball(&[
+            "damper",
+            path.to_str().unwrap(),
+            "--out",
+            dir.join("o").to_str().unwrap(),
+        ]);
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert!(!o.status.success());
+        assert_eq!(err.lines().count(), 1, "{err}");
+        assert!(err.contains(expect), "{err}");
+    }
+    let o = twoball(&[
+        "damper",
+        "verification/damper/table2.toml",
+        "--out",
+        dir.to_str().unwrap(),
+        "--case",
+        "8-lead",
+    ]);
+    assert!(String::from_utf8_lossy(&o.stderr).contains("--case = 8-lead"));
+    std::fs::remove_dir_all(&dir).unwrap();
+}
