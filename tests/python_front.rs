@@ -5,8 +5,9 @@
 //!
 //! Needs python3 with the venv module and pip access to maturin, numpy, pytest and
 //! matplotlib: missing, the test fails under `CI=true` and is skipped with a notice otherwise.
-//! The package is built with the test profile in this target folder (cargo releases its lock
-//! while tests run), so the library compiled for the tests is reused.
+//! The package is built with maturin's `--profile python` (the test profile's optimisation,
+//! Cargo.toml) into its own folder of this target folder; cargo releases the folder's lock
+//! while tests run.
 
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -40,11 +41,19 @@ fn venv(root: &Path) -> Option<PathBuf> {
         return Some(python);
     }
     let made = run(
-        Command::new("python3").args(["-m", "venv", "--clear"]).arg(&venv),
+        Command::new("python3")
+            .args(["-m", "venv", "--clear"])
+            .arg(&venv),
         "python3 -m venv",
     ) && run(
         Command::new(&python)
-            .args(["-m", "pip", "install", "--quiet", "--disable-pip-version-check"])
+            .args([
+                "-m",
+                "pip",
+                "install",
+                "--quiet",
+                "--disable-pip-version-check",
+            ])
             .args(PACKAGES),
         "pip install maturin numpy pytest matplotlib",
     );
@@ -88,19 +97,27 @@ fn python_front_pytest_suite_and_example() {
     assert!(
         run(
             Command::new(bin.join("maturin"))
-                .args(["develop", "--quiet", "--profile", "test"])
+                .args(["develop", "--profile", "python"])
                 .current_dir(&crate_dir)
                 .env("VIRTUAL_ENV", &venv)
                 .env("PATH", &path)
                 .env("CARGO_TARGET_DIR", &target),
-            "maturin develop --profile test",
+            "maturin develop --profile python",
         ),
         "maturin develop failed"
     );
     assert!(
         run(
             Command::new(&python)
-                .args(["-m", "pytest", "-q", "-s", "-p", "no:cacheprovider", "tests"])
+                .args([
+                    "-m",
+                    "pytest",
+                    "-q",
+                    "-s",
+                    "-p",
+                    "no:cacheprovider",
+                    "tests"
+                ])
                 .current_dir(&crate_dir)
                 .env("TWOBALL_BIN", env!("CARGO_BIN_EXE_twoball"))
                 .env("PATH", &path),

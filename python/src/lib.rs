@@ -109,8 +109,11 @@ fn cli_json(py: Python<'_>, args: Vec<String>) -> PyResult<String> {
 
 /// Converts JSON scene text (a dict on the Python side) to TOML scene text.
 fn scene_toml_of_json(json: &str) -> twoball::Result<String> {
-    let value: toml::Value = serde_json::from_str(json)
-        .map_err(|e| Error::Parse(format!("scene dict: {e} (values: numbers, strings, booleans, lists, dicts; no None)")))?;
+    let value: toml::Value = serde_json::from_str(json).map_err(|e| {
+        Error::Parse(format!(
+            "scene dict: {e} (values: numbers, strings, booleans, lists, dicts; no None)"
+        ))
+    })?;
     toml::to_string(&value).map_err(|e| Error::Parse(format!("scene dict: {e}")))
 }
 

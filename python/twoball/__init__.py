@@ -156,6 +156,7 @@ class Run:
 
 def _toml_value(path: str, value: Any) -> str:
     """An override value in the ``--set`` syntax (a TOML value)."""
+    value = _plain(value)
     if isinstance(value, bool):
         return "true" if value else "false"
     if isinstance(value, (int, float)):
@@ -165,7 +166,7 @@ def _toml_value(path: str, value: Any) -> str:
         return repr(x)
     if isinstance(value, str):
         return json.dumps(value)
-    if isinstance(value, (list, tuple, np.ndarray)):
+    if isinstance(value, (list, tuple)):
         return "[" + ", ".join(_toml_value(path, v) for v in value) + "]"
     if isinstance(value, Mapping):
         return "{ " + ", ".join(f"{k} = {_toml_value(path, v)}" for k, v in value.items()) + " }"

@@ -504,7 +504,12 @@ fn row_json(r: &Table1Row) -> Value {
 }
 
 /// Table 1 as computed: the best η reading with its score, the rows, and every reading tried.
-type Table1 = (EtaReading, ReadingScore, Vec<Table1Row>, Vec<(EtaReading, ReadingScore)>);
+type Table1 = (
+    EtaReading,
+    ReadingScore,
+    Vec<Table1Row>,
+    Vec<(EtaReading, ReadingScore)>,
+);
 
 fn table1_all() -> Result<Table1> {
     let (best, score) = best_reading()?;
@@ -521,20 +526,20 @@ fn table1_all() -> Result<Table1> {
 pub fn materials_json() -> Result<Value> {
     let (best, score, rows, readings) = table1_all()?;
     Ok(json!({
-            "zeta_definition": "nu E rho (v_n^2 + mu v_t^2) / sigma_s^2 (eq. 44), SI, reported x 1e3 as in Table 1",
-            "zeta_scale": ZETA_TABLE_SCALE,
-            "zeta_speeds": {"v_n": TABLE1_SPEEDS.0, "v_t": TABLE1_SPEEDS.1},
-            "eta_reading": reading_json(&best, &score),
-            "rows": rows.iter().map(row_json).collect::<Vec<_>>(),
-            "zeta_discrepancies": rows.iter().filter(|r| !r.zeta_agrees).map(|r| r.material.clone()).collect::<Vec<_>>(),
-            "eta_not_reproduced": rows.iter().filter(|r| !r.eta_agrees).map(|r| r.material.clone()).collect::<Vec<_>>(),
-            "eta_readings": readings.iter().map(|(r, s)| reading_json(r, s)).collect::<Vec<_>>(),
-            "presets": PRESET_NAMES.iter().filter_map(|n| Material::preset(n).ok().map(|m| json!({
-                "name": n, "E": m.youngs, "nu": m.nu, "rho": m.rho, "yield": m.yield_strength,
-                "tangent": m.tangent, "mu": m.mu, "mu_static": m.mu_static,
-                "zeta": num(damping_index(&m, TABLE1_SPEEDS.0, TABLE1_SPEEDS.1)),
-            }))).collect::<Vec<_>>(),
-        }))
+        "zeta_definition": "nu E rho (v_n^2 + mu v_t^2) / sigma_s^2 (eq. 44), SI, reported x 1e3 as in Table 1",
+        "zeta_scale": ZETA_TABLE_SCALE,
+        "zeta_speeds": {"v_n": TABLE1_SPEEDS.0, "v_t": TABLE1_SPEEDS.1},
+        "eta_reading": reading_json(&best, &score),
+        "rows": rows.iter().map(row_json).collect::<Vec<_>>(),
+        "zeta_discrepancies": rows.iter().filter(|r| !r.zeta_agrees).map(|r| r.material.clone()).collect::<Vec<_>>(),
+        "eta_not_reproduced": rows.iter().filter(|r| !r.eta_agrees).map(|r| r.material.clone()).collect::<Vec<_>>(),
+        "eta_readings": readings.iter().map(|(r, s)| reading_json(r, s)).collect::<Vec<_>>(),
+        "presets": PRESET_NAMES.iter().filter_map(|n| Material::preset(n).ok().map(|m| json!({
+            "name": n, "E": m.youngs, "nu": m.nu, "rho": m.rho, "yield": m.yield_strength,
+            "tangent": m.tangent, "mu": m.mu, "mu_static": m.mu_static,
+            "zeta": num(damping_index(&m, TABLE1_SPEEDS.0, TABLE1_SPEEDS.1)),
+        }))).collect::<Vec<_>>(),
+    }))
 }
 
 /// `twoball materials`.

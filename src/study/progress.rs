@@ -108,7 +108,8 @@ pub fn reporting<R>(hook: Option<&Hook>, f: impl FnOnce() -> R) -> R {
     f()
 }
 
-fn current_hook() -> Option<Hook> {
+/// The progress receiver of this thread, if any (to hand on to worker threads).
+pub fn current() -> Option<Hook> {
     HOOK.with(|h| h.borrow().clone())
 }
 
@@ -149,7 +150,7 @@ impl Bar {
             started: Instant::now(),
             last_line: Instant::now(),
             last_frac: 0.0,
-            hook: current_hook(),
+            hook: current(),
         };
         if mode == Mode::Plain {
             plain(&format!(
@@ -288,7 +289,7 @@ impl Cases {
                 last_line: Instant::now(),
                 last_frac: 0.0,
             }),
-            hook: current_hook(),
+            hook: current(),
         }
     }
 

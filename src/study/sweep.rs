@@ -843,9 +843,8 @@ fn run_cases(
         );
         Ok(())
     };
-    let work = |c: &&Case| -> Result<()> {
-        super::interrupt::within(token.as_ref(), || run_one(c))
-    };
+    let work =
+        |c: &&Case| -> Result<()> { super::interrupt::within(token.as_ref(), || run_one(c)) };
     if opts.jobs > 1 && n_pending > 1 {
         // More cases than one: spread whole cases over the workers (each FE run may still use
         // the pool for its own loops).
