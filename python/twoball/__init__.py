@@ -15,6 +15,7 @@ from __future__ import annotations
 
 import json
 import math
+import numbers
 import os
 from typing import Any, Callable, Dict, Mapping, Optional, Union
 
@@ -30,8 +31,8 @@ Progress = Callable[[float, float], Any]
 
 def _number(name: str, x: Any) -> str:
     """``x`` as a command-line number (exact: repr of a float round-trips)."""
-    if isinstance(x, bool) or not isinstance(x, (int, float)):
-        raise ValueError(f"{name} = {x!r}: expected a number")
+    if isinstance(x, bool) or not isinstance(x, numbers.Real):
+        raise ValueError(f"invalid {name} = {x!r}: allowed a number")
     return repr(float(x))
 
 
@@ -57,7 +58,7 @@ def _flags(options: Mapping[str, Any]) -> list:
         elif isinstance(value, (os.PathLike,)):
             args += [flag, os.fspath(value)]
         else:
-            args += [flag, _number(key, value)]
+            args += [flag, _number("--" + key, value)]
     return args
 
 
