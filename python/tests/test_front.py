@@ -278,7 +278,7 @@ def test_keyboard_interrupt_stops_a_long_run_within_half_a_second(tmp_path):
     assert not (tmp_path / "out" / "results.json").exists()
 
 
-MEDIUM = {"size": 0.004, "pole_size": 0.002}
+MEDIUM = {"size": 0.003, "pole_size": 0.0015}
 
 
 def test_two_threads_run_two_scenes_faster_than_one_after_the_other():
