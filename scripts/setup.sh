@@ -24,11 +24,14 @@ if ! python3 -c "import meshio" >/dev/null 2>&1; then
   fi
 fi
 if ! command -v ccx >/dev/null 2>&1 && command -v apt-get >/dev/null 2>&1; then apt_install calculix-ccx; fi  # CalculiX peer (scripts/ccx_peer.py)
+# The Python front's test (tests/python_front.rs) makes a virtual environment.
+if ! python3 -c 'import venv, ensurepip' >/dev/null 2>&1 && command -v apt-get >/dev/null 2>&1; then apt_install python3-venv; fi
 # Check: every program the tests need is there (CI=true makes a missing one a test failure).
 missing=""
 command -v gmsh >/dev/null 2>&1 || missing="$missing gmsh"
 python3 -c "import meshio, numpy" >/dev/null 2>&1 || missing="$missing meshio/numpy(python3)"
 command -v ccx >/dev/null 2>&1 || missing="$missing ccx(calculix-ccx)"
+python3 -c 'import venv, ensurepip' >/dev/null 2>&1 || missing="$missing venv(python3)"
 if [ -n "$missing" ]; then
   echo "setup.sh: not installed:$missing" >&2
   exit 1

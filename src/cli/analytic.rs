@@ -385,9 +385,10 @@ fn collision_warnings(c: &Collision) -> Vec<Warning> {
         .map_or_else(Vec::new, |n| analytic_warnings(n.delta2, c.pair.radius))
 }
 
-/// `twoball analytic`.
-pub fn run_analytic(a: AnalyticArgs) -> Result<()> {
-    let (b1, b2) = bodies(&a)?;
+/// The collision the flags describe (checked as the CLI checks them), with its bodies; writes
+/// `--curve` when asked.
+fn collide_args(a: &AnalyticArgs) -> Result<(Collision, Body, Body)> {
+    let (b1, b2) = bodies(a)?;
     let v2n = a.v2.unwrap_or(if b2.is_wall() { 0.0 } else { -1.0 });
     for (flag, v) in [
         ("--v1", a.v1),
@@ -419,6 +420,21 @@ pub fn run_analytic(a: AnalyticArgs) -> Result<()> {
     if let Some(path) = &a.curve {
         crate::study::curves::write_analytic_curve(&c, path, a.samples)?;
     }
+    Ok((c, b1, b2))
+}
+
+/// The object `twoball analytic --json` prints for the flags `a` (writes `--curve` when
+/// asked).
+pub fn analytic_json(a: &AnalyticArgs) -> Result<Value> {
+    let (c, b1, b2) = collide_args(a)?;
+    let mut v = collision_json(&c, &b1, &b2);
+    v["warnings"] = json!(collision_warnings(&c));
+    Ok(v)
+}
+
+/// `twoball analytic`.
+pub fn run_analytic(a: AnalyticArgs) -> Result<()> {
+    let (c, b1, b2) = collide_args(&a)?;
     let warnings = collision_warnings(&c);
     crate::study::warnings::print(&warnings);
     if a.json {
@@ -461,8 +477,15 @@ fn row_json(r: &Table1Row) -> Value {
     })
 }
 
-/// `twoball materials`.
-pub fn run_materials(a: MaterialsArgs) -> Result<()> {
+/// Table 1 as computed: the best η reading with its score, the rows, and every reading tried.
+type Table1 = (
+    EtaReading,
+    ReadingScore,
+    Vec<Table1Row>,
+    Vec<(EtaReading, ReadingScore)>,
+);
+
+fn table1_all() -> Result<Table1> {
     let (best, score) = best_reading()?;
     let rows = table1(&best)?;
     let mut readings = vec![];
@@ -470,25 +493,36 @@ pub fn run_materials(a: MaterialsArgs) -> Result<()> {
         let s = reading_score(&r)?;
         readings.push((r, s));
     }
+    Ok((best, score, rows, readings))
+}
+
+/// The object `twoball materials --json` prints.
+pub fn materials_json() -> Result<Value> {
+    let (best, score, rows, readings) = table1_all()?;
+    Ok(json!({
+        "zeta_definition": "nu E rho (v_n^2 + mu v_t^2) / sigma_s^2 (eq. 44), SI, reported x 1e3 as in Table 1",
+        "zeta_scale": ZETA_TABLE_SCALE,
+        "zeta_speeds": {"v_n": TABLE1_SPEEDS.0, "v_t": TABLE1_SPEEDS.1},
+        "eta_reading": reading_json(&best, &score),
+        "rows": rows.iter().map(row_json).collect::<Vec<_>>(),
+        "zeta_discrepancies": rows.iter().filter(|r| !r.zeta_agrees).map(|r| r.material.clone()).collect::<Vec<_>>(),
+        "eta_not_reproduced": rows.iter().filter(|r| !r.eta_agrees).map(|r| r.material.clone()).collect::<Vec<_>>(),
+        "eta_readings": readings.iter().map(|(r, s)| reading_json(r, s)).collect::<Vec<_>>(),
+        "presets": PRESET_NAMES.iter().filter_map(|n| Material::preset(n).ok().map(|m| json!({
+            "name": n, "E": m.youngs, "nu": m.nu, "rho": m.rho, "yield": m.yield_strength,
+            "tangent": m.tangent, "mu": m.mu, "mu_static": m.mu_static,
+            "zeta": num(damping_index(&m, TABLE1_SPEEDS.0, TABLE1_SPEEDS.1)),
+        }))).collect::<Vec<_>>(),
+    }))
+}
+
+/// `twoball materials`.
+pub fn run_materials(a: MaterialsArgs) -> Result<()> {
     if a.json {
-        let v = json!({
-            "zeta_definition": "nu E rho (v_n^2 + mu v_t^2) / sigma_s^2 (eq. 44), SI, reported x 1e3 as in Table 1",
-            "zeta_scale": ZETA_TABLE_SCALE,
-            "zeta_speeds": {"v_n": TABLE1_SPEEDS.0, "v_t": TABLE1_SPEEDS.1},
-            "eta_reading": reading_json(&best, &score),
-            "rows": rows.iter().map(row_json).collect::<Vec<_>>(),
-            "zeta_discrepancies": rows.iter().filter(|r| !r.zeta_agrees).map(|r| r.material.clone()).collect::<Vec<_>>(),
-            "eta_not_reproduced": rows.iter().filter(|r| !r.eta_agrees).map(|r| r.material.clone()).collect::<Vec<_>>(),
-            "eta_readings": readings.iter().map(|(r, s)| reading_json(r, s)).collect::<Vec<_>>(),
-            "presets": PRESET_NAMES.iter().filter_map(|n| Material::preset(n).ok().map(|m| json!({
-                "name": n, "E": m.youngs, "nu": m.nu, "rho": m.rho, "yield": m.yield_strength,
-                "tangent": m.tangent, "mu": m.mu, "mu_static": m.mu_static,
-                "zeta": num(damping_index(&m, TABLE1_SPEEDS.0, TABLE1_SPEEDS.1)),
-            }))).collect::<Vec<_>>(),
-        });
-        println!("{v}");
+        println!("{}", materials_json()?);
         return Ok(());
     }
+    let (best, score, rows, readings) = table1_all()?;
     println!(
         "Table 1 of Li, Yang & Shi (2019): particle damping index zeta (eq. 44, x 1e3, v_n = {} m/s, \
          v_t = {} m/s) and energy dissipation factor eta",

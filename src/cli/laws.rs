@@ -300,6 +300,52 @@ pub fn run_with(a: LawRunArgs, registry: &Registry) -> Result<()> {
     Ok(())
 }
 
+/// One law of the list as JSON: name, title, source, DEM codes, and each parameter with its
+/// unit, meaning and default for `pair`.
+fn spec_json(
+    name: &str,
+    title: &str,
+    source: &str,
+    dem_codes: &str,
+    params: &[ParamSpec],
+    pair: &ContactPair,
+) -> Value {
+    json!({
+        "name": name,
+        "title": title,
+        "source": source,
+        "dem_codes": dem_codes,
+        "params": params.iter().map(|p| json!({
+            "key": p.key,
+            "unit": p.unit,
+            "doc": p.doc,
+            "default": num((p.default)(pair)),
+        })).collect::<Vec<_>>(),
+    })
+}
+
+/// The laws of `registry` as JSON (what `twoball laws` lists): `normal` and `tangential`,
+/// defaults for two copper-fe balls of D = 20 mm.
+pub fn list_json(registry: &Registry) -> Result<Value> {
+    let m = Material::preset("copper-fe")?;
+    let b = Body::ball(m, 0.02, "ball")?;
+    let pair = ContactPair::between(&b, &b, m.mu);
+    Ok(json!({
+        "defaults_for": "two copper-fe balls, D = 0.02 m",
+        "normal": registry.normal.iter().map(|s| spec_json(s.name, s.title, s.source, s.dem_codes, s.params, &pair)).collect::<Vec<_>>(),
+        "tangential": registry.tangential.iter().map(|s| spec_json(s.name, s.title, s.source, s.dem_codes, s.params, &pair)).collect::<Vec<_>>(),
+    }))
+}
+
+/// The object `twoball laws run --json` prints for `a` (writes `--curve` when asked).
+pub fn law_run_json(a: &LawRunArgs, registry: &Registry) -> Result<Value> {
+    let r = run_law(a, registry)?;
+    if let (Some(path), Some(i)) = (&a.ball.curve, &r.impact) {
+        crate::study::curves::write_law_curve(i, path)?;
+    }
+    Ok(run_json(a, &r))
+}
+
 fn list(registry: &Registry) -> Result<()> {
     let m = Material::preset("copper-fe")?;
     let b = Body::ball(m, 0.02, "ball")?;

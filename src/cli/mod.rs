@@ -89,6 +89,37 @@ fn negative_numbers_everywhere(cmd: clap::Command) -> clap::Command {
         .mut_subcommands(negative_numbers_everywhere)
 }
 
+/// The JSON object of `twoball ARGS --json` without a process (the first of `args` is the
+/// program name): `analytic`, `materials` and `laws run` give what they print with `--json`,
+/// `laws` the list of laws. Bad input is the error the command would print (one line); how
+/// library callers such as the Python binding get the CLI's results and messages.
+pub fn json_from<I, T>(args: I) -> crate::Result<serde_json::Value>
+where
+    I: IntoIterator<Item = T>,
+    T: Into<std::ffi::OsString> + Clone,
+{
+    let cli = negative_numbers_everywhere(Cli::command())
+        .try_get_matches_from(args)
+        .and_then(|m| Cli::from_arg_matches(&m))
+        .map_err(|e| {
+            let text = e.to_string();
+            let line = text.lines().next().unwrap_or_default();
+            crate::Error::Parse(line.trim_start_matches("error: ").to_string())
+        })?;
+    let registry = crate::analytic::laws::Registry::builtin();
+    match cli.command {
+        Command::Analytic(a) => analytic::analytic_json(&a),
+        Command::Materials(_) => analytic::materials_json(),
+        Command::Laws(laws::LawsArgs { command: None }) => laws::list_json(&registry),
+        Command::Laws(laws::LawsArgs {
+            command: Some(laws::LawsCommand::Run(r)),
+        }) => laws::law_run_json(&r, &registry),
+        _ => Err(crate::Error::Parse(
+            "only analytic, materials, laws and laws run give a JSON object".into(),
+        )),
+    }
+}
+
 /// Runs the command line and returns the process exit code.
 pub fn main() -> i32 {
     main_from(std::env::args_os())

@@ -5,6 +5,9 @@
 //! - [`Bar`]: the simulated time of one FE run, scaled to the stop rule's end (refined as the
 //!   run learns it);
 //! - [`Cases`]: the cases of a sweep or stress matrix, done and failed.
+//!
+//! A library caller (e.g. the Python binding) also receives the progress through a [`Hook`]
+//! set with [`reporting`]: the bar or counter made on that thread calls it at each update.
 
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use std::io::{IsTerminal, Write};
@@ -79,6 +82,37 @@ fn terminal_bar(len: u64, template: &str) -> ProgressBar {
     bar
 }
 
+/// A receiver of progress: `(done, total)`, in simulated seconds for an FE run (time since
+/// the run's start and its expected end), in cases for a sweep.
+pub type Hook = std::sync::Arc<dyn Fn(f64, f64) + Send + Sync>;
+
+thread_local! {
+    static HOOK: std::cell::RefCell<Option<Hook>> = const { std::cell::RefCell::new(None) };
+}
+
+/// Runs `f` on this thread with `hook` (None: as is) receiving the progress of the bars and
+/// case counters made during `f`; the previous hook is restored afterwards.
+pub fn reporting<R>(hook: Option<&Hook>, f: impl FnOnce() -> R) -> R {
+    let Some(hook) = hook else {
+        return f();
+    };
+    let before = HOOK.with(|h| h.replace(Some(hook.clone())));
+    struct Restore(Option<Hook>);
+    impl Drop for Restore {
+        fn drop(&mut self) {
+            let before = self.0.take();
+            HOOK.with(|h| *h.borrow_mut() = before);
+        }
+    }
+    let _restore = Restore(before);
+    f()
+}
+
+/// The progress receiver of this thread, if any (to hand on to worker threads).
+pub fn current() -> Option<Hook> {
+    HOOK.with(|h| h.borrow().clone())
+}
+
 /// Simulated-time units of the terminal bar: nanoseconds.
 const BAR_UNITS_PER_S: f64 = 1e9;
 
@@ -94,6 +128,7 @@ pub struct Bar {
     started: Instant,
     last_line: Instant,
     last_frac: f64,
+    hook: Option<Hook>,
 }
 
 impl Bar {
@@ -115,6 +150,7 @@ impl Bar {
             started: Instant::now(),
             last_line: Instant::now(),
             last_frac: 0.0,
+            hook: current(),
         };
         if mode == Mode::Plain {
             plain(&format!(
@@ -152,6 +188,9 @@ impl Bar {
         if t > self.end {
             // Past the estimate: the end is at least here.
             self.set_end(t);
+        }
+        if let Some(h) = &self.hook {
+            h(t - self.start, self.end - self.start);
         }
         match self.mode {
             Mode::Off => {}
@@ -223,6 +262,7 @@ pub struct Cases {
     bar: Option<ProgressBar>,
     started: Instant,
     state: Mutex<PlainState>,
+    hook: Option<Hook>,
 }
 
 impl Cases {
@@ -249,6 +289,7 @@ impl Cases {
                 last_line: Instant::now(),
                 last_frac: 0.0,
             }),
+            hook: current(),
         }
     }
 
@@ -276,6 +317,9 @@ impl Cases {
         let mut s = self.state.lock().unwrap_or_else(|p| p.into_inner());
         s.done += 1;
         s.failed += usize::from(failed);
+        if let Some(h) = &self.hook {
+            h(s.done as f64, self.total as f64);
+        }
         match self.mode {
             Mode::Off => {}
             Mode::Terminal => {

@@ -875,6 +875,13 @@ fn with_threads_for<T: Send>(elements: usize, f: impl FnOnce() -> T + Send) -> T
     let Ok(pool) = rayon::ThreadPoolBuilder::new().num_threads(1).build() else {
         return f();
     };
+    // The caller's cancel request and progress receiver go with the work.
+    let (token, hook) = (super::interrupt::current(), super::progress::current());
+    let f = move || {
+        super::interrupt::within(token.as_ref(), || {
+            super::progress::reporting(hook.as_ref(), f)
+        })
+    };
     // Wait on a plain thread: a pool worker (a sweep's) that waited inside `install` on
     // another pool would meanwhile take more work from its own pool, and a sweep would start
     // all its small cases at once.

@@ -816,7 +816,9 @@ fn run_cases(
         "sweep",
         n_pending,
     );
-    let work = |c: &&Case| -> Result<()> {
+    // Workers of the pool stop on the caller's cancel request too (library callers).
+    let token = super::interrupt::current();
+    let run_one = |c: &&Case| -> Result<()> {
         if super::interrupt::requested() {
             return Err(Error::Interrupted(String::new()));
         }
@@ -841,6 +843,8 @@ fn run_cases(
         );
         Ok(())
     };
+    let work =
+        |c: &&Case| -> Result<()> { super::interrupt::within(token.as_ref(), || run_one(c)) };
     if opts.jobs > 1 && n_pending > 1 {
         // More cases than one: spread whole cases over the workers (each FE run may still use
         // the pool for its own loops).
