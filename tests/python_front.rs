@@ -65,6 +65,7 @@ fn venv(root: &Path) -> Option<PathBuf> {
 }
 
 #[test]
+#[ignore = "builds the Python package with maturin (about 6 min on 2 cores); .ci/run runs it"]
 fn python_front_pytest_suite_and_example() {
     let test = "python_front_pytest_suite_and_example";
     if !tools::require(

@@ -65,26 +65,23 @@ pub struct BallSpec {
     pub cut: Cut,
 }
 
-/// Meshes a ball of diameter `spec.diameter` centred at the origin with 8-node hexahedra,
-/// refined toward the pole (+R, 0, 0).
+/// The checked sizes of a ball mesh: radius R (m), cells n along a core edge (even) and the
+/// surface facet size π R / (2n) (m) of the unrefined parts. Shared by the 3D and the
+/// meridian mesher, so both refuse the same inputs with the same messages.
 ///
-/// Face sets (outward quads): `surface` (the spherical boundary only), `contact` (surface
-/// quads with at least one node within [`CONTACT_HALF_ANGLE_DEG`] of +x, seen from the
-/// centre), `sym_y` / `sym_z` (quads on the cut planes y = 0 / z = 0, empty when that plane is
-/// not a cut). Each node set is the node set of the face set of the same name, so `contact`
-/// holds every surface node within the contact angle plus the ring just outside it, and a
-/// mesh written to `.msh` and read back keeps its sets. `Mesh::boundary` holds every boundary
-/// quad, cut planes included. Output is deterministic.
-///
-/// Errors: non-finite or non-positive sizes, `size` above the radius, `pole_size` above
-/// `size` or below `size / 10^4`, or more than [`MAX_ELEMENTS`] elements.
-pub fn ball(spec: &BallSpec) -> Result<Mesh> {
-    let d = spec.diameter;
+/// Errors: non-finite or non-positive `diameter` or `size`, `size` above the radius or below
+/// radius / 600, `pole_size` above `size` or below `size / 10^4`.
+pub(super) fn core_cells(
+    diameter: f64,
+    size: f64,
+    pole_size: Option<f64>,
+) -> Result<(f64, usize, f64)> {
+    let d = diameter;
     if !(d.is_finite() && d > 0.0) {
         return Err(Error::invalid("diameter", d, "a finite length > 0 m"));
     }
     let r = 0.5 * d;
-    let h = spec.size;
+    let h = size;
     if !(h.is_finite() && h > 0.0 && h <= r) {
         return Err(Error::invalid(
             "size",
@@ -92,7 +89,7 @@ pub fn ball(spec: &BallSpec) -> Result<Mesh> {
             format!("0 < size <= radius = {r} m"),
         ));
     }
-    let h0 = spec.pole_size.unwrap_or(h);
+    let h0 = pole_size.unwrap_or(h);
     if !(h0.is_finite() && h0 <= h && h0 >= h * 1e-4) {
         return Err(Error::invalid(
             "pole_size",
@@ -114,6 +111,24 @@ pub fn ball(spec: &BallSpec) -> Result<Mesh> {
     let n = (n_raw as usize).div_ceil(2) * 2;
     // Surface facet size at the rim of the disk x = 0; the unrefined parts use it everywhere.
     let facet = PI * r / (2.0 * n as f64);
+    Ok((r, n, facet))
+}
+
+/// Meshes a ball of diameter `spec.diameter` centred at the origin with 8-node hexahedra,
+/// refined toward the pole (+R, 0, 0).
+///
+/// Face sets (outward quads): `surface` (the spherical boundary only), `contact` (surface
+/// quads with at least one node within [`CONTACT_HALF_ANGLE_DEG`] of +x, seen from the
+/// centre), `sym_y` / `sym_z` (quads on the cut planes y = 0 / z = 0, empty when that plane is
+/// not a cut). Each node set is the node set of the face set of the same name, so `contact`
+/// holds every surface node within the contact angle plus the ring just outside it, and a
+/// mesh written to `.msh` and read back keeps its sets. `Mesh::boundary` holds every boundary
+/// quad, cut planes included. Output is deterministic.
+///
+/// Errors: non-finite or non-positive sizes, `size` above the radius, `pole_size` above
+/// `size` or below `size / 10^4`, or more than [`MAX_ELEMENTS`] elements.
+pub fn ball(spec: &BallSpec) -> Result<Mesh> {
+    let (r, n, facet) = core_cells(spec.diameter, spec.size, spec.pole_size)?;
     let front = match spec.pole_size {
         Some(p) if p < facet => Plan::refined(r, n, p),
         _ => Plan::uniform(r, n, facet),
@@ -123,7 +138,7 @@ pub fn ball(spec: &BallSpec) -> Result<Mesh> {
     if estimate > MAX_ELEMENTS {
         return Err(Error::invalid(
             "size",
-            h,
+            spec.size,
             format!("a size giving at most {MAX_ELEMENTS} elements (this one gives {estimate})"),
         ));
     }

@@ -18,7 +18,6 @@ use super::meridian::MeridianMesh;
 use super::section::{boundary_edges, quad_area};
 use crate::error::{Error, Result};
 use std::collections::BTreeMap;
-use std::f64::consts::PI;
 
 /// What to mesh: the meridian section of a ball. Lengths in metres.
 #[derive(Debug, Clone, PartialEq)]
@@ -44,38 +43,7 @@ pub struct SectionSpec {
 /// Errors: non-finite or non-positive sizes, `size` above the radius or below radius / 600,
 /// `pole_size` above `size` or below `size / 10^4`, or more than [`MAX_ELEMENTS`] elements.
 pub fn ball(spec: &SectionSpec) -> Result<MeridianMesh> {
-    let d = spec.diameter;
-    if !(d.is_finite() && d > 0.0) {
-        return Err(Error::invalid("diameter", d, "a finite length > 0 m"));
-    }
-    let r = 0.5 * d;
-    let h = spec.size;
-    if !(h.is_finite() && h > 0.0 && h <= r) {
-        return Err(Error::invalid(
-            "size",
-            h,
-            format!("0 < size <= radius = {r} m"),
-        ));
-    }
-    let h0 = spec.pole_size.unwrap_or(h);
-    if !(h0.is_finite() && h0 <= h && h0 >= h * 1e-4) {
-        return Err(Error::invalid(
-            "pole_size",
-            h0,
-            format!("size/1e4 <= pole_size <= size = {h} m"),
-        ));
-    }
-    // Cells along a core edge of the 3D construction (even); the quarter core has n/2.
-    let n_raw = (PI * r / h * (1.0 - 1e-9)).ceil().max(4.0);
-    if n_raw > 2000.0 {
-        return Err(Error::invalid(
-            "size",
-            h,
-            format!("size >= radius / 600 = {:.4e} m", r / 600.0),
-        ));
-    }
-    let n = (n_raw as usize).div_ceil(2) * 2;
-    let facet = PI * r / (2.0 * n as f64);
+    let (r, n, facet) = super::ball::core_cells(spec.diameter, spec.size, spec.pole_size)?;
     let front = match spec.pole_size {
         Some(p) if p < facet => refined(r, n, p),
         _ => Plan::uniform(r, n, facet),
@@ -85,7 +53,7 @@ pub fn ball(spec: &SectionSpec) -> Result<MeridianMesh> {
     if estimate > MAX_ELEMENTS {
         return Err(Error::invalid(
             "pole_size",
-            h0,
+            spec.pole_size.unwrap_or(spec.size),
             format!(
                 "a pole size giving at most {MAX_ELEMENTS} elements (this one gives {estimate})"
             ),

@@ -33,9 +33,10 @@ mod tests {
         let x = [[0.0, 0.0], [2.0, 0.0], [2.0, 1.0], [0.0, 1.0]];
         let m = element_masses(&x, 3.0);
         assert!((m.iter().sum::<f64>() - 3.0 * 4.0 * PI).abs() < 1e-12);
-        // ∫ N_I 2π r dA: axis nodes 2π·(1/6)·r² h... = 2π·2/3, outer ones 2π·4/3.
-        assert!((m[0] - 3.0 * 2.0 * PI * 2.0 / 3.0).abs() < 1e-12);
-        assert!((m[1] - 3.0 * 2.0 * PI * 4.0 / 3.0).abs() < 1e-12);
+        // ρ ∫ N_I 2π r dA = ρ 2π ∫ N_I(r) r dr ∫ N_I(z) dz: the axis nodes 2π (2/3)(1/2),
+        // the outer ones 2π (4/3)(1/2).
+        assert!((m[0] - 3.0 * 2.0 * PI * (2.0 / 3.0) * 0.5).abs() < 1e-12);
+        assert!((m[1] - 3.0 * 2.0 * PI * (4.0 / 3.0) * 0.5).abs() < 1e-12);
         // First radial moment exact: Σ m_I r_I = ρ ∫ r 2π r dA = ρ 2π r³/3 h.
         let mr: f64 = (0..4).map(|i| m[i] * x[i][0]).sum();
         assert!((mr - 3.0 * 2.0 * PI * 8.0 / 3.0).abs() < 1e-12);
