@@ -270,8 +270,9 @@ def run_ccx(ccx, work, job):
     return wall, log
 
 
-def last_block(dat, header):
-    """The rows of the last .dat block whose header line starts with `header`, (k, cols)."""
+def dat_blocks(dat, header):
+    """Every .dat block whose header line starts with `header`, in order: lists of rows of
+    floats (a block may be empty)."""
     blocks, rows = [], None
     for line in Path(dat).read_text().splitlines():
         s = line.strip()
@@ -286,7 +287,13 @@ def last_block(dat, header):
             if s[0].isalpha():
                 rows = None
                 continue
-            rows.append(FLOAT_FIX.sub(r"\1E\2", s).split())
+            rows.append([float(x) for x in FLOAT_FIX.sub(r"\1E\2", s).split()])
+    return blocks
+
+
+def last_block(dat, header):
+    """The rows of the last .dat block whose header line starts with `header`, (k, cols)."""
+    blocks = dat_blocks(dat, header)
     if not blocks or not blocks[-1]:
         raise CheckError(f"{dat}: no block '{header}'")
     return np.array(blocks[-1], dtype=float)

@@ -38,8 +38,8 @@ import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from ccx_static_hertz import (  # noqa: E402
-    FLOAT_FIX,
     CheckError,
+    dat_blocks,
     assemble,
     edge_faces,
     gmsh_ball,
@@ -108,23 +108,8 @@ def deck(path, m, mat, travel, k_pen, element, n_inc):
 
 
 def blocks(dat, header):
-    """Every .dat block whose header starts with `header`, as float arrays, in order."""
-    found, rows = [], None
-    for line in Path(dat).read_text().splitlines():
-        s = line.strip()
-        if s.startswith(header):
-            rows = []
-            found.append(rows)
-        elif rows is not None:
-            if not s:
-                if rows:
-                    rows = None
-                continue
-            if s[0].isalpha():
-                rows = None
-                continue
-            rows.append([float(x) for x in FLOAT_FIX.sub(r"\1E\2", s).split()])
-    return [np.array(b) for b in found if b]
+    """Every non-empty .dat block whose header starts with `header`, as float arrays, in order."""
+    return [np.array(b) for b in dat_blocks(dat, header) if b]
 
 
 def loop(dat, factor):
