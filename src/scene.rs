@@ -143,11 +143,29 @@ pub enum Switch {
     Off,
 }
 
+/// Which model of the pair's symmetry to run.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Symmetry {
+    /// The cheapest exact model the scene allows: the meridian section for a head-on impact,
+    /// the quarter or half 3D model of identical balls otherwise, the full 3D model else.
+    Auto,
+    /// The meridian section (a head-on impact only).
+    Axisymmetric,
+    /// A quarter of ball 1 against the frictionless symmetry plane (identical balls, head-on).
+    Quarter,
+    /// Both balls cut by the plane of the motion (identical balls, motion in one plane).
+    Half,
+    /// The full 3D model of both balls.
+    Off,
+}
+
 /// The automatic savings (issue 6 item 3), each switchable off.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct ReductionSettings {
-    /// Symmetry reduction (quarter ball vs rigid plane, half model, or full).
-    pub symmetry: Switch,
+    /// Symmetry reduction: automatic, or a model forced (the meridian section, the quarter or
+    /// half 3D model, or the full 3D model).
+    pub symmetry: Symmetry,
     /// Start at first touch (free flight in closed form) instead of at the given positions.
     pub start_at_touch: Switch,
     /// Stop by the separation rule instead of at a fixed end time.
@@ -644,7 +662,7 @@ fn read_output(o: Option<Reader<'_>>) -> Result<OutputSettings> {
 
 fn read_reduction(r: Option<Reader<'_>>) -> Result<ReductionSettings> {
     let mut out = ReductionSettings {
-        symmetry: Switch::Auto,
+        symmetry: Symmetry::Auto,
         start_at_touch: Switch::Auto,
         stop_at_separation: Switch::Auto,
         skip_work: Switch::Auto,
@@ -660,8 +678,15 @@ fn read_reduction(r: Option<Reader<'_>>) -> Result<ReductionSettings> {
             }
         }))
     };
-    if let Some(s) = read("symmetry")? {
-        out.symmetry = s;
+    let symmetries = ["auto", "axisymmetric", "quarter", "half", "off"];
+    if let Some(s) = r.choice("symmetry", &symmetries)? {
+        out.symmetry = match s {
+            "axisymmetric" => Symmetry::Axisymmetric,
+            "quarter" => Symmetry::Quarter,
+            "half" => Symmetry::Half,
+            "off" => Symmetry::Off,
+            _ => Symmetry::Auto,
+        };
     }
     if let Some(s) = read("start_at_touch")? {
         out.start_at_touch = s;

@@ -2,7 +2,8 @@
 //!
 //! The cost of an FE case is its element count times its explicit steps: elements of the
 //! meshes the run builds (one quarter ball against the mirror plane, or two half or whole
-//! balls, as [`choose_reduction`] picks), steps = simulated time / stable step, with the
+//! balls, as [`choose_reduction`] picks; the quads of the meridian sections of an
+//! axisymmetric run, a quad-step counted as one element-step), steps = simulated time / stable step, with the
 //! simulated time the analytical contact duration plus the stop rule's hold time and the
 //! stable step the Courant limit of the smallest element (L_e / c, times the scene's
 //! `solver.time_step_factor`). Subcycling is left out, so the estimate is an upper bound on
@@ -76,6 +77,34 @@ impl Estimator {
         Ok(stats)
     }
 
+    /// Quad count and smallest characteristic length (m) of the meridian section of ball
+    /// `name`, as the axisymmetric run meshes it.
+    fn section(&self, name: &str, b: &crate::scene::BallScene) -> Result<(usize, f64)> {
+        let key = match b.mesh {
+            MeshSettings::Builtin { size, pole_size } => {
+                format!("section {:e} {size:e} {pole_size:e}", b.diameter)
+            }
+            MeshSettings::File { .. } => String::new(),
+        };
+        let cached = self.meshes.lock().ok().and_then(|m| m.get(&key).copied());
+        if let Some(hit) = cached {
+            return Ok(hit);
+        }
+        let mesh = super::simulate_section::section_mesh(name, b)?;
+        let length = mesh
+            .quads
+            .iter()
+            .map(|q| {
+                crate::fe::axisym::quad::characteristic_length(&q.map(|n| mesh.nodes[n as usize]))
+            })
+            .fold(f64::INFINITY, f64::min);
+        let stats = (mesh.quads.len(), length);
+        if let Ok(mut m) = self.meshes.lock() {
+            m.insert(key, stats);
+        }
+        Ok(stats)
+    }
+
     /// The estimated cost of running `scene` through the FE model (`fe`) or the analytical
     /// model only (`!fe`: no elements).
     ///
@@ -95,14 +124,26 @@ impl Estimator {
             return Ok(none);
         }
         let (outcome, _) = analytic_outcome(scene, &touch)?;
-        let (reduction, _) = choose_reduction(scene, &touch);
+        let (reduction, _) = choose_reduction(scene, &touch)?;
         let (cut, parts) = match reduction {
+            Reduction::Axisymmetric => (Cut::Full, 0),
             Reduction::Quarter => (Cut::Quarter, 1),
             Reduction::Half => (Cut::Half, 2),
             Reduction::Full => (Cut::Full, 2),
         };
         let mut elements = 0;
         let mut dt = f64::INFINITY;
+        if reduction == Reduction::Axisymmetric {
+            let sections = if scene.identical_balls() { 1 } else { 2 };
+            for (name, b) in [("ball1", &scene.ball1), ("ball2", &scene.ball2)]
+                .into_iter()
+                .take(sections)
+            {
+                let (n, length) = self.section(name, b)?;
+                elements += n;
+                dt = dt.min(length / b.material.dilatational_wave_speed());
+            }
+        }
         for b in [&scene.ball1, &scene.ball2].into_iter().take(parts) {
             let (size, pole_size) = match b.mesh {
                 MeshSettings::Builtin { size, pole_size } => (size, pole_size),

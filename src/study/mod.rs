@@ -41,6 +41,7 @@ pub mod plots;
 pub mod progress;
 pub mod report;
 pub mod simulate;
+pub mod simulate_section;
 pub mod single;
 pub mod slurm;
 pub mod snapshots;

@@ -8,6 +8,7 @@
 //! contact plane x = 0 stays put; results are transformed back to the scene frame.
 
 use super::outcome::{ball_inertia, dissipation_factor, Outcome};
+use super::simulate_section::{simulate_section, SectionRun};
 use super::snapshots::Snapshots;
 use crate::error::{Error, Result};
 use crate::fe::contact::{
@@ -20,7 +21,7 @@ use crate::fe::profile::Totals;
 use crate::fe::subcycle::SubcycleReport;
 use crate::mesh::ball::{ball, BallSpec, Cut};
 use crate::mesh::Mesh;
-use crate::scene::{BallScene, MeshSettings, Scene, Switch, Touch};
+use crate::scene::{BallScene, MeshSettings, Scene, Switch, Symmetry, Touch};
 use serde::Serialize;
 use std::time::Instant;
 
@@ -28,6 +29,9 @@ use std::time::Instant;
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "snake_case")]
 pub enum Reduction {
+    /// The meridian section of a head-on impact (the axisymmetric model): one ball against
+    /// the frictionless symmetry plane for identical balls, both balls' sections otherwise.
+    Axisymmetric,
     /// One quarter of ball 1 against a frictionless rigid plane (1/8 of the system).
     Quarter,
     /// Both balls cut by the plane z = 0 of the motion (1/2 of the system).
@@ -37,18 +41,20 @@ pub enum Reduction {
 }
 
 impl Reduction {
-    /// Fraction of the whole two-ball system that is simulated.
+    /// Fraction of the whole two-ball system that the 3D models simulate (the section
+    /// model reports whole-system figures itself: 1).
     pub fn fraction(self) -> f64 {
         match self {
             Reduction::Quarter => 1.0 / 8.0,
             Reduction::Half => 0.5,
-            Reduction::Full => 1.0,
+            Reduction::Axisymmetric | Reduction::Full => 1.0,
         }
     }
 
     /// Lower-case name, as in results.json.
     pub fn name(self) -> &'static str {
         match self {
+            Reduction::Axisymmetric => "axisymmetric",
             Reduction::Quarter => "quarter",
             Reduction::Half => "half",
             Reduction::Full => "full",
@@ -56,52 +62,109 @@ impl Reduction {
     }
 }
 
-/// The symmetry reduction `scene` allows when touching as `touch`, and why.
-///
-/// In the pair's centre-of-mass frame, identical balls with no spin and no relative tangential
-/// velocity collide mirror-symmetrically about the contact plane x = 0, and each ball is
-/// axisymmetric about x: a quarter ball against a frictionless rigid plane is exact (the
-/// tangential traction on the plane must equal its own mirror image and its own negative, so
-/// it vanishes). With tangential motion in the x-y plane (and spins about z only) the plane
-/// z = 0 is still a symmetry plane: half model. Anything else runs full.
-pub fn choose_reduction(scene: &Scene, touch: &Touch) -> (Reduction, String) {
-    if scene.reduction.symmetry == Switch::Off {
-        return (Reduction::Full, "symmetry reduction switched off".into());
-    }
-    if !scene.identical_balls() {
-        return (
-            Reduction::Full,
-            "the balls differ (material, diameter or mesh)".into(),
-        );
-    }
-    if matches!(scene.ball1.mesh, MeshSettings::File { .. }) {
-        return (
-            Reduction::Full,
-            "meshes read from files are used whole".into(),
-        );
-    }
+/// What the scene's motion at first touch allows.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+struct Allowed {
+    /// Velocities along the line of centres, no spin, built-in meshes: axisymmetric.
+    head_on: bool,
+    /// Identical balls with built-in meshes.
+    identical: bool,
+    /// Tangential motion in one plane and spins normal to it.
+    planar: bool,
+}
+
+fn allowed(scene: &Scene, touch: &Touch) -> Allowed {
     let [v1, v2] = touch.v;
     let [w1, w2] = touch.w;
     let scale = (v1[0] - v2[0]).abs();
     let tiny = |x: f64| x.abs() <= 1e-12 * scale;
-    let spin_scale = scale / (scene.ball1.diameter / 2.0);
+    let spin_scale = scale / (scene.ball1.diameter.min(scene.ball2.diameter) / 2.0);
     let no_spin = |w: [f64; 3]| w.iter().all(|c| c.abs() <= 1e-12 * spin_scale);
-    if tiny(v1[1] - v2[1]) && tiny(v1[2] - v2[2]) && no_spin(w1) && no_spin(w2) {
-        return (
-            Reduction::Quarter,
-            "identical balls, pure normal impact: quarter ball against a frictionless rigid plane"
-                .into(),
-        );
-    }
     let planar_spin =
         |w: [f64; 3]| w[0].abs() <= 1e-12 * spin_scale && w[1].abs() <= 1e-12 * spin_scale;
-    if tiny(v1[2] - v2[2]) && planar_spin(w1) && planar_spin(w2) {
-        return (
-            Reduction::Half,
-            "identical balls, tangential motion in one plane: half model".into(),
-        );
+    let builtin = |b: &BallScene| matches!(b.mesh, MeshSettings::Builtin { .. });
+    let normal = tiny(v1[1] - v2[1]) && tiny(v1[2] - v2[2]) && no_spin(w1) && no_spin(w2);
+    Allowed {
+        head_on: normal && builtin(&scene.ball1) && builtin(&scene.ball2),
+        identical: scene.identical_balls() && builtin(&scene.ball1),
+        planar: tiny(v1[2] - v2[2]) && planar_spin(w1) && planar_spin(w2),
     }
-    (Reduction::Full, "motion out of one plane".into())
+}
+
+/// The symmetry reduction `scene` runs with when touching as `touch`, and why.
+///
+/// A head-on impact (velocities along the line of centres, no spin) is axisymmetric about
+/// the line of centres: it runs on the meridian section, with a frictionless symmetry plane
+/// for identical balls (no point of the plane slips, by symmetry) and both sections for
+/// unequal ones. In the pair's centre-of-mass frame, identical balls with tangential motion
+/// in the x-y plane (and spins about z only) keep the plane z = 0 as a symmetry plane: half
+/// model. Anything else runs full. `reduction.symmetry` forces a model.
+///
+/// Errors: a forced model the motion does not allow (axisymmetric or quarter for an oblique
+/// impact, quarter or half for unequal balls, any reduction for meshes read from files).
+pub fn choose_reduction(scene: &Scene, touch: &Touch) -> Result<(Reduction, String)> {
+    let ok = allowed(scene, touch);
+    let refuse = |what: &str, needs: &str| {
+        Err(Error::invalid(
+            "reduction.symmetry",
+            format!("\"{what}\""),
+            format!("auto or off for this scene: {what} needs {needs}"),
+        ))
+    };
+    let quarter = || {
+        (
+            Reduction::Quarter,
+            "identical balls, pure normal impact: quarter ball against a frictionless rigid plane"
+                .to_string(),
+        )
+    };
+    let half = || {
+        (
+            Reduction::Half,
+            "identical balls, tangential motion in one plane: half model".to_string(),
+        )
+    };
+    let axisymmetric = || {
+        let how = if ok.identical {
+            "one ball's section against the frictionless symmetry plane"
+        } else {
+            "both balls' sections"
+        };
+        (
+            Reduction::Axisymmetric,
+            format!(
+                "head-on impact (velocities on the line of centres, no spin): axisymmetric, {how}"
+            ),
+        )
+    };
+    let head_on =
+        "a head-on impact (velocities on the line of centres, no spin) of built-in meshes";
+    match scene.reduction.symmetry {
+        Symmetry::Off => Ok((Reduction::Full, "symmetry reduction switched off".into())),
+        Symmetry::Axisymmetric if ok.head_on => Ok(axisymmetric()),
+        Symmetry::Axisymmetric => refuse("axisymmetric", head_on),
+        Symmetry::Quarter if ok.head_on && ok.identical => Ok(quarter()),
+        Symmetry::Quarter => refuse("quarter", &format!("identical balls in {head_on}")),
+        Symmetry::Half if ok.identical && ok.planar => Ok(half()),
+        Symmetry::Half => refuse(
+            "half",
+            "identical built-in balls with tangential motion in one plane",
+        ),
+        Symmetry::Auto if ok.head_on && scene.reduction.start_at_touch == Switch::Auto => {
+            Ok(axisymmetric())
+        }
+        Symmetry::Auto if !scene.identical_balls() => Ok((
+            Reduction::Full,
+            "the balls differ (material, diameter or mesh)".into(),
+        )),
+        Symmetry::Auto if !ok.identical => Ok((
+            Reduction::Full,
+            "meshes read from files are used whole".into(),
+        )),
+        Symmetry::Auto if ok.head_on => Ok(quarter()),
+        Symmetry::Auto if ok.planar => Ok(half()),
+        Symmetry::Auto => Ok((Reduction::Full, "motion out of one plane".into())),
+    }
 }
 
 /// One row of history.csv; every quantity is for the whole two-ball system.
@@ -263,11 +326,11 @@ pub struct RunOptions {
 }
 
 /// Contact-frame state of the pair in its centre-of-mass frame.
-struct Kinematics {
+pub(super) struct Kinematics {
     /// Centre-of-mass velocity of the pair (contact frame), m/s.
-    v_cm: [f64; 3],
+    pub v_cm: [f64; 3],
     /// Ball velocities relative to v_cm (contact frame), m/s.
-    u: [[f64; 3]; 2],
+    pub u: [[f64; 3]; 2],
 }
 
 fn pair_kinematics(scene: &Scene, touch: &Touch) -> Kinematics {
@@ -412,12 +475,19 @@ fn half_spin_z(solver: &Solver, range: std::ops::Range<usize>, r: &Rigid) -> f64
 /// Velocities (m/s) and spins (rad/s) of both balls, and the distance of their centres (m).
 type BallStates = ([[f64; 3]; 2], [[f64; 3]; 2], f64);
 
+/// The error of a 3D model asked to build or read the axisymmetric reduction (which runs on
+/// the meridian section instead): a defect, not a scene error.
+fn not_3d() -> Error {
+    Error::Numerical("the 3D model cannot run the axisymmetric reduction".into())
+}
+
 /// The model, its interactions, and a read handle on the contact's output.
 type Built = (Model, Vec<Box<dyn Interaction>>, ContactProbe);
 
 fn ball_states(solver: &Solver, red: Reduction) -> Result<BallStates> {
     let model = solver.model();
     match red {
+        Reduction::Axisymmetric => Err(not_3d()),
         Reduction::Quarter => {
             let r = rigid(solver, model.part(0)?.nodes.clone());
             let u = r.momentum[0] / r.mass;
@@ -485,6 +555,7 @@ fn build(
     // Free flight simulated (start_at_touch off): start each centre back along its path.
     let back = |u: [f64; 3]| u.map(|c| -c * pre_gap_time);
     match red {
+        Reduction::Axisymmetric => Err(not_3d()),
         Reduction::Quarter => {
             let m1 = ball_mesh("ball1", b1, Cut::Quarter)?
                 .translated([-r1, 0.0, 0.0])
@@ -603,13 +674,24 @@ pub fn simulate(
 ) -> Result<Simulation> {
     let start = Instant::now();
     let kin = pair_kinematics(scene, touch);
-    let (red, reason) = choose_reduction(scene, touch);
+    let (red, reason) = choose_reduction(scene, touch)?;
     let (mu, _) = scene.friction_coefficients();
     let skip = scene.reduction.skip_work == Switch::Auto;
     let elastic_only = [
         skip && never_yields(scene, touch, &scene.ball1),
         skip && never_yields(scene, touch, &scene.ball2),
     ];
+    if red == Reduction::Axisymmetric {
+        let run = SectionRun {
+            scene,
+            touch,
+            kin: &kin,
+            expected_duration,
+            reason,
+            elastic_only,
+        };
+        return simulate_section(run, opts);
+    }
     let start_at_touch = scene.reduction.start_at_touch == Switch::Auto;
     let pre = if start_at_touch { 0.0 } else { touch.t_touch };
     let (model, interactions, probe) = build(scene, touch, red, &kin, elastic_only, mu, pre)?;
@@ -701,6 +783,7 @@ pub fn simulate(
                         delta: d_touch - d,
                         normal_force: probe_now.normal_force
                             * match red {
+                                Reduction::Axisymmetric => 1.0,
                                 Reduction::Quarter => 4.0,
                                 Reduction::Half => 2.0,
                                 Reduction::Full => 1.0,

@@ -17,6 +17,9 @@ use crate::mesh::meridian::MeridianMesh;
 use serde::Serialize;
 use std::time::Instant;
 
+/// Steps between two calls of the observer of [`HeadOn::run_observed`].
+pub const OBSERVE_EVERY: u64 = 64;
+
 /// What the ball hits.
 #[derive(Debug, Clone)]
 pub enum Target {
@@ -68,6 +71,14 @@ pub struct HeadOn {
     pub history_rows: usize,
     /// Factor on the stable step (0 < f ≤ 1).
     pub time_step_factor: f64,
+    /// Hold time of the separation rule, s; `None`: `hold_fraction` of the Hertz duration.
+    pub hold_time: Option<f64>,
+    /// Interval between history rows, s; `None`: `history_rows` over the Hertz duration.
+    pub history_interval: Option<f64>,
+    /// Stop at this time after first touch (s) instead of by the separation rule.
+    pub end_time: Option<f64>,
+    /// Most steps before the run fails as not separated.
+    pub max_steps: u64,
 }
 
 /// One history row (whole system; for [`Target::MirrorBall`] the pair).
@@ -81,6 +92,12 @@ pub struct ImpactRow {
     pub normal_force: f64,
     /// Approach speed of the centres of mass (of the pair for the mirror ball), m/s.
     pub v_cm: f64,
+    /// Axial velocity (along +z, from ball 1 towards the target) of ball 1's centre of mass,
+    /// m/s.
+    pub v1: f64,
+    /// Axial velocity of the target's centre of mass (the mirror image −v1 for the mirror
+    /// ball, 0 for the wall), m/s.
+    pub v2: f64,
     /// Kinetic energy, J.
     pub kinetic: f64,
     /// Elastic strain energy, J.
@@ -100,6 +117,10 @@ pub struct ImpactRow {
 pub struct ImpactResult {
     /// Coefficient of restitution: separation over approach speed of the centres of mass.
     pub e: f64,
+    /// Axial velocity of ball 1's centre of mass at the end, m/s.
+    pub v1_after: f64,
+    /// Axial velocity of the target's centre of mass at the end, m/s.
+    pub v2_after: f64,
     /// Maximum approach of the centres of mass, m.
     pub delta_max: f64,
     /// Contact duration (first force to the fitted end of the pulse), s.
@@ -192,11 +213,22 @@ impl HeadOn {
             hold_fraction: 0.03,
             history_rows: 200,
             time_step_factor: 0.9,
+            hold_time: None,
+            history_interval: None,
+            end_time: None,
+            max_steps: u64::MAX,
         }
     }
 
-    /// Runs the impact to separation.
+    /// Runs the impact to separation (or to `end_time`).
     pub fn run(&self) -> Result<ImpactResult> {
+        self.run_observed(&mut |_| Ok(()))
+    }
+
+    /// Runs the impact like [`HeadOn::run`], calling `observe(t)` (t in s since first touch)
+    /// every [`OBSERVE_EVERY`] steps; an error from `observe` (an interrupt) stops the run
+    /// and is returned.
+    pub fn run_observed(&self, observe: &mut dyn FnMut(f64) -> Result<()>) -> Result<ImpactResult> {
         let start = Instant::now();
         if !(self.speed.is_finite() && self.speed > 0.0) {
             return Err(Error::invalid("speed", self.speed, "> 0 m/s, finite"));
@@ -286,21 +318,29 @@ impl HeadOn {
             Target::MirrorBall => (2.0, 2.0),
             _ => (1.0, 1.0),
         };
-        // Approach δ (m) and approach speed (m/s) of the centres of mass.
-        let approach = |s: &SectionSolver| -> (f64, f64) {
+        let mirror = if matches!(self.target, Target::MirrorBall) {
+            -1.0
+        } else {
+            0.0
+        };
+        // Approach δ (m), approach speed (m/s) and the two axial velocities (m/s) of the
+        // centres of mass.
+        let approach = |s: &SectionSolver| -> (f64, f64, [f64; 2]) {
             let z1 = s.axial_centre(0..n1);
             let (p1, m1) = s.axial_momentum(0..n1);
             if two {
                 let z2 = s.axial_centre(n1..n);
                 let (p2, m2) = s.axial_momentum(n1..n);
-                (z1 - z2, p1 / m1 - p2 / m2)
+                (z1 - z2, p1 / m1 - p2 / m2, [p1 / m1, p2 / m2])
             } else {
-                (pair * z1, pair * p1 / m1)
+                (pair * z1, pair * p1 / m1, [p1 / m1, mirror * p1 / m1])
             }
         };
-        let hold = self.hold_fraction * duration;
-        let interval = duration / self.history_rows.max(2) as f64;
-        let (d0, u0) = approach(&solver);
+        let hold = self.hold_time.unwrap_or(self.hold_fraction * duration);
+        let interval = self
+            .history_interval
+            .unwrap_or(duration / self.history_rows.max(2) as f64);
+        let (d0, u0, _) = approach(&solver);
         let e0 = solver.energy();
         let dt0 = solver.dt();
         let mut history = Vec::new();
@@ -310,14 +350,17 @@ impl HeadOn {
         let mut apart_since: Option<f64> = None;
         let mut max_pen: f64 = 0.0;
         let mut delta_max: f64 = 0.0;
-        let t_cap = 30.0 * duration;
+        let t_cap = self.end_time.unwrap_or(30.0 * duration);
         let stop_reason;
         loop {
             let t = solver.time();
+            if solver.steps() % OBSERVE_EVERY == 0 {
+                observe(t)?;
+            }
             let c = solver.contact_states()[0];
             let en = solver.energy();
             drift = drift.max((en.total - e0.total).abs() / e0.total);
-            let (d, u) = approach(&solver);
+            let (d, u, v12) = approach(&solver);
             let delta = d - d0;
             delta_max = delta_max.max(delta);
             max_pen = max_pen.max(c.max_penetration);
@@ -330,6 +373,8 @@ impl HeadOn {
                     delta,
                     normal_force: c.normal_force,
                     v_cm: u,
+                    v1: v12[0],
+                    v2: v12[1],
                     kinetic: scale * en.kinetic,
                     elastic: scale * (en.internal - en.plastic),
                     plastic: scale * en.plastic,
@@ -346,7 +391,12 @@ impl HeadOn {
                 history.push(row);
                 next_row = t + interval;
             }
-            if !pulse.is_empty() && u < 0.0 && c.normal_force == 0.0 {
+            if let Some(end) = self.end_time {
+                if t >= end {
+                    stop_reason = format!("end time {end:.3e} s reached");
+                    break;
+                }
+            } else if !pulse.is_empty() && u < 0.0 && c.normal_force == 0.0 {
                 let since = *apart_since.get_or_insert(t);
                 if t - since >= hold {
                     stop_reason = format!("separated: contact force zero for {hold:.3e} s");
@@ -355,20 +405,28 @@ impl HeadOn {
             } else {
                 apart_since = None;
             }
-            if t > t_cap {
+            if self.end_time.is_none() && t > t_cap {
                 return Err(Error::Numerical(format!(
                     "the ball had not separated after {t:.3e} s (30 Hertz durations)"
                 )));
             }
+            if solver.steps() >= self.max_steps {
+                return Err(Error::Numerical(format!(
+                    "the balls had not separated after solver.max_steps = {} steps (t = {t:.6e} s): raise solver.max_steps or set solver.end_time",
+                    self.max_steps
+                )));
+            }
             solver.step()?;
         }
-        let (_, u_end) = approach(&solver);
+        let (_, u_end, v_end) = approach(&solver);
         let contact_duration = pulse_duration(&pulse).unwrap_or_else(|| {
             pulse.last().map_or(0.0, |l| l.0) - pulse.first().map_or(0.0, |f| f.0)
         });
         let en = solver.energy();
         Ok(ImpactResult {
             e: -u_end / u0,
+            v1_after: v_end[0],
+            v2_after: v_end[1],
             delta_max,
             contact_duration,
             peak_force: pulse.iter().map(|p| p.1).fold(0.0, f64::max),
