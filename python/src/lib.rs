@@ -15,7 +15,7 @@ use twoball::scene::{Override, Scene, DEFAULT_SCENE};
 use twoball::study::interrupt::{self, CancelToken};
 use twoball::study::progress::{self, Hook};
 use twoball::study::simulate::{RunOptions, HISTORY_HEADER};
-use twoball::study::single::{run_scene, write_outputs};
+use twoball::study::single::{run_scene_default, write_outputs};
 use twoball::Error;
 
 /// How often the waiting Python thread checks for Ctrl-C and progress.
@@ -157,7 +157,7 @@ fn run(
         ..RunOptions::default()
     };
     wait_job(py, progress, move || {
-        let report = run_scene(&scene, &opts)?;
+        let report = run_scene_default(&scene, &opts)?;
         if let Some(dir) = &out {
             write_outputs(&report, dir)?;
         }

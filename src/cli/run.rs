@@ -6,7 +6,9 @@ use crate::error::{Error, Result};
 use crate::scene::{Override, Scene, DEFAULT_SCENE};
 use crate::study::error_estimate::{LadderPlan, DEFAULT_MAX_REFINEMENTS};
 use crate::study::simulate::RunOptions;
-use crate::study::single::{run_scene, run_scene_with_estimate, side_by_side, write_outputs};
+use crate::study::single::{
+    default_plan, run_scene, run_scene_with_estimate, side_by_side, write_outputs,
+};
 use clap::Args;
 use std::path::{Path, PathBuf};
 use std::time::SystemTime;
@@ -39,11 +41,18 @@ pub struct RunArgs {
     /// With --tolerance: the most refinements beyond the scene's own mesh.
     #[arg(long, default_value_t = DEFAULT_MAX_REFINEMENTS, requires = "tolerance")]
     pub max_refinements: u32,
+    /// Run the scene's mesh alone: no error estimate, not even the one a head-on run on the
+    /// meridian section gets by default.
+    #[arg(long, conflicts_with_all = ["error_estimate", "tolerance"])]
+    pub no_error_estimate: bool,
 }
 
-/// The ladder `--error-estimate`, `--observed-order` and `--tolerance` ask for (None: a
-/// single run).
-fn ladder_plan(a: &RunArgs) -> Result<Option<LadderPlan>> {
+/// The ladder `--error-estimate`, `--observed-order` and `--tolerance` ask for, else the
+/// scene's default ([`default_plan`]; None: a single run).
+fn ladder_plan(a: &RunArgs, scene: &Scene) -> Result<Option<LadderPlan>> {
+    if a.no_error_estimate {
+        return Ok(None);
+    }
     if let Some(t) = &a.tolerance {
         return Ok(Some(LadderPlan::Tolerance {
             tolerance: parse_tolerance(t)?,
@@ -51,7 +60,7 @@ fn ladder_plan(a: &RunArgs) -> Result<Option<LadderPlan>> {
         }));
     }
     Ok(match (a.error_estimate, a.observed_order) {
-        (false, _) => None,
+        (false, _) => default_plan(scene)?,
         (true, false) => Some(LadderPlan::TwoLevels),
         (true, true) => Some(LadderPlan::ThreeLevels),
     })
@@ -99,7 +108,7 @@ pub fn run(a: RunArgs) -> Result<()> {
         eprintln!("note: output.vtu_snapshots needs --out DIR; no snapshots written");
     }
     let started = SystemTime::now();
-    let plan = ladder_plan(&a)?;
+    let plan = ladder_plan(&a, &scene)?;
     let report = match plan.map_or_else(
         || run_scene(&scene, &opts),
         |p| run_scene_with_estimate(&scene, &opts, p),

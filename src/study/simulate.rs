@@ -153,17 +153,19 @@ pub fn choose_reduction(scene: &Scene, touch: &Touch) -> Result<(Reduction, Stri
         Symmetry::Auto if ok.head_on && scene.reduction.start_at_touch == Switch::Auto => {
             Ok(axisymmetric())
         }
-        Symmetry::Auto if !scene.identical_balls() => Ok((
+        Symmetry::Auto | Symmetry::Auto3d if !scene.identical_balls() => Ok((
             Reduction::Full,
             "the balls differ (material, diameter or mesh)".into(),
         )),
-        Symmetry::Auto if !ok.identical => Ok((
+        Symmetry::Auto | Symmetry::Auto3d if !ok.identical => Ok((
             Reduction::Full,
             "meshes read from files are used whole".into(),
         )),
-        Symmetry::Auto if ok.head_on => Ok(quarter()),
-        Symmetry::Auto if ok.planar => Ok(half()),
-        Symmetry::Auto => Ok((Reduction::Full, "motion out of one plane".into())),
+        Symmetry::Auto | Symmetry::Auto3d if ok.head_on => Ok(quarter()),
+        Symmetry::Auto | Symmetry::Auto3d if ok.planar => Ok(half()),
+        Symmetry::Auto | Symmetry::Auto3d => {
+            Ok((Reduction::Full, "motion out of one plane".into()))
+        }
     }
 }
 

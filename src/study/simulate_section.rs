@@ -11,6 +11,7 @@ use super::progress::{Bar, Mode};
 use super::simulate::{
     HistoryRow, Kinematics, Reduction, RunOptions, Savings, Simulation, DEFAULT_HOLD_FRACTION,
 };
+use super::snapshots::Snapshots;
 use crate::error::{Error, Result};
 use crate::fe::axisym::element::QuadFormulation;
 use crate::fe::axisym::impact::{HeadOn, ImpactRow, OtherBall, Target};
@@ -152,11 +153,21 @@ pub(super) fn simulate_section(run: SectionRun<'_>, opts: &RunOptions) -> Result
     );
     let expected_end = h.end_time.unwrap_or(duration + hold);
     let mut bar = Bar::new(Mode::detect(opts.progress), 0.0, expected_end);
-    let result = h.run_observed(&mut |t| {
+    let mut snapshots = match (&opts.snapshot_dir, scene.output.vtu_snapshots) {
+        (Some(dir), n) if n > 0 => {
+            Some(Snapshots::new(dir.clone(), n, 0.0, duration).ascii(opts.vtu_ascii))
+        }
+        _ => None,
+    };
+    let result = h.run_observed(&mut |solver, last| {
+        let t = solver.time();
         if super::interrupt::requested() {
             return Err(Error::Interrupted(format!(
                 "at t = {t:.3e} s of about {expected_end:.3e} s"
             )));
+        }
+        if let Some(s) = &mut snapshots {
+            s.maybe_write_section(solver, last)?;
         }
         bar.update(t);
         Ok(())

@@ -5,7 +5,9 @@ use super::error_estimate::LevelOutcome;
 use super::error_estimate::{mesh_sizes, run_ladder, scene_at_level, ErrorEstimate, LadderPlan};
 use super::number::sci;
 use super::outcome::{analytic_outcome, relative_difference, Outcome};
-use super::simulate::{simulate, RunOptions, Simulation, HISTORY_HEADER};
+use super::simulate::{
+    choose_reduction, simulate, Reduction, RunOptions, Simulation, HISTORY_HEADER,
+};
 use super::warnings::{analytic_warnings, fe_warnings, FeFigures, Warning};
 use crate::atomic::{ensure_dir, write_atomic};
 use crate::error::{Error, Result};
@@ -152,6 +154,31 @@ pub fn run_scene(scene: &Scene, opts: &RunOptions) -> Result<RunReport> {
         error_estimate: None,
         scene: scene.clone(),
     })
+}
+
+/// The ladder a run of `scene` gets by default: the axisymmetric model's runs are cheap, so a
+/// head-on run also runs the next-coarser mesh ([`LadderPlan::TwoLevels`]) and reports its
+/// error bar; a 3D run reports one only when asked (it would double its cost). None for a
+/// scene without impact, and for a mesh with no coarser level (bulk size above a quarter
+/// of the diameter).
+///
+/// Errors: as [`approach`] and [`choose_reduction`].
+pub fn default_plan(scene: &Scene) -> Result<Option<LadderPlan>> {
+    let Approach::Impact(touch) = approach(scene)? else {
+        return Ok(None);
+    };
+    let (reduction, _) = choose_reduction(scene, &touch)?;
+    let coarser = scene_at_level(scene, -1).is_ok();
+    Ok((reduction == Reduction::Axisymmetric && coarser).then_some(LadderPlan::TwoLevels))
+}
+
+/// Runs `scene` with its default ladder ([`default_plan`]): with an error estimate for a
+/// head-on scene on the meridian section, a single run otherwise.
+pub fn run_scene_default(scene: &Scene, opts: &RunOptions) -> Result<RunReport> {
+    match default_plan(scene)? {
+        Some(plan) => run_scene_with_estimate(scene, opts, plan),
+        None => run_scene(scene, opts),
+    }
 }
 
 /// Runs `scene` on the mesh ladder `plan` ([`run_ladder`], each level a full run of

@@ -10,10 +10,14 @@
 //! and the collection lists the same time per file. Files are compressed binary unless ASCII
 //! is asked for.
 
+use crate::atomic::write_atomic;
 use crate::error::Result;
+use crate::fe::axisym::section::SectionSolver;
 use crate::fe::{explicit::Solver, tensor::von_mises};
+use crate::mesh::meridian::MeridianMesh;
+use crate::mesh::section_vtu::{to_vtu_bytes, SectionField};
 use crate::mesh::{vtu, Mesh};
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 /// The snapshot plan of one run and what has been written so far.
 #[derive(Debug)]
@@ -69,14 +73,32 @@ impl Snapshots {
     }
 
     fn write(&mut self, solver: &Solver, t0: f64) -> Result<()> {
+        self.write_with(solver.time() - t0, |path, time, format| {
+            write_state(path, solver, time, format)
+        })
+    }
+
+    /// Writes a snapshot of the meridian-section run `solver` if its clock (s since first
+    /// touch) has reached the next planned time, or always when `last` (the end of the run).
+    pub fn maybe_write_section(&mut self, solver: &SectionSolver, last: bool) -> Result<()> {
+        let k = self.written.len();
+        if last || (k < self.times.len() && solver.time() >= self.times[k]) {
+            self.write_with(solver.time(), |path, time, format| {
+                write_section_state(path, solver, time, format)
+            })?;
+        }
+        Ok(())
+    }
+
+    /// The next file, written by `write(path, time, format)`, and the collection after it.
+    fn write_with(
+        &mut self,
+        time: f64,
+        write: impl FnOnce(&Path, f64, vtu::VtuFormat) -> Result<()>,
+    ) -> Result<()> {
         let name = format!("snapshot_{:04}.vtu", self.written.len());
-        write_state(
-            &self.dir.join(&name),
-            solver,
-            solver.time() - t0,
-            self.format,
-        )?;
-        self.written.push((solver.time() - t0, name));
+        write(&self.dir.join(&name), time, self.format)?;
+        self.written.push((time, name));
         vtu::write_pvd(self.dir.join("snapshots.pvd"), &self.written)
     }
 
@@ -137,4 +159,53 @@ pub fn write_state(
         Some(time),
         format,
     )
+}
+
+/// Writes the meridian-section run's current state as one `.vtu` file, the section drawn in
+/// the plane with x = r and y = z ([`crate::mesh::section_vtu`]): deformed coordinates (m);
+/// point fields `displacement` (m) and `velocity` (m/s), components (r, z, 0); cell fields
+/// `stress` (Pa; xx = rr, yy = zz, zz = θθ hoop, xy = rz), `von_mises` (Pa),
+/// `plastic_strain` (-) of each quad's first integration point; `time` (s since first touch)
+/// as `TimeValue`; in `format`.
+///
+/// Errors: a non-finite value anywhere (nothing is written), I/O errors naming the path.
+pub fn write_section_state(
+    path: &Path,
+    solver: &SectionSolver,
+    time: f64,
+    format: vtu::VtuFormat,
+) -> Result<()> {
+    let x = solver.positions();
+    let section = MeridianMesh {
+        nodes: x.to_vec(),
+        quads: solver.quads().to_vec(),
+        ..Default::default()
+    };
+    let displacement: Vec<[f64; 2]> = x
+        .iter()
+        .zip(solver.initial_positions())
+        .map(|(a, b)| [a[0] - b[0], a[1] - b[1]])
+        .collect();
+    let points = solver.states().iter().map(|q| q.points[0]);
+    let stress: Vec<[f64; 4]> = points
+        .clone()
+        .map(|p| [p.stress[0], p.stress[1], p.stress[2], p.stress[3]])
+        .collect();
+    let mises: Vec<f64> = points.clone().map(|p| von_mises(&p.stress)).collect();
+    let eps_p: Vec<f64> = points.map(|p| p.eps_p).collect();
+    let bytes = to_vtu_bytes(
+        &section,
+        &[
+            SectionField::Vectors("displacement", &displacement),
+            SectionField::Vectors("velocity", solver.velocities()),
+        ],
+        &[
+            SectionField::Tensors("stress", &stress),
+            SectionField::Scalars("von_mises", &mises),
+            SectionField::Scalars("plastic_strain", &eps_p),
+        ],
+        Some(time),
+        format,
+    )?;
+    write_atomic(path, &bytes)
 }

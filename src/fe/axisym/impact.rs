@@ -6,7 +6,7 @@
 //! the contact duration, the peak force, the energy terms, the energy error and history rows.
 
 use super::element::QuadFormulation;
-use super::plane::{RigidPlane, Side};
+use super::plane::{ring_areas_and_thickness, RigidPlane, Side};
 use super::section::{SectionContact, SectionModel, SectionSolver};
 use super::segment::{Boundary, SegmentPair};
 use crate::error::{Error, Result};
@@ -63,7 +63,8 @@ pub struct HeadOn {
     pub target: Target,
     /// Element formulation.
     pub formulation: QuadFormulation,
-    /// Penalty factor FKN (k = FKN E A / h).
+    /// Penalty factor FKN of the pair contact (k = FKN E A / h); the mirror ball's symmetry
+    /// plane carries 2 FKN, as the 3D quarter model's plane does.
     pub fkn: f64,
     /// Hold time of the separation rule as a fraction of the expected (Hertz) duration.
     pub hold_fraction: f64,
@@ -222,13 +223,17 @@ impl HeadOn {
 
     /// Runs the impact to separation (or to `end_time`).
     pub fn run(&self) -> Result<ImpactResult> {
-        self.run_observed(&mut |_| Ok(()))
+        self.run_observed(&mut |_, _| Ok(()))
     }
 
-    /// Runs the impact like [`HeadOn::run`], calling `observe(t)` (t in s since first touch)
-    /// every [`OBSERVE_EVERY`] steps; an error from `observe` (an interrupt) stops the run
-    /// and is returned.
-    pub fn run_observed(&self, observe: &mut dyn FnMut(f64) -> Result<()>) -> Result<ImpactResult> {
+    /// Runs the impact like [`HeadOn::run`], calling `observe(solver, last)` every
+    /// [`OBSERVE_EVERY`] steps with `last` false (the solver's clock is the time since first
+    /// touch, s) and once at the end with `last` true; an error from `observe` (an interrupt,
+    /// a failed snapshot) stops the run and is returned.
+    pub fn run_observed(
+        &self,
+        observe: &mut dyn FnMut(&SectionSolver, bool) -> Result<()>,
+    ) -> Result<ImpactResult> {
         let start = Instant::now();
         if !(self.speed.is_finite() && self.speed > 0.0) {
             return Err(Error::invalid("speed", self.speed, "> 0 m/s, finite"));
@@ -252,17 +257,42 @@ impl HeadOn {
             m.segment_sets.get("contact").unwrap_or(&m.boundary).clone()
         };
         let seg1 = contact_of(&self.mesh);
+        // The penetration limit of the 3D contacts: half the thickness of the thinnest
+        // element under a contact node, a quarter on the mirror plane (which sees half the
+        // pair's overlap).
+        let thinnest = |m: &MeridianMesh, seg: &[[u32; 2]]| -> Result<f64> {
+            Ok(ring_areas_and_thickness(m, seg)?
+                .iter()
+                .map(|t| t.2)
+                .fold(f64::INFINITY, f64::min))
+        };
+        let mut thickness = thinnest(&self.mesh, &seg1)?;
+        if let Target::Ball(o) = &self.target {
+            thickness = thickness.min(thinnest(&o.mesh, contact_of(&o.mesh).as_slice())?);
+        }
+        let limit_fraction = match self.target {
+            Target::MirrorBall => 0.25,
+            _ => 0.5,
+        };
+        let penetration_limit = limit_fraction * thickness;
         let (model, contact): (SectionModel, Box<dyn SectionContact>) = match &self.target {
             Target::MirrorBall | Target::RigidWall => {
                 let mut model =
                     SectionModel::new(self.mesh.nodes.clone(), self.mesh.quads.clone(), mat);
                 model.velocity = vec![[0.0, self.speed]; n1];
+                // The mirror plane stands for the two-pass pair contact with the mirror ball:
+                // the pair's gap is twice the plane's, so the plane carries twice the pair's
+                // factor (docs/design.md, the quarter model's penalty); a wall carries it once.
+                let fkn = match self.target {
+                    Target::MirrorBall => 2.0 * self.fkn,
+                    _ => self.fkn,
+                };
                 let plane = RigidPlane::new(
                     &self.mesh,
                     &seg1,
                     radius,
                     Side::Below,
-                    self.fkn,
+                    fkn,
                     self.material.youngs,
                 )?;
                 (model, Box::new(plane) as Box<dyn SectionContact>)
@@ -355,7 +385,7 @@ impl HeadOn {
         loop {
             let t = solver.time();
             if solver.steps() % OBSERVE_EVERY == 0 {
-                observe(t)?;
+                observe(&solver, false)?;
             }
             let c = solver.contact_states()[0];
             let en = solver.energy();
@@ -364,6 +394,14 @@ impl HeadOn {
             let delta = d - d0;
             delta_max = delta_max.max(delta);
             max_pen = max_pen.max(c.max_penetration);
+            if c.max_penetration > penetration_limit {
+                return Err(Error::Numerical(format!(
+                    "contact: a node penetrates {:.3e} m at t = {t:.6e} s, more than \
+                     {limit_fraction} of the thinnest contact element's thickness {thickness:.3e} m; \
+                     raise the penalty factor or lower the time step",
+                    c.max_penetration
+                )));
+            }
             if c.normal_force > 0.0 {
                 pulse.push((t, c.normal_force));
             }
@@ -418,6 +456,7 @@ impl HeadOn {
             }
             solver.step()?;
         }
+        observe(&solver, true)?;
         let (_, u_end, v_end) = approach(&solver);
         let contact_duration = pulse_duration(&pulse).unwrap_or_else(|| {
             pulse.last().map_or(0.0, |l| l.0) - pulse.first().map_or(0.0, |f| f.0)

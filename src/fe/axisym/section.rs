@@ -399,6 +399,14 @@ impl SectionSolver {
     pub fn positions(&self) -> &[[f64; 2]] {
         &self.x
     }
+    /// Coordinates at t = 0 (r, z), m.
+    pub fn initial_positions(&self) -> &[[f64; 2]] {
+        &self.model.nodes
+    }
+    /// The quads (counter-clockwise node indices).
+    pub fn quads(&self) -> &[[u32; 4]] {
+        &self.model.quads
+    }
     /// Full-step velocities v^n (v_r, v_z), m/s.
     pub fn velocities(&self) -> &[[f64; 2]] {
         &self.v

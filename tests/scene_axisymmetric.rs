@@ -1,0 +1,279 @@
+//! Head-on scenes run on the meridian section (issue 26 item 4): the automatic choice and its
+//! reason, forced models and their errors, the error bar a head-on run reports by default,
+//! the results in the scene's frame (momentum, Galilean invariance, elastic exchange), the
+//! same results.json keys as the 3D models, and the section's snapshot series.
+
+use std::path::Path;
+use std::process::Command;
+use twoball::scene::{approach, Approach, Override, Scene, Touch, DEFAULT_SCENE};
+use twoball::study::outcome::ball_inertia;
+use twoball::study::simulate::{choose_reduction, Reduction, RunOptions};
+use twoball::study::single::{run_scene, run_scene_default};
+
+fn scene(sets: &[&str]) -> Scene {
+    let sets: Vec<Override> = sets.iter().map(|s| Override::parse(s).unwrap()).collect();
+    Scene::from_toml(DEFAULT_SCENE, Path::new("."), &sets).unwrap()
+}
+
+fn touch(s: &Scene) -> Touch {
+    match approach(s).unwrap() {
+        Approach::Impact(t) => t,
+        Approach::NoImpact { reason } => panic!("no impact: {reason}"),
+    }
+}
+
+fn opts() -> RunOptions {
+    RunOptions {
+        history_rows: 100,
+        ..RunOptions::default()
+    }
+}
+
+/// A coarse section (bulk D/8, pole D/100) keeps the runs of this file short.
+const COARSE: [&str; 2] = [
+    "ball1.mesh={size=0.0025,pole_size=0.0002}",
+    "ball2.mesh={size=0.0025,pole_size=0.0002}",
+];
+
+fn with_coarse<'a>(sets: &[&'a str]) -> Vec<&'a str> {
+    COARSE.iter().copied().chain(sets.iter().copied()).collect()
+}
+
+#[test]
+fn head_on_scenes_choose_the_section_and_others_keep_their_3d_models() {
+    let pick = |sets: &[&str]| {
+        let s = scene(sets);
+        choose_reduction(&s, &touch(&s))
+    };
+    let (r, why) = pick(&[]).unwrap();
+    assert_eq!(r, Reduction::Axisymmetric);
+    assert!(
+        why.contains("head-on") && why.contains("symmetry plane"),
+        "{why}"
+    );
+    // Unequal balls head-on: both sections.
+    let (r, why) = pick(&["ball2.material=steel", "ball2.diameter=0.015"]).unwrap();
+    assert_eq!(r, Reduction::Axisymmetric);
+    assert!(why.contains("both balls' sections"), "{why}");
+    // A common tangential velocity is a Galilean shift: still head-on.
+    let common = ["ball1.velocity=[1,0.3,0]", "ball2.velocity=[-1,0.3,0]"];
+    assert_eq!(pick(&common).unwrap().0, Reduction::Axisymmetric);
+    // Oblique, spinning, or simulated free flight: the 3D models as before.
+    let oblique = ["ball1.velocity=[1,0.5,0]", "ball2.velocity=[-1,-0.5,0]"];
+    assert_eq!(pick(&oblique).unwrap().0, Reduction::Half);
+    assert_eq!(
+        pick(&["ball1.angular_velocity=[0,0,10]"]).unwrap().0,
+        Reduction::Half
+    );
+    assert_eq!(
+        pick(&["ball1.angular_velocity=[10,0,0]"]).unwrap().0,
+        Reduction::Full
+    );
+    assert_eq!(
+        pick(&["reduction.start_at_touch=\"off\""]).unwrap().0,
+        Reduction::Quarter
+    );
+    // Forced models.
+    let forced = |m: &str| format!("reduction.symmetry=\"{m}\"");
+    assert_eq!(pick(&[&forced("auto-3d")]).unwrap().0, Reduction::Quarter);
+    assert_eq!(pick(&[&forced("quarter")]).unwrap().0, Reduction::Quarter);
+    assert_eq!(pick(&[&forced("half")]).unwrap().0, Reduction::Half);
+    assert_eq!(pick(&[&forced("off")]).unwrap().0, Reduction::Full);
+    for (sets, what) in [
+        (
+            vec![forced("axisymmetric"), oblique[0].into(), oblique[1].into()],
+            "axisymmetric",
+        ),
+        (
+            vec![forced("quarter"), "ball2.diameter=0.015".into()],
+            "quarter",
+        ),
+        (vec![forced("half"), "ball2.material=steel".into()], "half"),
+    ] {
+        let sets: Vec<&str> = sets.iter().map(String::as_str).collect();
+        let err = pick(&sets).unwrap_err().to_string();
+        assert!(
+            err.contains("reduction.symmetry") && err.contains(what) && !err.contains('\n'),
+            "{err}"
+        );
+    }
+}
+
+#[test]
+fn a_head_on_run_reports_its_error_bar_and_the_pair_symmetry() {
+    let s = scene(&COARSE);
+    let r = run_scene_default(&s, &opts()).unwrap();
+    assert_eq!(r.reduction, "axisymmetric");
+    let est = r
+        .error_estimate
+        .as_ref()
+        .expect("an error estimate by default");
+    let levels: Vec<i32> = est.meshes.iter().map(|m| m.level).collect();
+    assert_eq!(levels, [-1, 0]);
+    // The reported run is the scene's own mesh, the estimate's finest.
+    let e = r.e.unwrap();
+    assert_eq!(est.e.finest, e);
+    assert!(est.e.error > 0.0 && est.e.error.is_finite());
+    // Identical balls: equal and opposite velocities after, along x only, no spin.
+    assert!((r.v1_after[0] + r.v2_after[0]).abs() < 1e-12);
+    assert_eq!([r.v1_after[1], r.v1_after[2]], [0.0, 0.0]);
+    assert_eq!(r.w1_after, [0.0; 3]);
+    assert!((e - (r.v2_after[0] - r.v1_after[0]) / 2.0).abs() < 1e-12);
+    // A plastic impact of copper at ±1 m/s: e within 5 % of the converged 3D 0.3190 even on
+    // this coarse section (pole D/100), and the energy balance closed to its 1e-3 (the
+    // section's drift is 1.1e-3 on this pole, 1.5e-4 on the default D/200 one).
+    assert!((e / 0.3190 - 1.0).abs() < 0.05, "e = {e}");
+    assert!(r.energy_error < 2e-3, "{}", r.energy_error);
+    // The history is the whole system's, as in 3D: plastic work at the end equals the lost
+    // kinetic energy of the rigid-body motion within the energy error and vibration.
+    let sim = r.fe.as_ref().unwrap();
+    let last = sim.history.last().unwrap();
+    let m = ball_inertia(s.ball1.material.rho, s.ball1.diameter).0;
+    let lost = m * (1.0 - e * e);
+    assert!(
+        (last.plastic / lost - 1.0).abs() < 0.1,
+        "plastic {} J against lost {lost} J",
+        last.plastic
+    );
+}
+
+#[test]
+fn unequal_elastic_balls_exchange_momentum_as_rigid_bodies_do() {
+    // Steel 15 mm at −0.5 m/s against copper 20 mm at +1 m/s, elastic (yield raised), and a
+    // common tangential velocity of 0.2 m/s: e near 1 and the after-impact velocities of the
+    // elastic exchange, in the scene frame.
+    let sets = with_coarse(&[
+        "ball2.material=steel",
+        "ball2.diameter=0.015",
+        "ball2.mesh={size=0.0019,pole_size=0.00015}",
+        "ball1.material.yield=1e11",
+        "ball2.material.yield=1e11",
+        "ball1.velocity=[1,0.2,0]",
+        "ball2.velocity=[-0.5,0.2,0]",
+    ]);
+    let s = scene(&sets);
+    let r = run_scene(&s, &opts()).unwrap();
+    assert_eq!(r.reduction, "axisymmetric");
+    let e = r.e.unwrap();
+    assert!(e > 0.99 && e < 1.001, "e = {e}");
+    let m1 = ball_inertia(s.ball1.material.rho, s.ball1.diameter).0;
+    let m2 = ball_inertia(s.ball2.material.rho, s.ball2.diameter).0;
+    let (v1, v2) = (1.0, -0.5);
+    let v1_after = ((m1 - e * m2) * v1 + (1.0 + e) * m2 * v2) / (m1 + m2);
+    let v2_after = ((m2 - e * m1) * v2 + (1.0 + e) * m1 * v1) / (m1 + m2);
+    assert!((r.v1_after[0] - v1_after).abs() < 2e-3, "{:?}", r.v1_after);
+    assert!((r.v2_after[0] - v2_after).abs() < 2e-3, "{:?}", r.v2_after);
+    assert_eq!(r.v1_after[1], 0.2);
+    assert_eq!(r.v2_after[1], 0.2);
+    assert!(r.energy_error < 1e-3, "{}", r.energy_error);
+}
+
+/// The keys of a JSON value, recursively, as dotted paths (array items by index 0 only).
+fn keys(v: &serde_json::Value, at: &str, out: &mut Vec<String>) {
+    match v {
+        serde_json::Value::Object(m) => {
+            for (k, x) in m {
+                let p = format!("{at}.{k}");
+                out.push(p.clone());
+                keys(x, &p, out);
+            }
+        }
+        serde_json::Value::Array(a) => {
+            if let Some(x) = a.first() {
+                keys(x, &format!("{at}[]"), out);
+            }
+        }
+        _ => {}
+    }
+}
+
+#[test]
+fn results_json_and_history_have_the_3d_models_keys() {
+    let dir = std::env::temp_dir().join(format!("twoball-axisym-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    let run = |name: &str, sets: &[&str]| {
+        let mut cmd = Command::new(env!("CARGO_BIN_EXE_twoball"));
+        cmd.args(["run", "--no-error-estimate", "--out"])
+            .arg(dir.join(name));
+        for s in sets {
+            cmd.args(["--set", s]);
+        }
+        let out = cmd.output().unwrap();
+        assert!(
+            out.status.success(),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        let json: serde_json::Value = serde_json::from_str(
+            &std::fs::read_to_string(dir.join(name).join("results.json")).unwrap(),
+        )
+        .unwrap();
+        let header = std::fs::read_to_string(dir.join(name).join("history.csv"))
+            .unwrap()
+            .lines()
+            .next()
+            .unwrap()
+            .to_string();
+        (json, header)
+    };
+    let coarse3d = [
+        "ball1.mesh={size=0.004,pole_size=0.002}",
+        "ball2.mesh={size=0.004,pole_size=0.002}",
+    ];
+    let (a, ha) = run("axisym", &COARSE);
+    let mut q_sets = coarse3d.to_vec();
+    q_sets.push("reduction.symmetry=\"quarter\"");
+    let (q, hq) = run("quarter", &q_sets);
+    assert_eq!(a["reduction"], "axisymmetric");
+    assert_eq!(q["reduction"], "quarter");
+    let (mut ka, mut kq) = (Vec::new(), Vec::new());
+    keys(&a, "", &mut ka);
+    keys(&q, "", &mut kq);
+    // The subcycling report lists levels only when used (the 3D run of this mesh may not).
+    // Warnings are listed only when there are any.
+    let drop_levels = |k: &mut Vec<String>| {
+        k.retain(|p| !p.contains("initial_levels") && !p.starts_with(".warnings[]"))
+    };
+    drop_levels(&mut ka);
+    drop_levels(&mut kq);
+    assert_eq!(ka, kq);
+    assert_eq!(ha, hq);
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn section_runs_write_a_playable_snapshot_series() {
+    let dir = std::env::temp_dir().join(format!("twoball-axisym-vtu-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    let mut cmd = Command::new(env!("CARGO_BIN_EXE_twoball"));
+    cmd.args(["run", "--vtu-ascii", "--set", "output.vtu_snapshots=3"]);
+    for s in COARSE {
+        cmd.args(["--set", s]);
+    }
+    let out = cmd.arg("--out").arg(&dir).output().unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let pvd = std::fs::read_to_string(dir.join("snapshots.pvd")).unwrap();
+    let files: Vec<&str> = pvd
+        .lines()
+        .filter_map(|l| l.split("file=\"").nth(1))
+        .filter_map(|l| l.split('"').next())
+        .collect();
+    assert_eq!(files.len(), 3, "{pvd}");
+    let last = std::fs::read_to_string(dir.join(files[2])).unwrap();
+    for field in [
+        "displacement",
+        "velocity",
+        "stress",
+        "von_mises",
+        "plastic_strain",
+    ] {
+        assert!(last.contains(&format!("Name=\"{field}\"")), "{field}");
+    }
+    // Quads (VTK type 9), and plastic strain somewhere at the end of a plastic impact.
+    assert!(last.contains("types") && last.contains(" 9"), "no quads");
+    let _ = std::fs::remove_dir_all(&dir);
+}
