@@ -16,6 +16,8 @@ use crate::fe::contact::penalty::{effective_mass, normal_force, stable_step};
 struct Side {
     segments: Vec<[usize; 2]>,
     springs: Vec<(usize, f64)>,
+    /// Initial radius r of each spring's node, m.
+    radius: Vec<f64>,
 }
 
 /// Two-pass node-to-segment contact of two boundaries given in global node numbering.
@@ -54,12 +56,48 @@ impl SegmentPair {
                     .iter()
                     .map(|&(i, area, h)| (i + s.offset, 0.5 * fkn * youngs * area / h))
                     .collect(),
+                radius: nh.iter().map(|&(i, _, _)| s.mesh.nodes[i][0]).collect(),
             })
         };
         Ok(SegmentPair {
             sides: [side(&a)?, side(&b)?],
         })
     }
+}
+
+/// The smallest mass (kg) of the master nodes a slave node at radius `r` (m) meets: those
+/// of the master segments whose radial span, widened by its own length on each side, holds
+/// `r` (head-on, the two contact surfaces face each other at equal r near the axis; the
+/// widening covers the sliding of the surfaces over each other), or else the master node
+/// nearest in r.
+fn facing_mass(master: &Side, r: f64, mass: &[f64]) -> f64 {
+    let r_of = |node: usize| {
+        master
+            .springs
+            .iter()
+            .position(|&(j, _)| j == node)
+            .map(|p| master.radius[p])
+    };
+    let mut m = f64::INFINITY;
+    for s in &master.segments {
+        let (Some(ra), Some(rb)) = (r_of(s[0]), r_of(s[1])) else {
+            continue;
+        };
+        let (lo, hi) = (ra.min(rb), ra.max(rb));
+        let l = hi - lo;
+        if r >= lo - l && r <= hi + l {
+            m = m.min(mass[s[0]]).min(mass[s[1]]);
+        }
+    }
+    if m.is_finite() {
+        return m;
+    }
+    master
+        .springs
+        .iter()
+        .zip(&master.radius)
+        .min_by(|a, b| (a.1 - r).abs().total_cmp(&(b.1 - r).abs()))
+        .map_or(f64::INFINITY, |(&(j, _), _)| mass[j])
 }
 
 /// Where a node projects onto a segment.
@@ -142,14 +180,11 @@ impl SectionContact for SegmentPair {
     fn stable_step(&self, mass: &[f64], omega: &[f64]) -> f64 {
         let mut dt = f64::INFINITY;
         for pass in 0..2 {
-            let m_master = self.sides[1 - pass]
-                .springs
-                .iter()
-                .map(|&(j, _)| mass[j])
-                .fold(f64::INFINITY, f64::min);
-            for &(i, k) in &self.sides[pass].springs {
-                // Both passes can act on a node at once: the full stiffness 2k.
-                let m = effective_mass(mass[i], m_master);
+            let (slave, master) = (&self.sides[pass], &self.sides[1 - pass]);
+            for (&(i, k), &r) in slave.springs.iter().zip(&slave.radius) {
+                // Both passes can act on a node at once: the full stiffness 2k, on the node
+                // and the master nodes it meets.
+                let m = effective_mass(mass[i], facing_mass(master, r, mass));
                 dt = dt.min(stable_step(2.0 * k, m, omega[i]));
             }
         }
