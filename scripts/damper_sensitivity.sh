@@ -21,12 +21,10 @@ ROWS=(
   "baseline|"
   "hertz-damped-e0.33|--law hertz-damped --param e=0.3292"
   "thornton|--law thornton"
-  "hertz-elastic|--law hertz"
   "frictionless|--mu-ball 0 --mu-wall 0"
   "mu-0.3|--mu-ball 0.3 --mu-wall 0.3"
-  "rigid-coulomb|--tangential coulomb"
+  "box-101.1mm|--box 0.1011,0.039,0.035"
   "box-105mm|--box 0.105,0.039,0.035"
-  "box-taller-50mm|--box 0.101,0.039,0.050"
   "mass-2.68kg|--frame-mass 2.68"
   "glass-16mm|--diameter glass=0.016"
 )
