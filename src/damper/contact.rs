@@ -70,6 +70,14 @@ pub struct StepWork {
     pub tangential: f64,
 }
 
+impl StepWork {
+    /// Adds `other` to this work.
+    pub fn add(&mut self, other: StepWork) {
+        self.normal += other.normal;
+        self.tangential += other.tangential;
+    }
+}
+
 impl Contact {
     /// A new contact at first touch with approach rate `rate` (m/s).
     pub fn touch(ball: usize, partner: Partner, rate: f64) -> Contact {

@@ -17,6 +17,7 @@ pub mod decay;
 pub mod energy;
 pub mod file;
 pub mod frame;
+pub mod neighbours;
 pub mod pairs;
 pub mod run;
 pub mod scene;

@@ -66,7 +66,8 @@ pub fn run_case(case: &DamperCase, registry: &Registry) -> Result<CaseOutcome> {
     Ok(CaseOutcome {
         name: case.name.clone(),
         balls: bodies.len(),
-        ball_mass: bodies.iter().map(|b| b.mass()).sum(),
+        // 0.0 + : an empty sum of f64 is −0.0, printed "-0".
+        ball_mass: 0.0 + bodies.iter().map(|b| b.mass()).sum::<f64>(),
         frame_mass: case.scene.frame.mass,
         decay,
         window: case.window,

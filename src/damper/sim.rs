@@ -1,10 +1,10 @@
 //! The damper in motion: the state of the frame and the balls, one velocity-Verlet step, the
 //! contact forces of a step and the energy ledger.
 
-use super::cells::candidate_pairs;
 use super::contact::{Contact, Kinematics, Partner, StepWork};
 use super::energy::Ledger;
 use super::frame::Frame;
+use super::neighbours::NeighbourList;
 use super::pairs::{PairLaws, PairTable};
 use super::scene::DamperScene;
 use super::timestep::time_step;
@@ -15,6 +15,9 @@ use std::f64::consts::PI;
 
 /// Smallest characteristic impact speed the step is sized for, m/s.
 const MIN_SPEED: f64 = 0.1;
+
+/// Skin of the neighbour list as a fraction of the largest ball diameter.
+const SKIN: f64 = 0.05;
 
 /// One recorded instant.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -42,7 +45,7 @@ pub struct Simulation {
     gravity: f64,
     table: PairTable,
     dt: f64,
-    cell: f64,
+    neighbours: NeighbourList,
     radius: Vec<f64>,
     mass: Vec<f64>,
     inertia: Vec<f64>,
@@ -65,6 +68,11 @@ pub struct Simulation {
     damper_force: f64,
     external_force: f64,
     contacts: Vec<Contact>,
+    spare: Vec<Contact>,
+    touching: Vec<(usize, Partner, Kinematics)>,
+    pred_v: Vec<Vector3<f64>>,
+    pred_w: Vec<Vector3<f64>>,
+    pred_frame: f64,
     work_normal: f64,
     work_tangential: f64,
     structural: f64,
@@ -72,9 +80,6 @@ pub struct Simulation {
     /// Steps taken.
     pub steps: u64,
 }
-
-/// Predicted ball velocities, spins and frame velocity.
-type Predicted = (Vec<Vector3<f64>>, Vec<Vector3<f64>>, f64);
 
 fn cross(a: Vector3<f64>, b: Vector3<f64>) -> Vector3<f64> {
     a.cross(&b)
@@ -103,13 +108,14 @@ impl Simulation {
         );
         let offset = Vector3::new(scene.frame.release, 0.0, 0.0);
         let n = scene.balls.len();
+        let diameter = scene.balls.iter().map(|b| b.diameter).fold(0.0, f64::max);
         let mut sim = Simulation {
             frame,
             size,
             gravity: scene.gravity,
             table,
             dt,
-            cell: scene.balls.iter().map(|b| b.diameter).fold(0.0, f64::max),
+            neighbours: NeighbourList::new(SKIN * diameter, diameter),
             radius: bodies.iter().map(|b| b.radius()).collect(),
             mass: bodies.iter().map(|b| b.mass()).collect(),
             inertia: bodies.iter().map(|b| b.moment_of_inertia()).collect(),
@@ -130,6 +136,11 @@ impl Simulation {
             damper_force: 0.0,
             external_force: 0.0,
             contacts: Vec::new(),
+            spare: Vec::new(),
+            touching: Vec::new(),
+            pred_v: vec![Vector3::zeros(); n],
+            pred_w: vec![Vector3::zeros(); n],
+            pred_frame: 0.0,
             work_normal: 0.0,
             work_tangential: 0.0,
             structural: 0.0,
@@ -219,62 +230,65 @@ impl Simulation {
         self.frame_v += self.frame_force * h / self.frame.mass;
     }
 
-    /// Velocities predicted to the end of the step from the mid-step ones and the last
-    /// accelerations: (v, ω) of every ball and the frame's velocity.
-    fn predicted(&self, h: f64) -> (Vec<Vector3<f64>>, Vec<Vector3<f64>>, f64) {
-        let v = (0..self.mass.len())
-            .map(|i| self.velocity[i] + self.force[i] * (h / self.mass[i]))
-            .collect();
-        let w = (0..self.mass.len())
-            .map(|i| self.spin[i] + self.torque[i] * (h / self.inertia[i]))
-            .collect();
-        (v, w, self.frame_v + self.frame_force * h / self.frame.mass)
+    /// Predicts the velocities to the end of the step from the mid-step ones and the last
+    /// accelerations (v, ω of every ball and the frame's velocity), `h` the half step (s).
+    fn predict(&mut self, h: f64) {
+        for i in 0..self.mass.len() {
+            self.pred_v[i] = self.velocity[i] + self.force[i] * (h / self.mass[i]);
+            self.pred_w[i] = self.spin[i] + self.torque[i] * (h / self.inertia[i]);
+        }
+        self.pred_frame = self.frame_v + self.frame_force * h / self.frame.mass;
     }
 
-    fn wall_kinematics(&self, i: usize, wall: usize, pred: &Predicted) -> Kinematics {
-        let p = self.position[i] - Vector3::new(self.frame_x, 0.0, 0.0);
+    /// Ball `i`'s kinematics against wall `wall` (0..6, see [`Partner::Wall`]) if it touches
+    /// it (δ > 0).
+    fn wall_kinematics(&self, i: usize, wall: usize) -> Option<Kinematics> {
         let axis = wall / 2;
         let high = wall % 2 == 1;
+        let p = self.position[i][axis] - if axis == 0 { self.frame_x } else { 0.0 };
+        let gap = if high { self.size[axis] - p } else { p };
+        let delta = self.radius[i] - gap;
+        if delta <= 0.0 {
+            return None;
+        }
         let mut normal = Vector3::zeros();
         normal[axis] = if high { 1.0 } else { -1.0 };
-        let gap = if high {
-            self.size[axis] - p[axis]
-        } else {
-            p[axis]
-        };
-        let delta = self.radius[i] - gap;
         // The contact point lies on the wall plane.
         let r = gap;
         let at = |v: &Vector3<f64>, w: &Vector3<f64>, frame: f64| {
             v + cross(*w, normal * r) - Vector3::new(frame, 0.0, 0.0)
         };
-        Kinematics {
+        Some(Kinematics {
             normal,
             lever: [r, 0.0],
             delta,
-            relative: at(&pred.0[i], &pred.1[i], pred.2),
+            relative: at(&self.pred_v[i], &self.pred_w[i], self.pred_frame),
             midstep: at(&self.velocity[i], &self.spin[i], self.frame_v),
-        }
+        })
     }
 
-    fn ball_kinematics(&self, i: usize, j: usize, pred: &Predicted) -> Kinematics {
+    /// Balls `i` and `j`'s kinematics if they touch (δ > 0).
+    fn ball_kinematics(&self, i: usize, j: usize) -> Option<Kinematics> {
         let d = self.position[j] - self.position[i];
         let dist = d.norm();
-        let normal = d / dist;
         let delta = self.radius[i] + self.radius[j] - dist;
+        if delta <= 0.0 {
+            return None;
+        }
+        let normal = d / dist;
         // The contact point is midway through the overlap: the levers add up to the distance,
         // so the friction torques conserve angular momentum.
         let (ri, rj) = (self.radius[i] - 0.5 * delta, self.radius[j] - 0.5 * delta);
         let at = |v: &[Vector3<f64>], w: &[Vector3<f64>]| {
             v[i] + cross(w[i], normal * ri) - v[j] - cross(w[j], normal * (-rj))
         };
-        Kinematics {
+        Some(Kinematics {
             normal,
             lever: [ri, rj],
             delta,
-            relative: at(&pred.0, &pred.1),
+            relative: at(&self.pred_v, &self.pred_w),
             midstep: at(&self.velocity, &self.spin),
-        }
+        })
     }
 
     fn laws(&self, c: &Contact) -> &PairLaws {
@@ -284,80 +298,88 @@ impl Simulation {
         }
     }
 
-    /// Forces and torques at the present positions and (half-step) velocities; advances every
-    /// contact's history by `dt` and books the work of the step.
-    fn forces(&mut self, dt: f64) {
-        let n = self.mass.len();
-        let pred: Predicted = self.predicted(0.5 * dt);
-        for i in 0..n {
-            self.force[i] = Vector3::new(0.0, 0.0, -self.gravity * self.mass[i]);
-            self.torque[i] = Vector3::zeros();
-        }
+    /// Fills `self.touching` with every touching (ball, partner) and its kinematics, in the
+    /// order of the contacts' keys (ball, then partner: balls ascending, then walls).
+    fn find_touching(&mut self) {
+        let mut touching = std::mem::take(&mut self.touching);
+        touching.clear();
         let origin = Vector3::new(self.frame_x, 0.0, 0.0);
-        let pairs = if self.cell > 0.0 {
-            candidate_pairs(&self.position, origin, self.size, self.cell)
-        } else {
-            Vec::new()
-        };
-        let old = std::mem::take(&mut self.contacts);
-        let mut kept = vec![false; old.len()];
-        let mut open = Vec::with_capacity(old.len() + 4);
+        if self.mass.len() > 1 {
+            self.neighbours
+                .pairs(&self.position, &self.radius, origin, self.size);
+        }
+        let pairs = self.neighbours.list();
         let mut p = 0;
-        let mut box_force = 0.0;
-        let mut work = StepWork::default();
-        for i in 0..n {
-            let mut candidates: Vec<(Partner, Kinematics)> = Vec::new();
+        for i in 0..self.mass.len() {
             while p < pairs.len() && pairs[p].0 == i {
                 let j = pairs[p].1;
-                candidates.push((Partner::Ball(j), self.ball_kinematics(i, j, &pred)));
+                if let Some(k) = self.ball_kinematics(i, j) {
+                    touching.push((i, Partner::Ball(j), k));
+                }
                 p += 1;
             }
             for w in 0..6 {
-                candidates.push((Partner::Wall(w), self.wall_kinematics(i, w, &pred)));
-            }
-            for (partner, k) in candidates {
-                if k.delta <= 0.0 {
-                    continue;
+                if let Some(k) = self.wall_kinematics(i, w) {
+                    touching.push((i, Partner::Wall(w), k));
                 }
-                let found = old.binary_search_by(|c| (c.ball, c.partner).cmp(&(i, partner)));
-                let mut c = match found {
-                    Ok(at) => {
-                        kept[at] = true;
-                        old[at].clone()
-                    }
-                    Err(_) => Contact::touch(i, partner, k.relative.dot(&k.normal)),
-                };
-                let laws = match partner {
-                    Partner::Ball(j) => self.table.ball(i, j),
-                    Partner::Wall(_) => self.table.wall(i),
-                };
-                let w = c.update(laws, &k, dt);
-                work.normal += w.normal;
-                work.tangential += w.tangential;
-                let on_ball = -k.normal * c.force + c.friction;
-                self.force[i] += on_ball;
-                self.torque[i] += cross(k.normal * k.lever[0], c.friction);
-                match partner {
-                    Partner::Ball(j) => {
-                        self.force[j] -= on_ball;
-                        self.torque[j] += cross(k.normal * k.lever[1], c.friction);
-                    }
-                    Partner::Wall(_) => box_force -= on_ball.x,
-                }
-                open.push(c);
             }
         }
-        for (c, kept) in old.iter().zip(kept) {
-            if !kept {
-                let w = c.release_work();
-                work.normal += w.normal;
-                work.tangential += w.tangential;
-            }
+        self.touching = touching;
+    }
+
+    /// Forces and torques at the present positions and (half-step) velocities; advances every
+    /// contact's history by `dt` and books the work of the step. Allocates nothing once the
+    /// buffers have grown to the largest number of contacts.
+    fn forces(&mut self, dt: f64) {
+        self.predict(0.5 * dt);
+        for i in 0..self.mass.len() {
+            self.force[i] = Vector3::new(0.0, 0.0, -self.gravity * self.mass[i]);
+            self.torque[i] = Vector3::zeros();
         }
+        self.find_touching();
+        let old = std::mem::take(&mut self.contacts);
+        let mut open = std::mem::take(&mut self.spare);
+        open.clear();
+        let mut cursor = 0;
+        let mut box_force = 0.0;
+        let mut work = StepWork::default();
+        for &(i, partner, ref k) in &self.touching {
+            let key = (i, partner);
+            while cursor < old.len() && (old[cursor].ball, old[cursor].partner) < key {
+                work.add(old[cursor].release_work());
+                cursor += 1;
+            }
+            let mut c = if cursor < old.len() && (old[cursor].ball, old[cursor].partner) == key {
+                cursor += 1;
+                old[cursor - 1].clone()
+            } else {
+                Contact::touch(i, partner, k.relative.dot(&k.normal))
+            };
+            let laws = match partner {
+                Partner::Ball(j) => self.table.ball(i, j),
+                Partner::Wall(_) => self.table.wall(i),
+            };
+            work.add(c.update(laws, k, dt));
+            let on_ball = -k.normal * c.force + c.friction;
+            self.force[i] += on_ball;
+            self.torque[i] += cross(k.normal * k.lever[0], c.friction);
+            match partner {
+                Partner::Ball(j) => {
+                    self.force[j] -= on_ball;
+                    self.torque[j] += cross(k.normal * k.lever[1], c.friction);
+                }
+                Partner::Wall(_) => box_force -= on_ball.x,
+            }
+            open.push(c);
+        }
+        for c in &old[cursor..] {
+            work.add(c.release_work());
+        }
+        self.spare = old;
         self.contacts = open;
         self.work_normal += work.normal;
         self.work_tangential += work.tangential;
-        let damper = -self.frame.damper_force(pred.2);
+        let damper = -self.frame.damper_force(self.pred_frame);
         self.structural += 0.5 * (self.damper_force + damper) * self.frame_v * dt;
         let external = self.frame.spring_force(self.frame_x) - damper;
         self.impulse += 0.5 * dt * (self.external_force + external);

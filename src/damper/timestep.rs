@@ -17,8 +17,10 @@ pub struct ContactScale {
     pub normal_damping: f64,
     /// Tangential stiffness k_t(δ), N/m.
     pub tangential_stiffness: f64,
-    /// Shortest oscillation period (normal with m*, tangential with m_t), s.
-    pub period: f64,
+    /// Normal oscillation period with m*, s.
+    pub normal_period: f64,
+    /// Tangential oscillation period with m_t (infinite for k_t = 0), s.
+    pub tangential_period: f64,
     /// Stability limit of the damped normal oscillator in velocity Verlet,
     /// (2/ω)(√(1 + ζ²) − ζ), s.
     pub critical: f64,
@@ -46,21 +48,28 @@ pub fn contact_scale(laws: &PairLaws, speed: f64) -> ContactScale {
     let kt = laws.tangential.stiffness(delta);
     let wn = (k / h.mass).sqrt();
     let wt = (kt / laws.tangential_mass).sqrt();
-    let w = wn.max(wt);
     let zeta = c / (2.0 * (k * h.mass).sqrt());
     ContactScale {
         delta,
         normal_stiffness: k,
         normal_damping: c,
         tangential_stiffness: kt,
-        period: 2.0 * PI / w,
+        normal_period: 2.0 * PI / wn,
+        tangential_period: 2.0 * PI / wt,
         critical: 2.0 / wn * ((1.0 + zeta * zeta).sqrt() - zeta),
     }
 }
 
-/// The step (s): the shortest contact period over `kinds` divided by `steps_per_period`,
-/// at most a tenth of the damped stability limit and at most the frame's period (`frame`, s)
-/// over 2000.
+/// The tangential spring's share of the normal law's steps per period: the stick oscillation
+/// of the Mindlin spring carries little energy and is capped by friction, and a third of the
+/// normal resolution (20 steps per tangential period at the default 60) leaves the rebound,
+/// the energy balance and the frame's damping ratio as they are at full resolution
+/// (docs/damper.md).
+pub const TANGENTIAL_SHARE: f64 = 1.0 / 3.0;
+
+/// The step (s): over `kinds`, the shortest normal period divided by `steps_per_period` and
+/// tangential period divided by `steps_per_period` × [`TANGENTIAL_SHARE`], at most a tenth of
+/// the damped normal stability limit and at most the frame's period (`frame`, s) over 2000.
 pub fn time_step<'a>(
     kinds: impl Iterator<Item = &'a PairLaws>,
     speed: f64,
@@ -70,7 +79,9 @@ pub fn time_step<'a>(
     kinds
         .map(|l| {
             let s = contact_scale(l, speed);
-            (s.period / steps_per_period).min(0.1 * s.critical)
+            (s.normal_period / steps_per_period)
+                .min(s.tangential_period / (steps_per_period * TANGENTIAL_SHARE))
+                .min(0.1 * s.critical)
         })
         .fold(frame / 2000.0, f64::min)
 }

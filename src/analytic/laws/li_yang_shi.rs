@@ -29,7 +29,9 @@ impl NormalLaw for LiYangShi {
     }
 
     fn unloading(&self, delta: f64, _rate: f64, _speed: f64, turn: &Turn) -> f64 {
-        let recovery = (turn.force / self.pair.stiffness()).powf(2.0 / 3.0);
+        // (F/K)^{2/3} as a cube root, several times cheaper than powf in the damper's loop.
+        let ratio = turn.force / self.pair.stiffness();
+        let recovery = (ratio * ratio).cbrt();
         self.pair.force(delta - (turn.delta - recovery))
     }
 
