@@ -4,13 +4,15 @@
 //! and the observed order from `study::convergence::estimate`.
 //!
 //! The ladders are `#[ignore]`d (minutes each); rerun one with
-//! `cargo test --release --test section_ladder NAME -- --ignored --nocapture`.
+//! `cargo test --release --test section_ladder NAME -- --ignored --nocapture`; `LADDER_TOP=K`
+//! runs levels 0..=K (default 3), `LADDER_FORMULATION=b-bar` the B-bar quads.
 
 #[path = "contact_support/hertz.rs"]
 mod hertz;
 
 use hertz::{finite_ball_reference, windowed_peak};
 use twoball::analytic::hertz::HertzPair;
+use twoball::fe::axisym::element::QuadFormulation;
 use twoball::fe::axisym::impact::{HeadOn, ImpactResult, Target};
 use twoball::material::Material;
 use twoball::mesh::meridian::{ball, ladder_ball, ladder_pole_size, MeridianMesh, SectionSpec};
@@ -77,6 +79,14 @@ struct Rung {
     hourglass: f64,
 }
 
+/// The element formulation: one point, or B-bar with `LADDER_FORMULATION=b-bar`.
+fn formulation() -> QuadFormulation {
+    match std::env::var("LADDER_FORMULATION").as_deref() {
+        Ok("b-bar") => QuadFormulation::SelectiveReduced,
+        _ => QuadFormulation::default(),
+    }
+}
+
 /// Runs levels `0..=top` of the ladder at relative speed `v` (m/s).
 fn ladder(v: f64, elastic: bool, top: u32) -> Vec<Rung> {
     let a = contact_radius(v);
@@ -88,6 +98,7 @@ fn ladder(v: f64, elastic: bool, top: u32) -> Vec<Rung> {
             let window = hertz_pair(mass).contact_duration(v) / 20.0;
             let mut h = HeadOn::new(mesh, copper(elastic), 0.5 * v, Target::MirrorBall);
             h.elastic_only = elastic;
+            h.formulation = formulation();
             let run = h.run().unwrap();
             let force_window = windowed_peak(&run.pulse, window);
             let hourglass = run.history.last().map_or(0.0, |r| r.hourglass) / run.initial_kinetic;
