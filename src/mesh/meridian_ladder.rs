@@ -165,13 +165,12 @@ mod tests {
         for level in 0..3 {
             let m = ladder_ball(D, A, level).unwrap();
             assert!(m.quads.iter().all(|q| area(&m, q) > 0.0), "level {level}");
-            // The quads tile the half-disc: total area π R² / 2 to the arc's chord error.
+            // The quads tile the half-disc to the arc's chord error, which falls 4× per level
+            // (1.24e-3 of π R² / 2 at level 0).
             let total: f64 = m.quads.iter().map(|q| area(&m, q)).sum();
             let half_disc = 0.5 * std::f64::consts::PI * r * r;
-            assert!(
-                (total / half_disc - 1.0).abs() < 1e-3,
-                "{total} {half_disc}"
-            );
+            let tol = 1.5e-3 / 4f64.powi(level as i32);
+            assert!((total / half_disc - 1.0).abs() < tol, "{total} {half_disc}");
             for &i in &m.node_sets["surface"] {
                 let p = m.nodes[i as usize];
                 assert!((p[0].hypot(p[1]) - r).abs() < 1e-12 * r, "{p:?}");
