@@ -84,7 +84,7 @@ fn refined(r: f64, n: usize, h_pole: f64) -> Plan {
 }
 
 /// Mean edge length (m) of the pole quad of a refined core of half-width `a` (m).
-fn pole_edge(r: f64, n: usize, a: f64) -> f64 {
+pub(super) fn pole_edge(r: f64, n: usize, a: f64) -> f64 {
     let m = n / 2;
     let corner = |i: usize, j: usize| {
         let x = invert(core_point(i, m + j, m, n, a, 2.0 * r), r);
@@ -109,7 +109,7 @@ fn quads_of(plan: &Plan) -> usize {
 /// Appends one quarter (the front z ≥ 0, or with `mirror` the back z ≤ 0) to `mesh`.
 /// `dome` (the front's node ids on z = 0, by ray index) makes the back share them. Returns
 /// this quarter's node ids on z = 0, from the axis to the equator.
-fn build_quarter(
+pub(super) fn build_quarter(
     plan: &Plan,
     mesh: &mut MeridianMesh,
     mirror: bool,
@@ -216,7 +216,7 @@ fn build_quarter(
 }
 
 /// Adds the boundary and the sets (see [`ball`]).
-fn with_sets(mut mesh: MeridianMesh, r: f64) -> MeridianMesh {
+pub(super) fn with_sets(mut mesh: MeridianMesh, r: f64) -> MeridianMesh {
     let nodes = &mesh.nodes;
     let on_axis = |i: u32| nodes[i as usize][0] == 0.0;
     let angle = |e: &[u32; 2]| {
