@@ -599,9 +599,6 @@ def run_twoball(twoball, scene_path, scene, sets, out):
     twoball's own wall time (results.json wall_time_s, the solve without start-up) is what the
     ratio uses; the wall time of the whole process is printed beside it."""
     cmd = [twoball, "run"] + ([str(scene_path)] if scene_path else [])
-    # The peer's mesh is the 3D hexahedral ball: twoball runs its cheapest exact 3D model on
-    # it (never the meridian section); a variant's own sets come later and win.
-    cmd += ["--set", 'reduction.symmetry="auto-3d"']
     for i, b in enumerate(scene["balls"], start=1):
         m = b["mesh"]
         if "file" not in m:

@@ -281,7 +281,7 @@ size_per_diameter = 0.34
 pole_size_per_diameter = 0.17
 quick = []
 [axis]
-speed = [{ label = "v1", set = ["ball1.velocity=[0.5,0,0]", "ball2.velocity=[-0.5,0,0]", "reduction.symmetry=\"auto-3d\""] }]
+speed = [{ label = "v1", set = ["ball1.velocity=[0.5,0,0]", "ball2.velocity=[-0.5,0,0]"] }]
 material = [{ label = "steel", set = ["ball1.material=steel", "ball2.material=steel"] }]
 [[group]]
 axes = ["speed", "material"]

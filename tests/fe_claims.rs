@@ -14,13 +14,8 @@ use twoball::study::simulate::RunOptions;
 use twoball::study::single::{run_scene, RunReport};
 
 /// The default scene with dotted-path overrides.
-/// The default scene with `sets`, on the 3D models (these claims are the 3D models').
 fn scene(sets: &[&str]) -> Scene {
-    let sets: Vec<Override> = ["reduction.symmetry=\"auto-3d\""]
-        .iter()
-        .chain(sets)
-        .map(|s| Override::parse(s).unwrap())
-        .collect();
+    let sets: Vec<Override> = sets.iter().map(|s| Override::parse(s).unwrap()).collect();
     Scene::from_toml(DEFAULT_SCENE, Path::new("."), &sets).unwrap()
 }
 

@@ -12,12 +12,8 @@ use twoball::scene::{Override, Scene, DEFAULT_SCENE};
 use twoball::study::simulate::{RunOptions, Simulation};
 use twoball::study::single::{run_scene, RunReport};
 
-/// The default scene with `sets`, on the 3D models (the savings checked here are theirs).
 fn scene(sets: &[String]) -> Scene {
-    let sets: Vec<Override> = std::iter::once("reduction.symmetry=\"auto-3d\"")
-        .chain(sets.iter().map(String::as_str))
-        .map(|s| Override::parse(s).unwrap())
-        .collect();
+    let sets: Vec<Override> = sets.iter().map(|s| Override::parse(s).unwrap()).collect();
     Scene::from_toml(DEFAULT_SCENE, Path::new("."), &sets).unwrap()
 }
 

@@ -529,7 +529,6 @@ fn default_scene_three_times_fewer_updates_same_results() {
     use twoball::study::single::run_scene;
     let run = |sub: Subcycling| {
         let mut scene = Scene::default();
-        scene.reduction.symmetry = twoball::scene::Symmetry::Auto3d;
         scene.solver.subcycling = sub;
         let opts = RunOptions {
             history_rows: 400,

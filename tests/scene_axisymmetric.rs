@@ -1,7 +1,8 @@
-//! Head-on scenes run on the meridian section (issue 26 item 4): the automatic choice and its
-//! reason, forced models and their errors, the error bar a head-on run reports by default,
-//! the results in the scene's frame (momentum, Galilean invariance, elastic exchange), the
-//! same results.json keys as the 3D models, and the section's snapshot series.
+//! Head-on scenes on the meridian section (`reduction.symmetry = "axisymmetric"`, issue 26
+//! item 4): the automatic choice and the forced models with their errors, the error bar a
+//! section run reports by default, the results in the scene's frame (momentum, Galilean
+//! invariance, elastic exchange), the same results.json keys as the 3D models, and the
+//! section's snapshot series.
 
 use std::path::Path;
 use std::process::Command;
@@ -29,8 +30,9 @@ fn opts() -> RunOptions {
     }
 }
 
-/// A coarse section (bulk D/8, pole D/100) keeps the runs of this file short.
-const COARSE: [&str; 2] = [
+/// The section model on a coarse section (bulk D/8, pole D/100): short runs.
+const COARSE: [&str; 3] = [
+    "reduction.symmetry=\"axisymmetric\"",
     "ball1.mesh={size=0.0025,pole_size=0.0002}",
     "ball2.mesh={size=0.0025,pole_size=0.0002}",
 ];
@@ -40,25 +42,33 @@ fn with_coarse<'a>(sets: &[&'a str]) -> Vec<&'a str> {
 }
 
 #[test]
-fn head_on_scenes_choose_the_section_and_others_keep_their_3d_models() {
+fn the_section_is_asked_for_and_refused_where_the_motion_is_not_head_on() {
     let pick = |sets: &[&str]| {
         let s = scene(sets);
         choose_reduction(&s, &touch(&s))
     };
-    let (r, why) = pick(&[]).unwrap();
+    let axi = "reduction.symmetry=\"axisymmetric\"";
+    // Automatic: the 3D models, as before.
+    assert_eq!(pick(&[]).unwrap().0, Reduction::Quarter);
+    let unequal = ["ball2.material=steel", "ball2.diameter=0.015"];
+    assert_eq!(pick(&unequal).unwrap().0, Reduction::Full);
+    let (r, why) = pick(&[axi]).unwrap();
     assert_eq!(r, Reduction::Axisymmetric);
     assert!(
         why.contains("head-on") && why.contains("symmetry plane"),
         "{why}"
     );
     // Unequal balls head-on: both sections.
-    let (r, why) = pick(&["ball2.material=steel", "ball2.diameter=0.015"]).unwrap();
+    let (r, why) = pick(&[axi, unequal[0], unequal[1]]).unwrap();
     assert_eq!(r, Reduction::Axisymmetric);
     assert!(why.contains("both balls' sections"), "{why}");
     // A common tangential velocity is a Galilean shift: still head-on.
     let common = ["ball1.velocity=[1,0.3,0]", "ball2.velocity=[-1,0.3,0]"];
-    assert_eq!(pick(&common).unwrap().0, Reduction::Axisymmetric);
-    // Oblique, spinning, or simulated free flight: the 3D models as before.
+    assert_eq!(
+        pick(&[axi, common[0], common[1]]).unwrap().0,
+        Reduction::Axisymmetric
+    );
+    // Oblique, spinning: the 3D models as before.
     let oblique = ["ball1.velocity=[1,0.5,0]", "ball2.velocity=[-1,-0.5,0]"];
     assert_eq!(pick(&oblique).unwrap().0, Reduction::Half);
     assert_eq!(
@@ -69,19 +79,28 @@ fn head_on_scenes_choose_the_section_and_others_keep_their_3d_models() {
         pick(&["ball1.angular_velocity=[10,0,0]"]).unwrap().0,
         Reduction::Full
     );
-    assert_eq!(
-        pick(&["reduction.start_at_touch=\"off\""]).unwrap().0,
-        Reduction::Quarter
-    );
     // Forced models.
     let forced = |m: &str| format!("reduction.symmetry=\"{m}\"");
-    assert_eq!(pick(&[&forced("auto-3d")]).unwrap().0, Reduction::Quarter);
     assert_eq!(pick(&[&forced("quarter")]).unwrap().0, Reduction::Quarter);
     assert_eq!(pick(&[&forced("half")]).unwrap().0, Reduction::Half);
     assert_eq!(pick(&[&forced("off")]).unwrap().0, Reduction::Full);
     for (sets, what) in [
         (
             vec![forced("axisymmetric"), oblique[0].into(), oblique[1].into()],
+            "axisymmetric",
+        ),
+        (
+            vec![
+                forced("axisymmetric"),
+                "ball1.angular_velocity=[10,0,0]".into(),
+            ],
+            "axisymmetric",
+        ),
+        (
+            vec![
+                forced("axisymmetric"),
+                "reduction.start_at_touch=\"off\"".into(),
+            ],
             "axisymmetric",
         ),
         (
@@ -221,9 +240,7 @@ fn results_json_and_history_have_the_3d_models_keys() {
         "ball2.mesh={size=0.004,pole_size=0.002}",
     ];
     let (a, ha) = run("axisym", &COARSE);
-    let mut q_sets = coarse3d.to_vec();
-    q_sets.push("reduction.symmetry=\"quarter\"");
-    let (q, hq) = run("quarter", &q_sets);
+    let (q, hq) = run("quarter", &coarse3d);
     assert_eq!(a["reduction"], "axisymmetric");
     assert_eq!(q["reduction"], "quarter");
     let (mut ka, mut kq) = (Vec::new(), Vec::new());

@@ -47,8 +47,6 @@ fn run_writes_a_playable_snapshot_series() {
             "--set",
             "output.vtu_snapshots=4",
             "--set",
-            "reduction.symmetry=\"auto-3d\"",
-            "--set",
             "ball1.mesh={size=0.004,pole_size=0.002}",
             "--set",
             "ball2.mesh={size=0.004,pole_size=0.002}",

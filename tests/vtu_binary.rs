@@ -165,8 +165,6 @@ fn run_snapshots_are_binary_with_the_pvd_time_in_each_file() {
             "--set",
             "output.vtu_snapshots=3",
             "--set",
-            "reduction.symmetry=\"auto-3d\"",
-            "--set",
             "ball1.mesh={size=0.004,pole_size=0.002}",
             "--set",
             "ball2.mesh={size=0.004,pole_size=0.002}",

@@ -93,12 +93,13 @@ fn allowed(scene: &Scene, touch: &Touch) -> Allowed {
 
 /// The symmetry reduction `scene` runs with when touching as `touch`, and why.
 ///
-/// A head-on impact (velocities along the line of centres, no spin) is axisymmetric about
-/// the line of centres: it runs on the meridian section, with a frictionless symmetry plane
-/// for identical balls (no point of the plane slips, by symmetry) and both sections for
-/// unequal ones. In the pair's centre-of-mass frame, identical balls with tangential motion
-/// in the x-y plane (and spins about z only) keep the plane z = 0 as a symmetry plane: half
-/// model. Anything else runs full. `reduction.symmetry` forces a model.
+/// Automatically, identical balls in a head-on impact (velocities along the line of
+/// centres, no spin) run as a quarter ball against the frictionless symmetry plane; with
+/// tangential motion in the x-y plane (and spins about z only) the plane z = 0 stays a
+/// symmetry plane: half model. Anything else runs full. `reduction.symmetry` forces a model:
+/// `axisymmetric` runs a head-on impact on the meridian section (a body of revolution about
+/// the line of centres, exactly), with the frictionless symmetry plane for identical balls
+/// and both sections for unequal ones.
 ///
 /// Errors: a forced model the motion does not allow (axisymmetric or quarter for an oblique
 /// impact, quarter or half for unequal balls, any reduction for meshes read from files).
@@ -141,6 +142,10 @@ pub fn choose_reduction(scene: &Scene, touch: &Touch) -> Result<(Reduction, Stri
         "a head-on impact (velocities on the line of centres, no spin) of built-in meshes";
     match scene.reduction.symmetry {
         Symmetry::Off => Ok((Reduction::Full, "symmetry reduction switched off".into())),
+        Symmetry::Axisymmetric if scene.reduction.start_at_touch == Switch::Off => refuse(
+            "axisymmetric",
+            "reduction.start_at_touch = \"auto\" (the section model starts at first touch)",
+        ),
         Symmetry::Axisymmetric if ok.head_on => Ok(axisymmetric()),
         Symmetry::Axisymmetric => refuse("axisymmetric", head_on),
         Symmetry::Quarter if ok.head_on && ok.identical => Ok(quarter()),
@@ -150,22 +155,17 @@ pub fn choose_reduction(scene: &Scene, touch: &Touch) -> Result<(Reduction, Stri
             "half",
             "identical built-in balls with tangential motion in one plane",
         ),
-        Symmetry::Auto if ok.head_on && scene.reduction.start_at_touch == Switch::Auto => {
-            Ok(axisymmetric())
-        }
-        Symmetry::Auto | Symmetry::Auto3d if !scene.identical_balls() => Ok((
+        Symmetry::Auto if !scene.identical_balls() => Ok((
             Reduction::Full,
             "the balls differ (material, diameter or mesh)".into(),
         )),
-        Symmetry::Auto | Symmetry::Auto3d if !ok.identical => Ok((
+        Symmetry::Auto if !ok.identical => Ok((
             Reduction::Full,
             "meshes read from files are used whole".into(),
         )),
-        Symmetry::Auto | Symmetry::Auto3d if ok.head_on => Ok(quarter()),
-        Symmetry::Auto | Symmetry::Auto3d if ok.planar => Ok(half()),
-        Symmetry::Auto | Symmetry::Auto3d => {
-            Ok((Reduction::Full, "motion out of one plane".into()))
-        }
+        Symmetry::Auto if ok.head_on => Ok(quarter()),
+        Symmetry::Auto if ok.planar => Ok(half()),
+        Symmetry::Auto => Ok((Reduction::Full, "motion out of one plane".into())),
     }
 }
 
