@@ -9,6 +9,7 @@ use super::element::QuadFormulation;
 use super::plane::{RigidPlane, Side};
 use super::section::{SectionContact, SectionModel, SectionSolver};
 use super::segment::{Boundary, SegmentPair};
+use super::subcycle::Integration;
 use crate::error::{Error, Result};
 use crate::fe::contact::pulse::pulse_duration;
 use crate::fe::materials::J2Material;
@@ -68,6 +69,8 @@ pub struct HeadOn {
     pub history_rows: usize,
     /// Factor on the stable step (0 < f ≤ 1).
     pub time_step_factor: f64,
+    /// Single-rate or subcycled time integration (subcycled by default).
+    pub integration: Integration,
 }
 
 /// One history row (whole system; for [`Target::MirrorBall`] the pair).
@@ -179,7 +182,7 @@ fn mirrored(mesh: &MeridianMesh, shift: f64) -> MeridianMesh {
 
 impl HeadOn {
     /// Defaults around `mesh`, `material` and `speed`: one-point quads, FKN = 10, the 3D
-    /// study's hold fraction 0.03, 200 history rows, step factor 0.9.
+    /// study's hold fraction 0.03, 200 history rows, step factor 0.9, subcycled.
     pub fn new(mesh: MeridianMesh, material: Material, speed: f64, target: Target) -> Self {
         HeadOn {
             mesh,
@@ -192,6 +195,7 @@ impl HeadOn {
             hold_fraction: 0.03,
             history_rows: 200,
             time_step_factor: 0.9,
+            integration: Integration::subcycled(),
         }
     }
 
@@ -276,6 +280,7 @@ impl HeadOn {
         let mut model = model;
         model.formulation = self.formulation;
         model.time_step_factor = self.time_step_factor;
+        model.integration = self.integration;
         let mut solver = SectionSolver::new(model, vec![contact])?;
         let n = solver.masses().len();
         let ball_mass: f64 = solver.masses()[..n1].iter().sum();
@@ -348,7 +353,7 @@ impl HeadOn {
             }
             if !pulse.is_empty() && u < 0.0 && c.normal_force == 0.0 {
                 let since = *apart_since.get_or_insert(t);
-                if t - since >= hold {
+                if t - since >= hold && solver.synchronised() {
                     stop_reason = format!("separated: contact force zero for {hold:.3e} s");
                     break;
                 }

@@ -64,6 +64,35 @@ pub fn shape(xi: [f64; 2]) -> ([f64; 4], [[f64; 2]; 4]) {
 #[inline]
 pub fn point(x: &[[f64; 2]; 4], xi: [f64; 2], w: f64) -> Point {
     let (n, d) = shape(xi);
+    point_of(x, &n, &d, w)
+}
+
+/// Shape functions and natural derivatives at the four 2x2 Gauss points (the values of
+/// [`shape`], computed once).
+const GAUSS_SHAPE: [([f64; 4], [[f64; 2]; 4]); 4] = {
+    let mut t = [([0.0; 4], [[0.0; 2]; 4]); 4];
+    let mut g = 0;
+    while g < 4 {
+        let xi = GAUSS_2X2[g];
+        let mut i = 0;
+        while i < 4 {
+            let p = NODE_XI[i];
+            t[g].0[i] = 0.25 * (1.0 + p[0] * xi[0]) * (1.0 + p[1] * xi[1]);
+            t[g].1[i] = [
+                0.25 * p[0] * (1.0 + p[1] * xi[1]),
+                0.25 * p[1] * (1.0 + p[0] * xi[0]),
+            ];
+            i += 1;
+        }
+        g += 1;
+    }
+    t
+};
+
+/// The point of the quad `x` (m) with shape values `n` and natural derivatives `d` at that
+/// point and Gauss weight `w` (see [`point`]).
+#[inline(always)]
+fn point_of(x: &[[f64; 2]; 4], n: &[f64; 4], d: &[[f64; 2]; 4], w: f64) -> Point {
     let mut jac = [[0.0; 2]; 2];
     let mut r = 0.0;
     for i in 0..4 {
@@ -101,7 +130,13 @@ pub fn point(x: &[[f64; 2]; 4], xi: [f64; 2], w: f64) -> Point {
 /// The four 2x2 Gauss points of the quad `x` (m).
 #[inline]
 pub fn gauss_points(x: &[[f64; 2]; 4]) -> [Point; 4] {
-    GAUSS_2X2.map(|p| point(x, p, 1.0))
+    let [g0, g1, g2, g3] = &GAUSS_SHAPE;
+    [
+        point_of(x, &g0.0, &g0.1, 1.0),
+        point_of(x, &g1.0, &g1.1, 1.0),
+        point_of(x, &g2.0, &g2.1, 1.0),
+        point_of(x, &g3.0, &g3.1, 1.0),
+    ]
 }
 
 /// The volume-averaged gradient operator B̄_I = (1/V) ∫ B_I 2π r dA of the quad `x` (m),
