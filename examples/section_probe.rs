@@ -1,12 +1,14 @@
 //! The default scene (two D = 20 mm copper-fe balls, ±1 m/s) on the meridian section: one
 //! ball against the symmetry plane, meshed by `mesh::meridian::ball`.
 //!
-//! `cargo run --release --example section_probe -- [SIZE_M] [POLE_SIZE_M] [one-point|b-bar]`
-//! prints e, δ_max (m), the contact duration (s), the peak force (N), the energy error and the
-//! wall time (s) of one run (defaults: D/6 bulk, D/200 pole, one point).
+//! `cargo run --release --example section_probe -- [SIZE_M] [POLE_SIZE_M] [one-point|b-bar]
+//! [subcycled[:K]|single-rate]` prints e, δ_max (m), the contact duration (s), the peak force (N), the energy error and the
+//! wall time (s) of one run (defaults: D/6 bulk, D/200 pole, one point,
+//! subcycled).
 
 use twoball::fe::axisym::element::QuadFormulation;
 use twoball::fe::axisym::impact::{HeadOn, Target};
+use twoball::fe::axisym::subcycle::Integration;
 use twoball::material::Material;
 use twoball::mesh::meridian::{ball, SectionSpec};
 
@@ -30,6 +32,19 @@ fn run(args: &[String]) -> Result<String, String> {
         Some("b-bar") => QuadFormulation::SelectiveReduced,
         Some(o) => return Err(format!("argument 3: {o:?} is not one of one-point, b-bar")),
     };
+    let integration = match args.get(4).map(String::as_str) {
+        None | Some("subcycled") => Integration::subcycled(),
+        Some("single-rate") => Integration::SingleRate,
+        Some(o) if o.starts_with("subcycled:") => match o[10..].parse::<u8>() {
+            Ok(k) => Integration::Subcycled { max_level: k },
+            Err(_) => return Err(format!("argument 4: {o:?}: subcycled:K with K a level")),
+        },
+        Some(o) => {
+            return Err(format!(
+                "argument 4: {o:?} is not one of subcycled, single-rate"
+            ))
+        }
+    };
     let spec = SectionSpec {
         diameter: d,
         size,
@@ -39,9 +54,10 @@ fn run(args: &[String]) -> Result<String, String> {
     let material = Material::preset("copper-fe").map_err(|e| e.to_string())?;
     let mut h = HeadOn::new(mesh, material, 1.0, Target::MirrorBall);
     h.formulation = formulation;
+    h.integration = integration;
     let r = h.run().map_err(|e| e.to_string())?;
     Ok(format!(
-        "size {size:.3e} m, pole {pole:.3e} m, {formulation:?}: {} quads, {} steps, e {:.5}, \
+        "size {size:.3e} m, pole {pole:.3e} m, {formulation:?}, {integration:?}: {} quads, {} steps, e {:.5}, \
          delta_max {:.5e} m, t_c {:.5e} s, F_peak {:.1} N, energy error {:.1e}, wall {:.2} s",
         r.elements,
         r.steps,

@@ -15,7 +15,8 @@ use super::snapshots::Snapshots;
 use crate::error::{Error, Result};
 use crate::fe::axisym::element::QuadFormulation;
 use crate::fe::axisym::impact::{HeadOn, ImpactRow, OtherBall, Target};
-use crate::fe::solver::subcycle::SubcycleReport;
+use crate::fe::axisym::subcycle::Integration;
+use crate::fe::solver::subcycle::{SubcycleReport, Subcycling};
 use crate::fe::Formulation;
 use crate::mesh::meridian::{ball, MeridianMesh, SectionSpec};
 use crate::scene::{BallScene, MeshSettings, Scene, Switch, Touch};
@@ -82,7 +83,9 @@ fn head_on(run: &SectionRun<'_>) -> Result<HeadOn> {
             speed: -run.kin.u[1][0],
         }))
     };
+    let two_balls = matches!(target, Target::Ball(_));
     let mut h = HeadOn::new(mesh1, scene.ball1.material, speed1, target);
+    h.integration = integration(scene.solver.subcycling, two_balls);
     h.elastic_only = run.elastic_only[0];
     h.formulation = formulation(scene);
     h.fkn = 10.0 * scene.contact.penalty_factor;
@@ -101,6 +104,17 @@ fn head_on(run: &SectionRun<'_>) -> Result<HeadOn> {
     }
     h.max_steps = scene.solver.max_steps;
     Ok(h)
+}
+
+/// The section's time integration for the scene's `solver.subcycling`: subcycled unless
+/// `off`, except for two meshed balls under `auto`, whose pair contact has not been checked
+/// subcycled (single rate there).
+fn integration(sub: Subcycling, two_balls: bool) -> Integration {
+    match sub {
+        Subcycling::Off => Integration::SingleRate,
+        Subcycling::Auto if two_balls => Integration::SingleRate,
+        Subcycling::Auto | Subcycling::On => Integration::subcycled(),
+    }
 }
 
 /// The analytical duration when usable, else 0.1 ms (s).
@@ -192,6 +206,7 @@ pub(super) fn simulate_section(run: SectionRun<'_>, opts: &RunOptions) -> Result
     };
     outcome.check_finite("FE model")?;
     let by_separation = h.end_time.is_none();
+    let subcycled = matches!(h.integration, Integration::Subcycled { max_level } if max_level > 0);
     Ok(Simulation {
         outcome,
         energy_error: r.energy_error,
@@ -206,9 +221,13 @@ pub(super) fn simulate_section(run: SectionRun<'_>, opts: &RunOptions) -> Result
                 "end_time".into()
             },
             subcycling: SubcycleReport {
-                used: false,
-                reason: "the section model runs single-rate".into(),
-                element_updates: r.steps * r.elements as u64,
+                used: subcycled,
+                reason: if subcycled {
+                    "the section model's power-of-two step classes (fe::axisym::subcycle)".into()
+                } else {
+                    "single rate: solver.subcycling = off, or two meshed balls under auto".into()
+                },
+                element_updates: r.element_updates,
                 ..Default::default()
             },
             hold_time: hold,
@@ -218,7 +237,7 @@ pub(super) fn simulate_section(run: SectionRun<'_>, opts: &RunOptions) -> Result
         elements: r.elements,
         nodes: r.nodes,
         steps: r.steps,
-        element_cycles: r.steps * r.elements as u64,
+        element_cycles: r.element_updates,
         dt: r.dt,
         stop_reason: r.stop_reason,
         wall_time_s: start.elapsed().as_secs_f64(),

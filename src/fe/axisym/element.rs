@@ -15,8 +15,8 @@
 //! are V B̄ᵀσ on x^{n+1}. Forces are those of the whole ring (2π r weighting).
 
 use super::quad::{
-    add_stress_forces, characteristic_length, gauss_points, hourglass_gamma, mean_of,
-    velocity_gradient, Gradient,
+    add_stress_forces, characteristic_length, gauss_points, hourglass_gamma, mean_gradient,
+    mean_of, velocity_gradient, Gradient,
 };
 use crate::fe::{
     elements::objective::{hughes_winget, rotate_symmetric},
@@ -98,13 +98,13 @@ pub fn update(
     let half = 0.5 * dt;
     let xm: [[f64; 2]; 4] =
         std::array::from_fn(|i| [x1[i][0] - half * v[i][0], x1[i][1] - half * v[i][1]]);
-    let pm = gauss_points(&xm);
-    let (gm, _) = mean_of(&pm);
-    let p1 = gauss_points(x1);
-    let (g1, min_j) = mean_of(&p1);
     let mut force = [[0.0; 2]; 4];
+    let min_j;
+    let g1;
     match form {
         QuadFormulation::OnePoint { hourglass } => {
+            let (gm, _) = mean_gradient(&xm);
+            (g1, min_j) = mean_gradient(x1);
             let l = velocity_gradient(v, &gm);
             let (wi, wp) = advance_point(&mut st.points[0], &l, None, dt, gm.volume, mat);
             st.internal_energy += wi;
@@ -119,6 +119,10 @@ pub fn update(
             }
         }
         QuadFormulation::SelectiveReduced => {
+            let pm = gauss_points(&xm);
+            let (gm, _) = mean_of(&pm);
+            let p1 = gauss_points(x1);
+            (g1, min_j) = mean_of(&p1);
             let lbar = velocity_gradient(v, &gm);
             let vol_bar = lbar[0][0] + lbar[1][1] + lbar[2][2];
             for (k, p) in pm.iter().enumerate() {

@@ -10,6 +10,7 @@
 //! - [`section`]: the model and the explicit loop (Box 6.1), with energy accounting;
 //! - [`plane`]: penalty contact against a rigid plane z = const;
 //! - [`segment`]: two-pass node-to-segment penalty contact of two meridian boundaries;
+//! - [`subcycle`]: multi-time-step integration (power-of-two step classes, nodal partition);
 //! - [`impact`]: a head-on impact (mirror ball, rigid wall or a second ball) run end to end
 //!   (e, δ_max, contact duration, peak force,
 //!   energies, history).
@@ -24,3 +25,4 @@ pub mod plane;
 pub mod quad;
 pub mod section;
 pub mod segment;
+pub mod subcycle;

@@ -118,4 +118,11 @@ impl SectionContact for RigidPlane {
             .map(|(i, k)| stable_step(k, mass[i], omega[i]))
             .fold(f64::INFINITY, f64::min)
     }
+
+    fn node_limits(&self, mass: &[f64], omega: &[f64]) -> Vec<(usize, f64)> {
+        // Each spring acts on its node alone: every node its own step.
+        self.springs()
+            .map(|(i, k)| (i, stable_step(k, mass[i], omega[i])))
+            .collect()
+    }
 }

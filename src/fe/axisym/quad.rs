@@ -64,6 +64,35 @@ pub fn shape(xi: [f64; 2]) -> ([f64; 4], [[f64; 2]; 4]) {
 #[inline]
 pub fn point(x: &[[f64; 2]; 4], xi: [f64; 2], w: f64) -> Point {
     let (n, d) = shape(xi);
+    point_of(x, &n, &d, w)
+}
+
+/// Shape functions and natural derivatives at the four 2x2 Gauss points (the values of
+/// [`shape`], computed once).
+const GAUSS_SHAPE: [([f64; 4], [[f64; 2]; 4]); 4] = {
+    let mut t = [([0.0; 4], [[0.0; 2]; 4]); 4];
+    let mut g = 0;
+    while g < 4 {
+        let xi = GAUSS_2X2[g];
+        let mut i = 0;
+        while i < 4 {
+            let p = NODE_XI[i];
+            t[g].0[i] = 0.25 * (1.0 + p[0] * xi[0]) * (1.0 + p[1] * xi[1]);
+            t[g].1[i] = [
+                0.25 * p[0] * (1.0 + p[1] * xi[1]),
+                0.25 * p[1] * (1.0 + p[0] * xi[0]),
+            ];
+            i += 1;
+        }
+        g += 1;
+    }
+    t
+};
+
+/// The point of the quad `x` (m) with shape values `n` and natural derivatives `d` at that
+/// point and Gauss weight `w` (see [`point`]).
+#[inline(always)]
+fn point_of(x: &[[f64; 2]; 4], n: &[f64; 4], d: &[[f64; 2]; 4], w: f64) -> Point {
     let mut jac = [[0.0; 2]; 2];
     let mut r = 0.0;
     for i in 0..4 {
@@ -101,7 +130,13 @@ pub fn point(x: &[[f64; 2]; 4], xi: [f64; 2], w: f64) -> Point {
 /// The four 2x2 Gauss points of the quad `x` (m).
 #[inline]
 pub fn gauss_points(x: &[[f64; 2]; 4]) -> [Point; 4] {
-    GAUSS_2X2.map(|p| point(x, p, 1.0))
+    let [g0, g1, g2, g3] = &GAUSS_SHAPE;
+    [
+        point_of(x, &g0.0, &g0.1, 1.0),
+        point_of(x, &g1.0, &g1.1, 1.0),
+        point_of(x, &g2.0, &g2.1, 1.0),
+        point_of(x, &g3.0, &g3.1, 1.0),
+    ]
 }
 
 /// The volume-averaged gradient operator B̄_I = (1/V) ∫ B_I 2π r dA of the quad `x` (m),
@@ -110,10 +145,49 @@ pub fn gauss_points(x: &[[f64; 2]; 4]) -> [Point; 4] {
 /// axisymmetric analogue of Flanagan & Belytschko's mean-strain operator: Σ_I B̄_I = 0 and
 /// Σ_I x_I ⊗ B̄_I = I, so linear velocity fields give their exact strain rate. Also returns
 /// the smallest Gauss-point Jacobian (m², ≤ 0: the element is inverted).
+///
+/// Computed directly: with w = 2π r det J at each point, w ∂N/∂x = 2π r cof(J)ᵀ∂N/∂ξ and
+/// w N/r = 2π det J N, so no point needs its own inverse Jacobian.
 #[inline]
 pub fn mean_gradient(x: &[[f64; 2]; 4]) -> (Gradient, f64) {
-    let pts = gauss_points(x);
-    mean_of(&pts)
+    let mut b = [[0.0; 2]; 4];
+    let mut hoop = [0.0; 4];
+    let mut sum = 0.0;
+    let mut min_j = f64::INFINITY;
+    for (n, d) in &GAUSS_SHAPE {
+        let mut jac = [[0.0; 2]; 2];
+        let mut r = 0.0;
+        for i in 0..4 {
+            r += n[i] * x[i][0];
+            for a in 0..2 {
+                for c in 0..2 {
+                    jac[a][c] += d[i][c] * x[i][a];
+                }
+            }
+        }
+        let det_j = jac[0][0] * jac[1][1] - jac[0][1] * jac[1][0];
+        min_j = min_j.min(det_j);
+        sum += r * det_j;
+        for i in 0..4 {
+            b[i][0] += r * (d[i][0] * jac[1][1] - d[i][1] * jac[1][0]);
+            b[i][1] += r * (d[i][1] * jac[0][0] - d[i][0] * jac[0][1]);
+            hoop[i] += det_j * n[i];
+        }
+    }
+    let inv = 1.0 / sum;
+    for i in 0..4 {
+        b[i][0] *= inv;
+        b[i][1] *= inv;
+        hoop[i] *= inv;
+    }
+    (
+        Gradient {
+            b,
+            hoop,
+            volume: 2.0 * PI * sum,
+        },
+        min_j,
+    )
 }
 
 /// [`mean_gradient`] from already evaluated Gauss points.
@@ -195,15 +269,16 @@ pub fn hourglass_gamma(x: &[[f64; 2]; 4], g: &Gradient) -> [f64; 4] {
 /// square of side h off the axis it is h.
 #[inline]
 pub fn characteristic_length(x: &[[f64; 2]; 4]) -> f64 {
-    let mut lmax: f64 = 0.0;
+    let mut l2max: f64 = 0.0;
     let mut rmin = f64::INFINITY;
     for i in 0..4 {
         let j = (i + 1) % 4;
         let d = [x[j][0] - x[i][0], x[j][1] - x[i][1]];
-        lmax = lmax.max((d[0] * d[0] + d[1] * d[1]).sqrt());
+        l2max = l2max.max(d[0] * d[0] + d[1] * d[1]);
         rmin = rmin.min(x[i][0]);
     }
-    let l = area(x) / lmax;
+    // One square root: it is monotonic and correctly rounded, so this is the longest side.
+    let l = area(x) / l2max.sqrt();
     if rmin < l {
         l / std::f64::consts::SQRT_2
     } else {

@@ -5,6 +5,7 @@
 
 use super::element::{update, QuadFormulation, QuadState};
 use super::mass::element_masses;
+use super::subcycle::{Integration, Schedule};
 use crate::error::{Error, Result};
 use crate::fe::materials::J2Material;
 
@@ -28,6 +29,10 @@ pub trait SectionContact {
     /// Largest stable step (s) of the springs on nodal masses `mass` (kg) whose elements have
     /// highest frequencies `omega` (rad/s).
     fn stable_step(&self, mass: &[f64], omega: &[f64]) -> f64;
+    /// Every node the contact may act on with the largest stable step (s) its springs allow
+    /// it; nodes whose forces are coupled (a node and the segments it meets) share one step.
+    /// The smallest of them is [`SectionContact::stable_step`].
+    fn node_limits(&self, mass: &[f64], omega: &[f64]) -> Vec<(usize, f64)>;
 }
 
 /// The meridian model: nodes, quads with their materials, initial velocities, supports and
@@ -54,6 +59,8 @@ pub struct SectionModel {
     pub damping: f64,
     /// Factor on the stable step (0 < f ≤ 1).
     pub time_step_factor: f64,
+    /// Single-rate or subcycled time integration.
+    pub integration: Integration,
 }
 
 impl SectionModel {
@@ -69,6 +76,7 @@ impl SectionModel {
             loads: vec![[0.0; 2]; n],
             damping: 0.0,
             time_step_factor: 0.9,
+            integration: Integration::SingleRate,
             nodes,
             quads,
         }
@@ -100,6 +108,7 @@ impl SectionModel {
                 ));
             }
         }
+        self.integration.check()?;
         let f = self.time_step_factor;
         if !(f > 0.0 && f <= 1.0) {
             return Err(Error::invalid(
@@ -150,24 +159,34 @@ pub struct SectionEnergy {
 
 /// The explicit solver of a [`SectionModel`] with its contacts.
 pub struct SectionSolver {
-    model: SectionModel,
+    pub(super) model: SectionModel,
     contacts: Vec<Box<dyn SectionContact>>,
-    x: Vec<[f64; 2]>,
-    v: Vec<[f64; 2]>,
-    v_half: Vec<[f64; 2]>,
-    a: Vec<[f64; 2]>,
-    mass: Vec<f64>,
+    pub(super) x: Vec<[f64; 2]>,
+    pub(super) v: Vec<[f64; 2]>,
+    pub(super) v_half: Vec<[f64; 2]>,
+    /// The half-step velocities before the last opening kick of each node.
+    pub(super) v_prev: Vec<[f64; 2]>,
+    pub(super) a: Vec<[f64; 2]>,
+    pub(super) mass: Vec<f64>,
     omega: Vec<f64>,
-    axis: Vec<bool>,
+    pub(super) axis: Vec<bool>,
     states: Vec<QuadState>,
-    f_int: Vec<[f64; 2]>,
+    pub(super) f_int: Vec<[f64; 2]>,
+    pub(super) f_c: Vec<[f64; 2]>,
     contact: Vec<ContactState>,
     element_dt: f64,
-    dt: f64,
-    time: f64,
-    steps: u64,
-    kinetic_central: f64,
-    external_work: f64,
+    /// Courant step of each quad at its last update, s.
+    pub(super) element_dt_of: Vec<f64>,
+    /// Stable step of each node's contact springs, s (∞ off the contacts).
+    pub(super) contact_dt: Vec<f64>,
+    pub(super) schedule: Schedule,
+    pub(super) synced_energy: SectionEnergy,
+    pub(super) element_updates: u64,
+    pub(super) dt: f64,
+    pub(super) time: f64,
+    pub(super) steps: u64,
+    pub(super) kinetic_central: f64,
+    pub(super) external_work: f64,
 }
 
 impl SectionSolver {
@@ -194,16 +213,30 @@ impl SectionSolver {
                 "every node in at least one quad",
             ));
         }
+        let mut contact_dt = vec![f64::INFINITY; n];
+        for c in &contacts {
+            for (i, dt) in c.node_limits(&mass, &omega) {
+                contact_dt[i] = contact_dt[i].min(dt);
+            }
+        }
         let axis = model.nodes.iter().map(|p| p[0] == 0.0).collect();
+        let ne = model.quads.len();
         let mut s = SectionSolver {
             x: model.nodes.clone(),
             v: model.velocity.clone(),
             v_half: model.velocity.clone(),
+            v_prev: model.velocity.clone(),
             a: vec![[0.0; 2]; n],
-            states: vec![QuadState::default(); model.quads.len()],
+            states: vec![QuadState::default(); ne],
             f_int: vec![[0.0; 2]; n],
-            contact: Vec::new(),
+            f_c: vec![[0.0; 2]; n],
+            contact: Vec::with_capacity(contacts.len()),
             element_dt: f64::INFINITY,
+            element_dt_of: vec![f64::INFINITY; ne],
+            contact_dt,
+            schedule: Schedule::default(),
+            synced_energy: SectionEnergy::default(),
+            element_updates: 0,
             dt: 0.0,
             time: 0.0,
             steps: 0,
@@ -216,11 +249,19 @@ impl SectionSolver {
             model,
         };
         s.constrain_velocities();
-        s.v_half = s.v.clone();
+        s.v_half.clone_from(&s.v);
         s.forces(0.0)?;
         s.kinetic_central = s.kinetic();
         s.dt = s.stable_step();
+        if s.subcycled() {
+            s.v_prev.clone_from(&s.v);
+            s.synchronise(Schedule::default())?;
+        }
         Ok(s)
+    }
+
+    fn subcycled(&self) -> bool {
+        matches!(self.model.integration, Integration::Subcycled { .. })
     }
 
     fn constrain_velocities(&mut self) {
@@ -235,52 +276,71 @@ impl SectionSolver {
         }
     }
 
+    /// Sets a_r = 0 on the axis and the fixed directions of node `i`.
+    #[inline]
+    pub(super) fn constrain_acceleration(&mut self, i: usize) {
+        if self.axis[i] || self.model.fixed[i][0] {
+            self.a[i][0] = 0.0;
+        }
+        if self.model.fixed[i][1] {
+            self.a[i][1] = 0.0;
+        }
+    }
+
+    /// Updates quad `e` over `dt` (s) with the current x and v^{n+1/2} of its nodes, adds its
+    /// forces into `f_int` and records its Courant step; an inverted quad is an error.
+    #[inline]
+    pub(super) fn update_element(&mut self, e: usize, dt: f64) -> Result<f64> {
+        let q = self.model.quads[e];
+        let x = q.map(|i| self.x[i as usize]);
+        let v = q.map(|i| self.v_half[i as usize]);
+        let mat = &self.model.materials[self.model.material_of[e]];
+        let out = update(&x, &v, dt, mat, self.model.formulation, &mut self.states[e]);
+        if out.min_jacobian <= 0.0 {
+            return Err(Error::Numerical(format!(
+                "quad {e} inverted at t = {:.6e} s (step {}): lower solver.time_step_factor or the penalty factor",
+                self.time, self.steps
+            )));
+        }
+        for (k, &i) in q.iter().enumerate() {
+            self.f_int[i as usize][0] += out.force[k][0];
+            self.f_int[i as usize][1] += out.force[k][1];
+        }
+        self.element_dt_of[e] = out.dt_crit;
+        Ok(out.dt_crit)
+    }
+
+    /// Evaluates every contact at the current x into `f_c` and the contact states.
+    pub(super) fn contact_forces(&mut self) {
+        self.f_c.fill([0.0; 2]);
+        self.contact.clear();
+        for c in self.contacts.iter_mut() {
+            self.contact.push(c.add_forces(&self.x, &mut self.f_c));
+        }
+    }
+
     /// Internal, contact, load and damping forces at the current x with v^{n+1/2} over `dt`;
     /// sets the accelerations and returns the nodal resultant.
     fn forces(&mut self, dt: f64) -> Result<()> {
         let n = self.x.len();
-        let mut f_int = vec![[0.0; 2]; n];
+        self.f_int.fill([0.0; 2]);
         let mut dt_min = f64::INFINITY;
-        for (e, q) in self.model.quads.iter().enumerate() {
-            let x = q.map(|i| self.x[i as usize]);
-            let v = q.map(|i| self.v_half[i as usize]);
-            let mat = &self.model.materials[self.model.material_of[e]];
-            let out = update(&x, &v, dt, mat, self.model.formulation, &mut self.states[e]);
-            if out.min_jacobian <= 0.0 {
-                return Err(Error::Numerical(format!(
-                    "quad {e} inverted at t = {:.6e} s (step {}): lower solver.time_step_factor or the penalty factor",
-                    self.time, self.steps
-                )));
-            }
-            dt_min = dt_min.min(out.dt_crit);
-            for (k, &i) in q.iter().enumerate() {
-                f_int[i as usize][0] += out.force[k][0];
-                f_int[i as usize][1] += out.force[k][1];
-            }
+        for e in 0..self.model.quads.len() {
+            dt_min = dt_min.min(self.update_element(e, dt)?);
         }
+        self.element_updates += self.model.quads.len() as u64;
         self.element_dt = dt_min;
-        let mut f_c = vec![[0.0; 2]; n];
-        self.contact = self
-            .contacts
-            .iter_mut()
-            .map(|c| c.add_forces(&self.x, &mut f_c))
-            .collect();
+        self.contact_forces();
         let alpha = self.model.damping;
         for i in 0..n {
             for c in 0..2 {
-                let f = self.model.loads[i][c] + f_c[i][c]
-                    - f_int[i][c]
+                let f = self.model.loads[i][c] + self.f_c[i][c]
+                    - self.f_int[i][c]
                     - alpha * self.mass[i] * self.v_half[i][c];
                 self.a[i][c] = f / self.mass[i];
             }
-            if self.axis[i] || self.model.fixed[i][0] {
-                self.a[i][0] = 0.0;
-            }
-            if self.model.fixed[i][1] {
-                self.a[i][1] = 0.0;
-            }
+            self.constrain_acceleration(i);
         }
-        self.f_int = f_int;
         Ok(())
     }
 
@@ -293,23 +353,27 @@ impl SectionSolver {
         self.model.time_step_factor * self.element_dt.min(c)
     }
 
-    /// Advances one step of Box 6.1: v^{n+1/2} = v^n + Δt/2 a^n, x^{n+1} = x^n + Δt v^{n+1/2},
-    /// forces at t^{n+1}, v^{n+1} = v^{n+1/2} + Δt/2 a^{n+1}. The step is the stable step of
-    /// the current configuration.
+    /// Advances one step. Single rate: Box 6.1, v^{n+1/2} = v^n + Δt/2 a^n,
+    /// x^{n+1} = x^n + Δt v^{n+1/2}, forces at t^{n+1}, v^{n+1} = v^{n+1/2} + Δt/2 a^{n+1}, with
+    /// the stable step of the current configuration. Subcycled: one fine step (see
+    /// [`super::subcycle`]); positions, velocities, internal forces and energies are those of
+    /// the whole model at synchronisations ([`SectionSolver::synchronised`]).
     pub fn step(&mut self) -> Result<()> {
+        if self.subcycled() {
+            return self.step_subcycled();
+        }
         let dt = self.dt;
         let n = self.x.len();
-        let old_half = std::mem::take(&mut self.v_half);
-        let mut v_half = vec![[0.0; 2]; n];
+        std::mem::swap(&mut self.v_prev, &mut self.v_half);
         for i in 0..n {
             for c in 0..2 {
-                v_half[i][c] = self.v[i][c] + 0.5 * dt * self.a[i][c];
+                self.v_half[i][c] = self.v[i][c] + 0.5 * dt * self.a[i][c];
             }
             if self.axis[i] || self.model.fixed[i][0] {
-                v_half[i][0] = 0.0;
+                self.v_half[i][0] = 0.0;
             }
             if self.model.fixed[i][1] {
-                v_half[i][1] = 0.0;
+                self.v_half[i][1] = 0.0;
             }
         }
         // Work of loads and damping over the step, with the mid-step velocity.
@@ -318,17 +382,15 @@ impl SectionSolver {
         let mut kc = 0.0;
         for i in 0..n {
             for c in 0..2 {
-                let vh = v_half[i][c];
+                let vh = self.v_half[i][c];
                 ext += dt * vh * (self.model.loads[i][c] - alpha * self.mass[i] * vh);
                 self.x[i][c] += dt * vh;
             }
             if self.steps > 0 {
-                kc += 0.5
-                    * self.mass[i]
-                    * (old_half[i][0] * v_half[i][0] + old_half[i][1] * v_half[i][1]);
+                let (o, v) = (self.v_prev[i], self.v_half[i]);
+                kc += 0.5 * self.mass[i] * (o[0] * v[0] + o[1] * v[1]);
             }
         }
-        self.v_half = v_half;
         self.time += dt;
         self.steps += 1;
         self.forces(dt)?;
@@ -349,7 +411,36 @@ impl SectionSolver {
         Ok(())
     }
 
-    fn kinetic(&self) -> f64 {
+    /// True when every node is at a full step (always, single rate; at the end of each cycle,
+    /// subcycled): positions, velocities and energies are then those of one instant.
+    pub fn synchronised(&self) -> bool {
+        !self.subcycled() || self.schedule.count == 0
+    }
+
+    /// Element updates so far (the initial force evaluation counts every quad once).
+    pub fn element_updates(&self) -> u64 {
+        self.element_updates
+    }
+
+    /// Element updates per step averaged over a cycle (the number of quads, single rate).
+    pub fn updates_per_step(&self) -> f64 {
+        if self.subcycled() {
+            self.schedule.updates_per_step()
+        } else {
+            self.states.len() as f64
+        }
+    }
+
+    /// Node levels of the current cycle (all 0, single rate).
+    pub fn node_levels(&self) -> Vec<u8> {
+        if self.subcycled() {
+            self.schedule.node_level.clone()
+        } else {
+            vec![0; self.x.len()]
+        }
+    }
+
+    pub(super) fn kinetic(&self) -> f64 {
         self.v
             .iter()
             .zip(&self.mass)
@@ -357,8 +448,17 @@ impl SectionSolver {
             .sum()
     }
 
-    /// The energies now, J.
+    /// The energies now, J; subcycled, those of the last synchronisation.
     pub fn energy(&self) -> SectionEnergy {
+        if self.subcycled() {
+            self.synced_energy
+        } else {
+            self.fresh_energy()
+        }
+    }
+
+    /// The energies of the current state, J.
+    pub(super) fn fresh_energy(&self) -> SectionEnergy {
         let mut e = SectionEnergy {
             kinetic: self.kinetic(),
             kinetic_central: self.kinetic_central,
@@ -415,7 +515,8 @@ impl SectionSolver {
     pub fn masses(&self) -> &[f64] {
         &self.mass
     }
-    /// Internal nodal forces at the current state (whole rings), N.
+    /// Internal nodal forces at the current state (whole rings; subcycled, at
+    /// synchronisations), N.
     pub fn internal_forces(&self) -> &[[f64; 2]] {
         &self.f_int
     }

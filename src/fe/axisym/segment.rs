@@ -190,4 +190,18 @@ impl SectionContact for SegmentPair {
         }
         dt
     }
+
+    fn node_limits(&self, mass: &[f64], omega: &[f64]) -> Vec<(usize, f64)> {
+        // A node's force goes to the segment it meets: the nodes of both boundaries share
+        // the pair's step.
+        let dt = self.stable_step(mass, omega);
+        let mut nodes: Vec<usize> = self
+            .sides
+            .iter()
+            .flat_map(|s| s.springs.iter().map(|&(i, _)| i))
+            .collect();
+        nodes.sort_unstable();
+        nodes.dedup();
+        nodes.into_iter().map(|i| (i, dt)).collect()
+    }
 }
