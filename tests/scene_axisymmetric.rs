@@ -139,10 +139,11 @@ fn a_head_on_run_reports_its_error_bar_and_the_pair_symmetry() {
     assert_eq!(r.w1_after, [0.0; 3]);
     assert!((e - (r.v2_after[0] - r.v1_after[0]) / 2.0).abs() < 1e-12);
     // A plastic impact of copper at ±1 m/s: e within 5 % of the converged 3D 0.3190 even on
-    // this coarse section (pole D/100), and the energy balance closed to its 1e-3 (the
-    // section's drift is 1.1e-3 on this pole, 1.5e-4 on the default D/200 one).
+    // this coarse section (pole D/100), and the energy balance closed: subcycled, the drift
+    // of the nodal partition's pseudo-energy is 4.3e-3 on this pole (8.9e-4 on the default
+    // D/200 one; single rate 1.1e-3 here).
     assert!((e / 0.3190 - 1.0).abs() < 0.05, "e = {e}");
-    assert!(r.energy_error < 2e-3, "{}", r.energy_error);
+    assert!(r.energy_error < 6e-3, "{}", r.energy_error);
     // The history is the whole system's, as in 3D: plastic work at the end equals the lost
     // kinetic energy of the rigid-body motion within the energy error and vibration.
     let sim = r.fe.as_ref().unwrap();
