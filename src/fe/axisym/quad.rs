@@ -89,10 +89,10 @@ const GAUSS_SHAPE: [([f64; 4], [[f64; 2]; 4]); 4] = {
     t
 };
 
-/// The point of the quad `x` (m) with shape values `n` and natural derivatives `d` at that
-/// point and Gauss weight `w` (see [`point`]).
+/// The radius r (m) and the Jacobian jac[a][c] = ∂x_a/∂ξ_c (m) of the quad `x` (m) at the
+/// point with shape values `n` and natural derivatives `d`.
 #[inline(always)]
-fn point_of(x: &[[f64; 2]; 4], n: &[f64; 4], d: &[[f64; 2]; 4], w: f64) -> Point {
+fn radius_and_jacobian(x: &[[f64; 2]; 4], n: &[f64; 4], d: &[[f64; 2]; 4]) -> (f64, [[f64; 2]; 2]) {
     let mut jac = [[0.0; 2]; 2];
     let mut r = 0.0;
     for i in 0..4 {
@@ -103,7 +103,14 @@ fn point_of(x: &[[f64; 2]; 4], n: &[f64; 4], d: &[[f64; 2]; 4], w: f64) -> Point
             }
         }
     }
-    // jac[a][c] = ∂x_a/∂ξ_c.
+    (r, jac)
+}
+
+/// The point of the quad `x` (m) with shape values `n` and natural derivatives `d` at that
+/// point and Gauss weight `w` (see [`point`]).
+#[inline(always)]
+fn point_of(x: &[[f64; 2]; 4], n: &[f64; 4], d: &[[f64; 2]; 4], w: f64) -> Point {
+    let (r, jac) = radius_and_jacobian(x, n, d);
     let det_j = jac[0][0] * jac[1][1] - jac[0][1] * jac[1][0];
     let inv = 1.0 / det_j;
     let mut b = [[0.0; 2]; 4];
@@ -155,16 +162,7 @@ pub fn mean_gradient(x: &[[f64; 2]; 4]) -> (Gradient, f64) {
     let mut sum = 0.0;
     let mut min_j = f64::INFINITY;
     for (n, d) in &GAUSS_SHAPE {
-        let mut jac = [[0.0; 2]; 2];
-        let mut r = 0.0;
-        for i in 0..4 {
-            r += n[i] * x[i][0];
-            for a in 0..2 {
-                for c in 0..2 {
-                    jac[a][c] += d[i][c] * x[i][a];
-                }
-            }
-        }
+        let (r, jac) = radius_and_jacobian(x, n, d);
         let det_j = jac[0][0] * jac[1][1] - jac[0][1] * jac[1][0];
         min_j = min_j.min(det_j);
         sum += r * det_j;
