@@ -351,7 +351,65 @@ fn damper_command_runs_table2_cases_and_writes_csv_with_units() {
     assert!(!history.contains("NaN"));
     let cycles = std::fs::read_to_string(out.join("5-steel-3/cycles.csv")).unwrap();
     assert!(cycles.starts_with("time [s],amplitude [m],damping_ratio [-]"));
+    for chart in ["decay.svg", "damping.svg"] {
+        let svg = std::fs::read_to_string(out.join("5-steel-3").join(chart)).unwrap();
+        assert!(
+            svg.starts_with("<svg") && svg.contains("5-steel-3"),
+            "{chart}"
+        );
+    }
     std::fs::remove_dir_all(&out).unwrap();
+}
+
+/// The empty frame decays exponentially: every peak of the analysed window lies on the
+/// envelope the decay chart draws (to 1e-3 of the first peak), and its damping chart is flat
+/// at the window's ζ. A misplaced anchor or a wrong decay rate (2ζω_n) moves the later peaks
+/// off by far more.
+#[test]
+fn the_empty_frames_peaks_lie_on_the_drawn_envelope() {
+    use twoball::damper::file::{read, Overrides};
+    use twoball::damper::run::run_case;
+    use twoball::study::damper_plots::{damping_chart, decay_chart};
+    let file = read(std::path::Path::new("verification/damper/table2.toml")).unwrap();
+    let cases = file
+        .cases(&Overrides {
+            duration: Some(6.0),
+            ..Overrides::default()
+        })
+        .unwrap();
+    let empty = cases.iter().find(|c| c.name == "1-empty").unwrap();
+    let o = run_case(empty, &Registry::builtin()).unwrap();
+    let chart = decay_chart(&o);
+    let envelope = &chart.series[2].points;
+    let (t0, a0) = envelope[0];
+    let (t1, _) = *envelope.last().unwrap();
+    let at = |t: f64| {
+        let k = ((t - t0) / (t1 - t0) * 100.0).round() as usize;
+        envelope[k.min(100)]
+    };
+    let mut checked = 0;
+    for &(t, a) in &chart.series[1].points {
+        let (te, ae) = at(t);
+        if t < t0 || t > t1 || (te - t).abs() > 0.6 * (t1 - t0) / 100.0 {
+            continue;
+        }
+        // The envelope is sampled: compare at the sample nearest the peak, corrected to t.
+        let slope = (a0 / ae).ln() / (te - t0).max(1e-12);
+        let on = ae * (-slope * (t - te)).exp();
+        assert!(
+            (a - on).abs() < 1e-3 * a0,
+            "peak {a} mm at {t} s, envelope {on} mm"
+        );
+        checked += 1;
+    }
+    assert!(checked >= 3, "{checked} peaks checked");
+    let zeta = 100.0 * o.decay.ratio;
+    for &(_, z) in &damping_chart(&o).series[0].points {
+        assert!(
+            (z - zeta).abs() < 1e-2 * zeta,
+            "cycle zeta {z} % against {zeta} %"
+        );
+    }
 }
 
 #[test]

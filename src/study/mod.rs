@@ -30,6 +30,7 @@ pub mod bench_profile;
 pub mod convergence;
 pub mod cost;
 pub mod curves;
+pub mod damper_plots;
 pub mod error_estimate;
 pub mod error_honesty;
 pub mod figures;

@@ -1,0 +1,116 @@
+//! SVG charts of a damper case ([`crate::damper`]): the frame's free decay with its envelope,
+//! and the damping ratio cycle by cycle against amplitude (particle dampers are strongly
+//! amplitude dependent).
+//!
+//! The envelope is the exponential of the logarithmic-decrement fit over the analysed window,
+//! A(t) = A₀ exp(−ζ ω_n (t − t₀)) with ω_n = 2π f / √(1 − ζ²), anchored at the window's first
+//! peak (t₀, A₀): where the decay is exponential the peaks lie on it, and where the damping
+//! depends on amplitude they leave it.
+
+use super::plots::{Chart, Series, Style};
+use crate::atomic::write_atomic;
+use crate::damper::decay::{cycle_ratios, peaks};
+use crate::damper::run::CaseOutcome;
+use crate::error::Result;
+use std::f64::consts::PI;
+use std::path::Path;
+
+/// Most samples of the displacement drawn per chart (the history is thinned evenly).
+pub const MAX_DRAWN_SAMPLES: usize = 4000;
+
+/// The decay chart: frame displacement (mm) against time (s), the peaks, and the envelope of
+/// the window's fit.
+pub fn decay_chart(o: &CaseOutcome) -> Chart {
+    let every = o.samples.len().div_ceil(MAX_DRAWN_SAMPLES).max(1);
+    let trace = o
+        .samples
+        .iter()
+        .step_by(every)
+        .map(|s| (s.time, 1e3 * s.displacement))
+        .collect();
+    let t: Vec<f64> = o.samples.iter().map(|s| s.time).collect();
+    let x: Vec<f64> = o.samples.iter().map(|s| s.displacement).collect();
+    let found = peaks(&t, &x);
+    let (zeta, f) = (o.decay.ratio, o.decay.frequency);
+    let omega_n = 2.0 * PI * f / (1.0 - zeta * zeta).max(1e-12).sqrt();
+    let (t0, a0) = (o.decay.span.0.time, o.decay.span.0.value);
+    let t1 = o.decay.span.1.time;
+    let envelope = (0..=100)
+        .map(|k| {
+            let tk = t0 + (t1 - t0) * k as f64 / 100.0;
+            (tk, 1e3 * a0 * (-zeta * omega_n * (tk - t0)).exp())
+        })
+        .collect();
+    Chart {
+        title: format!(
+            "{}: free decay, f = {:.4} Hz, zeta = {:.3} %",
+            o.name,
+            f,
+            100.0 * zeta
+        ),
+        x_label: "time [s]".into(),
+        y_label: "frame displacement [mm]".into(),
+        series: vec![
+            Series {
+                label: "displacement".into(),
+                points: trace,
+                style: Style::Line,
+            },
+            Series {
+                label: "peaks".into(),
+                points: found.iter().map(|p| (p.time, 1e3 * p.value)).collect(),
+                style: Style::Points,
+            },
+            Series {
+                label: "envelope of the window's log decrement".into(),
+                points: envelope,
+                style: Style::Line,
+            },
+        ],
+    }
+}
+
+/// The amplitude chart: ζ (%) of each pair of successive peaks against their mean
+/// amplitude (mm), beside the window's ζ.
+pub fn damping_chart(o: &CaseOutcome) -> Chart {
+    let t: Vec<f64> = o.samples.iter().map(|s| s.time).collect();
+    let x: Vec<f64> = o.samples.iter().map(|s| s.displacement).collect();
+    let cycles: Vec<(f64, f64)> = cycle_ratios(&peaks(&t, &x))
+        .into_iter()
+        .map(|(a, _, z)| (1e3 * a, 100.0 * z))
+        .collect();
+    let (lo, hi) = cycles.iter().fold((f64::INFINITY, 0.0f64), |(l, h), p| {
+        (l.min(p.0), h.max(p.0))
+    });
+    let window = 100.0 * o.decay.ratio;
+    Chart {
+        title: format!("{}: damping ratio against amplitude", o.name),
+        x_label: "amplitude [mm]".into(),
+        y_label: "damping ratio [%]".into(),
+        series: vec![
+            Series {
+                label: "cycle by cycle".into(),
+                points: cycles,
+                style: Style::Points,
+            },
+            Series {
+                label: "window's log decrement".into(),
+                points: vec![(lo, window), (hi, window)],
+                style: Style::Line,
+            },
+        ],
+    }
+}
+
+/// Writes `CASE/decay.svg` and `CASE/damping.svg` of every outcome into `dir` (the case
+/// folders exist: [`crate::damper::run::write_outputs`] made them), each atomically.
+///
+/// Errors: plotters drawing failures, I/O errors naming the path.
+pub fn write_plots(dir: &Path, outcomes: &[CaseOutcome]) -> Result<()> {
+    for o in outcomes {
+        let case = dir.join(&o.name);
+        write_atomic(case.join("decay.svg"), decay_chart(o).svg()?.as_bytes())?;
+        write_atomic(case.join("damping.svg"), damping_chart(o).svg()?.as_bytes())?;
+    }
+    Ok(())
+}
