@@ -358,7 +358,45 @@ fn damper_command_runs_table2_cases_and_writes_csv_with_units() {
             "{chart}"
         );
     }
+    // The balls as a ParaView series: every listed file exists; the empty frame has none.
+    let pvd = std::fs::read_to_string(out.join("5-steel-3/balls.pvd")).unwrap();
+    let files: Vec<&str> = pvd
+        .lines()
+        .filter_map(|l| l.split("file=\"").nth(1))
+        .filter_map(|l| l.split('"').next())
+        .collect();
+    assert!(files.len() > 100 && files.len() <= 201, "{}", files.len());
+    for f in &files {
+        assert!(out.join("5-steel-3").join(f).is_file(), "{f}");
+    }
+    assert!(!out.join("1-empty/balls.pvd").exists());
     std::fs::remove_dir_all(&out).unwrap();
+}
+
+/// The balls' frames start at release at rest, run forward in time, number at most
+/// `BALL_FRAMES` + 1, and carry the balls' radii (three 20 mm steel balls here).
+#[test]
+fn ball_frames_start_at_release_and_follow_the_run() {
+    use twoball::damper::file::{read, Overrides};
+    use twoball::damper::run::{run_case, BALL_FRAMES};
+    let file = read(std::path::Path::new("verification/damper/table2.toml")).unwrap();
+    let cases = file
+        .cases(&Overrides {
+            duration: Some(1.5),
+            ..Overrides::default()
+        })
+        .unwrap();
+    let case = cases.iter().find(|c| c.name == "5-steel-3").unwrap();
+    let o = run_case(case, &Registry::builtin()).unwrap();
+    assert_eq!(o.radii, vec![0.01; 3]);
+    assert!(o.frames.len() > 10 && o.frames.len() <= BALL_FRAMES + 1);
+    let first = &o.frames[0];
+    assert_eq!(first.time, 0.0);
+    assert_eq!(first.position.len(), 3);
+    assert!(first.velocity.iter().flatten().all(|&v| v == 0.0));
+    assert!(o.frames.windows(2).all(|w| w[1].time > w[0].time));
+    let last = o.frames.last().unwrap();
+    assert!(last.time > 1.4 && last.velocity.iter().flatten().any(|&v| v != 0.0));
 }
 
 /// The empty frame decays exponentially: every peak of the analysed window lies on the

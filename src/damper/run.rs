@@ -7,6 +7,8 @@ use super::sim::{Sample, Simulation};
 use crate::analytic::laws::Registry;
 use crate::atomic::{ensure_dir, write_atomic};
 use crate::error::{Error, Result};
+use crate::mesh::points_vtu::spheres_vtu_bytes;
+use crate::mesh::vtu::{write_pvd, VtuFormat};
 use rayon::prelude::*;
 use std::fmt::Write as _;
 use std::path::Path;
@@ -39,7 +41,25 @@ pub struct CaseOutcome {
     pub wall_time: f64,
     /// The recorded samples.
     pub samples: Vec<Sample>,
+    /// Ball radii, m.
+    pub radii: Vec<f64>,
+    /// The balls' states at up to [`BALL_FRAMES`] evenly spaced samples (none without balls).
+    pub frames: Vec<BallFrame>,
 }
+
+/// The balls at one instant.
+#[derive(Debug, Clone, PartialEq)]
+pub struct BallFrame {
+    /// Time since release, s.
+    pub time: f64,
+    /// Ball centres (inertial frame), m.
+    pub position: Vec<[f64; 3]>,
+    /// Ball velocities, m/s.
+    pub velocity: Vec<[f64; 3]>,
+}
+
+/// Most ball frames kept per case (the VTU series of the balls).
+pub const BALL_FRAMES: usize = 200;
 
 /// Runs one case to its duration and reads its decay. Errors: an invalid scene or law, a
 /// non-finite state, fewer than two peaks in the window (each naming the case).
@@ -50,8 +70,22 @@ pub fn run_case(case: &DamperCase, registry: &Registry) -> Result<CaseOutcome> {
     };
     let start = Instant::now();
     let mut sim = Simulation::new(&case.scene, registry).map_err(named)?;
+    let expected = (case.scene.duration / case.scene.sample_interval).ceil() as usize + 1;
+    let every = expected.div_ceil(BALL_FRAMES).max(1);
+    let mut frames = Vec::new();
+    let mut seen = 0usize;
     let samples = sim
-        .run(case.scene.duration, case.scene.sample_interval)
+        .run_observed(case.scene.duration, case.scene.sample_interval, &mut |s| {
+            if !s.position.is_empty() && seen % every == 0 {
+                let v3 = |v: &nalgebra::Vector3<f64>| [v.x, v.y, v.z];
+                frames.push(BallFrame {
+                    time: s.time,
+                    position: s.position.iter().map(v3).collect(),
+                    velocity: s.velocity.iter().map(v3).collect(),
+                });
+            }
+            seen += 1;
+        })
         .map_err(named)?;
     let wall_time = start.elapsed().as_secs_f64();
     let t: Vec<f64> = samples.iter().map(|s| s.time).collect();
@@ -77,6 +111,8 @@ pub fn run_case(case: &DamperCase, registry: &Registry) -> Result<CaseOutcome> {
         steps: sim.steps,
         wall_time,
         samples,
+        radii: sim.radii().to_vec(),
+        frames,
     })
 }
 
@@ -164,8 +200,33 @@ pub fn summary_csv(outcomes: &[CaseOutcome]) -> String {
     s
 }
 
-/// Writes `summary.csv` and, per case, `CASE/history.csv` and `CASE/cycles.csv` into `dir`
-/// (created if needed; every file written atomically).
+/// Writes the balls' frames of `o` as a ParaView series into `case`: `balls_NNNN.vtu` (points
+/// with `radius` [m] and `velocity` [m/s], compressed binary) and `balls.pvd`.
+///
+/// Errors: a non-finite state (nothing written for that frame), I/O errors naming the path.
+pub fn write_ball_series(case: &Path, o: &CaseOutcome) -> Result<()> {
+    let mut written = Vec::new();
+    for (k, f) in o.frames.iter().enumerate() {
+        let name = format!("balls_{k:04}.vtu");
+        let bytes = spheres_vtu_bytes(
+            &f.position,
+            &o.radii,
+            &f.velocity,
+            f.time,
+            VtuFormat::Binary,
+        )?;
+        write_atomic(case.join(&name), &bytes)?;
+        written.push((f.time, name));
+    }
+    if written.is_empty() {
+        return Ok(());
+    }
+    write_pvd(case.join("balls.pvd"), &written)
+}
+
+/// Writes `summary.csv` and, per case, `CASE/history.csv`, `CASE/cycles.csv` and the balls'
+/// series ([`write_ball_series`]) into `dir` (created if needed; every file written
+/// atomically).
 pub fn write_outputs(dir: &Path, outcomes: &[CaseOutcome]) -> Result<()> {
     ensure_dir(dir)?;
     for o in outcomes {
@@ -173,6 +234,7 @@ pub fn write_outputs(dir: &Path, outcomes: &[CaseOutcome]) -> Result<()> {
         ensure_dir(&case)?;
         write_atomic(case.join("history.csv"), history_csv(&o.samples).as_bytes())?;
         write_atomic(case.join("cycles.csv"), cycles_csv(&o.samples).as_bytes())?;
+        write_ball_series(&case, o)?;
     }
     write_atomic(dir.join("summary.csv"), summary_csv(outcomes).as_bytes())
 }

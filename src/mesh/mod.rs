@@ -11,6 +11,7 @@ pub mod meridian;
 pub mod meridian_ball;
 pub mod meridian_ladder;
 pub mod msh;
+pub mod points_vtu;
 pub mod quality;
 pub mod section;
 pub mod section_msh;
