@@ -76,7 +76,7 @@ pub fn run_case(case: &DamperCase, registry: &Registry) -> Result<CaseOutcome> {
     let mut seen = 0usize;
     let samples = sim
         .run_observed(case.scene.duration, case.scene.sample_interval, &mut |s| {
-            if !s.position.is_empty() && seen % every == 0 {
+            if !s.position.is_empty() && seen.is_multiple_of(every) {
                 let v3 = |v: &nalgebra::Vector3<f64>| [v.x, v.y, v.z];
                 frames.push(BallFrame {
                     time: s.time,
