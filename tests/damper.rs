@@ -401,10 +401,11 @@ fn ball_frames_start_at_release_and_follow_the_run() {
 
 /// The empty frame decays exponentially: every peak of the analysed window lies on the
 /// envelope the decay chart draws (to 1e-3 of the first peak), and its damping chart is flat
-/// at the window's ζ. A misplaced anchor or a wrong decay rate (2ζω_n) moves the later peaks
-/// off by far more.
+/// at the window's ζ; the envelope fit's ζ equals the log decrement's. A wrong fit (a doubled
+/// rate, a misplaced anchor) moves the later peaks off by far more.
 #[test]
 fn the_empty_frames_peaks_lie_on_the_drawn_envelope() {
+    use twoball::damper::decay::envelope_fit;
     use twoball::damper::file::{read, Overrides};
     use twoball::damper::run::run_case;
     use twoball::study::damper_plots::{damping_chart, decay_chart};
@@ -442,6 +443,15 @@ fn the_empty_frames_peaks_lie_on_the_drawn_envelope() {
     }
     assert!(checked >= 3, "{checked} peaks checked");
     let zeta = 100.0 * o.decay.ratio;
+    let t: Vec<f64> = o.samples.iter().map(|s| s.time).collect();
+    let x: Vec<f64> = o.samples.iter().map(|s| s.displacement).collect();
+    let (_, _, sigma) = envelope_fit(&peaks(&t, &x), o.window).unwrap();
+    let w = 2.0 * std::f64::consts::PI * o.decay.frequency;
+    let zeta_fit = 100.0 * sigma / (sigma * sigma + w * w).sqrt();
+    assert!(
+        (zeta_fit / zeta - 1.0).abs() < 1e-3,
+        "{zeta_fit} % against {zeta} %"
+    );
     for &(_, z) in &damping_chart(&o).series[0].points {
         assert!(
             (z - zeta).abs() < 1e-2 * zeta,

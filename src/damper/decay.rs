@@ -78,6 +78,33 @@ pub fn log_decrement(peaks: &[Peak], window: (f64, f64)) -> Result<Decay> {
     })
 }
 
+/// The least-squares exponential envelope A(t) = A₀ exp(−σ (t − t₀)) of the peaks in the
+/// window [t0, t1] (s): a straight-line fit of ln(value) against time, t₀ the first peak's
+/// time. Returns (t₀ in s, A₀ in the response's unit, σ in 1/s); None with fewer than two
+/// peaks in the window or a non-positive peak. With the damped frequency f (Hz) the fit's
+/// damping ratio is ζ = σ/√(σ² + (2π f)²).
+pub fn envelope_fit(peaks: &[Peak], window: (f64, f64)) -> Option<(f64, f64, f64)> {
+    let inside: Vec<&Peak> = peaks
+        .iter()
+        .filter(|p| p.time >= window.0 && p.time <= window.1)
+        .collect();
+    if inside.len() < 2 || inside.iter().any(|p| p.value <= 0.0) {
+        return None;
+    }
+    let t0 = inside[0].time;
+    let n = inside.len() as f64;
+    let (st, sy) = inside.iter().fold((0.0, 0.0), |(a, b), p| {
+        (a + (p.time - t0), b + p.value.ln())
+    });
+    let (mt, my) = (st / n, sy / n);
+    let (sxy, sxx) = inside.iter().fold((0.0, 0.0), |(a, b), p| {
+        let dt = p.time - t0 - mt;
+        (a + dt * (p.value.ln() - my), b + dt * dt)
+    });
+    let slope = sxy / sxx;
+    Some((t0, (my - slope * mt).exp(), -slope))
+}
+
 /// Damping ratio cycle by cycle: for each pair of successive peaks, the mean amplitude (the
 /// response's unit), the time midway (s) and ζ from their logarithmic decrement.
 pub fn cycle_ratios(peaks: &[Peak]) -> Vec<(f64, f64, f64)> {

@@ -2,14 +2,14 @@
 //! and the damping ratio cycle by cycle against amplitude (particle dampers are strongly
 //! amplitude dependent).
 //!
-//! The envelope is the exponential of the logarithmic-decrement fit over the analysed window,
-//! A(t) = A₀ exp(−ζ ω_n (t − t₀)) with ω_n = 2π f / √(1 − ζ²), anchored at the window's first
-//! peak (t₀, A₀): where the decay is exponential the peaks lie on it, and where the damping
-//! depends on amplitude they leave it.
+//! The envelope is the least-squares exponential through the analysed window's peaks
+//! ([`crate::damper::decay::envelope_fit`]), A(t) = A₀ exp(−σ (t − t₀)), its damping ratio
+//! ζ_fit = σ/√(σ² + (2π f)²) in the title beside the log decrement's: where the decay is
+//! exponential the peaks lie on it, and where the damping depends on amplitude they leave it.
 
 use super::plots::{Chart, Series, Style};
 use crate::atomic::write_atomic;
-use crate::damper::decay::{cycle_ratios, peaks};
+use crate::damper::decay::{cycle_ratios, envelope_fit, peaks};
 use crate::damper::run::CaseOutcome;
 use crate::error::Result;
 use std::f64::consts::PI;
@@ -32,21 +32,23 @@ pub fn decay_chart(o: &CaseOutcome) -> Chart {
     let x: Vec<f64> = o.samples.iter().map(|s| s.displacement).collect();
     let found = peaks(&t, &x);
     let (zeta, f) = (o.decay.ratio, o.decay.frequency);
-    let omega_n = 2.0 * PI * f / (1.0 - zeta * zeta).max(1e-12).sqrt();
-    let (t0, a0) = (o.decay.span.0.time, o.decay.span.0.value);
     let t1 = o.decay.span.1.time;
+    let (t0, a0, sigma) =
+        envelope_fit(&found, o.window).unwrap_or((o.decay.span.0.time, o.decay.span.0.value, 0.0));
+    let zeta_fit = sigma / (sigma * sigma + (2.0 * PI * f).powi(2)).sqrt();
     let envelope = (0..=100)
         .map(|k| {
             let tk = t0 + (t1 - t0) * k as f64 / 100.0;
-            (tk, 1e3 * a0 * (-zeta * omega_n * (tk - t0)).exp())
+            (tk, 1e3 * a0 * (-sigma * (tk - t0)).exp())
         })
         .collect();
     Chart {
         title: format!(
-            "{}: free decay, f = {:.4} Hz, zeta = {:.3} %",
+            "{}: free decay, f = {:.4} Hz, zeta = {:.3} % (log decrement), {:.3} % (envelope fit)",
             o.name,
             f,
-            100.0 * zeta
+            100.0 * zeta,
+            100.0 * zeta_fit
         ),
         x_label: "time [s]".into(),
         y_label: "frame displacement [mm]".into(),
@@ -62,7 +64,7 @@ pub fn decay_chart(o: &CaseOutcome) -> Chart {
                 style: Style::Points,
             },
             Series {
-                label: "envelope of the window's log decrement".into(),
+                label: "least-squares envelope of the window's peaks".into(),
                 points: envelope,
                 style: Style::Line,
             },
