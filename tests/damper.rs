@@ -2,6 +2,7 @@
 //! a ball's rebound on the box floor with its law's restitution, conservation of momentum
 //! and the closed energy balance; bad scenes as one-line errors.
 
+mod pvd_support;
 use twoball::analytic::laws::{ContactPair, Registry};
 use twoball::analytic::Body;
 use twoball::damper::{log_decrement, peaks, BallSpec, BoxSpec, DamperScene, Simulation};
@@ -360,11 +361,7 @@ fn damper_command_runs_table2_cases_and_writes_csv_with_units() {
     }
     // The balls as a ParaView series: every listed file exists; the empty frame has none.
     let pvd = std::fs::read_to_string(out.join("5-steel-3/balls.pvd")).unwrap();
-    let files: Vec<&str> = pvd
-        .lines()
-        .filter_map(|l| l.split("file=\"").nth(1))
-        .filter_map(|l| l.split('"').next())
-        .collect();
+    let files = pvd_support::files(&pvd);
     assert!(files.len() > 100 && files.len() <= 201, "{}", files.len());
     for f in &files {
         assert!(out.join("5-steel-3").join(f).is_file(), "{f}");
@@ -373,21 +370,26 @@ fn damper_command_runs_table2_cases_and_writes_csv_with_units() {
     std::fs::remove_dir_all(&out).unwrap();
 }
 
+/// Case `name` of verification/damper/table2.toml run for `duration` s.
+fn table2_case(name: &str, duration: f64) -> twoball::damper::run::CaseOutcome {
+    use twoball::damper::file::{read, Overrides};
+    let file = read(std::path::Path::new("verification/damper/table2.toml")).unwrap();
+    let cases = file
+        .cases(&Overrides {
+            duration: Some(duration),
+            ..Overrides::default()
+        })
+        .unwrap();
+    let case = cases.iter().find(|c| c.name == name).unwrap();
+    twoball::damper::run::run_case(case, &Registry::builtin()).unwrap()
+}
+
 /// The balls' frames start at release at rest, run forward in time, number at most
 /// `BALL_FRAMES` + 1, and carry the balls' radii (three 20 mm steel balls here).
 #[test]
 fn ball_frames_start_at_release_and_follow_the_run() {
-    use twoball::damper::file::{read, Overrides};
-    use twoball::damper::run::{run_case, BALL_FRAMES};
-    let file = read(std::path::Path::new("verification/damper/table2.toml")).unwrap();
-    let cases = file
-        .cases(&Overrides {
-            duration: Some(1.5),
-            ..Overrides::default()
-        })
-        .unwrap();
-    let case = cases.iter().find(|c| c.name == "5-steel-3").unwrap();
-    let o = run_case(case, &Registry::builtin()).unwrap();
+    use twoball::damper::run::BALL_FRAMES;
+    let o = table2_case("5-steel-3", 1.5);
     assert_eq!(o.radii, vec![0.01; 3]);
     assert!(o.frames.len() > 10 && o.frames.len() <= BALL_FRAMES + 1);
     let first = &o.frames[0];
@@ -406,18 +408,8 @@ fn ball_frames_start_at_release_and_follow_the_run() {
 #[test]
 fn the_empty_frames_peaks_lie_on_the_drawn_envelope() {
     use twoball::damper::decay::envelope_fit;
-    use twoball::damper::file::{read, Overrides};
-    use twoball::damper::run::run_case;
     use twoball::study::damper_plots::{damping_chart, decay_chart};
-    let file = read(std::path::Path::new("verification/damper/table2.toml")).unwrap();
-    let cases = file
-        .cases(&Overrides {
-            duration: Some(6.0),
-            ..Overrides::default()
-        })
-        .unwrap();
-    let empty = cases.iter().find(|c| c.name == "1-empty").unwrap();
-    let o = run_case(empty, &Registry::builtin()).unwrap();
+    let o = table2_case("1-empty", 6.0);
     let chart = decay_chart(&o);
     let envelope = &chart.series[2].points;
     let (t0, a0) = envelope[0];

@@ -4,6 +4,7 @@
 //! invariance, elastic exchange), the same results.json keys as the 3D models, and the
 //! section's snapshot series.
 
+mod pvd_support;
 use std::path::Path;
 use std::process::Command;
 use twoball::scene::{approach, Approach, Override, Scene, Touch, DEFAULT_SCENE};
@@ -275,13 +276,9 @@ fn section_runs_write_a_playable_snapshot_series() {
         String::from_utf8_lossy(&out.stderr)
     );
     let pvd = std::fs::read_to_string(dir.join("snapshots.pvd")).unwrap();
-    let files: Vec<&str> = pvd
-        .lines()
-        .filter_map(|l| l.split("file=\"").nth(1))
-        .filter_map(|l| l.split('"').next())
-        .collect();
+    let files = pvd_support::files(&pvd);
     assert_eq!(files.len(), 3, "{pvd}");
-    let last = std::fs::read_to_string(dir.join(files[2])).unwrap();
+    let last = std::fs::read_to_string(dir.join(&files[2])).unwrap();
     for field in [
         "displacement",
         "velocity",

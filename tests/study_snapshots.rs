@@ -6,6 +6,7 @@
 #[path = "tool_support/mod.rs"]
 mod tools;
 
+mod pvd_support;
 use std::path::Path;
 use std::process::Command;
 
@@ -61,11 +62,7 @@ fn run_writes_a_playable_snapshot_series() {
         String::from_utf8_lossy(&out.stderr)
     );
     let pvd = std::fs::read_to_string(dir.join("snapshots.pvd")).unwrap();
-    let files: Vec<&str> = pvd
-        .lines()
-        .filter_map(|l| l.split("file=\"").nth(1))
-        .map(|r| r.split('"').next().unwrap())
-        .collect();
+    let files = pvd_support::files(&pvd);
     let times: Vec<f64> = pvd
         .lines()
         .filter_map(|l| l.split("timestep=\"").nth(1))
@@ -79,8 +76,8 @@ fn run_writes_a_playable_snapshot_series() {
     let results: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(dir.join("results.json")).unwrap()).unwrap();
     let elements = results["fe"]["elements"].as_u64().unwrap();
-    let first = std::fs::read_to_string(dir.join(files[0])).unwrap();
-    let last = std::fs::read_to_string(dir.join(files[files.len() - 1])).unwrap();
+    let first = std::fs::read_to_string(dir.join(&files[0])).unwrap();
+    let last = std::fs::read_to_string(dir.join(&files[files.len() - 1])).unwrap();
     // First touch: nothing has deformed yet; the quarter ball moves towards the plane (+x).
     assert!(data_array(&first, "displacement").iter().all(|u| *u == 0.0));
     let v0 = mean_x(&data_array(&first, "velocity"));
