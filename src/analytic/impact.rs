@@ -470,7 +470,7 @@ pub fn integrate(
                 delta_max = y[0];
                 time_of_max = t;
                 let force = sys.raw_force(&mode, y[0], 0.0);
-                mode.normal = NormalMode::Unloading(Turn { delta: y[0], force });
+                mode.normal = NormalMode::Unloading(Turn::new(normal, y[0], force));
                 y[1] = y[1].min(0.0);
             }
             Event::Threshold => {

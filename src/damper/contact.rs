@@ -104,10 +104,9 @@ impl Contact {
         let rate = k.relative.dot(&n);
         let law = laws.normal.as_ref();
         self.state = match self.state {
-            NormalState::Loading(max) if rate <= 0.0 && max > 0.0 => NormalState::Unloading(Turn {
-                delta: max,
-                force: law.loading(max, 0.0, self.speed),
-            }),
+            NormalState::Loading(max) if rate <= 0.0 && max > 0.0 => {
+                NormalState::Unloading(Turn::new(law, max, law.loading(max, 0.0, self.speed)))
+            }
             NormalState::Loading(max) => NormalState::Loading(max.max(k.delta)),
             NormalState::Unloading(t) if k.delta > t.delta => NormalState::Loading(k.delta),
             s => s,
@@ -175,10 +174,9 @@ impl Contact {
     pub fn stored(&self, laws: &PairLaws) -> (f64, f64) {
         let law = laws.normal.as_ref();
         let turn = match self.state {
-            NormalState::Loading(_) => Turn {
-                delta: self.delta,
-                force: law.loading(self.delta, 0.0, self.speed),
-            },
+            NormalState::Loading(_) => {
+                Turn::new(law, self.delta, law.loading(self.delta, 0.0, self.speed))
+            }
             NormalState::Unloading(t) => t,
         };
         let d = self.delta.max(0.0);

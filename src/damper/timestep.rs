@@ -36,10 +36,7 @@ pub fn contact_scale(laws: &PairLaws, speed: f64) -> ContactScale {
     let tangent = (f(delta + eps, 0.0) - f(delta - eps, 0.0)) / (2.0 * eps);
     let secant = f(delta, 0.0) / delta;
     let hertz = 2.0 * h.modulus * (h.radius * delta).sqrt();
-    let turn = Turn {
-        delta,
-        force: f(delta, 0.0),
-    };
+    let turn = Turn::new(law, delta, f(delta, 0.0));
     let u = |d: f64| law.unloading(d, 0.0, speed, &turn);
     let unloading = (u(delta) - u(delta - eps)) / eps;
     let k = tangent.max(secant).max(hertz).max(unloading);

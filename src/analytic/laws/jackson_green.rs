@@ -41,15 +41,6 @@ impl JacksonGreen {
             * (self.radius / self.modulus).powi(2)
             * (0.5 * PI * self.c() * self.yield_strength).powi(3)
     }
-
-    fn residual(&self, turn: &Turn) -> f64 {
-        let x = turn.delta / self.critical_approach();
-        if x <= 1.0 {
-            0.0
-        } else {
-            turn.delta * 1.02 * (1.0 - ((x + 5.9) / 6.9).powf(-0.54))
-        }
-    }
 }
 
 impl NormalLaw for JacksonGreen {
@@ -67,8 +58,17 @@ impl NormalLaw for JacksonGreen {
             + 4.0 * hardness / self.c() * (1.0 - (-x.powf(5.0 / 9.0) / 25.0).exp()) * x)
     }
 
+    fn residual(&self, delta: f64, _force: f64) -> f64 {
+        let x = delta / self.critical_approach();
+        if x <= 1.0 {
+            0.0
+        } else {
+            delta * 1.02 * (1.0 - ((x + 5.9) / 6.9).powf(-0.54))
+        }
+    }
+
     fn unloading(&self, delta: f64, _rate: f64, _speed: f64, turn: &Turn) -> f64 {
-        let r = self.residual(turn);
+        let r = turn.residual();
         turn.force * ((delta - r).max(0.0) / (turn.delta - r)).powf(1.5)
     }
 
@@ -80,11 +80,8 @@ impl NormalLaw for JacksonGreen {
         let e0 = 0.5 * mass * speed * speed;
         let guess = (1.25 * e0 / (4.0 / 3.0 * self.modulus * self.radius.sqrt())).powf(0.4);
         let delta_max = max_approach(self, e0, guess);
-        let turn = Turn {
-            delta: delta_max,
-            force: self.loading(delta_max, 0.0, speed),
-        };
-        let back = 0.4 * turn.force * (delta_max - self.residual(&turn));
+        let turn = Turn::new(self, delta_max, self.loading(delta_max, 0.0, speed));
+        let back = 0.4 * turn.force * (delta_max - turn.residual());
         Some(ClosedForm {
             e: (back / e0).sqrt(),
             delta_max,

@@ -29,10 +29,13 @@ impl NormalLaw for LiYangShi {
     }
 
     fn unloading(&self, delta: f64, _rate: f64, _speed: f64, turn: &Turn) -> f64 {
-        // (F/K)^{2/3} as a cube root, several times cheaper than powf in the damper's loop.
-        let ratio = turn.force / self.pair.stiffness();
-        let recovery = (ratio * ratio).cbrt();
-        self.pair.force(delta - (turn.delta - recovery))
+        self.pair.force(delta - turn.residual())
+    }
+
+    fn residual(&self, delta: f64, force: f64) -> f64 {
+        // δ_p = δ_max − (F_max/K)^{2/3} (eq. 27), the recovery as a cube root.
+        let ratio = force / self.pair.stiffness();
+        delta - (ratio * ratio).cbrt()
     }
 
     fn thresholds(&self) -> Vec<f64> {

@@ -32,13 +32,32 @@ pub use params::{ParamSpec, Params};
 pub use registry::{NormalSpec, Registry, TangentialSpec};
 
 /// The state of the contact at the last maximum of approach (where loading turned into
-/// unloading): the history every hysteretic law needs.
+/// unloading): the history every hysteretic law needs, with the law's permanent approach
+/// computed once per turn (the unloading curve is evaluated every step).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Turn {
     /// Maximum approach reached, m.
     pub delta: f64,
     /// Contact force there, N.
     pub force: f64,
+    residual: f64,
+}
+
+impl Turn {
+    /// The turn of `law` at approach `delta` (m) under force `force` (N).
+    pub fn new<L: NormalLaw + ?Sized>(law: &L, delta: f64, force: f64) -> Self {
+        Turn {
+            delta,
+            force,
+            residual: law.residual(delta, force),
+        }
+    }
+
+    /// The law's permanent approach δ_p after this turn (m): where its unloading force returns
+    /// to zero ([`NormalLaw::residual`]).
+    pub fn residual(&self) -> f64 {
+        self.residual
+    }
 }
 
 /// Restitution and maximum approach of a head-on impact from a law's own closed form.
@@ -64,6 +83,14 @@ pub trait NormalLaw: Send + Sync {
     fn unloading(&self, delta: f64, rate: f64, speed: f64, turn: &Turn) -> f64 {
         let _ = turn;
         self.loading(delta, rate, speed)
+    }
+
+    /// Permanent approach δ_p (m) after unloading from a turn at approach `delta` (m) under
+    /// force `force` (N): where the unloading force returns to zero. [`Turn::new`] calls it
+    /// once per turn. Default 0 (a law without hysteresis).
+    fn residual(&self, delta: f64, force: f64) -> f64 {
+        let _ = (delta, force);
+        0.0
     }
 
     /// Approaches (m, ascending) at which the loading law changes its form (yield, a fitted

@@ -75,6 +75,10 @@ impl NormalLaw for TaborHardening {
         super::thornton::enlarged_unloading(self.modulus, self.radius, delta, turn)
     }
 
+    fn residual(&self, delta: f64, force: f64) -> f64 {
+        enlarged_radius(self.modulus, self.radius, delta, force).1
+    }
+
     fn thresholds(&self) -> Vec<f64> {
         let (dy, sh) = (self.yield_approach(), self.hardening_approach());
         if sh > dy {
@@ -88,11 +92,8 @@ impl NormalLaw for TaborHardening {
         let e0 = 0.5 * mass * speed * speed;
         let guess = (1.25 * e0 / (4.0 / 3.0 * self.modulus * self.radius.sqrt())).powf(0.4);
         let delta_max = max_approach(self, e0, guess);
-        let turn = Turn {
-            delta: delta_max,
-            force: self.loading(delta_max, 0.0, speed),
-        };
-        let (_, dp) = enlarged_radius(self.modulus, self.radius, &turn);
+        let turn = Turn::new(self, delta_max, self.loading(delta_max, 0.0, speed));
+        let dp = turn.residual();
         Some(ClosedForm {
             e: (0.4 * turn.force * (delta_max - dp) / e0).sqrt().min(1.0),
             delta_max,

@@ -32,11 +32,12 @@ impl Thornton {
 }
 
 /// Unloading of a Thornton-type law from `turn`: enlarged radius R_p (m) and permanent
-/// approach δ_p (m), with contact radius a_p² = R δ_max at the turn (R, E in m, Pa).
-pub fn enlarged_radius(modulus: f64, radius: f64, turn: &Turn) -> (f64, f64) {
-    let a2 = radius * turn.delta;
-    let rp = 4.0 * modulus * a2 * a2.sqrt() / (3.0 * turn.force);
-    (rp, turn.delta - a2 / rp)
+/// approach δ_p (m), with contact radius a_p² = R δ_max at the turn (δ_max, F_max) (R, E,
+/// δ_max, F_max in m, Pa, m, N).
+pub fn enlarged_radius(modulus: f64, radius: f64, delta_max: f64, force: f64) -> (f64, f64) {
+    let a2 = radius * delta_max;
+    let rp = 4.0 * modulus * a2 * a2.sqrt() / (3.0 * force);
+    (rp, delta_max - a2 / rp)
 }
 
 /// Force on the enlarged-radius Hertz unloading curve, N.
@@ -44,7 +45,7 @@ pub fn enlarged_unloading(modulus: f64, radius: f64, delta: f64, turn: &Turn) ->
     if turn.force <= 0.0 {
         return 0.0;
     }
-    let (rp, dp) = enlarged_radius(modulus, radius, turn);
+    let (rp, dp) = enlarged_radius(modulus, radius, turn.delta, turn.force);
     4.0 / 3.0 * modulus * rp.sqrt() * (delta - dp).max(0.0).powf(1.5)
 }
 
@@ -60,6 +61,10 @@ impl NormalLaw for Thornton {
 
     fn unloading(&self, delta: f64, _rate: f64, _speed: f64, turn: &Turn) -> f64 {
         enlarged_unloading(self.modulus, self.radius, delta, turn)
+    }
+
+    fn residual(&self, delta: f64, force: f64) -> f64 {
+        enlarged_radius(self.modulus, self.radius, delta, force).1
     }
 
     fn thresholds(&self) -> Vec<f64> {
@@ -78,11 +83,8 @@ impl NormalLaw for Thornton {
             let x = 2.0 * (e0 - wy) / (fy + (fy * fy + 2.0 * c * (e0 - wy)).sqrt());
             dy + x
         };
-        let turn = Turn {
-            delta: delta_max,
-            force: self.loading(delta_max, 0.0, speed),
-        };
-        let (_, dp) = enlarged_radius(self.modulus, self.radius, &turn);
+        let turn = Turn::new(self, delta_max, self.loading(delta_max, 0.0, speed));
+        let dp = turn.residual();
         let back = 0.4 * turn.force * (delta_max - dp);
         Some(ClosedForm {
             e: (back / e0).sqrt().min(1.0),

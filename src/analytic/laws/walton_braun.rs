@@ -19,8 +19,11 @@ impl NormalLaw for WaltonBraun {
     }
 
     fn unloading(&self, delta: f64, _rate: f64, _speed: f64, turn: &Turn) -> f64 {
-        let d0 = turn.delta - turn.force / self.unloading;
-        (self.unloading * (delta - d0)).max(0.0)
+        (self.unloading * (delta - turn.residual())).max(0.0)
+    }
+
+    fn residual(&self, delta: f64, force: f64) -> f64 {
+        delta - force / self.unloading
     }
 
     fn closed_form(&self, speed: f64, mass: f64) -> Option<ClosedForm> {
