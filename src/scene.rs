@@ -48,6 +48,18 @@ diameter = 0.02
 velocity = [-1.0, 0.0, 0.0]
 "#;
 
+/// A built-in wall scene: ball 1 of the default scene (FE-study copper, D = 20 mm, 1 m/s)
+/// head-on against a rigid wall.
+pub const WALL_SCENE: &str = r#"# Ball 1 of the paper's Figure 8 case, 1 m/s head-on against a rigid wall.
+[ball1]
+material = "copper-fe"
+diameter = 0.02
+velocity = [1.0, 0.0, 0.0]
+
+[wall]
+kind = "rigid"
+"#;
+
 /// How a ball is meshed.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 #[serde(tag = "kind", rename_all = "snake_case")]
