@@ -65,6 +65,9 @@ fn a_wall_scene_is_ball_one_and_its_mirror_image() {
     let t = touch(&s);
     assert_eq!(t.t_touch, 0.0);
     assert_eq!(t.approach_speed, 2.0);
+    // The committed scene file is the built-in wall scene.
+    let file = include_str!("../verification/wall.toml");
+    assert_eq!(parse(file, &[]).unwrap(), wall(&[]));
     // A wall of any orientation, the ball placed away from it: touch after free flight.
     let s = wall(&[
         "wall.normal=[0, -2, 0]",
