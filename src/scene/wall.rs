@@ -73,7 +73,7 @@ pub(crate) fn read_wall(w: Reader<'_>) -> Result<WallScene> {
         .vec3("normal", |x| x.abs() <= 1e3, "|component| <= 1000")?
         .unwrap_or([-1.0, 0.0, 0.0]);
     let l = norm(normal);
-    if !(l > 1e-12) {
+    if l <= 1e-12 {
         return Err(Error::invalid(
             w.key_path("normal"),
             format!("{normal:?}"),
@@ -125,7 +125,7 @@ impl WallScene {
         }
         let v = ball1.velocity;
         let vn = dot(v, self.normal);
-        if !(vn < 0.0) {
+        if vn >= 0.0 {
             return Err(Error::invalid(
                 "ball1.velocity",
                 format!("{v:?}"),
