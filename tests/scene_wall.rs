@@ -162,6 +162,10 @@ fn bad_wall_scenes_get_one_line_errors_naming_the_field() {
         assert!(e.contains(want), "{sets:?}: {e}");
         assert!(!e.contains('\n'), "{sets:?}: more than one line: {e}");
     }
+    // A ball meshed from a file: the wall models cut the built-in ball by symmetry.
+    let s = wall(&["ball1.mesh.file=\"Cargo.toml\""]);
+    let e = choose_reduction(&s, &touch(&s)).unwrap_err().to_string();
+    assert!(e.contains("ball1.mesh.file") && !e.contains('\n'), "{e}");
     // A wall without `kind`.
     let e = parse("[ball1]\nmaterial = \"steel\"\ndiameter = 0.02\nvelocity = [1.0, 0.0, 0.0]\n[wall]\nnormal = [-1.0, 0.0, 0.0]\n", &[])
         .unwrap_err()

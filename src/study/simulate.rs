@@ -221,7 +221,8 @@ fn wall_reduction(scene: &Scene, ok: Allowed) -> Result<(Reduction, String)> {
     }
 }
 
-/// One row of history.csv; every quantity is for the whole two-ball system.
+/// One row of history.csv; every quantity is for the whole two-ball system (for the one ball
+/// with a wall, ball 2's columns the wall's).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct HistoryRow {
     /// Time since first touch, s (negative during simulated free flight).
