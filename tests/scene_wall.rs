@@ -10,6 +10,7 @@ mod hertz;
 use std::path::Path;
 use std::process::Command;
 use twoball::analytic::hertz::HertzPair;
+use twoball::analytic::{collide, Body};
 use twoball::error::Result;
 use twoball::scene::{approach, Approach, Override, Scene, Touch, DEFAULT_SCENE, WALL_SCENE};
 use twoball::study::outcome::ball_inertia;
@@ -206,6 +207,12 @@ fn a_rigid_wall_at_twice_the_penalty_is_the_mirror_pair() {
         let (aw, ap) = (w.analytic.unwrap(), pair.analytic.unwrap());
         assert!(rel(aw.e, ap.e) < 1e-9 && rel(2.0 * aw.delta_max, ap.delta_max) < 1e-9);
         assert_eq!(aw.v2_after, [0.0; 3]);
+        // ... and `twoball analytic --wall rigid` (the rigid half-space at rest).
+        let b = Body::ball(wall(&[]).ball1.material, 0.02, "ball1").unwrap();
+        let c = collide(&b, &Body::RigidWall, [1.0, 0.0], [0.0, 0.0]).unwrap();
+        let n = c.normal.unwrap();
+        assert!(rel(aw.e, n.e) < 1e-12 && rel(aw.delta_max, n.delta2) < 1e-12);
+        assert!(rel(aw.contact_duration, n.t3) < 1e-12);
         // At its own penalty factor the wall's springs are half the pair's plane's.
         let soft = run(&wall(&[&[c1.as_str()][..], model].concat()));
         assert!(
