@@ -12,16 +12,19 @@
 //! velocity = [-1.0, 0.0, 0.0]
 //! ```
 //! plus optional `angular_velocity`, `position`, `[ballN.mesh]`, `[contact]`, `[solver]`,
-//! `[output]` and `[reduction]` tables (see [`Scene::from_toml`] and docs/design.md §6).
+//! `[output]` and `[reduction]` tables (see [`Scene::from_toml`] and docs/design.md §6), and
+//! a `[wall]` table in place of `[ball2]` for a ball against a rigid wall ([`WallScene`]).
 //! `--set PATH=VALUE` overrides ([`Override`]) are applied to the TOML tree before it is read.
 
 mod approach;
 mod overrides;
 pub mod pole;
 pub(crate) mod reader;
+mod wall;
 
 pub use approach::{approach, Approach, Frame, Touch};
 pub use overrides::Override;
+pub use wall::{WallKind, WallScene};
 
 use crate::error::{Error, Result};
 use crate::fe::materials::{law::LAW_NAMES, Law};
@@ -43,6 +46,18 @@ velocity = [1.0, 0.0, 0.0]
 material = "copper-fe"
 diameter = 0.02
 velocity = [-1.0, 0.0, 0.0]
+"#;
+
+/// A built-in wall scene: ball 1 of the default scene (FE-study copper, D = 20 mm, 1 m/s)
+/// head-on against a rigid wall.
+pub const WALL_SCENE: &str = r#"# Ball 1 of the paper's Figure 8 case, 1 m/s head-on against a rigid wall.
+[ball1]
+material = "copper-fe"
+diameter = 0.02
+velocity = [1.0, 0.0, 0.0]
+
+[wall]
+kind = "rigid"
 "#;
 
 /// How a ball is meshed.
@@ -180,8 +195,11 @@ pub struct ReductionSettings {
 pub struct Scene {
     /// The left ball (moves towards +x).
     pub ball1: BallScene,
-    /// The right ball.
+    /// The right ball; with a `[wall]`, ball 1's mirror image in the wall (never meshed).
     pub ball2: BallScene,
+    /// The rigid wall ball 1 hits instead of a second ball (`[wall]`), if any.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub wall: Option<WallScene>,
     /// Contact settings.
     pub contact: ContactSettings,
     /// Solver settings.
@@ -192,7 +210,15 @@ pub struct Scene {
     pub reduction: ReductionSettings,
 }
 
-const TOP_KEYS: [&str; 6] = ["ball1", "ball2", "contact", "solver", "output", "reduction"];
+const TOP_KEYS: [&str; 7] = [
+    "ball1",
+    "ball2",
+    "contact",
+    "solver",
+    "output",
+    "reduction",
+    "wall",
+];
 const BALL_KEYS: [&str; 6] = [
     "material",
     "diameter",
@@ -280,7 +306,26 @@ impl Scene {
             read_ball(b, dir)
         };
         let (ball1, pole1_given) = ball("ball1")?;
-        let (ball2, pole2_given) = ball("ball2")?;
+        let wall = match r.table("wall")? {
+            Some(w) => Some(wall::read_wall(w)?),
+            None => None,
+        };
+        let (ball1, ball2, pole2_given) =
+            match &wall {
+                None => {
+                    let (ball2, pole2_given) = ball("ball2")?;
+                    (ball1, ball2, pole2_given)
+                }
+                Some(_) if r.raw("ball2").is_some() => return Err(Error::Parse(
+                    "ball2 is given with [wall]: a wall scene has one ball (remove one of them)"
+                        .into(),
+                )),
+                Some(w) => {
+                    let ball1 = w.place(ball1)?;
+                    let image = w.image(&ball1);
+                    (ball1, image, pole1_given)
+                }
+            };
         let contact = read_contact(r.table("contact")?)?;
         let solver = read_solver(r.table("solver")?)?;
         let output = read_output(r.table("output")?)?;
@@ -298,6 +343,7 @@ impl Scene {
         let mut scene = Scene {
             ball1,
             ball2,
+            wall,
             contact,
             solver,
             output,

@@ -64,7 +64,13 @@ pub fn ball_inertia(rho: f64, diameter: f64) -> (f64, f64) {
 /// angular velocities (rad/s).
 pub fn rigid_kinetic_energy(scene: &Scene, v: [[f64; 3]; 2], w: [[f64; 3]; 2]) -> f64 {
     let mut ke = 0.0;
-    for (i, b) in [&scene.ball1, &scene.ball2].into_iter().enumerate() {
+    // A wall scene's ball2 is the image of ball 1 in the wall: it carries no energy.
+    let balls = if scene.wall.is_some() { 1 } else { 2 };
+    for (i, b) in [&scene.ball1, &scene.ball2]
+        .into_iter()
+        .enumerate()
+        .take(balls)
+    {
         let (m, j) = ball_inertia(b.material.rho, b.diameter);
         let v2: f64 = v[i].iter().map(|c| c * c).sum();
         let w2: f64 = w[i].iter().map(|c| c * c).sum();
@@ -96,9 +102,16 @@ pub fn dissipation_factor(scene: &Scene, after_v: [[f64; 3]; 2], after_w: [[f64;
 /// the slip direction; the out-of-plane velocity component passes unchanged.
 pub fn analytic_outcome(scene: &Scene, touch: &Touch) -> Result<(Outcome, Collision)> {
     let b1 = Body::ball(scene.ball1.material, scene.ball1.diameter, "ball1")?;
-    let b2 = Body::ball(scene.ball2.material, scene.ball2.diameter, "ball2")?;
     let (mu, _) = scene.friction_coefficients();
     let [a, b] = touch.v;
+    // A wall is the analytical model's rigid half-space at rest (`twoball analytic --wall`).
+    let (b2, b) = match scene.wall {
+        Some(_) => (Body::RigidWall, [0.0; 3]),
+        None => (
+            Body::ball(scene.ball2.material, scene.ball2.diameter, "ball2")?,
+            b,
+        ),
+    };
     let c = crate::analytic::collide_with_mu(&b1, &b2, [a[0], a[1]], [b[0], b[1]], mu)?;
     let f = touch.frame;
     let v1 = f.to_global([c.v1_after[0], c.v1_after[1], a[2]]);

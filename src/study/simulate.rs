@@ -105,6 +105,9 @@ fn allowed(scene: &Scene, touch: &Touch) -> Allowed {
 /// impact, quarter or half for unequal balls, any reduction for meshes read from files).
 pub fn choose_reduction(scene: &Scene, touch: &Touch) -> Result<(Reduction, String)> {
     let ok = allowed(scene, touch);
+    if scene.wall.is_some() {
+        return wall_reduction(scene, ok);
+    }
     let refuse = |what: &str, needs: &str| {
         Err(Error::invalid(
             "reduction.symmetry",
@@ -169,7 +172,57 @@ pub fn choose_reduction(scene: &Scene, touch: &Touch) -> Result<(Reduction, Stri
     }
 }
 
-/// One row of history.csv; every quantity is for the whole two-ball system.
+/// The reduction of a ball against a rigid wall (head-on by the scene's checks): the quarter
+/// ball against the wall plane (`auto`, `quarter`) or the ball's meridian section against it
+/// (`axisymmetric`). The wall models have no half or full 3D form.
+fn wall_reduction(scene: &Scene, ok: Allowed) -> Result<(Reduction, String)> {
+    let refuse = |what: &str, needs: &str| {
+        Err(Error::invalid(
+            "reduction.symmetry",
+            format!("\"{what}\""),
+            format!("auto, quarter or axisymmetric for a ball on a wall: {what} needs {needs}"),
+        ))
+    };
+    if !ok.head_on {
+        return Err(Error::invalid(
+            "ball1.mesh.file",
+            "a mesh file",
+            "the built-in mesher for a ball on a wall (its models cut the ball by symmetry)",
+        ));
+    }
+    match scene.reduction.symmetry {
+        Symmetry::Off | Symmetry::Half => {
+            let what = if scene.reduction.symmetry == Symmetry::Off {
+                "off"
+            } else {
+                "half"
+            };
+            refuse(
+                what,
+                "two balls (the wall is modelled on the quarter ball or the section)",
+            )
+        }
+        Symmetry::Axisymmetric if scene.reduction.start_at_touch == Switch::Off => refuse(
+            "axisymmetric",
+            "reduction.start_at_touch = \"auto\" (the section model starts at first touch)",
+        ),
+        Symmetry::Axisymmetric => Ok((
+            Reduction::Axisymmetric,
+            "ball head-on against a rigid wall: axisymmetric, the ball's section against the \
+             wall (penalty of the ball's own stiffness)"
+                .into(),
+        )),
+        Symmetry::Auto | Symmetry::Quarter => Ok((
+            Reduction::Quarter,
+            "ball head-on against a rigid wall: quarter ball against the rigid wall plane \
+             (penalty of the ball's own stiffness)"
+                .into(),
+        )),
+    }
+}
+
+/// One row of history.csv; every quantity is for the whole two-ball system (for the one ball
+/// with a wall, ball 2's columns the wall's).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct HistoryRow {
     /// Time since first touch, s (negative during simulated free flight).
@@ -336,6 +389,13 @@ pub(super) struct Kinematics {
 }
 
 fn pair_kinematics(scene: &Scene, touch: &Touch) -> Kinematics {
+    if scene.wall.is_some() {
+        // The wall's frame: the wall at rest, ball 1 at its own velocity.
+        return Kinematics {
+            v_cm: [0.0; 3],
+            u: [touch.v[0], [0.0; 3]],
+        };
+    }
     let m1 = ball_inertia(scene.ball1.material.rho, scene.ball1.diameter).0;
     let m2 = ball_inertia(scene.ball2.material.rho, scene.ball2.diameter).0;
     let [v1, v2] = touch.v;
@@ -486,10 +546,16 @@ fn not_3d() -> Error {
 /// The model, its interactions, and a read handle on the contact's output.
 type Built = (Model, Vec<Box<dyn Interaction>>, ContactProbe);
 
-fn ball_states(solver: &Solver, red: Reduction) -> Result<BallStates> {
+fn ball_states(solver: &Solver, red: Reduction, wall: bool) -> Result<BallStates> {
     let model = solver.model();
     match red {
         Reduction::Axisymmetric => Err(not_3d()),
+        Reduction::Quarter if wall => {
+            let r = rigid(solver, model.part(0)?.nodes.clone());
+            let u = r.momentum[0] / r.mass;
+            // The wall at rest on x = 0: the "centre distance" is the centre's to the wall.
+            Ok(([[u, 0.0, 0.0], [0.0; 3]], [[0.0; 3]; 2], -r.com[0]))
+        }
         Reduction::Quarter => {
             let r = rigid(solver, model.part(0)?.nodes.clone());
             let u = r.momentum[0] / r.mass;
@@ -572,10 +638,13 @@ fn build(
             // node of the pair carries 2 k p. The plane reproduces that with twice the pair's
             // factor and half its penetration limit (measured on p instead of 2p).
             params.friction = None;
-            params.penalty = PenaltyRule::Fkn {
-                factor: 2.0 * default_fkn() * scene.contact.penalty_factor,
-            };
-            params.max_penetration *= 0.5;
+            if scene.wall.is_none() {
+                params.penalty = PenaltyRule::Fkn {
+                    factor: 2.0 * default_fkn() * scene.contact.penalty_factor,
+                };
+                params.max_penetration *= 0.5;
+            }
+            // A rigid wall is the plane itself: the 3D rule on the ball's own stiffness, once.
             let part = model.part(p1)?;
             let faces = part.face_sets.get("contact").cloned().unwrap_or_default();
             let plane = RigidPlane::new(
@@ -697,6 +766,7 @@ pub fn simulate(
     let start_at_touch = scene.reduction.start_at_touch == Switch::Auto;
     let pre = if start_at_touch { 0.0 } else { touch.t_touch };
     let (model, interactions, probe) = build(scene, touch, red, &kin, elastic_only, mu, pre)?;
+    let wall = scene.wall.is_some();
     let elements = model.hexes.len();
     let nodes = model.nodes.len();
     let settings = Settings {
@@ -725,12 +795,13 @@ pub fn simulate(
             .history_interval
             .unwrap_or(duration / opts.history_rows.max(2) as f64)
             .max(dt0);
-        let scale = 1.0 / red.fraction();
+        // A wall scene's system is the one ball: the quarter model is a quarter of it.
+        let scale = if wall { 4.0 } else { 1.0 / red.fraction() };
         let frame = touch.frame;
         let to_scene = |v: [f64; 3], add: [f64; 3]| {
             frame.to_global([v[0] + add[0], v[1] + add[1], v[2] + add[2]])
         };
-        let (_, _, d_start) = ball_states(&solver, red)?;
+        let (_, _, d_start) = ball_states(&solver, red, wall)?;
         let approach_rate = kin.u[0][0] - kin.u[1][0];
         let d_touch = d_start - approach_rate * pre;
 
@@ -777,7 +848,7 @@ pub fn simulate(
             let record = t >= next_row;
             let check = solver.step_count().is_multiple_of(16);
             if record || (by_separation && check) {
-                let (u, w, d) = ball_states(&solver, red)?;
+                let (u, w, d) = ball_states(&solver, red, wall)?;
                 if record {
                     let e = solver.energy();
                     let row = HistoryRow {
@@ -852,7 +923,7 @@ pub fn simulate(
         if let Some(s) = &mut snapshots {
             s.finish(&solver, pre)?;
         }
-        let (u, w, _) = ball_states(&solver, red)?;
+        let (u, w, _) = ball_states(&solver, red, wall)?;
         let v_after = [to_scene(u[0], kin.v_cm), to_scene(u[1], kin.v_cm)];
         let w_after = [frame.to_global(w[0]), frame.to_global(w[1])];
         let data = probe.get();

@@ -67,13 +67,16 @@ fn formulation(scene: &Scene) -> QuadFormulation {
     }
 }
 
-/// The head-on model of `run`: ball 1 against the symmetry plane for identical balls, both
-/// sections otherwise.
+/// The head-on model of `run`: ball 1 against the rigid wall of a wall scene (penalty FKN on
+/// the ball's own stiffness), against the symmetry plane for identical balls, both sections
+/// otherwise.
 fn head_on(run: &SectionRun<'_>) -> Result<HeadOn> {
     let scene = run.scene;
     let mesh1 = section_mesh("ball1", &scene.ball1)?;
     let speed1 = run.kin.u[0][0];
-    let target = if scene.identical_balls() {
+    let target = if scene.wall.is_some() {
+        Target::RigidWall
+    } else if scene.identical_balls() {
         Target::MirrorBall
     } else {
         Target::Ball(Box::new(OtherBall {

@@ -287,15 +287,21 @@ pub fn write_outputs(report: &RunReport, dir: &Path) -> Result<()> {
 pub fn side_by_side(r: &RunReport) -> String {
     let mut s = String::new();
     let sc = &r.scene;
-    s.push_str(&format!(
-        "scene: ball1 {} D = {} m v = {:?} m/s; ball2 {} D = {} m v = {:?} m/s\n",
-        sc.ball1.material_name,
-        sc.ball1.diameter,
-        sc.ball1.velocity,
-        sc.ball2.material_name,
-        sc.ball2.diameter,
-        sc.ball2.velocity
-    ));
+    match &sc.wall {
+        None => s.push_str(&format!(
+            "scene: ball1 {} D = {} m v = {:?} m/s; ball2 {} D = {} m v = {:?} m/s\n",
+            sc.ball1.material_name,
+            sc.ball1.diameter,
+            sc.ball1.velocity,
+            sc.ball2.material_name,
+            sc.ball2.diameter,
+            sc.ball2.velocity
+        )),
+        Some(w) => s.push_str(&format!(
+            "scene: ball1 {} D = {} m v = {:?} m/s; rigid wall through {:?} m, normal {:?}\n",
+            sc.ball1.material_name, sc.ball1.diameter, sc.ball1.velocity, w.position, w.normal
+        )),
+    }
     if !r.impact {
         s.push_str(&format!(
             "no impact: {}\n",

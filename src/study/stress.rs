@@ -15,6 +15,7 @@
 //! speed = [{ label = "v1", set = ["ball1.velocity=[0.5,0,0]", "ball2.velocity=[-0.5,0,0]"] }]
 //! [[group]]                       # each group is the cartesian product of its axes
 //! axes = ["speed"]
+//! base = "default"                # or "wall": ball 1 on a rigid wall (scene::WALL_SCENE)
 //! ```
 //! Per-case records go to `DIR/cases/ID.json` (atomic; finished cases are skipped on
 //! restart, as in the sweep), the summary to `DIR/summary.md`.
@@ -44,6 +45,38 @@ pub struct AxisValue {
 pub struct Group {
     /// Axis names (keys of `[axis]`).
     pub axes: Vec<String>,
+    /// The built-in scene its overrides apply to (default: the two-ball default scene).
+    #[serde(default)]
+    pub base: Base,
+}
+
+/// The built-in scene a case's overrides apply to.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Base {
+    /// The default scene: two copper-fe balls, ±1 m/s head-on.
+    #[default]
+    Default,
+    /// Ball 1 of the default scene against a rigid wall ([`crate::scene::WALL_SCENE`]).
+    Wall,
+}
+
+impl Base {
+    /// The scene text.
+    pub fn text(self) -> &'static str {
+        match self {
+            Base::Default => crate::scene::DEFAULT_SCENE,
+            Base::Wall => crate::scene::WALL_SCENE,
+        }
+    }
+
+    /// The balls meshed by the scene (a wall scene's ball2 is ball 1's image).
+    fn balls(self) -> &'static [&'static str] {
+        match self {
+            Base::Default => &["ball1", "ball2"],
+            Base::Wall => &["ball1"],
+        }
+    }
 }
 
 /// Global settings of the matrix.
@@ -78,8 +111,11 @@ pub struct StressSpec {
 /// One case: id and the overrides on the default scene (mesh sizes added).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct StressCase {
-    /// Id, e.g. `speed-material-v20-rubber`.
+    /// Id, e.g. `speed-material-v20-rubber` (`wall-…` on the wall scene).
     pub id: String,
+    /// The scene the overrides apply to.
+    #[serde(default)]
+    pub base: Base,
     /// `--set` overrides in order.
     pub sets: Vec<String>,
 }
@@ -227,12 +263,17 @@ impl StressSpec {
                 partial = next;
             }
             for (labels, sets) in partial {
-                let id = format!("{}_{}", g.axes.join("-"), labels.join("_"));
-                let sets = self.with_mesh(&id, sets)?;
+                let prefix = if g.base == Base::Wall { "wall-" } else { "" };
+                let id = format!("{prefix}{}_{}", g.axes.join("-"), labels.join("_"));
+                let sets = self.with_mesh(&id, g.base, sets)?;
                 if out.iter().any(|c| c.id == id) {
                     return Err(Error::invalid("group", &id, "unique case ids"));
                 }
-                out.push(StressCase { id, sets });
+                out.push(StressCase {
+                    id,
+                    base: g.base,
+                    sets,
+                });
             }
         }
         Ok(out)
@@ -240,21 +281,24 @@ impl StressSpec {
 
     /// Adds the default coarse mesh (sizes relative to each ball's diameter) unless the case
     /// sets a ball's mesh itself; checks that the case is a valid scene.
-    fn with_mesh(&self, id: &str, mut sets: Vec<String>) -> Result<Vec<String>> {
-        use crate::scene::{Override, Scene, DEFAULT_SCENE};
+    fn with_mesh(&self, id: &str, base: Base, mut sets: Vec<String>) -> Result<Vec<String>> {
+        use crate::scene::{Override, Scene};
         let parse = |sets: &[String]| -> Result<Scene> {
             let ov = sets
                 .iter()
                 .map(|s| Override::parse(s))
                 .collect::<Result<Vec<_>>>()?;
-            Scene::from_toml(DEFAULT_SCENE, Path::new("."), &ov)
+            Scene::from_toml(base.text(), Path::new("."), &ov)
                 .map_err(|e| Error::Parse(format!("stress case {id}: {e}")))
         };
         let scene = parse(&sets)?;
         for (b, d) in [
             ("ball1", scene.ball1.diameter),
             ("ball2", scene.ball2.diameter),
-        ] {
+        ]
+        .into_iter()
+        .filter(|(b, _)| base.balls().contains(b))
+        {
             if !sets.iter().any(|s| s.starts_with(&format!("{b}.mesh"))) {
                 let size = self.stress.size_per_diameter * d;
                 let pole = (self.stress.pole_size_per_diameter * d).min(size);
@@ -343,13 +387,18 @@ pub fn json_has_non_finite(v: &serde_json::Value) -> bool {
     }
 }
 
-/// Rigid-body kinetic energy (J) of the two balls from results.json's scene and velocities.
+/// Rigid-body kinetic energy (J) of the two balls (of ball 1 on a wall) from results.json's
+/// scene and velocities.
 fn kinetic(v: &serde_json::Value, after: bool) -> Option<f64> {
     let mut k = 0.0;
+    let balls = if v["scene"]["wall"].is_object() { 1 } else { 2 };
     for (b, vk, wk) in [
         ("ball1", "v1_after", "w1_after"),
         ("ball2", "v2_after", "w2_after"),
-    ] {
+    ]
+    .into_iter()
+    .take(balls)
+    {
         let ball = &v["scene"][b];
         let d = ball["diameter"].as_f64()?;
         let rho = ball["material"]["rho"].as_f64()?;
@@ -491,6 +540,11 @@ fn run_one(case: &StressCase, spec: &StressSpec, opts: &StressOptions) -> Result
     let out_path = dir.join("stdout.txt");
     let mut cmd = Command::new(&opts.exe);
     cmd.arg("run").arg("--out").arg(&dir);
+    if case.base != Base::Default {
+        let scene = dir.join("scene.toml");
+        write_atomic(&scene, case.base.text().as_bytes())?;
+        cmd.arg(&scene);
+    }
     for s in &case.sets {
         cmd.arg("--set").arg(s);
     }

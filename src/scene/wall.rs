@@ -1,0 +1,164 @@
+//! A ball against a rigid wall: the `[wall]` table, its checks, and ball 1's mirror image.
+//!
+//! ```toml
+//! [ball1]
+//! material = "copper-fe"
+//! diameter = 0.02
+//! velocity = [1.0, 0.0, 0.0]   # towards the wall, along its normal
+//! [wall]
+//! kind = "rigid"               # the only kind the FE models run
+//! position = [0.0, 0.0, 0.0]   # a point of the wall's face, m (default: the origin)
+//! normal = [-1.0, 0.0, 0.0]    # out of the wall, towards ball 1 (default: -x)
+//! ```
+//!
+//! A rigid frictionless wall acts on a ball exactly as the ball's mirror image in the wall
+//! would (method of images): the scene's `ball2` is that image, which gives the touch, the
+//! contact frame and the symmetry reduction of two identical balls; the models then put the
+//! wall where the image's symmetry plane was, with the wall's own penalty (design.md §6).
+
+use super::reader::Reader;
+use super::BallScene;
+use crate::error::{Error, Result};
+use serde::Serialize;
+
+/// What the wall is made of.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum WallKind {
+    /// A rigid, immovable half-space (the analytical model's `--wall rigid`).
+    Rigid,
+}
+
+/// A wall that ball 1 hits head-on.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct WallScene {
+    /// What the wall is made of.
+    pub kind: WallKind,
+    /// A point of the wall's face, m.
+    pub position: [f64; 3],
+    /// Unit normal of the face, pointing out of the wall towards ball 1.
+    pub normal: [f64; 3],
+}
+
+const WALL_KEYS: [&str; 3] = ["kind", "position", "normal"];
+
+fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+
+fn norm(a: [f64; 3]) -> f64 {
+    dot(a, a).sqrt()
+}
+
+/// Reads the `[wall]` table: `kind` (required, `rigid`), `position` (m, default the origin)
+/// and `normal` (non-zero, normalised; default −x).
+pub(crate) fn read_wall(w: Reader<'_>) -> Result<WallScene> {
+    w.only(&WALL_KEYS)?;
+    let kind = match w.choice("kind", &["rigid"]) {
+        Ok(Some(_)) => WallKind::Rigid,
+        Ok(None) => return Err(w.missing("kind", "\"rigid\"")),
+        Err(_) => {
+            let given = w.string("kind")?.unwrap_or_default();
+            return Err(Error::invalid(
+                w.key_path("kind"),
+                format!("\"{given}\""),
+                "\"rigid\" (the elastic half-space wall is not modelled by the FE side)",
+            ));
+        }
+    };
+    let position = w
+        .vec3("position", |x| x.abs() <= 1e3, "|component| <= 1000 m")?
+        .unwrap_or([0.0; 3]);
+    let normal = w
+        .vec3("normal", |x| x.abs() <= 1e3, "|component| <= 1000")?
+        .unwrap_or([-1.0, 0.0, 0.0]);
+    let l = norm(normal);
+    if l <= 1e-12 {
+        return Err(Error::invalid(
+            w.key_path("normal"),
+            format!("{normal:?}"),
+            "a non-zero vector (out of the wall, towards ball 1)",
+        ));
+    }
+    Ok(WallScene {
+        kind,
+        position,
+        normal: normal.map(|c| c / l),
+    })
+}
+
+impl WallScene {
+    /// Signed distance (m) of point `p` in front of the wall's face.
+    pub fn distance(&self, p: [f64; 3]) -> f64 {
+        dot([0, 1, 2].map(|k| p[k] - self.position[k]), self.normal)
+    }
+
+    /// The mirror image of point `p` in the wall's face, m.
+    pub fn mirror_point(&self, p: [f64; 3]) -> [f64; 3] {
+        let s = self.distance(p);
+        [0, 1, 2].map(|k| p[k] - 2.0 * s * self.normal[k])
+    }
+
+    /// The mirror image of a (polar) vector `v` in the wall's face.
+    pub fn mirror_vector(&self, v: [f64; 3]) -> [f64; 3] {
+        let s = dot(v, self.normal);
+        [0, 1, 2].map(|k| v[k] - 2.0 * s * self.normal[k])
+    }
+
+    /// Checks ball 1 against the wall and places it: its centre as given, or touching the
+    /// wall's face at `position`. Returns ball 1 with its position set.
+    ///
+    /// Errors (one line, naming the field): ball 1 behind or through the wall, not moving
+    /// towards it, moving obliquely, or spinning (the FE wall models are head-on only).
+    pub(crate) fn place(&self, mut ball1: BallScene) -> Result<BallScene> {
+        let r = ball1.diameter / 2.0;
+        let centre = ball1
+            .position
+            .unwrap_or([0, 1, 2].map(|k| self.position[k] + r * self.normal[k]));
+        let s = self.distance(centre);
+        if s < r * (1.0 - 1e-9) {
+            return Err(Error::invalid(
+                "ball1.position",
+                format!("{centre:?} ({s:.6e} m in front of the wall)"),
+                format!("a centre at least the radius {r:.6e} m in front of the wall's face"),
+            ));
+        }
+        let v = ball1.velocity;
+        let vn = dot(v, self.normal);
+        if vn >= 0.0 {
+            return Err(Error::invalid(
+                "ball1.velocity",
+                format!("{v:?}"),
+                "towards the wall (velocity · wall.normal < 0)",
+            ));
+        }
+        let tangential = [0, 1, 2].map(|k| v[k] - vn * self.normal[k]);
+        if norm(tangential) > 1e-12 * vn.abs() {
+            return Err(Error::invalid(
+                "ball1.velocity",
+                format!("{v:?}"),
+                "along wall.normal: the wall models are head-on only (no oblique impact)",
+            ));
+        }
+        let w = ball1.angular_velocity;
+        if norm(w) * r > 1e-12 * vn.abs() {
+            return Err(Error::invalid(
+                "ball1.angular_velocity",
+                format!("{w:?}"),
+                "[0, 0, 0]: the wall models are head-on only (no spin)",
+            ));
+        }
+        ball1.position = Some(centre);
+        Ok(ball1)
+    }
+
+    /// Ball 1's mirror image in the wall: same material, size and mesh, mirrored centre and
+    /// velocity, no spin (`ball1` placed by [`WallScene::place`]).
+    pub fn image(&self, ball1: &BallScene) -> BallScene {
+        let mut b = ball1.clone();
+        b.position = ball1.position.map(|p| self.mirror_point(p));
+        b.velocity = self.mirror_vector(ball1.velocity);
+        b.angular_velocity = [0.0; 3];
+        b
+    }
+}
