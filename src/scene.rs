@@ -16,11 +16,13 @@
 //! `--set PATH=VALUE` overrides ([`Override`]) are applied to the TOML tree before it is read.
 
 mod approach;
+mod laws;
 mod overrides;
 pub mod pole;
 pub(crate) mod reader;
 
 pub use approach::{approach, Approach, Frame, Touch};
+pub use laws::{ComparedLaw, LawComparison};
 pub use overrides::Override;
 
 use crate::error::{Error, Result};
@@ -190,9 +192,19 @@ pub struct Scene {
     pub output: OutputSettings,
     /// Automatic savings.
     pub reduction: ReductionSettings,
+    /// Contact laws integrated beside FE and the three-phase model (`[laws]`).
+    pub laws: LawComparison,
 }
 
-const TOP_KEYS: [&str; 6] = ["ball1", "ball2", "contact", "solver", "output", "reduction"];
+const TOP_KEYS: [&str; 7] = [
+    "ball1",
+    "ball2",
+    "contact",
+    "solver",
+    "output",
+    "reduction",
+    "laws",
+];
 const BALL_KEYS: [&str; 6] = [
     "material",
     "diameter",
@@ -285,6 +297,7 @@ impl Scene {
         let solver = read_solver(r.table("solver")?)?;
         let output = read_output(r.table("output")?)?;
         let reduction = read_reduction(r.table("reduction")?)?;
+        let laws = laws::read_laws(r.table("laws")?)?;
         if ball1.position.is_some() != ball2.position.is_some() {
             let which = if ball1.position.is_some() {
                 "ball2.position"
@@ -302,6 +315,7 @@ impl Scene {
             solver,
             output,
             reduction,
+            laws,
         };
         // Rejects overlapping balls; an impact refines the default pole mesh to its contact.
         if let Approach::Impact(touch) = approach(&scene)? {
