@@ -37,7 +37,12 @@ fn a_mesh_penalty_outside_its_range_is_an_error() {
     let text = std::fs::read_to_string("verification/paper-like-study.toml")
         .unwrap()
         .replace("penalty_factor = 0.01", "penalty_factor = 0");
-    let e = SweepSpec::from_toml(&text, "sweep").unwrap_err().to_string();
-    assert!(e.contains("mesh[0].penalty_factor") && e.contains("1e-3"), "{e}");
+    let e = SweepSpec::from_toml(&text, "sweep")
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("mesh[0].penalty_factor") && e.contains("1e-3"),
+        "{e}"
+    );
     assert_eq!(e.lines().count(), 1);
 }
