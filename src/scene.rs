@@ -17,12 +17,14 @@
 //! `--set PATH=VALUE` overrides ([`Override`]) are applied to the TOML tree before it is read.
 
 mod approach;
+mod laws;
 mod overrides;
 pub mod pole;
 pub(crate) mod reader;
 mod wall;
 
 pub use approach::{approach, Approach, Frame, Touch};
+pub use laws::{ComparedLaw, LawComparison};
 pub use overrides::Override;
 pub use wall::{WallKind, WallScene};
 
@@ -208,9 +210,11 @@ pub struct Scene {
     pub output: OutputSettings,
     /// Automatic savings.
     pub reduction: ReductionSettings,
+    /// Contact laws integrated beside FE and the three-phase model (`[laws]`).
+    pub laws: LawComparison,
 }
 
-const TOP_KEYS: [&str; 7] = [
+const TOP_KEYS: [&str; 8] = [
     "ball1",
     "ball2",
     "contact",
@@ -218,6 +222,7 @@ const TOP_KEYS: [&str; 7] = [
     "output",
     "reduction",
     "wall",
+    "laws",
 ];
 const BALL_KEYS: [&str; 6] = [
     "material",
@@ -330,6 +335,7 @@ impl Scene {
         let solver = read_solver(r.table("solver")?)?;
         let output = read_output(r.table("output")?)?;
         let reduction = read_reduction(r.table("reduction")?)?;
+        let laws = laws::read_laws(r.table("laws")?)?;
         if ball1.position.is_some() != ball2.position.is_some() {
             let which = if ball1.position.is_some() {
                 "ball2.position"
@@ -348,6 +354,7 @@ impl Scene {
             solver,
             output,
             reduction,
+            laws,
         };
         // Rejects overlapping balls; an impact refines the default pole mesh to its contact.
         if let Approach::Impact(touch) = approach(&scene)? {

@@ -105,10 +105,19 @@ enum NormalMode {
     Unloading(Turn),
 }
 
+/// Turning points a law with slip memory can hold at once.
+const MAX_TURNS: usize = 16;
+
 #[derive(Debug, Clone, Copy)]
 enum TangentialMode {
     Stick,
     Slip(f64),
+    /// A law with memory: the direction of the displacement (±1) and the turning points.
+    Memory {
+        direction: f64,
+        turns: [f64; MAX_TURNS],
+        len: usize,
+    },
 }
 
 #[derive(Debug, Clone, Copy)]
@@ -126,6 +135,8 @@ enum Event {
     Turn,
     Threshold,
     Tangential,
+    Reversal,
+    Masing,
 }
 
 struct System<'a> {
@@ -161,6 +172,22 @@ impl System<'_> {
         match mode.tangential {
             TangentialMode::Stick => self.tangential.stiffness(y[0]) * y[3],
             TangentialMode::Slip(s) => s * self.mu * force.max(0.0),
+            TangentialMode::Memory {
+                direction,
+                ref turns,
+                len,
+            } => {
+                let n = force.max(0.0);
+                let f = self
+                    .tangential
+                    .force(y[3], y[0], n, &turns[..len], direction);
+                let cap = self.mu * n;
+                if cap.is_finite() {
+                    f.clamp(-cap, cap)
+                } else {
+                    f
+                }
+            }
         }
     }
 
@@ -168,7 +195,7 @@ impl System<'_> {
         let f = self.force(mode, y[0], y[1]);
         let ft = self.tangential_force(mode, y, f);
         let xi_rate = match mode.tangential {
-            TangentialMode::Stick => y[4],
+            TangentialMode::Stick | TangentialMode::Memory { .. } => y[4],
             TangentialMode::Slip(_) => 0.0,
         };
         [
@@ -273,6 +300,19 @@ impl System<'_> {
                 out.push((Event::Separation, g));
             }
         }
+        if let TangentialMode::Memory {
+            direction,
+            ref turns,
+            len,
+        } = mode.tangential
+        {
+            out.push((Event::Reversal, direction * y[4]));
+            if len > 0 {
+                let partner = if len >= 2 { turns[len - 2] } else { -turns[0] };
+                out.push((Event::Masing, direction * (partner - y[3])));
+            }
+            return out;
+        }
         if !self.mu.is_finite() || self.mu == 0.0 && self.rigid_tangential {
             return out;
         }
@@ -287,6 +327,7 @@ impl System<'_> {
                 out.push((Event::Tangential, s * y[4]));
             }
             TangentialMode::Slip(s) => out.push((Event::Tangential, self.slip_margin(mode, y, s))),
+            TangentialMode::Memory { .. } => {}
         }
         out
     }
@@ -479,6 +520,28 @@ pub fn integrate(
                 }
                 phase_times.push(t);
             }
+            Event::Reversal => {
+                if let TangentialMode::Memory {
+                    direction,
+                    turns,
+                    len,
+                } = &mut mode.tangential
+                {
+                    if *len == MAX_TURNS {
+                        return Err(Error::Numerical(format!(
+                            "tangential law: more than {MAX_TURNS} open turning points at t = {t:e} s"
+                        )));
+                    }
+                    turns[*len] = y[3];
+                    *len += 1;
+                    *direction = -*direction;
+                }
+            }
+            Event::Masing => {
+                if let TangentialMode::Memory { len, .. } = &mut mode.tangential {
+                    *len = len.saturating_sub(2);
+                }
+            }
             Event::Tangential => {
                 mode.tangential = match mode.tangential {
                     TangentialMode::Stick => TangentialMode::Slip(if y[3] != 0.0 {
@@ -486,6 +549,7 @@ pub fn integrate(
                     } else {
                         y[4].signum()
                     }),
+                    TangentialMode::Memory { .. } => mode.tangential,
                     TangentialMode::Slip(s) => {
                         let kt = sys.tangential.stiffness(y[0]);
                         let f = sys.force(&mode, y[0], y[1]);
@@ -542,6 +606,13 @@ pub fn integrate(
 /// Stick or slip at first touch: rigid friction slips while there is slip; a spring sticks
 /// unless its force would exceed μF right from the start (the ratio of both at δ → 0).
 fn initial_tangential(sys: &System, slip0: f64, delta_ref: f64) -> TangentialMode {
+    if sys.tangential.memory() {
+        return TangentialMode::Memory {
+            direction: if slip0 < 0.0 { -1.0 } else { 1.0 },
+            turns: [0.0; MAX_TURNS],
+            len: 0,
+        };
+    }
     if slip0 == 0.0 || sys.mu == 0.0 && sys.rigid_tangential {
         return TangentialMode::Stick;
     }

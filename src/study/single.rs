@@ -3,6 +3,7 @@
 
 use super::error_estimate::LevelOutcome;
 use super::error_estimate::{mesh_sizes, run_ladder, scene_at_level, ErrorEstimate, LadderPlan};
+use super::law_compare::{compare_laws, law_table, LawOutcome};
 use super::number::sci;
 use super::outcome::{analytic_outcome, relative_difference, Outcome};
 use super::simulate::{
@@ -86,6 +87,9 @@ pub struct RunReport {
     pub analytic: Option<Outcome>,
     /// FE vs analytical.
     pub relative_difference: Option<Differences>,
+    /// The scene's `[laws]`, each integrated on the same balls and speeds (absent without).
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub laws: Vec<LawOutcome>,
     /// Results not to take at face value, one line each (empty when none).
     pub warnings: Vec<Warning>,
     /// The run's error bar from its mesh ladder (with `--error-estimate` or `--tolerance`);
@@ -119,6 +123,7 @@ pub fn run_scene(scene: &Scene, opts: &RunOptions) -> Result<RunReport> {
                 fe: None,
                 analytic: None,
                 relative_difference: None,
+                laws: Vec::new(),
                 warnings: Vec::new(),
                 error_estimate: None,
                 scene: scene.clone(),
@@ -127,6 +132,7 @@ pub fn run_scene(scene: &Scene, opts: &RunOptions) -> Result<RunReport> {
         Approach::Impact(t) => t,
     };
     let (an, collision) = analytic_outcome(scene, &touch)?;
+    let laws = compare_laws(scene, &touch)?;
     let sim = simulate(scene, &touch, an.contact_duration, opts)?;
     let fe = sim.outcome;
     let r_star = collision.pair.radius;
@@ -150,6 +156,7 @@ pub fn run_scene(scene: &Scene, opts: &RunOptions) -> Result<RunReport> {
         relative_difference: Some(Differences::between(&fe, &an, touch.frame.axes[0])),
         fe: Some(sim),
         analytic: Some(an),
+        laws,
         warnings,
         error_estimate: None,
         scene: scene.clone(),
@@ -380,6 +387,7 @@ pub fn side_by_side(r: &RunReport) -> String {
         s.push_str(DELTA_MAX_NOTE);
         s.push('\n');
     }
+    s.push_str(&law_table(&r.laws));
     s
 }
 

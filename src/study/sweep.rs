@@ -17,6 +17,7 @@
 //! name = "uniform-2mm"
 //! size = 0.002                                      # m, or size_per_diameter = 0.1
 //! pole_size = 0.002                                 # m, or pole_size_per_diameter = 0.01
+//! penalty_factor = 0.01                             # optional: contact.penalty_factor of its cases
 //! ```
 
 use super::outcome::{analytic_outcome, Outcome};
@@ -71,6 +72,9 @@ pub struct MeshSetting {
     pub size: Size,
     /// Pole element size.
     pub pole_size: Size,
+    /// Contact penalty multiplier (`contact.penalty_factor` of the cases; None: the scene's).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub penalty_factor: Option<f64>,
 }
 
 /// A parsed sweep file.
@@ -334,12 +338,13 @@ const STUDY_KEYS: [&str; 7] = [
     "history_points",
     "name",
 ];
-const MESH_KEYS: [&str; 5] = [
+const MESH_KEYS: [&str; 6] = [
     "name",
     "size",
     "pole_size",
     "size_per_diameter",
     "pole_size_per_diameter",
+    "penalty_factor",
 ];
 
 fn list_f64(
@@ -491,6 +496,7 @@ impl SweepSpec {
                 name: "default".into(),
                 size: Size::PerDiameter(crate::scene::DEFAULT_SIZE_PER_D),
                 pole_size: Size::PerDiameter(crate::scene::DEFAULT_POLE_SIZE_PER_D),
+                penalty_factor: None,
             }],
             Some(Value::Array(items)) => {
                 let mut out = Vec::new();
@@ -530,6 +536,11 @@ impl SweepSpec {
                         name: name.to_string(),
                         size: size_of("size", "size_per_diameter")?,
                         pole_size: size_of("pole_size", "pole_size_per_diameter")?,
+                        penalty_factor: m.f64(
+                            "penalty_factor",
+                            |x| (1e-3..=1e3).contains(&x),
+                            "1e-3 <= penalty_factor <= 1e3",
+                        )?,
                     });
                 }
                 if out.is_empty() {
@@ -575,6 +586,9 @@ impl SweepSpec {
                             mesh.size.metres(d),
                             mesh.pole_size.metres(d).min(mesh.size.metres(d)),
                         );
+                        let penalty = mesh
+                            .penalty_factor
+                            .map(|p| format!("contact.penalty_factor={p:e}"));
                         let sets = [
                             format!("ball1.diameter={d}"),
                             format!("ball2.diameter={d}"),
@@ -585,7 +599,7 @@ impl SweepSpec {
                             format!("ball1.mesh.pole_size={pole:e}"),
                             format!("ball2.mesh.pole_size={pole:e}"),
                         ];
-                        for s in &sets {
+                        for s in sets.iter().chain(&penalty) {
                             Override::parse(s)?.apply(&mut table)?;
                         }
                         let scene = Scene::from_table(&table, Path::new("."))

@@ -25,6 +25,7 @@ mod quasi_static;
 mod registry;
 pub mod tabor_hardening;
 pub mod thornton;
+pub mod thornton_yin;
 pub mod walton_braun;
 
 pub use pair::ContactPair;
@@ -125,4 +126,22 @@ pub trait TangentialLaw: Send + Sync {
 
     /// Friction coefficient μ (≥ 0; `f64::INFINITY` for no slip).
     fn friction(&self) -> f64;
+
+    /// True for a law with slip memory (Masing rules): the integrator then integrates the
+    /// displacement ξ of the contact points throughout, records a turning point where the
+    /// slip reverses, forgets a pair of them when the displacement regains the older one,
+    /// and takes the force from [`TangentialLaw::force`] (capped at μF). Default false: a
+    /// spring k_t ξ with the integrator's own stick-slip switch.
+    fn memory(&self) -> bool {
+        false
+    }
+
+    /// Tangential force f (N) of a law with memory at displacement ξ (m), approach δ (m) and
+    /// normal force F (N, clipped at 0 by the caller), after the turning displacements `turns`
+    /// (m, oldest first; the last is where the slip last reversed) while the displacement
+    /// moves in `direction` (±1). Default: the spring k_t(δ) ξ.
+    fn force(&self, xi: f64, delta: f64, normal: f64, turns: &[f64], direction: f64) -> f64 {
+        let _ = (normal, turns, direction);
+        self.stiffness(delta) * xi
+    }
 }

@@ -67,7 +67,12 @@ impl Registry {
                 tabor_hardening::SPEC,
                 li_yang_shi::SPEC,
             ],
-            tangential: vec![coulomb::SPEC, mindlin::SPEC, mindlin_coulomb::SPEC],
+            tangential: vec![
+                coulomb::SPEC,
+                mindlin::SPEC,
+                mindlin_coulomb::SPEC,
+                thornton_yin::SPEC,
+            ],
         }
     }
 
