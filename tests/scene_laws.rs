@@ -122,3 +122,41 @@ fn bad_names_and_parameters_are_one_line_errors() {
     );
     assert_eq!(m.lines().count(), 1);
 }
+
+#[test]
+fn a_wall_scene_compares_the_laws_against_the_rigid_half_space() {
+    // The three-phase law on the seam against a rigid wall equals the analytical model's rigid
+    // wall (`twoball analytic --wall rigid`); a mirror-image ball would give the pair's e.
+    let text = "[ball1]\nmaterial = \"copper-fe\"\ndiameter = 0.02\nvelocity = [1.0, 0.0, 0.0]\n\
+                [wall]\nkind = \"rigid\"\n[laws]\ncompare = [\"li-yang-shi\"]\n";
+    let s = Scene::from_toml(text, Path::new("."), &[]).unwrap();
+    let Approach::Impact(touch) = approach(&s).unwrap() else {
+        panic!("no impact")
+    };
+    let out = compare_laws(&s, &touch).unwrap();
+    let wall = twoball::cli::json_from([
+        "twoball", "analytic", "--wall", "rigid", "--v1", "1", "--json",
+    ])
+    .unwrap();
+    let e = wall["e"].as_f64().unwrap();
+    assert!((out[0].e - e).abs() < 1e-6 * e, "{} vs {e}", out[0].e);
+    let pair = twoball::cli::json_from([
+        "twoball",
+        "laws",
+        "run",
+        "--law",
+        "li-yang-shi",
+        "--v1",
+        "1",
+        "--v2",
+        "0",
+        "--json",
+    ])
+    .unwrap()["e"]
+        .as_f64()
+        .unwrap();
+    assert!(
+        (out[0].e - pair).abs() > 1e-3,
+        "the wall is not a ball: {pair}"
+    );
+}
