@@ -11,7 +11,7 @@
 //! `cargo run --release --example section_energy -- MESH [MESH ...]` with MESH one of
 //! `ball:SIZE:POLE` (`mesh::meridian::ball`, lengths in m) or `ladder:LEVEL[:A]`
 //! (`mesh::meridian::ladder_ball` sized from the contact radius A in µm, by default Hertz's
-//! at 2 m/s: 470.5 µm); a suffix `:b-bar` picks the B-bar quads, `:single` single-rate
+//! at 2 m/s: 470.4 µm); a suffix `:b-bar` picks the B-bar quads, `:single` single-rate
 //! integration. `SECTION_RINGS=1` also prints every ring arrival, `SECTION_PULSE=FILE`
 //! writes the force pulse (t in s, F in N) of the last mesh as CSV.
 
