@@ -12,8 +12,10 @@
 //! `ball:SIZE:POLE` (`mesh::meridian::ball`, lengths in m) or `ladder:LEVEL[:A]`
 //! (`mesh::meridian::ladder_ball` sized from the contact radius A in µm, by default Hertz's
 //! at 2 m/s: 470.4 µm); a suffix `:b-bar` picks the B-bar quads, `:single` single-rate
-//! integration. `SECTION_RINGS=1` also prints every ring arrival, `SECTION_PULSE=FILE`
-//! writes the force pulse (t in s, F in N) of the last mesh as CSV.
+//! integration, `:move=FROM/TO` moves the surface ring nearest the rest radius FROM (µm)
+//! along the surface to the radius TO (µm). `SECTION_RINGS=1` also prints every ring
+//! arrival, `SECTION_PULSE=FILE` writes the force pulse (t in s, F in N) of the last mesh as
+//! CSV.
 
 use twoball::fe::axisym::element::QuadFormulation;
 use twoball::fe::axisym::impact::{HeadOn, Target};
@@ -67,16 +69,42 @@ fn parse(arg: &str) -> Result<(MeridianMesh, QuadFormulation, Integration), Stri
         }
         _ => return Err(format!("{arg:?}: not ball:SIZE:POLE or ladder:LEVEL[:A]")),
     };
+    let mut mesh = mesh;
     let mut form = QuadFormulation::default();
     let mut integ = Integration::subcycled();
     for r in rest {
         match *r {
             "b-bar" => form = QuadFormulation::SelectiveReduced,
             "single" => integ = Integration::SingleRate,
+            o if o.starts_with("move=") => move_ring(&mut mesh, &o[5..])
+                .ok_or_else(|| format!("{arg:?}: {o:?} is not move=FROM/TO (µm)"))?,
             o => return Err(format!("{arg:?}: unknown option {o:?}")),
         }
     }
     Ok((mesh, form, integ))
+}
+
+/// Moves the surface ring nearest the rest radius FROM (µm) along the surface to the radius
+/// TO (µm), `spec` = "FROM/TO": the same mesh with one ring elsewhere.
+fn move_ring(mesh: &mut MeridianMesh, spec: &str) -> Option<()> {
+    let (from, to) = spec.split_once('/')?;
+    let (from, to) = (
+        from.parse::<f64>().ok()? * 1e-6,
+        to.parse::<f64>().ok()? * 1e-6,
+    );
+    let radius = D / 2.0;
+    let i = (0..mesh.nodes.len())
+        .filter(|&i| {
+            let p = mesh.nodes[i];
+            (p[0].hypot(p[1]) - radius).abs() < 1e-9 * radius && p[1] > 0.0
+        })
+        .min_by(|&a, &b| {
+            let d = |i: usize| (mesh.nodes[i][0] - from).abs();
+            d(a).total_cmp(&d(b))
+        })?;
+    (to > 0.0 && to < radius).then_some(())?;
+    mesh.nodes[i] = [to, (radius * radius - to * to).sqrt()];
+    Some(())
 }
 
 /// Energies (J) of the ball at the end: kinetic, rigid-body kinetic, elastic strain,
@@ -176,7 +204,7 @@ fn run(arg: &str) -> Result<String, String> {
 fn main() {
     let args: Vec<String> = std::env::args().skip(1).collect();
     if args.is_empty() {
-        eprintln!("usage: section_energy ball:SIZE:POLE|ladder:LEVEL[:A][:b-bar][:single] ...");
+        eprintln!("usage: section_energy ball:SIZE:POLE|ladder:LEVEL[:A][:b-bar][:single][:move=FROM/TO] ...");
         std::process::exit(2);
     }
     for a in &args {
