@@ -5,7 +5,8 @@
 //!
 //! The ladders are `#[ignore]`d (minutes each); rerun one with
 //! `cargo test --release --test section_ladder NAME -- --ignored --nocapture`; `LADDER_TOP=K`
-//! runs levels 0..=K (default 3), `LADDER_FORMULATION=b-bar` the B-bar quads.
+//! runs levels 0..=K (default 3; 1 for `plastic_phase_average`, whose `PHASE_MESHES=M` sets
+//! the meshes per level, default 12), `LADDER_FORMULATION=b-bar` the B-bar quads.
 
 #[path = "contact_support/hertz.rs"]
 mod hertz;
