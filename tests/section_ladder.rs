@@ -5,7 +5,8 @@
 //!
 //! The ladders are `#[ignore]`d (minutes each); rerun one with
 //! `cargo test --release --test section_ladder NAME -- --ignored --nocapture`; `LADDER_TOP=K`
-//! runs levels 0..=K (default 3), `LADDER_FORMULATION=b-bar` the B-bar quads.
+//! runs levels 0..=K (default 3; 1 for `plastic_phase_average`, whose `PHASE_MESHES=M` sets
+//! the meshes per level, default 12), `LADDER_FORMULATION=b-bar` the B-bar quads.
 
 #[path = "contact_support/hertz.rs"]
 mod hertz;
@@ -349,4 +350,75 @@ fn elastic_ladder_2_m_s() {
 #[ignore]
 fn elastic_ladder_7_m_s() {
     elastic_ladder(7.0);
+}
+
+/// The plastic default scene's e over the phase of the section's surface rings (docs/
+/// contact-penalty.md, "Why the section's e scatters"): at each level, `PHASE_MESHES` (default
+/// 12) ladders sized from a contact radius stepped uniformly over one period of the
+/// sawtooth (10 % at level 0, halving per level: one ring spacing at the edge of the
+/// contact). The spread of e (the sawtooth's width) shrinks with the level and the mean over
+/// the phase does not move: levels 0..=`LADDER_TOP` (default 1) agree within 0.3 %. With
+/// `PHASE_MESHES=1` (one mesh per level, a nested ladder) they do not.
+#[test]
+#[ignore]
+fn plastic_phase_average() {
+    let top: u32 = std::env::var("LADDER_TOP")
+        .ok()
+        .and_then(|s| s.parse().ok())
+        .unwrap_or(1);
+    let meshes: usize = std::env::var("PHASE_MESHES")
+        .ok()
+        .and_then(|s| s.parse().ok())
+        .unwrap_or(12);
+    let a = contact_radius(2.0);
+    let mut means = Vec::new();
+    let mut widths = Vec::new();
+    for level in 0..=top {
+        let period = 0.1 / f64::from(1u32 << level);
+        let e: Vec<f64> = (0..meshes)
+            .map(|j| {
+                let aj = a * (1.0 + period * j as f64 / meshes as f64);
+                let mesh = ladder_ball(D, aj, level).unwrap();
+                let mut h = HeadOn::new(mesh, copper(false), 1.0, Target::MirrorBall);
+                h.formulation = formulation();
+                let run = h.run().unwrap();
+                println!(
+                    "level {level}, A {:.3} µm: e {:.5}, δ_max {:.4} µm, {:.1} s",
+                    aj * 1e6,
+                    run.e,
+                    run.delta_max * 1e6,
+                    run.wall_time_s
+                );
+                run.e
+            })
+            .collect();
+        let mean = e.iter().sum::<f64>() / e.len() as f64;
+        let (lo, hi) = e
+            .iter()
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), &x| {
+                (l.min(x), h.max(x))
+            });
+        println!(
+            "level {level}: {meshes} meshes, e {lo:.5} to {hi:.5}, half-width {:.2} %, mean {mean:.5}",
+            50.0 * (hi - lo) / mean
+        );
+        means.push(mean);
+        widths.push(hi - lo);
+    }
+    let (lo, hi) = means
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), &x| {
+            (l.min(x), h.max(x))
+        });
+    println!(
+        "phase means {means:?}: spread {:.3} %, against the 3D converged 0.3190 {:+.3} %",
+        100.0 * (hi - lo) / lo,
+        100.0 * (means.last().unwrap() / E_3D_CONVERGED - 1.0)
+    );
+    assert!((hi - lo) / lo < 0.003, "{means:?}");
+    if meshes > 1 {
+        for w in widths.windows(2) {
+            assert!(w[1] < 0.75 * w[0], "{widths:?}");
+        }
+    }
 }
