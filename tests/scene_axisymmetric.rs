@@ -5,6 +5,7 @@
 //! section's snapshot series.
 
 mod pvd_support;
+mod run_support;
 use std::path::Path;
 use std::process::Command;
 use twoball::scene::{approach, Approach, Override, Scene, Touch, DEFAULT_SCENE};
@@ -213,28 +214,7 @@ fn results_json_and_history_have_the_3d_models_keys() {
     let dir = std::env::temp_dir().join(format!("twoball-axisym-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&dir);
     let run = |name: &str, sets: &[&str]| {
-        let mut cmd = Command::new(env!("CARGO_BIN_EXE_twoball"));
-        cmd.args(["run", "--no-error-estimate", "--out"])
-            .arg(dir.join(name));
-        for s in sets {
-            cmd.args(["--set", s]);
-        }
-        let out = cmd.output().unwrap();
-        assert!(
-            out.status.success(),
-            "{}",
-            String::from_utf8_lossy(&out.stderr)
-        );
-        let json: serde_json::Value = serde_json::from_str(
-            &std::fs::read_to_string(dir.join(name).join("results.json")).unwrap(),
-        )
-        .unwrap();
-        let header = std::fs::read_to_string(dir.join(name).join("history.csv"))
-            .unwrap()
-            .lines()
-            .next()
-            .unwrap()
-            .to_string();
+        let (json, header, _) = run_support::run_cli(&dir.join(name), None, sets);
         (json, header)
     };
     let coarse3d = [

@@ -6,9 +6,9 @@
 
 #[path = "contact_support/hertz.rs"]
 mod hertz;
+mod run_support;
 
 use std::path::Path;
-use std::process::Command;
 use twoball::analytic::hertz::HertzPair;
 use twoball::analytic::{collide, Body};
 use twoball::error::Result;
@@ -317,36 +317,7 @@ fn a_wall_run_writes_the_two_ball_keys() {
     let scene = dir.join("wall.toml");
     std::fs::write(&scene, WALL_SCENE).unwrap();
     let cli = |name: &str, file: Option<&Path>, sets: &[&str]| {
-        let mut cmd = Command::new(env!("CARGO_BIN_EXE_twoball"));
-        cmd.args(["run", "--no-error-estimate", "--out"])
-            .arg(dir.join(name));
-        if let Some(f) = file {
-            cmd.arg(f);
-        }
-        for s in sets {
-            cmd.args(["--set", s]);
-        }
-        let out = cmd.output().unwrap();
-        assert!(
-            out.status.success(),
-            "{}",
-            String::from_utf8_lossy(&out.stderr)
-        );
-        let json: serde_json::Value = serde_json::from_str(
-            &std::fs::read_to_string(dir.join(name).join("results.json")).unwrap(),
-        )
-        .unwrap();
-        let header = std::fs::read_to_string(dir.join(name).join("history.csv"))
-            .unwrap()
-            .lines()
-            .next()
-            .unwrap()
-            .to_string();
-        (
-            json,
-            header,
-            String::from_utf8_lossy(&out.stdout).to_string(),
-        )
+        run_support::run_cli(&dir.join(name), file, sets)
     };
     let coarse = |b: &str| format!("{b}.mesh={{size=0.004,pole_size=0.002}}");
     let (c1, c2) = (coarse("ball1"), coarse("ball2"));

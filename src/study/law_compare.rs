@@ -42,14 +42,7 @@ pub fn compare_laws(scene: &Scene, touch: &Touch) -> Result<Vec<LawOutcome>> {
     let b1 = Body::ball(scene.ball1.material, scene.ball1.diameter, "ball1")?;
     let (mu, _) = scene.friction_coefficients();
     let [a, b] = touch.v;
-    // A wall is the laws' rigid half-space at rest, as in the analytical column.
-    let (b2, b) = match scene.wall {
-        Some(_) => (Body::RigidWall, [0.0; 3]),
-        None => (
-            Body::ball(scene.ball2.material, scene.ball2.diameter, "ball2")?,
-            b,
-        ),
-    };
+    let (b2, b) = super::outcome::analytic_partner(scene, b)?;
     let pair = ContactPair::between(&b1, &b2, mu);
     let registry = Registry::builtin();
     let tangential = &scene.laws.tangential;

@@ -94,6 +94,19 @@ pub fn dissipation_factor(scene: &Scene, after_v: [[f64; 3]; 2], after_w: [[f64;
     }
 }
 
+/// Ball 1's partner for the analytical model and the contact laws, with its velocity (m/s,
+/// contact frame) given the scene's ball-2 velocity `v2`: ball 2, or for a `[wall]` scene the
+/// rigid half-space at rest (`twoball analytic --wall rigid`). Errors: ball 2's material.
+pub fn analytic_partner(scene: &Scene, v2: [f64; 3]) -> Result<(Body, [f64; 3])> {
+    Ok(match scene.wall {
+        Some(_) => (Body::RigidWall, [0.0; 3]),
+        None => (
+            Body::ball(scene.ball2.material, scene.ball2.diameter, "ball2")?,
+            v2,
+        ),
+    })
+}
+
 /// The analytical model's answer for `scene` touching as `touch`: its [`Collision`] and the
 /// [`Outcome`] built from it.
 ///
@@ -104,14 +117,7 @@ pub fn analytic_outcome(scene: &Scene, touch: &Touch) -> Result<(Outcome, Collis
     let b1 = Body::ball(scene.ball1.material, scene.ball1.diameter, "ball1")?;
     let (mu, _) = scene.friction_coefficients();
     let [a, b] = touch.v;
-    // A wall is the analytical model's rigid half-space at rest (`twoball analytic --wall`).
-    let (b2, b) = match scene.wall {
-        Some(_) => (Body::RigidWall, [0.0; 3]),
-        None => (
-            Body::ball(scene.ball2.material, scene.ball2.diameter, "ball2")?,
-            b,
-        ),
-    };
+    let (b2, b) = analytic_partner(scene, b)?;
     let c = crate::analytic::collide_with_mu(&b1, &b2, [a[0], a[1]], [b[0], b[1]], mu)?;
     let f = touch.frame;
     let v1 = f.to_global([c.v1_after[0], c.v1_after[1], a[2]]);
