@@ -77,7 +77,7 @@ fn a_spring_node_s_neighbours_keep_the_energy_on_the_ladder_mesh() {
     let material = Material::preset("copper-fe").unwrap();
     let run = |integration| {
         let mesh = ladder_ball(D, 600e-6, 0).unwrap();
-        let mut h = HeadOn::new(mesh, material.clone(), 1.0, Target::MirrorBall);
+        let mut h = HeadOn::new(mesh, material, 1.0, Target::MirrorBall);
         h.integration = integration;
         h.run().unwrap()
     };
