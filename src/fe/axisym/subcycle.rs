@@ -5,7 +5,8 @@
 //! With fine step h, node i has level L_i (step 2^{L_i} h), the largest k ≤ K with
 //! 2^k h ≤ s Δt_i, where s is the step factor and Δt_i the node's limit: the smallest
 //! Courant step of its quads and, for a node a contact may act on, its spring's stable step
-//! ([`SectionContact::node_limits`](super::section::SectionContact::node_limits)). A quad is
+//! ([`SectionContact::node_limits`](super::section::SectionContact::node_limits)), at most
+//! [`NEIGHBOUR_RATIO`] times the limit of any node it shares a quad with. A quad is
 //! updated at the level of its finest node, u_e = min L_i, with step 2^{u_e} h. Every node
 //! drifts every fine step with its constant half-step velocity; a node is due (kicked with its
 //! element, contact, load and damping forces) at multiples of 2^{L_i} fine steps. Levels and h
@@ -90,14 +91,31 @@ pub fn node_level(limit: f64, h: f64, factor: f64, max_level: u8) -> u8 {
     k
 }
 
+/// Most a node's limit may exceed the own limit of a node it shares a quad with: the
+/// neighbour's fastest motion (frequency ω ≤ 1/limit for a contact spring) reaches the node
+/// through their quad, and ω H < 2 keeps it inside the node's central-difference step H.
+pub const NEIGHBOUR_RATIO: f64 = 2.0;
+
 /// Each node's limit (s): the smallest Courant step `element_dt` (s) of the quads `quads`
-/// holding it and its contact limit `contact_dt` (s; ∞ for none).
+/// holding it and its contact limit `contact_dt` (s; ∞ for none), capped at
+/// [`NEIGHBOUR_RATIO`] times the own limit of every node it shares a quad with.
 pub fn node_limits(quads: &[[u32; 4]], element_dt: &[f64], contact_dt: &[f64]) -> Vec<f64> {
-    let mut lim = contact_dt.to_vec();
+    let mut own = contact_dt.to_vec();
     for (q, &dt) in quads.iter().zip(element_dt) {
         for &i in q {
-            let l = &mut lim[i as usize];
+            let l = &mut own[i as usize];
             *l = l.min(dt);
+        }
+    }
+    let mut lim = own.clone();
+    for q in quads {
+        let m = q
+            .iter()
+            .map(|&i| own[i as usize])
+            .fold(f64::INFINITY, f64::min);
+        for &i in q {
+            let l = &mut lim[i as usize];
+            *l = l.min(NEIGHBOUR_RATIO * m);
         }
     }
     lim
@@ -283,6 +301,23 @@ mod tests {
         // Just above 2 (within the margin) stays at level 0.
         assert_eq!(node_level(2.01, 0.9, 0.9, 6), 0);
         assert_eq!(node_level(2.1, 0.9, 0.9, 6), 1);
+    }
+
+    #[test]
+    fn a_node_takes_at_most_twice_the_limit_of_its_quad_neighbours() {
+        // Node 0 carries a stiff spring (limit 1); its quad's other nodes would allow 8, the
+        // second quad's far nodes 8 too: only the first quad's nodes are capped at 2.
+        let quads = [[0, 1, 2, 3], [1, 4, 5, 2]];
+        let contact = [
+            1.0,
+            f64::INFINITY,
+            f64::INFINITY,
+            f64::INFINITY,
+            f64::INFINITY,
+            f64::INFINITY,
+        ];
+        let lim = node_limits(&quads, &[8.0, 8.0], &contact);
+        assert_eq!(lim, vec![1.0, 2.0, 2.0, 2.0, 8.0, 8.0]);
     }
 
     #[test]
