@@ -190,25 +190,6 @@ fn unequal_elastic_balls_exchange_momentum_as_rigid_bodies_do() {
     assert!(r.energy_error < 1e-3, "{}", r.energy_error);
 }
 
-/// The keys of a JSON value, recursively, as dotted paths (array items by index 0 only).
-fn keys(v: &serde_json::Value, at: &str, out: &mut Vec<String>) {
-    match v {
-        serde_json::Value::Object(m) => {
-            for (k, x) in m {
-                let p = format!("{at}.{k}");
-                out.push(p.clone());
-                keys(x, &p, out);
-            }
-        }
-        serde_json::Value::Array(a) => {
-            if let Some(x) = a.first() {
-                keys(x, &format!("{at}[]"), out);
-            }
-        }
-        _ => {}
-    }
-}
-
 #[test]
 fn results_json_and_history_have_the_3d_models_keys() {
     let dir = std::env::temp_dir().join(format!("twoball-axisym-{}", std::process::id()));
@@ -225,9 +206,7 @@ fn results_json_and_history_have_the_3d_models_keys() {
     let (q, hq) = run("quarter", &coarse3d);
     assert_eq!(a["reduction"], "axisymmetric");
     assert_eq!(q["reduction"], "quarter");
-    let (mut ka, mut kq) = (Vec::new(), Vec::new());
-    keys(&a, "", &mut ka);
-    keys(&q, "", &mut kq);
+    let (mut ka, mut kq) = (run_support::json_keys(&a), run_support::json_keys(&q));
     // The subcycling report lists levels only when used (the 3D run of this mesh may not).
     // Warnings are listed only when there are any.
     let drop_levels = |k: &mut Vec<String>| {

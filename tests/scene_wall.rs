@@ -334,30 +334,11 @@ fn a_wall_run_writes_the_two_ball_keys() {
     let why = w["fe"]["savings"]["reduction_reason"].as_str().unwrap();
     assert!(why.contains("rigid wall"), "{why}");
     let keys = |v: &serde_json::Value| {
-        let mut out = Vec::new();
-        collect(v, "", &mut out);
+        let mut out = run_support::json_keys(v);
         out.retain(|k| !k.starts_with(".scene.wall") && !k.starts_with(".warnings[]"));
         out
     };
     assert_eq!(keys(&w), keys(&p));
     assert_eq!(hw, hp);
     let _ = std::fs::remove_dir_all(&dir);
-}
-
-fn collect(v: &serde_json::Value, at: &str, out: &mut Vec<String>) {
-    match v {
-        serde_json::Value::Object(m) => {
-            for (k, x) in m {
-                let p = format!("{at}.{k}");
-                out.push(p.clone());
-                collect(x, &p, out);
-            }
-        }
-        serde_json::Value::Array(a) => {
-            if let Some(x) = a.first() {
-                collect(x, &format!("{at}[]"), out);
-            }
-        }
-        _ => {}
-    }
 }

@@ -39,3 +39,29 @@ pub fn run_cli(
         String::from_utf8_lossy(&run.stdout).to_string(),
     )
 }
+
+/// The keys of a JSON value, recursively, as dotted paths from the root `.` (arrays by their
+/// first item, as `[]`).
+pub fn json_keys(v: &serde_json::Value) -> Vec<String> {
+    let mut out = Vec::new();
+    collect_keys(v, "", &mut out);
+    out
+}
+
+fn collect_keys(v: &serde_json::Value, at: &str, out: &mut Vec<String>) {
+    match v {
+        serde_json::Value::Object(m) => {
+            for (k, x) in m {
+                let p = format!("{at}.{k}");
+                out.push(p.clone());
+                collect_keys(x, &p, out);
+            }
+        }
+        serde_json::Value::Array(a) => {
+            if let Some(x) = a.first() {
+                collect_keys(x, &format!("{at}[]"), out);
+            }
+        }
+        _ => {}
+    }
+}
