@@ -28,6 +28,74 @@ pub enum LawsCommand {
     Run(LawRunArgs),
     /// Fit a law's parameters to e and delta_max over a speed range; write e(v) and DEM input.
     Fit(super::laws_fit::LawFitArgs),
+    /// Every law against cached FE over a matrix of metals, speeds and diameters; REPORT.md.
+    Bench(LawBenchArgs),
+}
+
+/// Arguments of `twoball laws bench`.
+#[derive(Debug, Args)]
+pub struct LawBenchArgs {
+    /// Output folder: REPORT.md, the SVG figures and the FE cache `fe/`.
+    #[arg(long, value_name = "DIR")]
+    pub out: std::path::PathBuf,
+    /// A TOML file replacing parts of the default matrix (keys metals, speeds, diameters,
+    /// [oblique]).
+    #[arg(long, value_name = "FILE")]
+    pub matrix: Option<std::path::PathBuf>,
+    /// Only run the FE points missing from the cache.
+    #[arg(long, conflicts_with = "laws_only")]
+    pub fe_only: bool,
+    /// Run no FE: the laws, fits and report on the cached FE points.
+    #[arg(long)]
+    pub laws_only: bool,
+    /// FE points run at once.
+    #[arg(long, default_value_t = 2)]
+    pub jobs: usize,
+}
+
+/// `twoball laws bench` with `registry`.
+pub fn bench_with(a: LawBenchArgs, registry: &Registry) -> Result<()> {
+    use crate::study::laws_bench::{matrix::Matrix, run_bench, BenchOptions, Mode};
+    if a.jobs == 0 {
+        return Err(Error::invalid("--jobs", a.jobs, ">= 1"));
+    }
+    let matrix = match &a.matrix {
+        Some(p) => {
+            let text = std::fs::read_to_string(p).map_err(|e| Error::io(p, e))?;
+            Matrix::from_toml(&text, &p.display().to_string())?
+        }
+        None => Matrix::default(),
+    };
+    let mode = match (a.fe_only, a.laws_only) {
+        (true, _) => Mode::FeOnly,
+        (_, true) => Mode::LawsOnly,
+        _ => Mode::Full,
+    };
+    let command = format!(
+        "twoball laws bench --out {}{} --jobs {}",
+        a.out.display(),
+        a.matrix
+            .as_ref()
+            .map_or(String::new(), |p| format!(" --matrix {}", p.display())),
+        a.jobs
+    );
+    let opts = BenchOptions {
+        out: a.out,
+        matrix,
+        mode,
+        jobs: a.jobs,
+        command,
+    };
+    let r = run_bench(&opts, registry, &|line: &str| eprintln!("{line}"))?;
+    let [h, o] = r.stats;
+    println!(
+        "FE points: head-on {} run, {} from the cache, {} missing; oblique {} run, {} from the cache, {} missing",
+        h.computed, h.reused, h.missing, o.computed, o.reused, o.missing
+    );
+    if let Some(p) = r.report {
+        println!("wrote {}", p.display());
+    }
+    Ok(())
 }
 
 /// Arguments of `twoball laws run`.
@@ -369,6 +437,7 @@ pub fn run(a: LawsArgs) -> Result<()> {
         None => list(&registry),
         Some(LawsCommand::Run(r)) => run_with(r, &registry),
         Some(LawsCommand::Fit(f)) => super::laws_fit::run(f, &registry),
+        Some(LawsCommand::Bench(b)) => bench_with(b, &registry),
     }
 }
 
@@ -400,6 +469,7 @@ where
         None => list(registry),
         Some(LawsCommand::Run(r)) => run_with(r, registry),
         Some(LawsCommand::Fit(f)) => super::laws_fit::run(f, registry),
+        Some(LawsCommand::Bench(b)) => bench_with(b, registry),
     };
     match result {
         Ok(()) => 0,

@@ -18,6 +18,7 @@
 //! - [`plots`]: SVG charts for the report;
 //! - [`figures`]: CSV and SVG files of the paper's parametric figures;
 //! - [`law_fit_files`]: the files of a contact-law fit (JSON, e(v) table, DEM snippets);
+//! - [`laws_bench`]: `twoball laws bench`, every contact law against cached FE over a matrix;
 //! - [`law_compare`]: the scene's `[laws]`, integrated on the run's balls and speeds;
 //! - [`snapshots`]: `.vtu` snapshots of a run for ParaView;
 //! - [`progress`]: progress on stderr (a bar on a terminal, plain lines elsewhere);
@@ -38,6 +39,7 @@ pub mod figures;
 pub mod interrupt;
 pub mod law_compare;
 pub mod law_fit_files;
+pub mod laws_bench;
 pub mod number;
 pub mod outcome;
 pub mod plots;

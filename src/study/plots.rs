@@ -10,6 +10,9 @@ pub enum Style {
     Line,
     /// Markers only.
     Points,
+    /// Vertical bars (error bars): the points taken in pairs, (x, low) and (x, high), each
+    /// pair drawn as one segment; no legend entry when the label is empty.
+    Bars,
 }
 
 /// One curve or point set (a line of one point is drawn as a marker).
@@ -96,6 +99,19 @@ impl Chart {
                     s.style
                 };
                 match style {
+                    Style::Bars => {
+                        let drawn =
+                            chart
+                                .draw_series(p.chunks_exact(2).map(|w| {
+                                    PathElement::new(vec![w[0], w[1]], color.stroke_width(1))
+                                }))
+                                .map_err(|e| err(&e))?;
+                        if !s.label.is_empty() {
+                            drawn.label(s.label.as_str()).legend(move |(x, y)| {
+                                PathElement::new(vec![(x + 10, y - 6), (x + 10, y + 6)], color)
+                            });
+                        }
+                    }
                     Style::Line => {
                         chart
                             .draw_series(LineSeries::new(p, color.stroke_width(2)))

@@ -1,0 +1,252 @@
+//! The benchmark's SVG figures: e(v) per metal (every law as a line, FE points with error
+//! bars), e against v/v_y for both diameters (where D drops out), F(δ) loading-unloading
+//! loops at three speeds and δ(t) (FE pilot curve against every law).
+
+use super::law_side::{head_on_law, thin, CURVE_ROWS};
+use super::matrix::log_spaced;
+use super::{BenchResults, HeadOnResult};
+use crate::analytic::laws::Registry;
+use crate::atomic::write_atomic;
+use crate::error::{Error, Result};
+use crate::study::plots::{Chart, Series, Style};
+use std::path::Path;
+
+/// Speeds of each law's e(v) line.
+pub const LINE_SPEEDS: usize = 25;
+
+/// One written figure: file name and caption.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Figure {
+    /// File name in the output folder.
+    pub file: String,
+    /// One-line caption.
+    pub caption: String,
+}
+
+/// The largest diameter of the matrix, m.
+fn largest_diameter(r: &BenchResults) -> f64 {
+    r.matrix.diameters.iter().copied().fold(f64::NAN, f64::max)
+}
+
+/// The head-on points of `metal` at `diameter`, speeds ascending.
+fn points_of<'a>(r: &'a BenchResults, metal: &str, diameter: f64) -> Vec<&'a HeadOnResult> {
+    r.head_on
+        .iter()
+        .filter(|h| h.point.metal == metal && h.point.diameter == diameter)
+        .collect()
+}
+
+/// FE e as points and their error bars (bars only where the error is finite), x mapped by
+/// `x`.
+fn fe_series(pts: &[&HeadOnResult], label: &str, x: impl Fn(&HeadOnResult) -> f64) -> Vec<Series> {
+    let mut points = vec![];
+    let mut bars = vec![];
+    for h in pts {
+        if let Some(f) = h.fe_done() {
+            points.push((x(h), f.e.value));
+            if f.e.error.is_finite() {
+                bars.push((x(h), f.e.value - f.e.error));
+                bars.push((x(h), f.e.value + f.e.error));
+            }
+        }
+    }
+    let mut out = vec![Series {
+        label: label.to_string(),
+        points,
+        style: Style::Points,
+    }];
+    if !bars.is_empty() {
+        out.push(Series {
+            label: format!("{label} error bar"),
+            points: bars,
+            style: Style::Bars,
+        });
+    }
+    out
+}
+
+/// e(log10 v) of every law (lines over the matrix's speed range) and FE, for `metal` at the
+/// largest diameter.
+fn e_of_v(r: &BenchResults, registry: &Registry, metal: &str) -> Result<Option<Chart>> {
+    let d = largest_diameter(r);
+    let pts = points_of(r, metal, d);
+    let Some(first) = pts.first() else {
+        return Ok(None);
+    };
+    let (lo, hi) = (pts[0].point.speed, pts[pts.len() - 1].point.speed);
+    let speeds = if hi > lo {
+        log_spaced(lo, hi, LINE_SPEEDS)
+    } else {
+        vec![lo]
+    };
+    let mut series = vec![];
+    for law in &r.normal_laws {
+        let mut points = vec![];
+        for &v in &speeds {
+            let i = head_on_law(registry, law, &first.point, v)?;
+            points.push((v.log10(), i.e));
+        }
+        series.push(Series {
+            label: law.clone(),
+            points,
+            style: Style::Line,
+        });
+    }
+    series.extend(fe_series(&pts, "FE", |h| h.point.speed.log10()));
+    Ok(Some(Chart {
+        title: format!("{metal}, D = {} mm: e against speed", 1e3 * d),
+        x_label: "log10 of the relative speed v (m/s)".into(),
+        y_label: "coefficient of restitution e (-)".into(),
+        series,
+    }))
+}
+
+/// FE e against log10(v/v_y) for every metal and diameter.
+fn e_of_v_over_vy(r: &BenchResults) -> Chart {
+    let mut series = vec![];
+    for metal in &r.matrix.metals {
+        for &d in &r.matrix.diameters {
+            let pts = points_of(r, metal, d);
+            series.extend(fe_series(
+                &pts,
+                &format!("{metal} D = {} mm", 1e3 * d),
+                |h| (h.point.speed / h.yield_speed).log10(),
+            ));
+        }
+    }
+    Chart {
+        title: "FE e against v/v_y: both diameters".into(),
+        x_label: "log10 of v/v_y (-)".into(),
+        y_label: "coefficient of restitution e (-)".into(),
+        series,
+    }
+}
+
+/// The matrix speeds nearest 0.1, 1 and 10 m/s (distinct, ascending).
+pub fn loop_speeds(speeds: &[f64]) -> Vec<f64> {
+    let mut out: Vec<f64> = vec![];
+    for target in [0.1f64, 1.0, 10.0] {
+        let best = speeds
+            .iter()
+            .copied()
+            .min_by(|a, b| (a / target).ln().abs().total_cmp(&(b / target).ln().abs()));
+        if let Some(v) = best {
+            if !out.contains(&v) {
+                out.push(v);
+            }
+        }
+    }
+    out
+}
+
+/// One curve chart of point `h`: FE pilot curve and every law, columns `cx`, `cy` of the
+/// (t, δ, F) rows scaled by `sx`, `sy`.
+fn curve_chart(
+    h: &HeadOnResult,
+    cols: (usize, usize),
+    scale: (f64, f64),
+    labels: [&str; 3],
+) -> Chart {
+    let pick = |rows: &[[f64; 3]]| -> Vec<(f64, f64)> {
+        thin(rows, CURVE_ROWS)
+            .iter()
+            .map(|r| (scale.0 * r[cols.0], scale.1 * r[cols.1]))
+            .collect()
+    };
+    let mut series: Vec<Series> = h
+        .laws
+        .iter()
+        .map(|l| Series {
+            label: l.law.clone(),
+            points: pick(&l.curve),
+            style: Style::Line,
+        })
+        .collect();
+    if let Some(f) = h.fe_done() {
+        series.push(Series {
+            label: "FE (pilot run)".into(),
+            points: pick(&f.curve),
+            style: Style::Points,
+        });
+    }
+    Chart {
+        title: labels[0].to_string(),
+        x_label: labels[1].into(),
+        y_label: labels[2].into(),
+        series,
+    }
+}
+
+/// Writes the figures into `out` (law lines from `registry`) and returns them in report
+/// order.
+///
+/// Errors: a law that fails to integrate, a drawing or file failure.
+pub fn write_figures(out: &Path, r: &BenchResults, registry: &Registry) -> Result<Vec<Figure>> {
+    std::fs::create_dir_all(out).map_err(|e| Error::io(out, e))?;
+    let mut figs = vec![];
+    let mut write = |file: String, caption: String, chart: &Chart| -> Result<()> {
+        write_atomic(out.join(&file), chart.svg()?.as_bytes())?;
+        figs.push(Figure { file, caption });
+        Ok(())
+    };
+    let d = largest_diameter(r);
+    for metal in &r.matrix.metals {
+        if let Some(c) = e_of_v(r, registry, metal)? {
+            write(
+                format!("e_v_{metal}.svg"),
+                format!(
+                    "e(v), {metal}, D = {} mm: every law (lines) and FE (points)",
+                    1e3 * d
+                ),
+                &c,
+            )?;
+        }
+    }
+    write(
+        "e_v_over_vy.svg".into(),
+        "FE e against v/v_y, every metal at both diameters".into(),
+        &e_of_v_over_vy(r),
+    )?;
+    let Some(metal) = r.matrix.metals.first() else {
+        return Ok(figs);
+    };
+    let pts = points_of(r, metal, d);
+    let speeds: Vec<f64> = pts.iter().map(|h| h.point.speed).collect();
+    for v in loop_speeds(&speeds) {
+        let Some(h) = pts.iter().find(|h| h.point.speed == v) else {
+            continue;
+        };
+        let title = format!("{metal}, D = {} mm, v = {v:.3} m/s: F(delta)", 1e3 * d);
+        let c = curve_chart(
+            h,
+            (1, 2),
+            (1e6, 1.0),
+            [&title, "approach delta (um)", "normal force F (N)"],
+        );
+        write(
+            format!("loop_{metal}_v{v:.3}.svg"),
+            format!(
+                "F(δ) loading-unloading, {metal}, D = {} mm, v = {v:.3} m/s",
+                1e3 * d
+            ),
+            &c,
+        )?;
+    }
+    if let Some(&v) = loop_speeds(&speeds).get(1).or(speeds.first()) {
+        if let Some(h) = pts.iter().find(|h| h.point.speed == v) {
+            let title = format!("{metal}, D = {} mm, v = {v:.3} m/s: delta(t)", 1e3 * d);
+            let c = curve_chart(
+                h,
+                (0, 1),
+                (1e6, 1e6),
+                [&title, "time t (us)", "approach delta (um)"],
+            );
+            write(
+                format!("delta_t_{metal}_v{v:.3}.svg"),
+                format!("δ(t), {metal}, D = {} mm, v = {v:.3} m/s", 1e3 * d),
+                &c,
+            )?;
+        }
+    }
+    Ok(figs)
+}

@@ -1,0 +1,234 @@
+//! `twoball laws bench`: every contact law of the registry against FE over a matrix of
+//! metals, speeds and diameters (head-on, on the meridian section) and against oblique 3D
+//! impacts (tangential laws), with a cached FE side, a report, figures and fits.
+//!
+//! - [`matrix`]: the matrix (defaults, TOML) and the pair's yield speed v_y;
+//! - [`fe`]: the FE answer for one head-on point ([`fe::head_on_fe`]) or oblique point;
+//! - [`cache`]: one JSON per FE point, reused, written as each finishes, run in parallel;
+//! - [`law_side`]: the laws on the same points;
+//! - [`ranking`]: each law's errors against FE and the ranking;
+//! - [`fit`]: the laws fitted to the FE points;
+//! - [`figures`]: the SVG figures; [`report`]: REPORT.md.
+
+pub mod cache;
+pub mod fe;
+pub mod figures;
+pub mod fit;
+pub mod law_side;
+pub mod matrix;
+pub mod ranking;
+pub mod report;
+
+use crate::analytic::law_fit::Observation;
+use crate::analytic::laws::Registry;
+use crate::error::Result;
+use cache::{CacheStats, FeCache, Stored};
+use fe::{FePoint, ObliqueFe};
+use law_side::{LawPoint, ObliqueLaw};
+use matrix::{HeadOnPoint, Matrix, ObliquePoint};
+use rayon::prelude::*;
+use std::path::PathBuf;
+
+/// The name of the FE model stored in every cache file (a file of another model is rerun).
+pub const FE_MODEL: &str = "section, ladder level 0 sized from the Hertz contact radius, one run";
+
+/// What a benchmark run does.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Mode {
+    /// FE (missing points), laws, report.
+    Full,
+    /// Only the FE points (fill the cache).
+    FeOnly,
+    /// Only the laws and the report, on the cached FE points.
+    LawsOnly,
+}
+
+/// A benchmark run.
+#[derive(Debug, Clone)]
+pub struct BenchOptions {
+    /// Output folder (the FE cache is `out/fe`).
+    pub out: PathBuf,
+    /// The matrix.
+    pub matrix: Matrix,
+    /// What to run.
+    pub mode: Mode,
+    /// FE points run at once.
+    pub jobs: usize,
+    /// The commands that reproduce the run, quoted at the top of the report.
+    pub command: String,
+}
+
+/// One head-on point: FE and every law.
+#[derive(Debug, Clone)]
+pub struct HeadOnResult {
+    /// The point.
+    pub point: HeadOnPoint,
+    /// The pair's yield speed, m/s ([`matrix::yield_speed`]).
+    pub yield_speed: f64,
+    /// The FE answer (None: not in the cache with `--laws-only`).
+    pub fe: Option<Stored<FePoint>>,
+    /// Every normal law, in registry order.
+    pub laws: Vec<LawPoint>,
+}
+
+impl HeadOnResult {
+    /// The finished FE answer.
+    pub fn fe_done(&self) -> Option<&FePoint> {
+        self.fe.as_ref().and_then(|s| s.done())
+    }
+}
+
+/// One oblique point: FE and every tangential law.
+#[derive(Debug, Clone)]
+pub struct ObliqueResult {
+    /// The point.
+    pub point: ObliquePoint,
+    /// The FE answer.
+    pub fe: Option<Stored<ObliqueFe>>,
+    /// Every tangential law, in registry order.
+    pub laws: Vec<ObliqueLaw>,
+}
+
+/// Everything a benchmark run produced.
+#[derive(Debug, Clone)]
+pub struct BenchResults {
+    /// The matrix.
+    pub matrix: Matrix,
+    /// Normal law names, in registry order.
+    pub normal_laws: Vec<String>,
+    /// Tangential law names, in registry order.
+    pub tangential_laws: Vec<String>,
+    /// The head-on points.
+    pub head_on: Vec<HeadOnResult>,
+    /// The oblique points.
+    pub oblique: Vec<ObliqueResult>,
+    /// The fits, one per metal.
+    pub fits: Vec<fit::MetalFit>,
+    /// Cache use of the head-on and oblique FE points.
+    pub stats: [CacheStats; 2],
+}
+
+/// What `run_bench` did.
+#[derive(Debug, Clone)]
+pub struct BenchSummary {
+    /// Cache use of the head-on and oblique FE points.
+    pub stats: [CacheStats; 2],
+    /// The report written (None with [`Mode::FeOnly`]).
+    pub report: Option<PathBuf>,
+    /// The results (None with [`Mode::FeOnly`]).
+    pub results: Option<BenchResults>,
+}
+
+/// The FE observations of `metal` at `diameter` within `range` (m/s).
+pub fn observations(
+    head_on: &[HeadOnResult],
+    metal: &str,
+    diameter: f64,
+    range: (f64, f64),
+) -> Vec<Observation> {
+    head_on
+        .iter()
+        .filter(|h| h.point.metal == metal && h.point.diameter == diameter)
+        .filter(|h| h.point.speed >= range.0 && h.point.speed <= range.1)
+        .filter_map(|h| {
+            h.fe_done().map(|f| Observation {
+                speed: h.point.speed,
+                e: f.e.value,
+                delta_max: f.delta_max.value,
+            })
+        })
+        .collect()
+}
+
+/// Runs the benchmark: FE points (cached, `jobs` at once), the laws, the fits, the report
+/// and figures in `opts.out`. `progress` receives one line per FE point run and per stage.
+///
+/// Errors: an unknown metal, an output folder that cannot be written, a law that fails to
+/// integrate (FE failures are reported, not fatal).
+pub fn run_bench(
+    opts: &BenchOptions,
+    registry: &Registry,
+    progress: &(dyn Fn(&str) + Sync),
+) -> Result<BenchSummary> {
+    let cache = FeCache::new(&opts.out, FE_MODEL);
+    let laws_only = opts.mode == Mode::LawsOnly;
+    let points = opts.matrix.head_on_points()?;
+    let (fe, s1) = cache.run_all(&points, opts.jobs, laws_only, fe::head_on_fe, progress)?;
+    let oblique_points = opts.matrix.oblique_points()?;
+    let (ofe, s2) = cache.run_all(
+        &oblique_points,
+        opts.jobs,
+        laws_only,
+        fe::oblique_fe,
+        progress,
+    )?;
+    let stats = [s1, s2];
+    if opts.mode == Mode::FeOnly {
+        return Ok(BenchSummary {
+            stats,
+            report: None,
+            results: None,
+        });
+    }
+    progress("laws on the head-on points");
+    let head_on = points
+        .into_par_iter()
+        .zip(fe)
+        .map(|(point, fe)| {
+            Ok(HeadOnResult {
+                yield_speed: matrix::yield_speed(&point.material, point.diameter)?,
+                laws: law_side::laws_on_point(registry, &point)?,
+                point,
+                fe,
+            })
+        })
+        .collect::<Result<Vec<_>>>()?;
+    let normal_laws: Vec<String> = registry.normal.iter().map(|s| s.name.into()).collect();
+    let rank = ranking::rank_all(&head_on, &normal_laws);
+    let oblique = oblique_points
+        .into_iter()
+        .zip(ofe)
+        .map(|(point, fe)| {
+            let normal = ranking::best_for(&rank, &point.metal).unwrap_or("thornton");
+            Ok(ObliqueResult {
+                laws: law_side::tangential_laws_on_point(registry, normal, &point)?,
+                point,
+                fe,
+            })
+        })
+        .collect::<Result<Vec<_>>>()?;
+    progress("fits");
+    let dmax = opts
+        .matrix
+        .diameters
+        .iter()
+        .copied()
+        .fold(f64::NAN, f64::max);
+    let fits = opts
+        .matrix
+        .metals
+        .par_iter()
+        .map(|metal| {
+            let material = crate::material::Material::preset(metal)?;
+            let obs = observations(&head_on, metal, dmax, fit::FIT_RANGE);
+            fit::fit_metal(registry, metal, material, dmax, obs)
+        })
+        .collect::<Result<Vec<_>>>()?;
+    let results = BenchResults {
+        matrix: opts.matrix.clone(),
+        normal_laws,
+        tangential_laws: registry.tangential.iter().map(|s| s.name.into()).collect(),
+        head_on,
+        oblique,
+        fits,
+        stats,
+    };
+    progress("report and figures");
+    let figures = figures::write_figures(&opts.out, &results, registry)?;
+    let path = report::write_report(&opts.out, &results, &rank, &figures, &opts.command)?;
+    Ok(BenchSummary {
+        stats,
+        report: Some(path),
+        results: Some(results),
+    })
+}

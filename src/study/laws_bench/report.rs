@@ -1,0 +1,614 @@
+//! REPORT.md of the benchmark: the matrix, the FE points, each law's errors over speed per
+//! metal, the ranking, where each law fails (in numbers), D = 5 against 20 mm, the oblique
+//! impacts, the fits and the cost.
+
+use super::figures::Figure;
+use super::fit::{MetalFit, FIT_RANGE, TARGET_E_ERROR};
+use super::ranking::{relative_errors, MetalRanking, QUANTITIES};
+use super::{BenchResults, HeadOnResult, FE_MODEL};
+use crate::atomic::write_atomic;
+use crate::error::{Error, Result};
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+
+/// |relative error in e| within which a law "holds" at a point.
+pub const HOLDS_E: f64 = 0.05;
+
+/// A signed percentage with one decimal, or `n/a`.
+fn pct(x: f64) -> String {
+    if x.is_finite() {
+        format!("{:+.1}", 100.0 * x)
+    } else {
+        "n/a".into()
+    }
+}
+
+/// A number in 4 significant digits, or `n/a`.
+fn g4(x: f64) -> String {
+    if x.is_finite() {
+        format!("{x:.4}")
+    } else {
+        "n/a".into()
+    }
+}
+
+/// A value ± its error (the error only when estimated).
+fn bar(value: f64, error: f64, scale: f64, digits: usize) -> String {
+    if error.is_finite() {
+        format!(
+            "{:.*} ± {:.*}",
+            digits,
+            scale * value,
+            digits,
+            scale * error
+        )
+    } else {
+        format!("{:.*}", digits, scale * value)
+    }
+}
+
+/// The head-on points of `metal` at `d`.
+fn points<'a>(r: &'a BenchResults, metal: &str, d: f64) -> Vec<&'a HeadOnResult> {
+    r.head_on
+        .iter()
+        .filter(|h| h.point.metal == metal && h.point.diameter == d)
+        .collect()
+}
+
+fn header(s: &mut String, command: &str, r: &BenchResults) {
+    let _ = writeln!(s, "# Contact laws against FE: the benchmark\n");
+    let _ = writeln!(
+        s,
+        "Reproduce (the FE cache is `DIR/fe`; delete it to rerun the FE from scratch, \
+         `--laws-only` reruns the laws, fits, figures and this report on the cached FE):\n\n\
+         ```sh\n{command}\n```\n"
+    );
+    let estimated = r
+        .head_on
+        .iter()
+        .filter_map(|h| h.fe_done())
+        .any(|f| f.e.error.is_finite());
+    let _ = writeln!(
+        s,
+        "What is measured. Head-on impacts of two identical balls: FE on the meridian section \
+         (one ball against the symmetry plane; FE model: {FE_MODEL}){}; every normal law of \
+         `twoball laws` with its default parameters for the pair (as `twoball laws run`), \
+         integrated with the Coulomb tangential law (no tangential speed). Errors are relative, \
+         (law − FE)/FE, in per cent. Oblique impacts: the 3D half model (default graded mesh, \
+         one run) against every tangential law. v_y is the relative speed at which the pair \
+         starts to yield: the Hertz impact whose maximum approach is the three-phase model's \
+         yield approach δ₁ = R*(πσ_p/(2E*))² (Li, Yang & Shi eq. 10, σ_p = (1 + π/2)σ_s; two-ball \
+         E*, R* = R/2, m* = m/2), v_y = √(16E*√R*δ₁^(5/2)/(15m*)); it does not depend on D. \
+         Johnson's onset p₀ = 1.6σ_s gives a v_y smaller by (1.6/(1 + π/2))^(5/2) = 0.306.\n",
+        if estimated {
+            ""
+        } else {
+            ". The FE error bars are not estimated in this run (one pilot run per point): the \
+             section's e scatters over the mesh by a few per cent (docs/contact-penalty.md, \
+             \"Why the section's e scatters\"), so law errors in e below about 3 % are within \
+             the FE's own uncertainty"
+        }
+    );
+}
+
+fn matrix_section(s: &mut String, r: &BenchResults) {
+    let _ = writeln!(s, "## Matrix\n");
+    let _ = writeln!(
+        s,
+        "Speeds (relative, m/s): {}. Diameters: {} mm.\n",
+        r.matrix
+            .speeds
+            .iter()
+            .map(|v| format!("{v:.4}"))
+            .collect::<Vec<_>>()
+            .join(", "),
+        r.matrix
+            .diameters
+            .iter()
+            .map(|d| format!("{}", 1e3 * d))
+            .collect::<Vec<_>>()
+            .join(", ")
+    );
+    let _ = writeln!(
+        s,
+        "| metal | E (GPa) | ν | ρ (kg/m³) | σ_s (MPa) | hardening | v_y (mm/s) | v/v_y |"
+    );
+    let _ = writeln!(s, "|---|---|---|---|---|---|---|---|");
+    for metal in &r.matrix.metals {
+        let Some(h) = r.head_on.iter().find(|h| &h.point.metal == metal) else {
+            continue;
+        };
+        let m = &h.point.material;
+        let hardening = if m.hardening.is_some() {
+            "Johnson-Cook".to_string()
+        } else {
+            format!("bilinear, E_t = {} GPa", m.tangent / 1e9)
+        };
+        let (lo, hi) = (
+            r.matrix.speeds[0],
+            r.matrix.speeds[r.matrix.speeds.len() - 1],
+        );
+        let _ = writeln!(
+            s,
+            "| {metal} | {} | {} | {} | {} | {hardening} | {:.3} | {:.3} to {:.0} |",
+            m.youngs / 1e9,
+            m.nu,
+            m.rho,
+            m.yield_strength / 1e6,
+            1e3 * h.yield_speed,
+            lo / h.yield_speed,
+            hi / h.yield_speed
+        );
+    }
+    let _ = writeln!(s);
+}
+
+fn fe_section(s: &mut String, r: &BenchResults) {
+    let _ = writeln!(s, "## FE points\n");
+    let _ = writeln!(
+        s,
+        "| metal | D (mm) | v (m/s) | v/v_y | e | δ_max (µm) | t_c (µs) | F_peak (N) | CPU (s) |"
+    );
+    let _ = writeln!(s, "|---|---|---|---|---|---|---|---|---|");
+    for h in &r.head_on {
+        let p = &h.point;
+        let lead = format!(
+            "| {} | {} | {:.4} | {:.1} |",
+            p.metal,
+            1e3 * p.diameter,
+            p.speed,
+            p.speed / h.yield_speed
+        );
+        match (&h.fe, h.fe_done()) {
+            (_, Some(f)) => {
+                let _ = writeln!(
+                    s,
+                    "{lead} {} | {} | {} | {} | {:.1} |",
+                    bar(f.e.value, f.e.error, 1.0, 4),
+                    bar(f.delta_max.value, f.delta_max.error, 1e6, 3),
+                    bar(f.contact_duration.value, f.contact_duration.error, 1e6, 2),
+                    bar(f.peak_force.value, f.peak_force.error, 1.0, 1),
+                    f.cpu_seconds
+                );
+            }
+            (Some(super::cache::Stored::Failed(m)), None) => {
+                let _ = writeln!(s, "{lead} failed: {} | | | | |", m.replace('|', "/"));
+            }
+            _ => {
+                let _ = writeln!(s, "{lead} not run | | | | |");
+            }
+        }
+    }
+    let cpu: f64 = r
+        .head_on
+        .iter()
+        .filter_map(|h| h.fe_done())
+        .map(|f| f.cpu_seconds)
+        .sum();
+    let _ = writeln!(s, "\nFE CPU time of the head-on points: {cpu:.0} s.\n");
+}
+
+fn ranking_section(s: &mut String, rank: &[MetalRanking]) {
+    let _ = writeln!(s, "## Ranking\n");
+    let _ = writeln!(
+        s,
+        "Per metal, over every head-on point with an FE answer (both diameters): RMS relative \
+         error in e, δ_max, t_c and peak force (per cent); ranked by √((RMS_e² + RMS_δmax²)/2).\n"
+    );
+    for m in rank {
+        let _ = writeln!(s, "### {}\n", m.metal);
+        let _ = writeln!(
+            s,
+            "| rank | law | RMS e | RMS δ_max | RMS t_c | RMS F_peak | combined | points |"
+        );
+        let _ = writeln!(s, "|---|---|---|---|---|---|---|---|");
+        for (i, l) in m.laws.iter().enumerate() {
+            let _ = writeln!(
+                s,
+                "| {} | {} | {:.1} | {:.1} | {:.1} | {:.1} | {:.1} | {} |",
+                i + 1,
+                l.law,
+                100.0 * l.rms[0],
+                100.0 * l.rms[1],
+                100.0 * l.rms[2],
+                100.0 * l.rms[3],
+                100.0 * l.combined,
+                l.points
+            );
+        }
+        let _ = writeln!(s);
+    }
+}
+
+fn errors_section(s: &mut String, r: &BenchResults) {
+    let _ = writeln!(s, "## Errors over speed\n");
+    let _ = writeln!(
+        s,
+        "(law − FE)/FE in per cent, per metal and diameter, columns the relative speeds (m/s).\n"
+    );
+    for metal in &r.matrix.metals {
+        for &d in &r.matrix.diameters {
+            let pts = points(r, metal, d);
+            if pts.iter().all(|h| h.fe_done().is_none()) {
+                continue;
+            }
+            for (q, name) in QUANTITIES.iter().enumerate() {
+                let _ = writeln!(s, "**{metal}, D = {} mm: {name}**\n", 1e3 * d);
+                let _ = write!(s, "| law |");
+                for h in &pts {
+                    let _ = write!(s, " {:.3} |", h.point.speed);
+                }
+                let _ = writeln!(s);
+                let _ = writeln!(s, "|---|{}", "---|".repeat(pts.len()));
+                for (k, law) in r.normal_laws.iter().enumerate() {
+                    let _ = write!(s, "| {law} |");
+                    for h in &pts {
+                        let e = relative_errors(h, k).map_or(f64::NAN, |x| x[q]);
+                        let _ = write!(s, " {} |", pct(e));
+                    }
+                    let _ = writeln!(s);
+                }
+                let _ = writeln!(s);
+            }
+        }
+    }
+}
+
+/// The speeds (m/s) of `pts` at which law `k` holds e within [`HOLDS_E`], as ranges.
+fn holds(pts: &[&HeadOnResult], k: usize) -> String {
+    let mut parts: Vec<String> = vec![];
+    let mut run: Option<(f64, f64)> = None;
+    for h in pts {
+        let Some(e) = relative_errors(h, k) else {
+            continue;
+        };
+        if e[0].abs() <= HOLDS_E {
+            run = Some(run.map_or((h.point.speed, h.point.speed), |(a, _)| (a, h.point.speed)));
+        } else if let Some((a, b)) = run.take() {
+            parts.push(range_text(a, b));
+        }
+    }
+    if let Some((a, b)) = run {
+        parts.push(range_text(a, b));
+    }
+    if parts.is_empty() {
+        "nowhere".into()
+    } else {
+        parts.join(", ")
+    }
+}
+
+fn range_text(a: f64, b: f64) -> String {
+    if a == b {
+        format!("{a:.3}")
+    } else {
+        format!("{a:.3}-{b:.3}")
+    }
+}
+
+/// The signed error of largest magnitude of quantity `q` of law `k` and its speed.
+fn worst_at(pts: &[&HeadOnResult], k: usize, q: usize) -> (f64, f64) {
+    pts.iter()
+        .filter_map(|h| relative_errors(h, k).map(|e| (e[q], h.point.speed)))
+        .fold(
+            (0.0, f64::NAN),
+            |w, x| if x.0.abs() > w.0.abs() { x } else { w },
+        )
+}
+
+fn failures_section(s: &mut String, r: &BenchResults) {
+    let _ = writeln!(s, "## Where the laws fail\n");
+    let _ = writeln!(
+        s,
+        "Per metal at the largest diameter: the speeds (m/s) at which a law's e is within \
+         ±{:.0} % of FE, and its worst errors in e, δ_max and t_c with the speed where they occur.\n",
+        100.0 * HOLDS_E
+    );
+    let d = r.matrix.diameters.iter().copied().fold(f64::NAN, f64::max);
+    for metal in &r.matrix.metals {
+        let pts = points(r, metal, d);
+        if pts.iter().all(|h| h.fe_done().is_none()) {
+            continue;
+        }
+        let _ = writeln!(s, "### {metal}, D = {} mm\n", 1e3 * d);
+        let _ = writeln!(
+            s,
+            "| law | e within ±{:.0} % at v (m/s) | worst e (%, at m/s) | worst δ_max | worst t_c |",
+            100.0 * HOLDS_E
+        );
+        let _ = writeln!(s, "|---|---|---|---|---|");
+        for (k, law) in r.normal_laws.iter().enumerate() {
+            let cell = |q: usize| {
+                let (e, v) = worst_at(&pts, k, q);
+                format!("{} at {v:.3}", pct(e))
+            };
+            let _ = writeln!(
+                s,
+                "| {law} | {} | {} | {} | {} |",
+                holds(&pts, k),
+                cell(0),
+                cell(1),
+                cell(2)
+            );
+        }
+        if let Some(k) = r.normal_laws.iter().position(|l| l == "li-yang-shi") {
+            let (e, ve) = worst_at(&pts, k, 0);
+            let (dm, vd) = worst_at(&pts, k, 1);
+            let (tc, vt) = worst_at(&pts, k, 2);
+            let _ = writeln!(
+                s,
+                "\nThe paper's three-phase law (li-yang-shi) on {metal}: e within ±{:.0} % at {}; \
+                 worst e {} % at {ve:.3} m/s, δ_max {} % at {vd:.3} m/s, t_c {} % at {vt:.3} m/s.",
+                100.0 * HOLDS_E,
+                holds(&pts, k),
+                pct(e),
+                pct(dm),
+                pct(tc)
+            );
+        }
+        let _ = writeln!(s);
+    }
+}
+
+fn diameter_section(s: &mut String, r: &BenchResults) {
+    if r.matrix.diameters.len() < 2 {
+        return;
+    }
+    let mut ds = r.matrix.diameters.clone();
+    ds.sort_by(f64::total_cmp);
+    let (small, large) = (ds[0], ds[ds.len() - 1]);
+    let _ = writeln!(s, "## D = {} mm against {} mm\n", 1e3 * small, 1e3 * large);
+    let _ = writeln!(
+        s,
+        "v_y does not depend on D, so a rate-independent, size-free model gives the same e at \
+         the same v (and the same v/v_y) for both diameters, and δ_max, t_c scale with D. \
+         The FE's departures from that (per cent): e({s_}) / e({l_}) − 1 and \
+         (δ_max/D)({s_}) / (δ_max/D)({l_}) − 1; the laws' largest |e({s_}) / e({l_}) − 1| over \
+         all laws beside them.\n",
+        s_ = format!("{} mm", 1e3 * small),
+        l_ = format!("{} mm", 1e3 * large)
+    );
+    let _ = writeln!(s, "| metal | v (m/s) | v/v_y | FE e ratio − 1 | FE δ_max/D ratio − 1 | laws' largest e ratio − 1 |");
+    let _ = writeln!(s, "|---|---|---|---|---|---|");
+    for metal in &r.matrix.metals {
+        let a = points(r, metal, small);
+        let b = points(r, metal, large);
+        for (x, y) in a.iter().zip(&b) {
+            let (Some(fx), Some(fy)) = (x.fe_done(), y.fe_done()) else {
+                continue;
+            };
+            let laws = x
+                .laws
+                .iter()
+                .zip(&y.laws)
+                .map(|(p, q)| p.e / q.e - 1.0)
+                .fold(0.0f64, |w, v| if v.abs() > w.abs() { v } else { w });
+            let _ = writeln!(
+                s,
+                "| {metal} | {:.4} | {:.1} | {} | {} | {} |",
+                x.point.speed,
+                x.point.speed / x.yield_speed,
+                pct(fx.e.value / fy.e.value - 1.0),
+                pct((fx.delta_max.value / small) / (fy.delta_max.value / large) - 1.0),
+                pct(laws)
+            );
+        }
+    }
+    let _ = writeln!(s);
+}
+
+fn oblique_section(s: &mut String, r: &BenchResults) {
+    if r.oblique.is_empty() {
+        return;
+    }
+    let _ = writeln!(s, "## Oblique impacts: tangential laws\n");
+    let _ = writeln!(
+        s,
+        "Relative normal speed v_n, tangential v_t; tangential restitution e_t = −u⁺/u⁻ of the \
+         contact points and spin ω of ball 1 after (rad/s, about n × t). Each tangential law is \
+         paired with the metal's best-ranked normal law (named). Differences: e_t law − FE \
+         (absolute), spin (law − FE)/FE in per cent.\n"
+    );
+    let _ = writeln!(
+        s,
+        "| metal | D (mm) | v_n (m/s) | v_t/v_n | FE e | FE e_t | FE ω (rad/s) | tangential law (normal law) | e_t | e_t − FE | ω | ω error (%) |"
+    );
+    let _ = writeln!(s, "|---|---|---|---|---|---|---|---|---|---|---|---|");
+    for o in &r.oblique {
+        let p = &o.point;
+        let lead = format!(
+            "| {} | {} | {} | {} |",
+            p.metal,
+            1e3 * p.diameter,
+            p.normal_speed,
+            p.ratio
+        );
+        let Some(f) = o.fe.as_ref().and_then(|f| f.done()) else {
+            let why = match &o.fe {
+                Some(super::cache::Stored::Failed(m)) => format!("failed: {}", m.replace('|', "/")),
+                _ => "not run".into(),
+            };
+            let _ = writeln!(s, "{lead} {why} | | | | | | | | |");
+            continue;
+        };
+        for l in &o.laws {
+            let _ = writeln!(
+                s,
+                "{lead} {} | {} | {:.2} | {} ({}) | {} | {:+.3} | {:.2} | {} |",
+                g4(f.e),
+                g4(f.tangential_restitution),
+                f.spin,
+                l.law,
+                l.normal_law,
+                g4(l.tangential_restitution),
+                l.tangential_restitution - f.tangential_restitution,
+                l.spin,
+                pct(l.spin / f.spin - 1.0)
+            );
+        }
+    }
+    let _ = writeln!(s);
+}
+
+fn fit_section(s: &mut String, fits: &[MetalFit]) {
+    let _ = writeln!(
+        s,
+        "## Fits (FE points {}-{} m/s)\n",
+        FIT_RANGE.0, FIT_RANGE.1
+    );
+    let _ = writeln!(
+        s,
+        "`analytic::law_fit` (least squares on the relative errors of e and δ_max, as \
+         `twoball laws fit`) per metal at the largest diameter. Worst errors are signed, per cent. \
+         Target: the best law's largest |error in e| within {:.0} %.\n",
+        100.0 * TARGET_E_ERROR
+    );
+    for m in fits {
+        let _ = writeln!(
+            s,
+            "### {}, D = {} mm ({} FE points)\n",
+            m.metal,
+            1e3 * m.diameter,
+            m.observations.len()
+        );
+        if m.observations.is_empty() {
+            let _ = writeln!(s, "No FE points in range.\n");
+            continue;
+        }
+        let _ = writeln!(
+            s,
+            "| law | fitted parameters (one sigma) | rms residual | worst e | worst δ_max |"
+        );
+        let _ = writeln!(s, "|---|---|---|---|---|");
+        for (law, f) in &m.fits {
+            match f {
+                Ok(f) => {
+                    let params = f
+                        .params
+                        .iter()
+                        .map(|(k, v, sg)| {
+                            if sg.is_finite() {
+                                format!("{k} = {v:.4e} ± {sg:.1e}")
+                            } else {
+                                format!("{k} = {v:.4e}")
+                            }
+                        })
+                        .collect::<Vec<_>>()
+                        .join(", ");
+                    let _ = writeln!(
+                        s,
+                        "| {law} | {params} | {:.4} | {} | {} |",
+                        f.rms,
+                        pct(f.worst_e),
+                        pct(f.worst_delta)
+                    );
+                }
+                Err(e) => {
+                    let _ = writeln!(s, "| {law} | fit failed: {} | | | |", e.replace('|', "/"));
+                }
+            }
+        }
+        let _ = writeln!(s);
+        if let Some(b) = m.best() {
+            let verdict = if b.worst_e.abs() <= TARGET_E_ERROR {
+                format!("within {:.0} %", 100.0 * TARGET_E_ERROR)
+            } else {
+                format!("not within {:.0} %", 100.0 * TARGET_E_ERROR)
+            };
+            let _ = writeln!(
+                s,
+                "Best law in e: **{}**, largest |error in e| {:.1} % ({verdict}; its δ_max worst {} %).",
+                b.law,
+                100.0 * b.worst_e.abs(),
+                pct(b.worst_delta)
+            );
+        }
+        if let Some(p) = m.power_law {
+            let _ = writeln!(
+                s,
+                "The FE e follows e = {:.4} (v / 1 m/s)^{:.4} over the range with largest error {} %; \
+                 Johnson's elastic-perfectly-plastic exponent at high v/v_y is −0.25{}.",
+                p.prefactor,
+                p.exponent,
+                pct(p.worst_e),
+                m.top_slope.map_or(String::new(), |t| format!(
+                    ", the FE's slope between its two fastest points {t:.4}"
+                ))
+            );
+        }
+        let _ = writeln!(s);
+    }
+}
+
+fn failed_points(s: &mut String, r: &BenchResults) {
+    let failed: Vec<String> = r
+        .head_on
+        .iter()
+        .filter_map(|h| match &h.fe {
+            Some(super::cache::Stored::Failed(m)) => Some(format!(
+                "- {} D = {} mm v = {:.4} m/s: {m}",
+                h.point.metal,
+                1e3 * h.point.diameter,
+                h.point.speed
+            )),
+            _ => None,
+        })
+        .collect();
+    let missing = r.head_on.iter().filter(|h| h.fe.is_none()).count();
+    if failed.is_empty() && missing == 0 {
+        return;
+    }
+    let _ = writeln!(s, "## FE points without an answer\n");
+    for f in failed {
+        let _ = writeln!(s, "{f}");
+    }
+    if missing > 0 {
+        let _ = writeln!(
+            s,
+            "- {missing} head-on points not in the cache (`--laws-only`)"
+        );
+    }
+    let _ = writeln!(s);
+}
+
+/// The report's text.
+pub fn report_text(
+    r: &BenchResults,
+    rank: &[MetalRanking],
+    figures: &[Figure],
+    command: &str,
+) -> String {
+    let mut s = String::new();
+    header(&mut s, command, r);
+    matrix_section(&mut s, r);
+    ranking_section(&mut s, rank);
+    failures_section(&mut s, r);
+    diameter_section(&mut s, r);
+    oblique_section(&mut s, r);
+    fit_section(&mut s, &r.fits);
+    let _ = writeln!(s, "## Figures\n");
+    for f in figures {
+        let _ = writeln!(s, "- [{}]({}): {}", f.file, f.file, f.caption);
+    }
+    let _ = writeln!(s);
+    fe_section(&mut s, r);
+    failed_points(&mut s, r);
+    errors_section(&mut s, r);
+    s
+}
+
+/// Writes `out/REPORT.md` (atomically) and returns its path.
+///
+/// Errors: the folder or file cannot be written.
+pub fn write_report(
+    out: &Path,
+    r: &BenchResults,
+    rank: &[MetalRanking],
+    figures: &[Figure],
+    command: &str,
+) -> Result<PathBuf> {
+    std::fs::create_dir_all(out).map_err(|e| Error::io(out, e))?;
+    let path = out.join("REPORT.md");
+    write_atomic(&path, report_text(r, rank, figures, command).as_bytes())?;
+    Ok(path)
+}
