@@ -194,6 +194,28 @@ fn solve(mut a: Vec<Vec<f64>>, mut b: Vec<f64>) -> Option<Vec<f64>> {
     Some(x)
 }
 
+/// Weights of the relative residuals of e and δ_max in a fit (0 leaves a quantity out).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Weights {
+    /// Weight of the relative error in e.
+    pub e: f64,
+    /// Weight of the relative error in δ_max.
+    pub delta_max: f64,
+}
+
+impl Weights {
+    /// e and δ_max alike (what `twoball laws fit` uses).
+    pub const BOTH: Weights = Weights {
+        e: 1.0,
+        delta_max: 1.0,
+    };
+    /// e alone.
+    pub const E_ONLY: Weights = Weights {
+        e: 1.0,
+        delta_max: 0.0,
+    };
+}
+
 /// Fits the `free` parameters of `spec` (others at `fixed` overrides or defaults) to `obs`.
 /// Errors: no observations, an unknown or duplicate free key, a law that fails to integrate.
 pub fn fit(
@@ -205,6 +227,32 @@ pub fn fit(
     free: &[String],
     fixed: &[(String, f64)],
 ) -> Result<Fit> {
+    fit_weighted(spec, pair, b1, b2, obs, free, fixed, Weights::BOTH)
+}
+
+/// [`fit`] with the relative residuals of e and δ_max weighted by `w` (each weight finite and
+/// ≥ 0, not both 0); the rms residual and the uncertainties count only the residuals with a
+/// positive weight.
+/// Errors: as [`fit`]; weights out of range.
+#[allow(clippy::too_many_arguments)]
+pub fn fit_weighted(
+    spec: &NormalSpec,
+    pair: &ContactPair,
+    b1: &Body,
+    b2: &Body,
+    obs: &[Observation],
+    free: &[String],
+    fixed: &[(String, f64)],
+    w: Weights,
+) -> Result<Fit> {
+    let valid = |x: f64| x.is_finite() && x >= 0.0;
+    if !(valid(w.e) && valid(w.delta_max) && w.e + w.delta_max > 0.0) {
+        return Err(Error::invalid(
+            "fit weights",
+            format!("e {}, delta_max {}", w.e, w.delta_max),
+            "finite, >= 0, not both 0",
+        ));
+    }
     if obs.is_empty() {
         return Err(Error::invalid(
             "observations",
@@ -246,8 +294,12 @@ pub fn fit(
         let mut r = Vec::with_capacity(2 * obs.len());
         for o in obs {
             let (e, d, _) = predict(spec, pair, &p, b1, b2, o.speed)?;
-            r.push((e - o.e) / o.e);
-            r.push((d - o.delta_max) / o.delta_max);
+            if w.e > 0.0 {
+                r.push(w.e * (e - o.e) / o.e);
+            }
+            if w.delta_max > 0.0 {
+                r.push(w.delta_max * (d - o.delta_max) / o.delta_max);
+            }
         }
         Ok(r)
     };

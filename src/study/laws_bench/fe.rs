@@ -104,7 +104,8 @@ pub fn hertz_contact_radius(p: &HeadOnPoint) -> Result<f64> {
 /// Errors: a mesh the ladder rejects (contact radius outside its range), a run that fails
 /// (named by the section model).
 pub fn head_on_fe(point: &HeadOnPoint) -> Result<FePoint> {
-    // lead replaces with phase_ensemble
+    // lead replaces with phase_ensemble (and renames super::FE_MODEL, so that cached pilot
+    // runs are rerun)
     let a = hertz_contact_radius(point)?;
     let mesh = ladder_ball(point.diameter, a, 0)?;
     let run = HeadOn::new(mesh, point.material, 0.5 * point.speed, Target::MirrorBall).run()?;

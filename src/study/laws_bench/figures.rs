@@ -2,7 +2,7 @@
 //! bars), e against v/v_y for both diameters (where D drops out), F(δ) loading-unloading
 //! loops at three speeds and δ(t) (FE pilot curve against every law).
 
-use super::law_side::{head_on_law, thin, CURVE_ROWS};
+use super::law_side::{head_on_law, thin};
 use super::matrix::log_spaced;
 use super::{BenchResults, HeadOnResult};
 use crate::analytic::laws::Registry;
@@ -13,6 +13,9 @@ use std::path::Path;
 
 /// Speeds of each law's e(v) line.
 pub const LINE_SPEEDS: usize = 25;
+
+/// Most points of a curve in a figure (keeps the committed SVGs small).
+pub const FIGURE_ROWS: usize = 100;
 
 /// One written figure: file name and caption.
 #[derive(Debug, Clone, PartialEq)]
@@ -148,7 +151,7 @@ fn curve_chart(
     labels: [&str; 3],
 ) -> Chart {
     let pick = |rows: &[[f64; 3]]| -> Vec<(f64, f64)> {
-        thin(rows, CURVE_ROWS)
+        thin(rows, FIGURE_ROWS)
             .iter()
             .map(|r| (scale.0 * r[cols.0], scale.1 * r[cols.1]))
             .collect()
