@@ -36,6 +36,21 @@ pub const DEFAULT_PHASE_MESHES: usize = 8;
 /// The ladder's refinement ratio between the coarse and the fine ensemble.
 const RATIO: f64 = 2.0;
 
+/// Coarsest fine level of a plan (its coarse ensemble is one below).
+pub const MIN_LEVEL: i32 = -2;
+
+/// The mesh of family level `level` (see [`PhasePlan::level`]) for a ball of diameter `d`
+/// (m) sized from contact radius `a` (m).
+///
+/// Errors: those of `ladder_ball` (a sizing radius outside its range).
+pub fn family_mesh(d: f64, a: f64, level: i32) -> Result<MeridianMesh> {
+    if level >= 0 {
+        ladder_ball(d, a, level as u32)
+    } else {
+        ladder_ball(d, a * RATIO.powi(-level), 0)
+    }
+}
+
 /// One member of an ensemble.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct PhaseRun {
@@ -171,8 +186,10 @@ pub struct HeadOnCase {
 /// How fine and how large the ensembles are.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct PhasePlan {
-    /// Ladder level of the fine ensemble (`mesh::meridian::ladder_ball`).
-    pub level: u32,
+    /// Level of the fine ensemble: ℓ ≥ 0 the ladder level of `mesh::meridian::ladder_ball`
+    /// sized from Hertz's contact radius a; ℓ < 0 the level-0 ladder sized from 2^−ℓ a (pole
+    /// cells 2^−ℓ times larger). The coarse ensemble is level ℓ − 1.
+    pub level: i32,
     /// Meshes per ensemble (even, ≥ 2).
     pub meshes: usize,
 }
@@ -315,44 +332,63 @@ fn check(case: &HeadOnCase, plan: &PhasePlan) -> Result<()> {
     if !(case.diameter.is_finite() && case.diameter > 0.0) {
         return Err(Error::invalid("diameter", case.diameter, "> 0 m, finite"));
     }
-    if plan.level > crate::mesh::meridian_ladder::MAX_LEVEL {
+    let max = crate::mesh::meridian_ladder::MAX_LEVEL as i32;
+    if !(MIN_LEVEL..=max).contains(&plan.level) {
+        // `plan.level` is the fine level: its coarse ensemble is one below.
         return Err(Error::invalid(
             "level",
             plan.level,
-            format!("0..={}", crate::mesh::meridian_ladder::MAX_LEVEL),
+            format!("{MIN_LEVEL}..={max}"),
         ));
     }
     Ok(())
 }
 
-/// The head-on impact of `case` converged over the phase of the section's rings, with error
-/// bars: an ensemble of `plan.meshes` meshes on ladder level `plan.level` (sized from Hertz's
-/// contact radius a) and one on the next coarser mesh (level − 1; for level 0 the level-0
-/// ladder sized from 2a, whose pole cells are twice as large).
-///
-/// Errors: a non-positive speed or diameter, a level beyond the ladder, a contact radius the
-/// ladder cannot mesh, or a failed run.
-pub fn converged_head_on(case: &HeadOnCase, plan: &PhasePlan) -> Result<HeadOnAnswer> {
-    check(case, plan)?;
-    let a = hertz_contact_radius(case);
-    let d = case.diameter;
+/// The HeadOn model of `case` on `mesh`.
+fn head_on(case: &HeadOnCase, mesh: MeridianMesh) -> HeadOn {
     let (speed, target) = match case.target {
         HeadOnTarget::IdenticalBall => (case.relative_speed / 2.0, Target::MirrorBall),
         HeadOnTarget::RigidWall => (case.relative_speed, Target::RigidWall),
     };
-    let run = |mesh: MeridianMesh| {
-        let mut h = HeadOn::new(mesh, case.material, speed, target.clone());
-        h.formulation = case.formulation;
-        h.run()
-    };
-    let level = plan.level;
-    let fine_at = |s: f64| ladder_ball(d, a * s, level);
-    let coarse_at = |s: f64| match level {
-        0 => ladder_ball(d, 2.0 * a * s, 0),
-        l => ladder_ball(d, a * s, l - 1),
-    };
-    let (coarse, _) = run_ensemble(&coarse_at, &run, plan.meshes)?;
-    let (fine, pilot) = run_ensemble(&fine_at, &run, plan.meshes)?;
+    let mut h = HeadOn::new(mesh, case.material, speed, target);
+    h.formulation = case.formulation;
+    h
+}
+
+/// The ensemble of `meshes` members of `case` on family level `level` ([`family_mesh`],
+/// sized from Hertz's contact radius) and the pilot's run.
+///
+/// Errors: a non-positive speed or diameter, a level outside [`MIN_LEVEL`]..=7 (or
+/// [`MIN_LEVEL`] − 1 for a coarse ensemble), a contact radius the ladder cannot mesh, or a
+/// failed run.
+pub fn ensemble_at(
+    case: &HeadOnCase,
+    level: i32,
+    meshes: usize,
+) -> Result<(PhaseEnsemble, ImpactResult)> {
+    check(
+        case,
+        &PhasePlan {
+            level: level + 1,
+            meshes,
+        },
+    )?;
+    let a = hertz_contact_radius(case);
+    let d = case.diameter;
+    let run = |mesh: MeridianMesh| head_on(case, mesh).run();
+    let mesh_at = |s: f64| family_mesh(d, a * s, level);
+    run_ensemble(&mesh_at, &run, meshes)
+}
+
+/// The head-on impact of `case` converged over the phase of the section's rings, with error
+/// bars: an ensemble of `plan.meshes` meshes on family level `plan.level` (sized from
+/// Hertz's contact radius a; [`family_mesh`]) and one on the next coarser level.
+///
+/// Errors: as [`ensemble_at`].
+pub fn converged_head_on(case: &HeadOnCase, plan: &PhasePlan) -> Result<HeadOnAnswer> {
+    check(case, plan)?;
+    let (coarse, _) = ensemble_at(case, plan.level - 1, plan.meshes)?;
+    let (fine, pilot) = ensemble_at(case, plan.level, plan.meshes)?;
     let cpu_time_s = coarse
         .runs
         .iter()
