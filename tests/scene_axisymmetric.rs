@@ -131,10 +131,20 @@ fn a_head_on_run_reports_its_error_bar_and_the_pair_symmetry() {
         .expect("an error estimate by default");
     let levels: Vec<i32> = est.meshes.iter().map(|m| m.level).collect();
     assert_eq!(levels, [-1, 0]);
-    // The reported run is the scene's own mesh, the estimate's finest.
+    // The reported run is the scene's own mesh, one member of the level-0 phase ensemble
+    // whose mean is the estimate's finest value (study::phase_ensemble).
     let e = r.e.unwrap();
-    assert_eq!(est.e.finest, e);
-    assert!(est.e.error > 0.0 && est.e.error.is_finite());
+    let phase = est.meshes[1]
+        .phase
+        .expect("a phase ensemble on the section");
+    assert_eq!(phase.meshes, twoball::study::single::SCENE_PHASE_MESHES);
+    assert!(phase.e_min <= e && e <= phase.e_max, "{phase:?} e = {e}");
+    assert!(phase.e_min < est.e.finest && est.e.finest < phase.e_max);
+    assert!(
+        phase.ring_ratio > 1.0 && phase.ring_ratio < 2.0,
+        "{phase:?}"
+    );
+    assert!(est.e.error >= phase.e_sampling_error && est.e.error.is_finite());
     // Identical balls: equal and opposite velocities after, along x only, no spin.
     assert!((r.v1_after[0] + r.v2_after[0]).abs() < 1e-12);
     assert_eq!([r.v1_after[1], r.v1_after[2]], [0.0, 0.0]);

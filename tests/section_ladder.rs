@@ -422,3 +422,66 @@ fn plastic_phase_average() {
         }
     }
 }
+
+/// Is the phase ensemble's error bar honest (issue 26, acceptance 6; docs/contact-penalty.md,
+/// "The section's converged answer")? Over 21 head-on cases (copper-fe, steel, aluminum at
+/// relative speeds 0.02 to 10 m/s), the bar of family level −1 (ensembles on levels −2 and
+/// −1, `study::phase_ensemble`) against the true error, taken from the ensemble two
+/// refinements finer (level +1, `HONESTY_TRUTH_MESHES` members, default 4). The runner maps
+/// `study::error_honesty`'s levels −1, 0, +2 to family levels −2, −1, +1 and prints its
+/// table; `HONESTY_MATERIALS=steel` and `HONESTY_SPEEDS=1,5` (m/s per ball) shrink it.
+#[test]
+#[ignore]
+fn phase_honesty() {
+    use twoball::study::error_estimate::LevelOutcome;
+    use twoball::study::error_honesty::{check_honesty, honesty_cases, honesty_table};
+    use twoball::study::phase_ensemble::{ensemble_at, HeadOnCase, HeadOnTarget};
+    let truth_meshes: usize = std::env::var("HONESTY_TRUTH_MESHES")
+        .ok()
+        .and_then(|s| s.parse().ok())
+        .unwrap_or(4);
+    let materials: Vec<String> = std::env::var("HONESTY_MATERIALS")
+        .map(|s| s.split(',').map(str::to_string).collect())
+        .unwrap_or_else(|_| vec!["copper-fe".into(), "steel".into(), "aluminum".into()]);
+    let speeds: Vec<f64> = std::env::var("HONESTY_SPEEDS")
+        .map(|s| s.split(',').map(|x| x.parse().unwrap()).collect())
+        .unwrap_or_else(|_| vec![5.0, 2.5, 1.0, 0.25, 0.1, 0.025, 0.01]);
+    let names: Vec<&str> = materials.iter().map(String::as_str).collect();
+    let cases = honesty_cases(&names, &speeds, &|_, _| Vec::new()).unwrap();
+    let run = |scene: &twoball::scene::Scene, level: i32| {
+        let case = HeadOnCase {
+            diameter: scene.ball1.diameter,
+            material: scene.ball1.material,
+            relative_speed: 2.0 * scene.ball1.velocity[0],
+            target: HeadOnTarget::IdenticalBall,
+            formulation: formulation(),
+        };
+        let family = level - 1;
+        let meshes = if level > 0 { truth_meshes } else { 8 };
+        let (ens, _) = ensemble_at(&case, family, meshes)?;
+        Ok(LevelOutcome {
+            level,
+            pole_size: 0.0,
+            size: 0.0,
+            e: ens.e.mean,
+            delta_max: ens.delta_max.mean,
+            contact_duration: ens.contact_duration.mean,
+            wall_time_s: ens.runs.iter().map(|r| r.wall_time_s).sum(),
+            phase: None,
+        })
+    };
+    let rows = check_honesty(&cases, run, |r| {
+        println!(
+            "{} {} m/s: e {:.5}, estimate {:.2e}, true error {:.2e} ({:.0} s CPU)",
+            r.material, r.speed, r.e.value, r.e.estimate, r.e.true_error, r.wall_time_s
+        )
+    })
+    .unwrap();
+    println!("{}", honesty_table(&rows));
+    let honest = rows.iter().filter(|r| r.e.honest()).count();
+    assert!(
+        10 * honest >= 9 * rows.len(),
+        "e honest in {honest} of {}",
+        rows.len()
+    );
+}

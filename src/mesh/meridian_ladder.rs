@@ -40,7 +40,7 @@ const BACK_CORE_PER_RADIUS: f64 = 1.0;
 pub const MAX_LEVEL: u32 = 7;
 
 /// Smallest and largest contact radius accepted, as fractions of the diameter.
-pub const CONTACT_RADIUS_RANGE_PER_D: (f64, f64) = (1e-4, 1.0 / 6.0);
+pub const CONTACT_RADIUS_RANGE_PER_D: (f64, f64) = (1e-4, 0.25);
 
 /// Slope of the core spacing at the centre of the core (cell size over a / m at the pole).
 fn core_slope() -> f64 {

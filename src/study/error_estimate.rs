@@ -34,6 +34,25 @@ pub struct LevelOutcome {
     pub contact_duration: f64,
     /// Wall time of the run, s.
     pub wall_time_s: f64,
+    /// The section model's phase ensemble behind e, δ_max and the contact duration (means
+    /// over its meshes); None for a single run.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub phase: Option<PhaseSummary>,
+}
+
+/// What a level's phase ensemble adds ([`super::phase_ensemble`]).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct PhaseSummary {
+    /// Meshes of the ensemble (the scene's own and M − 1 with scaled pole sizes).
+    pub meshes: usize,
+    /// Ring ratio q: the pole sizes run over q^{j/M}, -.
+    pub ring_ratio: f64,
+    /// Sampling error of the mean e (even members against all), -.
+    pub e_sampling_error: f64,
+    /// Smallest e of the members, -.
+    pub e_min: f64,
+    /// Largest e of the members, -.
+    pub e_max: f64,
 }
 
 /// Which levels to run.
@@ -84,7 +103,12 @@ impl ErrorEstimate {
                 ))
             })
         };
-        let e = of(|m| m.e, "e")?;
+        let mut e = of(|m| m.e, "e")?;
+        if let Some(p) = meshes.last().and_then(|m| m.phase) {
+            // The ensemble's mean still carries its sampling error.
+            e.error += p.e_sampling_error;
+            e.relative_error = (e.extrapolated != 0.0).then(|| e.error / e.extrapolated.abs());
+        }
         let tolerance_met = tolerance.map(|t| meets(&e, t));
         Ok(ErrorEstimate {
             ratio: LADDER_RATIO,
@@ -235,6 +259,7 @@ mod tests {
             delta_max: f(1.74e-5, -0.03),
             contact_duration: f(5.9e-5, 0.01),
             wall_time_s: 0.0,
+            phase: None,
         })
     }
 

@@ -185,6 +185,7 @@ mod tests {
                 delta_max: f(1e-5 * v, -0.05),
                 contact_duration: f(6e-5, 0.03),
                 wall_time_s: 0.0,
+                phase: None,
             })
         }
     }

@@ -1,6 +1,7 @@
 //! The two-ball study: FE beside the analytical model for one scene or for a whole sweep.
 //!
 //! - [`outcome`]: the quantities both models produce, and the analytical answer for a scene;
+//! - [`phase_ensemble`]: the section model's converged head-on answer, a mean over ring phases;
 //! - [`bench`]: run time against error on a mesh/element/time-step ladder;
 //! - [`bench_kernel`]: the explicit step's cost per element, threads, determinism;
 //! - [`bench_profile`]: where a scene's run spends its wall time, phase by phase;
@@ -42,6 +43,7 @@ pub mod law_fit_files;
 pub mod laws_bench;
 pub mod number;
 pub mod outcome;
+pub mod phase_ensemble;
 pub mod plots;
 pub mod progress;
 pub mod report;

@@ -356,6 +356,9 @@ pub struct Simulation {
     pub wall_time_s: f64,
     /// Largest contact penetration over the run (simulated model), m.
     pub max_penetration: f64,
+    /// Largest contact radius over the run, m (the section model; None for the 3D models).
+    #[serde(skip)]
+    pub contact_radius: Option<f64>,
     /// History rows.
     #[serde(skip)]
     pub history: Vec<HistoryRow>,
@@ -972,6 +975,7 @@ pub fn simulate(
             stop_reason,
             wall_time_s: start.elapsed().as_secs_f64(),
             max_penetration,
+            contact_radius: None,
             history,
             phases: opts.profile.then(|| solver.profile().totals()),
         })

@@ -245,6 +245,7 @@ pub(super) fn simulate_section(run: SectionRun<'_>, opts: &RunOptions) -> Result
         stop_reason: r.stop_reason,
         wall_time_s: start.elapsed().as_secs_f64(),
         max_penetration: r.max_penetration,
+        contact_radius: Some(r.contact_radius_max),
         history,
         phases: None,
     })

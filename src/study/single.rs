@@ -1,11 +1,12 @@
 //! One scene, both models: the FE run beside the analytical answer, with relative
 //! differences, written as results.json and history.csv.
 
-use super::error_estimate::LevelOutcome;
 use super::error_estimate::{mesh_sizes, run_ladder, scene_at_level, ErrorEstimate, LadderPlan};
+use super::error_estimate::{LevelOutcome, PhaseSummary};
 use super::law_compare::{compare_laws, law_table, LawOutcome};
 use super::number::sci;
 use super::outcome::{analytic_outcome, relative_difference, Outcome};
+use super::phase_ensemble::ring_ratio;
 use super::simulate::{
     choose_reduction, simulate, Reduction, RunOptions, Simulation, HISTORY_HEADER,
 };
@@ -236,8 +237,73 @@ pub fn run_level(
         delta_max: report.delta_max,
         contact_duration: report.contact_duration,
         wall_time_s: report.wall_time_s,
+        phase: None,
     };
-    Ok((out, report))
+    let section = report.fe.as_ref().and_then(|f| f.contact_radius);
+    match section {
+        Some(radius) if SCENE_PHASE_MESHES > 1 => Ok((phase_level(&s, radius, out, opts)?, report)),
+        _ => Ok((out, report)),
+    }
+}
+
+/// Meshes of the phase ensemble behind each level of a section scene's error estimate.
+pub const SCENE_PHASE_MESHES: usize = 4;
+
+/// The section scene `s`'s level `out` (its own run, largest contact radius `radius`, m) as
+/// the mean of a phase ensemble ([`super::phase_ensemble`]): the scene with both balls'
+/// pole sizes times q^{j/M}, j = 1..M−1, q the ring ratio at `radius`, run in parallel.
+fn phase_level(
+    s: &Scene,
+    radius: f64,
+    out: LevelOutcome,
+    opts: &RunOptions,
+) -> Result<LevelOutcome> {
+    use rayon::prelude::*;
+    let mesh = super::simulate_section::section_mesh("ball1", &s.ball1)?;
+    let q = ring_ratio(&mesh, radius)?;
+    let m = SCENE_PHASE_MESHES;
+    let quiet = RunOptions {
+        history_rows: opts.history_rows,
+        ..RunOptions::default()
+    };
+    let members: Vec<LevelOutcome> = (1..m)
+        .into_par_iter()
+        .map(|j| {
+            let scale = q.powf(j as f64 / m as f64);
+            let mut sj = s.clone();
+            for b in [&mut sj.ball1, &mut sj.ball2] {
+                if let MeshSettings::Builtin { pole_size, .. } = &mut b.mesh {
+                    *pole_size *= scale;
+                }
+            }
+            let r = run_scene(&sj, &quiet)?;
+            Ok(LevelOutcome {
+                e: r.e.unwrap_or(f64::NAN),
+                delta_max: r.delta_max,
+                contact_duration: r.contact_duration,
+                wall_time_s: r.wall_time_s,
+                ..out
+            })
+        })
+        .collect::<Result<_>>()?;
+    let all: Vec<&LevelOutcome> = std::iter::once(&out).chain(&members).collect();
+    let mean = |f: fn(&LevelOutcome) -> f64| all.iter().map(|o| f(o)).sum::<f64>() / m as f64;
+    let even_e = all.iter().step_by(2).map(|o| o.e).sum::<f64>() / m.div_ceil(2) as f64;
+    let e = mean(|o| o.e);
+    Ok(LevelOutcome {
+        e,
+        delta_max: mean(|o| o.delta_max),
+        contact_duration: mean(|o| o.contact_duration),
+        wall_time_s: all.iter().map(|o| o.wall_time_s).sum(),
+        phase: Some(PhaseSummary {
+            meshes: m,
+            ring_ratio: q,
+            e_sampling_error: (even_e - e).abs(),
+            e_min: all.iter().map(|o| o.e).fold(f64::INFINITY, f64::min),
+            e_max: all.iter().map(|o| o.e).fold(f64::NEG_INFINITY, f64::max),
+        }),
+        ..out
+    })
 }
 
 /// Element size at the contact pole of the built-in meshes (the coarser ball's), m; None

@@ -135,6 +135,9 @@ pub struct ImpactResult {
     pub energy_error: f64,
     /// Largest penetration into the plane, m.
     pub max_penetration: f64,
+    /// Largest contact radius over the run (the current r of the outermost node in contact),
+    /// m.
+    pub contact_radius_max: f64,
     /// Plastic work at the end (whole system), J.
     pub plastic: f64,
     /// Kinetic energy before the impact (whole system), J.
@@ -386,6 +389,7 @@ impl HeadOn {
         let mut drift: f64 = 0.0;
         let mut apart_since: Option<f64> = None;
         let mut max_pen: f64 = 0.0;
+        let mut contact_radius_max: f64 = 0.0;
         let mut delta_max: f64 = 0.0;
         let t_cap = self.end_time.unwrap_or(30.0 * duration);
         let stop_reason;
@@ -401,6 +405,7 @@ impl HeadOn {
             let delta = d - d0;
             delta_max = delta_max.max(delta);
             max_pen = max_pen.max(c.max_penetration);
+            contact_radius_max = contact_radius_max.max(c.contact_radius);
             if c.max_penetration > penetration_limit {
                 return Err(Error::Numerical(format!(
                     "contact: a node penetrates {:.3e} m at t = {t:.6e} s, more than \
@@ -478,6 +483,7 @@ impl HeadOn {
             peak_force: pulse.iter().map(|p| p.1).fold(0.0, f64::max),
             energy_error: drift,
             max_penetration: max_pen,
+            contact_radius_max,
             plastic: scale * en.plastic,
             initial_kinetic: scale * e0.kinetic,
             elements: solver.states().len(),

@@ -108,6 +108,7 @@ impl SectionContact for RigidPlane {
                 s.stored += 0.5 * k * gap * gap;
                 s.active_nodes += 1;
                 s.max_penetration = s.max_penetration.max(-gap);
+                s.contact_radius = s.contact_radius.max(x[i][0]);
             }
         }
         s

@@ -20,6 +20,8 @@ pub struct ContactState {
     pub active_nodes: usize,
     /// Largest penetration, m.
     pub max_penetration: f64,
+    /// Largest current radius r of a node in contact (the contact radius), m.
+    pub contact_radius: f64,
 }
 
 /// A contact on the section: adds its nodal forces (r, z; N) at positions `x` (m).

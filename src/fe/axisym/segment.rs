@@ -172,6 +172,7 @@ impl SectionContact for SegmentPair {
                 st.stored += 0.5 * k * g * g;
                 st.active_nodes += 1;
                 st.max_penetration = st.max_penetration.max(-g);
+                st.contact_radius = st.contact_radius.max(x[i][0]);
             }
         }
         st

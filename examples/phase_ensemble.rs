@@ -1,0 +1,83 @@
+//! The section model's converged head-on answer (`study::phase_ensemble::converged_head_on`)
+//! for two identical balls: the ensembles of family levels LEVEL − 1 and LEVEL, member by
+//! member, and the answer with its error bars (docs/contact-penalty.md, "The section's
+//! converged answer").
+//!
+//! `cargo run --release --example phase_ensemble -- LEVEL MESHES V_REL [MATERIAL] [one-point|b-bar] [D]`
+//! (LEVEL −2..7, MESHES even, V_REL the relative speed in m/s, MATERIAL a preset, default
+//! copper-fe, D the diameter in m, default 0.02).
+
+use twoball::fe::axisym::element::QuadFormulation;
+use twoball::material::Material;
+use twoball::study::phase_ensemble::{converged_head_on, HeadOnCase, HeadOnTarget, PhasePlan};
+
+/// Argument `i` parsed, or `default` when absent.
+fn arg<T: std::str::FromStr>(
+    args: &[String],
+    i: usize,
+    what: &str,
+    default: Option<T>,
+) -> Result<T, String> {
+    match (args.get(i), default) {
+        (Some(s), _) => s
+            .parse()
+            .map_err(|_| format!("argument {i} ({what}): {s:?} is not valid")),
+        (None, Some(d)) => Ok(d),
+        (None, None) => Err(format!(
+            "argument {i} ({what}) is missing: LEVEL MESHES V_REL [MATERIAL] [one-point|b-bar] [D]"
+        )),
+    }
+}
+
+fn run(args: &[String]) -> Result<(), String> {
+    let level: i32 = arg(args, 1, "LEVEL", None)?;
+    let meshes: usize = arg(args, 2, "MESHES", None)?;
+    let v: f64 = arg(args, 3, "V_REL", None)?;
+    let name: String = arg(args, 4, "MATERIAL", Some("copper-fe".to_string()))?;
+    let formulation = match args.get(5).map(String::as_str) {
+        None | Some("one-point") => QuadFormulation::default(),
+        Some("b-bar") => QuadFormulation::SelectiveReduced,
+        Some(o) => return Err(format!("argument 5: {o:?} is not one of one-point, b-bar")),
+    };
+    let diameter: f64 = arg(args, 6, "D", Some(0.02))?;
+    let material = Material::preset(&name).map_err(|e| e.to_string())?;
+    let case = HeadOnCase {
+        diameter,
+        material,
+        relative_speed: v,
+        target: HeadOnTarget::IdenticalBall,
+        formulation,
+    };
+    let ans = converged_head_on(&case, &PhasePlan { level, meshes }).map_err(|e| e.to_string())?;
+    for (label, en) in [("coarse", &ans.coarse), ("fine", &ans.fine)] {
+        println!("{label} ensemble: ring ratio q {:.4}", en.ring_ratio);
+        for r in &en.runs {
+            println!(
+                "  s {:.4}: e {:.5}, δ_max {:.4} µm, t_c {:.3} µs, F_peak {:.1} N, contact radius {:.1} µm, energy error {:.1e}, {:.2} s",
+                r.scale, r.e, r.delta_max * 1e6, r.contact_duration * 1e6, r.peak_force,
+                r.contact_radius * 1e6, r.energy_error, r.wall_time_s
+            );
+        }
+        println!(
+            "  mean: e {:.5} (sampling error {:.1e}, members {:.5}-{:.5}), δ_max {:.4} µm, t_c {:.3} µs",
+            en.e.mean, en.e.sampling_error, en.e.min, en.e.max,
+            en.delta_max.mean * 1e6, en.contact_duration.mean * 1e6
+        );
+    }
+    let pct = |b: &twoball::study::phase_ensemble::Bar| 100.0 * b.relative_error();
+    println!(
+        "e {:.5} ± {:.5} ({:.2} %); δ_max {:.4} µm ± {:.2} %; t_c {:.3} µs ± {:.2} %; F_peak {:.1} N ± {:.2} %; {:.1} s CPU",
+        ans.e.value, ans.e.error, pct(&ans.e), ans.delta_max.value * 1e6, pct(&ans.delta_max),
+        ans.contact_duration.value * 1e6, pct(&ans.contact_duration), ans.peak_force.value,
+        pct(&ans.peak_force), ans.cpu_time_s
+    );
+    Ok(())
+}
+
+fn main() {
+    let args: Vec<String> = std::env::args().collect();
+    if let Err(e) = run(&args) {
+        eprintln!("error: {e}");
+        std::process::exit(2);
+    }
+}
