@@ -104,8 +104,9 @@ pub fn hertz_contact_radius(p: &HeadOnPoint) -> Result<f64> {
 /// Errors: a mesh the ladder rejects (contact radius outside its range), a run that fails
 /// (named by the section model).
 pub fn head_on_fe(point: &HeadOnPoint) -> Result<FePoint> {
-    // lead replaces with phase_ensemble (and renames super::FE_MODEL, so that cached pilot
-    // runs are rerun)
+    // One level-0 run: no error bar. `study::phase_ensemble::converged_head_on` gives the
+    // bar at about 8-16 times this cost (over the bench's 20 min at the low speeds); using it
+    // here must also rename super::FE_MODEL, so that cached single runs are rerun.
     let a = hertz_contact_radius(point)?;
     let mesh = ladder_ball(point.diameter, a, 0)?;
     let run = HeadOn::new(mesh, point.material, 0.5 * point.speed, Target::MirrorBall).run()?;
