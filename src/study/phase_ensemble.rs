@@ -242,14 +242,22 @@ pub fn ring_ratio(mesh: &MeridianMesh, radius: f64) -> Result<f64> {
 /// The mean of `f` over `runs` with its sampling error (even members against all).
 fn phase_mean(runs: &[PhaseRun], f: fn(&PhaseRun) -> f64) -> PhaseMean {
     let all: Vec<f64> = runs.iter().map(f).collect();
-    let mean = all.iter().sum::<f64>() / all.len() as f64;
-    let even: Vec<f64> = all.iter().step_by(2).copied().collect();
-    let half = even.iter().sum::<f64>() / even.len() as f64;
-    PhaseMean {
-        mean,
-        sampling_error: (half - mean).abs(),
-        min: all.iter().copied().fold(f64::INFINITY, f64::min),
-        max: all.iter().copied().fold(f64::NEG_INFINITY, f64::max),
+    PhaseMean::of(&all)
+}
+
+impl PhaseMean {
+    /// The mean of the members `values` (pilot first, in phase order; at least one) with
+    /// its sampling error (the even members' mean against all).
+    pub fn of(values: &[f64]) -> PhaseMean {
+        let mean = values.iter().sum::<f64>() / values.len() as f64;
+        let even: Vec<f64> = values.iter().step_by(2).copied().collect();
+        let half = even.iter().sum::<f64>() / even.len() as f64;
+        PhaseMean {
+            mean,
+            sampling_error: (half - mean).abs(),
+            min: values.iter().copied().fold(f64::INFINITY, f64::min),
+            max: values.iter().copied().fold(f64::NEG_INFINITY, f64::max),
+        }
     }
 }
 

@@ -6,7 +6,7 @@ use super::error_estimate::{LevelOutcome, PhaseSummary};
 use super::law_compare::{compare_laws, law_table, LawOutcome};
 use super::number::sci;
 use super::outcome::{analytic_outcome, relative_difference, Outcome};
-use super::phase_ensemble::ring_ratio;
+use super::phase_ensemble::{ring_ratio, PhaseMean};
 use super::simulate::{
     choose_reduction, simulate, Reduction, RunOptions, Simulation, HISTORY_HEADER,
 };
@@ -287,20 +287,21 @@ fn phase_level(
         })
         .collect::<Result<_>>()?;
     let all: Vec<&LevelOutcome> = std::iter::once(&out).chain(&members).collect();
-    let mean = |f: fn(&LevelOutcome) -> f64| all.iter().map(|o| f(o)).sum::<f64>() / m as f64;
-    let even_e = all.iter().step_by(2).map(|o| o.e).sum::<f64>() / m.div_ceil(2) as f64;
-    let e = mean(|o| o.e);
+    let of = |f: fn(&LevelOutcome) -> f64| {
+        PhaseMean::of(&all.iter().map(|o| f(o)).collect::<Vec<f64>>())
+    };
+    let e = of(|o| o.e);
     Ok(LevelOutcome {
-        e,
-        delta_max: mean(|o| o.delta_max),
-        contact_duration: mean(|o| o.contact_duration),
+        e: e.mean,
+        delta_max: of(|o| o.delta_max).mean,
+        contact_duration: of(|o| o.contact_duration).mean,
         wall_time_s: all.iter().map(|o| o.wall_time_s).sum(),
         phase: Some(PhaseSummary {
             meshes: m,
             ring_ratio: q,
-            e_sampling_error: (even_e - e).abs(),
-            e_min: all.iter().map(|o| o.e).fold(f64::INFINITY, f64::min),
-            e_max: all.iter().map(|o| o.e).fold(f64::NEG_INFINITY, f64::max),
+            e_sampling_error: e.sampling_error,
+            e_min: e.min,
+            e_max: e.max,
         }),
         ..out
     })
