@@ -15,7 +15,8 @@
 //! integration, `:move=FROM/TO` moves the surface ring nearest the rest radius FROM (µm)
 //! along the surface to the radius TO (µm). `SECTION_RINGS=1` also prints every ring
 //! arrival, `SECTION_PULSE=FILE` writes the force pulse (t in s, F in N) of the last mesh as
-//! CSV.
+//! CSV, `SECTION_CONTACT=segment` integrates the plane's penalty pressure over each segment
+//! (`fe::axisym::plane_segment`) instead of lumping it at the nodes.
 
 use twoball::fe::axisym::element::QuadFormulation;
 use twoball::fe::axisym::impact::{HeadOn, Target};
@@ -138,6 +139,9 @@ fn run(arg: &str) -> Result<String, String> {
     let mut h = HeadOn::new(mesh, material, 1.0, Target::MirrorBall);
     h.formulation = form;
     h.integration = integ;
+    if std::env::var("SECTION_CONTACT").as_deref() == Ok("segment") {
+        h.plane_contact = twoball::fe::axisym::impact::PlaneContact::Segment;
+    }
     let plane = D / 2.0;
     let mut end = [0.0; 5];
     // Arrivals of ever farther rings at the plane: (time after first touch s, radius at rest m).

@@ -7,6 +7,7 @@
 
 use super::element::QuadFormulation;
 use super::plane::{ring_areas_and_thickness, RigidPlane, Side};
+use super::plane_segment::SegmentPlane;
 use super::section::{SectionContact, SectionModel, SectionSolver};
 use super::segment::{Boundary, SegmentPair};
 use super::subcycle::Integration;
@@ -31,6 +32,18 @@ pub enum Target {
     RigidWall,
     /// Another ball, meshed too, with node-to-segment contact between the two sections.
     Ball(Box<OtherBall>),
+}
+
+/// How a rigid plane (the mirror plane or a wall) takes the ball's boundary.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum PlaneContact {
+    /// A penalty spring per boundary node ([`RigidPlane`]): the contact area grows ring by ring.
+    #[default]
+    Nodal,
+    /// Penalty pressure integrated over the penetrated part of each segment
+    /// ([`SegmentPlane`]): the contact area grows continuously.
+    Segment,
 }
 
 /// The second ball of a two-ball head-on impact.
@@ -83,6 +96,8 @@ pub struct HeadOn {
     pub max_steps: u64,
     /// Single-rate or subcycled time integration (subcycled by default).
     pub integration: Integration,
+    /// How the mirror plane or the wall takes the boundary.
+    pub plane_contact: PlaneContact,
 }
 
 /// One history row (whole system; for [`Target::MirrorBall`] the pair).
@@ -227,6 +242,7 @@ impl HeadOn {
             end_time: None,
             max_steps: u64::MAX,
             integration: Integration::subcycled(),
+            plane_contact: PlaneContact::default(),
         }
     }
 
@@ -296,15 +312,26 @@ impl HeadOn {
                     Target::MirrorBall => 2.0 * self.fkn,
                     _ => self.fkn,
                 };
-                let plane = RigidPlane::new(
-                    &self.mesh,
-                    &seg1,
-                    radius,
-                    Side::Below,
-                    fkn,
-                    self.material.youngs,
-                )?;
-                (model, Box::new(plane) as Box<dyn SectionContact>)
+                let youngs = self.material.youngs;
+                let plane: Box<dyn SectionContact> = match self.plane_contact {
+                    PlaneContact::Nodal => Box::new(RigidPlane::new(
+                        &self.mesh,
+                        &seg1,
+                        radius,
+                        Side::Below,
+                        fkn,
+                        youngs,
+                    )?),
+                    PlaneContact::Segment => Box::new(SegmentPlane::new(
+                        &self.mesh,
+                        &seg1,
+                        radius,
+                        Side::Below,
+                        fkn,
+                        youngs,
+                    )?),
+                };
+                (model, plane)
             }
             Target::Ball(o) => {
                 if !(o.speed.is_finite() && o.speed >= 0.0) {

@@ -9,6 +9,8 @@
 //! - [`mass`]: lumped ring masses;
 //! - [`section`]: the model and the explicit loop (Box 6.1), with energy accounting;
 //! - [`plane`]: penalty contact against a rigid plane z = const;
+//! - [`plane_segment`]: the same plane with the penalty pressure integrated over each
+//!   boundary segment (the contact area grows continuously);
 //! - [`segment`]: two-pass node-to-segment penalty contact of two meridian boundaries;
 //! - [`subcycle`]: multi-time-step integration (power-of-two step classes, nodal partition);
 //! - [`impact`]: a head-on impact (mirror ball, rigid wall or a second ball) run end to end
@@ -22,6 +24,7 @@ pub mod element;
 pub mod impact;
 pub mod mass;
 pub mod plane;
+pub mod plane_segment;
 pub mod quad;
 pub mod section;
 pub mod segment;
