@@ -312,18 +312,13 @@ impl HeadOn {
                     Target::MirrorBall => 2.0 * self.fkn,
                     _ => self.fkn,
                 };
-                let youngs = self.material.youngs;
+                let (m, youngs) = (&self.mesh, self.material.youngs);
                 let plane: Box<dyn SectionContact> = match self.plane_contact {
-                    PlaneContact::Nodal => Box::new(RigidPlane::new(
-                        &self.mesh,
-                        &seg1,
-                        radius,
-                        Side::Below,
-                        fkn,
-                        youngs,
-                    )?),
+                    PlaneContact::Nodal => {
+                        Box::new(RigidPlane::new(m, &seg1, radius, Side::Below, fkn, youngs)?)
+                    }
                     PlaneContact::Segment => Box::new(SegmentPlane::new(
-                        &self.mesh,
+                        m,
                         &seg1,
                         radius,
                         Side::Below,

@@ -30,6 +30,27 @@ pub struct RigidPlane {
     k: Vec<f64>,
 }
 
+/// Length (m) and thickness h (m: area of the quad under it over its length) of the boundary
+/// segment `s` of `mesh`.
+///
+/// Errors: a segment that is no edge of a quad.
+pub fn segment_length_and_thickness(mesh: &MeridianMesh, s: [u32; 2]) -> Result<(f64, f64)> {
+    let q = mesh
+        .quads
+        .iter()
+        .find(|q| q.contains(&s[0]) && q.contains(&s[1]))
+        .ok_or_else(|| {
+            Error::invalid(
+                "mesh.segment",
+                format!("{}-{}", s[0], s[1]),
+                "a boundary segment that is an edge of a quad",
+            )
+        })?;
+    let (pa, pb) = (mesh.nodes[s[0] as usize], mesh.nodes[s[1] as usize]);
+    let l = (pb[0] - pa[0]).hypot(pb[1] - pa[1]);
+    Ok((l, super::quad::area(&q.map(|n| mesh.nodes[n as usize])) / l))
+}
+
 /// Consistent ring areas (m²) and mean element thicknesses (m) of the nodes of `segments`.
 pub fn ring_areas_and_thickness(
     mesh: &MeridianMesh,
@@ -38,22 +59,8 @@ pub fn ring_areas_and_thickness(
     let mut acc: std::collections::BTreeMap<usize, (f64, f64, usize)> = Default::default();
     for s in segments {
         let (a, b) = (s[0] as usize, s[1] as usize);
-        let q = mesh
-            .quads
-            .iter()
-            .find(|q| q.contains(&s[0]) && q.contains(&s[1]))
-            .ok_or_else(|| {
-                Error::invalid(
-                    "mesh.segment",
-                    format!("{a}-{b}"),
-                    "a boundary segment that is an edge of a quad",
-                )
-            })?;
-        let x = q.map(|n| mesh.nodes[n as usize]);
-        let pa = mesh.nodes[a];
-        let pb = mesh.nodes[b];
-        let l = ((pb[0] - pa[0]).powi(2) + (pb[1] - pa[1]).powi(2)).sqrt();
-        let h = super::quad::area(&x) / l;
+        let (l, h) = segment_length_and_thickness(mesh, *s)?;
+        let (pa, pb) = (mesh.nodes[a], mesh.nodes[b]);
         for (i, ri, rj) in [(a, pa[0], pb[0]), (b, pb[0], pa[0])] {
             let e = acc.entry(i).or_insert((0.0, 0.0, 0));
             e.0 += 2.0 * PI * l * (2.0 * ri + rj) / 6.0;

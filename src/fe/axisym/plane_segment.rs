@@ -22,7 +22,7 @@
 //! which bounds its largest eigenvalue by Gershgorin's theorem), shared by the two nodes of a
 //! segment, which the penalty couples.
 
-use super::plane::Side;
+use super::plane::{segment_length_and_thickness, Side};
 use super::section::{ContactState, SectionContact};
 use crate::error::{Error, Result};
 use crate::fe::contact::penalty::stable_step;
@@ -99,25 +99,12 @@ impl SegmentPlane {
         let mut rings = Vec::with_capacity(segments.len());
         for s in segments {
             let (a, b) = (s[0] as usize, s[1] as usize);
-            let q = mesh
-                .quads
-                .iter()
-                .find(|q| q.contains(&s[0]) && q.contains(&s[1]))
-                .ok_or_else(|| {
-                    Error::invalid(
-                        "mesh.segment",
-                        format!("{a}-{b}"),
-                        "a boundary segment that is an edge of a quad",
-                    )
-                })?;
-            let (pa, pb) = (mesh.nodes[a], mesh.nodes[b]);
-            let length = (pb[0] - pa[0]).hypot(pb[1] - pa[1]);
-            let h = super::quad::area(&q.map(|n| mesh.nodes[n as usize])) / length;
+            let (length, h) = segment_length_and_thickness(mesh, *s)?;
             rings.push(Ring {
                 a,
                 b,
-                ra: pa[0],
-                rb: pb[0],
+                ra: mesh.nodes[a][0],
+                rb: mesh.nodes[b][0],
                 length,
                 eps: fkn * youngs / h,
             });
