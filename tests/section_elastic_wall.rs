@@ -43,6 +43,12 @@ fn run(s: &Scene) -> RunReport {
     .unwrap()
 }
 
+/// A ball mesh of pole D/200 and bulk D/5.
+const COARSE: &str = "ball1.mesh={size=0.004,pole_size=0.0001}";
+
+/// A ball mesh of pole D/100 and bulk D/5, for comparisons on equal meshes.
+const COARSER: &str = "ball1.mesh={size=0.004,pole_size=0.0002}";
+
 fn rel(a: f64, b: f64) -> f64 {
     a / b - 1.0
 }
@@ -147,12 +153,13 @@ fn hertz(s: &Scene) -> HertzPair {
 }
 
 /// An elastic copper-fe ball (D = 20 mm) on an elastic copper-fe block of the default size
-/// (5 D), ball mesh by the contact-radius rule: Hertz's δ_max and t_c within 1 %, e ≥ 0.99
+/// (5 D), with the scene overrides `sets` (none: the ball's mesh by the contact-radius rule):
+/// Hertz's δ_max and t_c within 1 %, e ≥ 0.99
 /// (the rest is radiated into the block), energy error below 1e-3; the analytical column is
 /// the analytical model's elastic half-space (Hertz to 1e-3).
-fn elastic_block_against_hertz(v: f64) -> RunReport {
+fn elastic_block_against_hertz(v: f64, sets: &[&str]) -> RunReport {
     let speed = format!("ball1.velocity=[{v},0,0]");
-    let s = parse(ELASTIC_WALL, &[&speed]).unwrap();
+    let s = parse(ELASTIC_WALL, &[&[speed.as_str()][..], sets].concat()).unwrap();
     assert_eq!(s.wall.unwrap().size, Some([0.1, 0.1]));
     let r = run(&s);
     assert_eq!(r.reduction, "axisymmetric");
@@ -184,21 +191,32 @@ fn elastic_block_against_hertz(v: f64) -> RunReport {
     r
 }
 
+/// At 1 m/s on the default meshes (about 40 s of one core; `cargo test --test
+/// section_elastic_wall -- --ignored --nocapture`).
 #[test]
+#[ignore]
 fn an_elastic_ball_on_an_elastic_block_matches_hertz_at_1_m_s() {
-    elastic_block_against_hertz(1.0);
+    elastic_block_against_hertz(1.0, &[]);
 }
 
+/// At 0.1 m/s on the default meshes (about 150 s of one core; run as above).
 #[test]
+#[ignore]
 fn an_elastic_ball_on_an_elastic_block_matches_hertz_at_0_1_m_s() {
-    elastic_block_against_hertz(0.1);
+    elastic_block_against_hertz(0.1, &[]);
+}
+
+/// At 1 m/s on a ball mesh of pole D/200 (five cells across the contact radius).
+#[test]
+fn an_elastic_ball_on_an_elastic_block_matches_hertz_on_a_coarse_mesh() {
+    elastic_block_against_hertz(1.0, &[COARSE]);
 }
 
 /// The default block (5 D) is large enough: a block of 10 D changes δ_max by less than 1 %
 /// (elastic copper-fe, 1 m/s, the same ball mesh).
 #[test]
 fn the_default_block_size_is_large_enough() {
-    let mesh = "ball1.mesh={size=0.004,pole_size=0.0001}";
+    let mesh = COARSER;
     let small = run(&parse(ELASTIC_WALL, &[mesh]).unwrap());
     let big = run(&parse(ELASTIC_WALL, &[mesh, "wall.size=[0.2,0.2]"]).unwrap());
     let d = rel(small.delta_max, big.delta_max);
@@ -218,7 +236,7 @@ fn the_default_block_size_is_large_enough() {
 /// the stiff block 0.4 % softer), at 1 m/s, same ball mesh, elastic.
 #[test]
 fn a_block_100_times_stiffer_is_the_rigid_wall() {
-    let mesh = "ball1.mesh={size=0.004,pole_size=0.0001}";
+    let mesh = COARSER;
     let stiff = format!(
         "wall.material={{preset=\"copper-fe\",E={:e},rho={:e},yield=1e13}}",
         100.0 * parse(ELASTIC_WALL, &[]).unwrap().ball1.material.youngs,
@@ -238,16 +256,22 @@ fn a_block_100_times_stiffer_is_the_rigid_wall() {
     let rigid = run(&rigid_scene);
     let d = rel(block.delta_max, rigid.delta_max);
     println!(
-        "stiff block against rigid wall: δ_max {:.5e} / {:.5e} m ({:+.3} %), e {:.5} / {:.5}, energy error {:.2e}",
+        "stiff block against rigid wall: δ_max {:.5e} / {:.5e} m ({:+.3} %), e {:.5} / {:.5}, energy error {:.2e} / {:.2e}",
         block.delta_max,
         rigid.delta_max,
         100.0 * d,
         block.e.unwrap(),
         rigid.e.unwrap(),
-        block.energy_error
+        block.energy_error,
+        rigid.energy_error
     );
     assert!(d.abs() < 0.01, "{d:+.4}");
-    assert!(block.energy_error < 1e-3, "{}", block.energy_error);
+    // Hertz: E* of the stiff block is 1 % below the rigid wall's, δ_max ∝ E*^(−2/5).
+    assert!(
+        d > 0.0,
+        "the stiff block is not softer than the rigid wall: {d:+.4}"
+    );
+    assert!(block.energy_error < 2e-3, "{}", block.energy_error);
 }
 
 #[test]

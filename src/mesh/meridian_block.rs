@@ -12,7 +12,7 @@ use crate::error::{Error, Result};
 use std::collections::BTreeMap;
 
 /// Growth of the cell size from one cell to the next outside the core.
-pub const GROWTH: f64 = 1.15;
+pub const GROWTH: f64 = 1.25;
 
 /// Most quads a block mesh may have.
 pub const MAX_BLOCK_ELEMENTS: usize = 200_000;
