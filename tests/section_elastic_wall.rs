@@ -191,7 +191,7 @@ fn elastic_block_against_hertz(v: f64, sets: &[&str]) -> RunReport {
     r
 }
 
-/// At 1 m/s on the default meshes (about 40 s of one core; `cargo test --test
+/// At 1 m/s on the default meshes (about a minute; `cargo test --release --test
 /// section_elastic_wall -- --ignored --nocapture`).
 #[test]
 #[ignore]
@@ -199,7 +199,7 @@ fn an_elastic_ball_on_an_elastic_block_matches_hertz_at_1_m_s() {
     elastic_block_against_hertz(1.0, &[]);
 }
 
-/// At 0.1 m/s on the default meshes (about 150 s of one core; run as above).
+/// At 0.1 m/s on the default meshes (a few minutes; run as above).
 #[test]
 #[ignore]
 fn an_elastic_ball_on_an_elastic_block_matches_hertz_at_0_1_m_s() {
