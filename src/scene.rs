@@ -26,7 +26,7 @@ mod wall;
 pub use approach::{approach, Approach, Frame, Touch};
 pub use laws::{ComparedLaw, LawComparison};
 pub use overrides::Override;
-pub use wall::{WallKind, WallScene};
+pub use wall::{WallKind, WallScene, DEFAULT_BLOCK_PER_D};
 
 use crate::error::{Error, Result};
 use crate::fe::materials::{law::LAW_NAMES, Law};
@@ -312,7 +312,7 @@ impl Scene {
         };
         let (ball1, pole1_given) = ball("ball1")?;
         let wall = match r.table("wall")? {
-            Some(w) => Some(wall::read_wall(w)?),
+            Some(w) => Some(wall::read_wall(w)?.with_block_size(ball1.diameter)?),
             None => None,
         };
         let (ball1, ball2, pole2_given) =

@@ -125,7 +125,7 @@ fn bad_wall_scenes_get_one_line_errors_naming_the_field() {
             vec!["ball2.velocity=[-1,0,0]"],
             "ball2 is given with [wall]",
         ),
-        (WALL_SCENE.into(), vec!["wall.kind=elastic"], "wall.kind"),
+        (WALL_SCENE.into(), vec!["wall.kind=soft"], "wall.kind"),
         (WALL_SCENE.into(), vec!["wall.kind=3"], "wall.kind"),
         (
             WALL_SCENE.into(),

@@ -125,25 +125,36 @@ impl<'a> Reader<'a> {
         ok: impl Fn(f64) -> bool,
         allowed: &str,
     ) -> Result<Option<[f64; 3]>> {
+        self.array::<3>(key, ok, allowed)
+    }
+
+    /// An array of `N` finite reals, each component checked by `ok`.
+    pub(crate) fn array<const N: usize>(
+        &self,
+        key: &str,
+        ok: impl Fn(f64) -> bool,
+        allowed: &str,
+    ) -> Result<Option<[f64; N]>> {
         let Some(v) = self.raw(key) else {
             return Ok(None);
         };
+        let what = format!("an array of {N} numbers");
         let Value::Array(a) = v else {
-            return Err(self.wrong_type(key, v, "an array of 3 numbers"));
+            return Err(self.wrong_type(key, v, &what));
         };
-        if a.len() != 3 {
+        if a.len() != N {
             return Err(Error::invalid(
                 self.key_path(key),
                 show(v),
-                "an array of exactly 3 numbers",
+                format!("an array of exactly {N} numbers"),
             ));
         }
-        let mut out = [0.0; 3];
+        let mut out = [0.0; N];
         for (i, c) in a.iter().enumerate() {
             let x = match c {
                 Value::Float(f) => *f,
                 Value::Integer(n) => *n as f64,
-                _ => return Err(self.wrong_type(key, v, "an array of 3 numbers")),
+                _ => return Err(self.wrong_type(key, v, &what)),
             };
             if !(x.is_finite() && ok(x)) {
                 return Err(Error::invalid(

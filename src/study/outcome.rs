@@ -3,7 +3,7 @@
 
 use crate::analytic::{Body, Collision};
 use crate::error::{Error, Result};
-use crate::scene::{Scene, Touch};
+use crate::scene::{Scene, Touch, WallScene};
 use serde::{Deserialize, Serialize};
 
 /// What a collision produced. Vectors are in the scene's (global) frame.
@@ -96,9 +96,15 @@ pub fn dissipation_factor(scene: &Scene, after_v: [[f64; 3]; 2], after_w: [[f64;
 
 /// Ball 1's partner for the analytical model and the contact laws, with its velocity (m/s,
 /// contact frame) given the scene's ball-2 velocity `v2`: ball 2, or for a `[wall]` scene the
-/// rigid half-space at rest (`twoball analytic --wall rigid`). Errors: ball 2's material.
+/// rigid half-space at rest (`twoball analytic --wall rigid`), or for an elastic wall the
+/// elastic-plastic half-space of its material at rest (`--wall elastic`). Errors: ball 2's
+/// material.
 pub fn analytic_partner(scene: &Scene, v2: [f64; 3]) -> Result<(Body, [f64; 3])> {
     Ok(match scene.wall {
+        Some(WallScene {
+            material: Some(material),
+            ..
+        }) => (Body::HalfSpace { material }, [0.0; 3]),
         Some(_) => (Body::RigidWall, [0.0; 3]),
         None => (
             Body::ball(scene.ball2.material, scene.ball2.diameter, "ball2")?,

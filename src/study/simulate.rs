@@ -21,7 +21,7 @@ use crate::fe::profile::Totals;
 use crate::fe::subcycle::SubcycleReport;
 use crate::mesh::ball::{ball, BallSpec, Cut};
 use crate::mesh::Mesh;
-use crate::scene::{BallScene, MeshSettings, Scene, Switch, Symmetry, Touch};
+use crate::scene::{BallScene, MeshSettings, Scene, Switch, Symmetry, Touch, WallKind};
 use serde::Serialize;
 use std::time::Instant;
 
@@ -174,7 +174,8 @@ pub fn choose_reduction(scene: &Scene, touch: &Touch) -> Result<(Reduction, Stri
 
 /// The reduction of a ball against a rigid wall (head-on by the scene's checks): the quarter
 /// ball against the wall plane (`auto`, `quarter`) or the ball's meridian section against it
-/// (`axisymmetric`). The wall models have no half or full 3D form.
+/// (`axisymmetric`). The wall models have no half or full 3D form; an elastic wall is
+/// modelled on the section only.
 fn wall_reduction(scene: &Scene, ok: Allowed) -> Result<(Reduction, String)> {
     let refuse = |what: &str, needs: &str| {
         Err(Error::invalid(
@@ -190,7 +191,21 @@ fn wall_reduction(scene: &Scene, ok: Allowed) -> Result<(Reduction, String)> {
             "the built-in mesher for a ball on a wall (its models cut the ball by symmetry)",
         ));
     }
+    let elastic = scene.wall.is_some_and(|w| w.kind == WallKind::Elastic);
+    if elastic && scene.reduction.symmetry != Symmetry::Axisymmetric {
+        return Err(Error::invalid(
+            "reduction.symmetry",
+            format!("\"{}\"", symmetry_name(scene.reduction.symmetry)),
+            "\"axisymmetric\" for an elastic wall (the 3D models have a rigid wall only)",
+        ));
+    }
     match scene.reduction.symmetry {
+        Symmetry::Axisymmetric if elastic && scene.reduction.start_at_touch != Switch::Off => Ok((
+            Reduction::Axisymmetric,
+            "ball head-on against an elastic wall: axisymmetric, the ball's section against \
+                 the meshed block's face (node-to-segment penalty)"
+                .into(),
+        )),
         Symmetry::Off | Symmetry::Half => {
             let what = if scene.reduction.symmetry == Symmetry::Off {
                 "off"
@@ -218,6 +233,17 @@ fn wall_reduction(scene: &Scene, ok: Allowed) -> Result<(Reduction, String)> {
              (penalty of the ball's own stiffness)"
                 .into(),
         )),
+    }
+}
+
+/// The scene word of `s`.
+fn symmetry_name(s: Symmetry) -> &'static str {
+    match s {
+        Symmetry::Auto => "auto",
+        Symmetry::Axisymmetric => "axisymmetric",
+        Symmetry::Quarter => "quarter",
+        Symmetry::Half => "half",
+        Symmetry::Off => "off",
     }
 }
 

@@ -14,11 +14,11 @@ use super::simulate::{
 use super::snapshots::Snapshots;
 use crate::error::{Error, Result};
 use crate::fe::axisym::element::QuadFormulation;
-use crate::fe::axisym::impact::{HeadOn, ImpactRow, OtherBall, Target};
+use crate::fe::axisym::impact::{HeadOn, ImpactRow, OtherBall, Target, WallBlock};
 use crate::fe::axisym::subcycle::Integration;
 use crate::fe::solver::subcycle::{SubcycleReport, Subcycling};
 use crate::fe::Formulation;
-use crate::mesh::meridian::{ball, MeridianMesh, SectionSpec};
+use crate::mesh::meridian::{ball, block, BlockSpec, MeridianMesh, SectionSpec};
 use crate::scene::{BallScene, MeshSettings, Scene, Switch, Touch};
 use std::time::Instant;
 
@@ -58,6 +58,49 @@ pub fn section_mesh(name: &str, b: &BallScene) -> Result<MeridianMesh> {
     }
 }
 
+/// Pole cells of an elastic wall's block across its uniformly meshed core (about 1.7
+/// contact radii at the ladder's six pole cells per contact radius).
+const BLOCK_CORE_CELLS: f64 = 10.0;
+
+/// Cells of the block's far-field size across its smaller side.
+const BLOCK_CELLS_PER_SIDE: f64 = 10.0;
+
+/// The block of an elastic `[wall]` (`None` for a rigid wall or two balls): its section
+/// meshed with ball 1's pole size at the contact point over [`BLOCK_CORE_CELLS`] cells,
+/// growing to a tenth of its smaller side.
+///
+/// Errors: a ball-1 mesh file, or block sizes the mesher rejects (named from `wall`).
+pub fn wall_block(scene: &Scene) -> Result<Option<WallBlock>> {
+    let Some(w) = scene.wall else {
+        return Ok(None);
+    };
+    let (Some(material), Some([width, height])) = (w.material, w.size) else {
+        return Ok(None);
+    };
+    let pole = match &scene.ball1.mesh {
+        MeshSettings::Builtin { pole_size, .. } => *pole_size,
+        MeshSettings::File { .. } => {
+            return Err(Error::Parse(
+                "ball1.mesh.file is set: the axisymmetric model needs the built-in mesher".into(),
+            ))
+        }
+    };
+    let size = width.min(height) / BLOCK_CELLS_PER_SIDE;
+    let mesh = block(&BlockSpec {
+        width,
+        height,
+        size,
+        pole_size: pole.min(size),
+        core: BLOCK_CORE_CELLS * pole,
+    })
+    .map_err(|e| e.within("wall"))?;
+    Ok(Some(WallBlock {
+        mesh,
+        material,
+        elastic_only: false,
+    }))
+}
+
 /// The section element of the scene's 3D element choice: one point with hourglass control
 /// for the one-point hexahedron, selectively reduced (B-bar) for B-bar.
 fn formulation(scene: &Scene) -> QuadFormulation {
@@ -68,13 +111,15 @@ fn formulation(scene: &Scene) -> QuadFormulation {
 }
 
 /// The head-on model of `run`: ball 1 against the rigid wall of a wall scene (penalty FKN on
-/// the ball's own stiffness), against the symmetry plane for identical balls, both sections
+/// the ball's own stiffness) or the block of an elastic wall, against the symmetry plane for identical balls, both sections
 /// otherwise.
 fn head_on(run: &SectionRun<'_>) -> Result<HeadOn> {
     let scene = run.scene;
     let mesh1 = section_mesh("ball1", &scene.ball1)?;
     let speed1 = run.kin.u[0][0];
-    let target = if scene.wall.is_some() {
+    let target = if let Some(block) = wall_block(scene)? {
+        Target::ElasticWall(Box::new(block))
+    } else if scene.wall.is_some() {
         Target::RigidWall
     } else if scene.identical_balls() {
         Target::MirrorBall
@@ -86,7 +131,7 @@ fn head_on(run: &SectionRun<'_>) -> Result<HeadOn> {
             speed: -run.kin.u[1][0],
         }))
     };
-    let two_balls = matches!(target, Target::Ball(_));
+    let two_balls = matches!(target, Target::Ball(_) | Target::ElasticWall(_));
     let mut h = HeadOn::new(mesh1, scene.ball1.material, speed1, target);
     h.integration = integration(scene.solver.subcycling, two_balls);
     h.elastic_only = run.elastic_only[0];
@@ -110,8 +155,8 @@ fn head_on(run: &SectionRun<'_>) -> Result<HeadOn> {
 }
 
 /// The section's time integration for the scene's `solver.subcycling`: subcycled unless
-/// `off`, except for two meshed balls under `auto`, whose pair contact has not been checked
-/// subcycled (single rate there).
+/// `off`, except for two meshed bodies (two balls, or a ball and a wall's block) under
+/// `auto`, whose pair contact has not been checked subcycled (single rate there).
 fn integration(sub: Subcycling, two_balls: bool) -> Integration {
     match sub {
         Subcycling::Off => Integration::SingleRate,

@@ -371,10 +371,19 @@ pub fn side_by_side(r: &RunReport) -> String {
             sc.ball2.diameter,
             sc.ball2.velocity
         )),
-        Some(w) => s.push_str(&format!(
-            "scene: ball1 {} D = {} m v = {:?} m/s; rigid wall through {:?} m, normal {:?}\n",
-            sc.ball1.material_name, sc.ball1.diameter, sc.ball1.velocity, w.position, w.normal
-        )),
+        Some(w) => {
+            let kind = match (w.material, w.size) {
+                (Some(m), Some(size)) => format!(
+                    "elastic wall (E = {:.4e} Pa, block W x H = {} x {} m)",
+                    m.youngs, size[0], size[1]
+                ),
+                _ => "rigid wall".to_string(),
+            };
+            s.push_str(&format!(
+                "scene: ball1 {} D = {} m v = {:?} m/s; {kind} through {:?} m, normal {:?}\n",
+                sc.ball1.material_name, sc.ball1.diameter, sc.ball1.velocity, w.position, w.normal
+            ))
+        }
     }
     if !r.impact {
         s.push_str(&format!(

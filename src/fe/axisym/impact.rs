@@ -1,6 +1,8 @@
 //! A head-on impact on the meridian section, run end to end: a ball (its section with the
 //! contact pole at (0, +R), centre at the origin) moving along +z against the symmetry plane
-//! of two equal balls or against a rigid wall, started at first touch and stopped like the
+//! of two equal balls, a second ball, a rigid wall or an elastic wall's meshed block (base
+//! fixed; the approach is the ball's displacement, that is its centre of mass against the
+//! fixed base, docs/design.md §6), started at first touch and stopped like the
 //! 3D study: once the ball separates and the contact force has been zero for a hold time.
 //! Reports what the 3D study reports: the coefficient of restitution, the maximum approach,
 //! the contact duration, the peak force, the energy terms, the energy error and history rows.
@@ -32,6 +34,22 @@ pub enum Target {
     RigidWall,
     /// Another ball, meshed too, with node-to-segment contact between the two sections.
     Ball(Box<OtherBall>),
+    /// An elastic-plastic wall: a meshed block at rest, its base fixed, with node-to-segment
+    /// contact between the ball's boundary and the block's face.
+    ElasticWall(Box<WallBlock>),
+}
+
+/// The block of an elastic wall.
+#[derive(Debug, Clone)]
+pub struct WallBlock {
+    /// Its meridian mesh: r ∈ [0, W], z ∈ [−H, 0], face z = 0 up, contact segments in
+    /// `segment_sets["contact"]`, the nodes to fix in `node_sets["base"]`; it is mirrored and
+    /// placed with its face on the ball's pole.
+    pub mesh: MeridianMesh,
+    /// Its material.
+    pub material: Material,
+    /// Skip plasticity.
+    pub elastic_only: bool,
 }
 
 /// How a rigid plane (the mirror plane or a wall) takes the ball's boundary.
@@ -115,7 +133,7 @@ pub struct ImpactRow {
     /// m/s.
     pub v1: f64,
     /// Axial velocity of the target's centre of mass (the mirror image −v1 for the mirror
-    /// ball, 0 for the wall), m/s.
+    /// ball, 0 for the rigid wall, the block's for an elastic wall), m/s.
     pub v2: f64,
     /// Kinetic energy, J.
     pub kinetic: f64,
@@ -181,13 +199,18 @@ pub struct ImpactResult {
 
 /// Hertz's contact duration 2.87 (m*²/(R* E*² v))^{1/5} (s) of a ball of radius `radius`
 /// (m) and mass `ball_mass` (kg) against the target (the pair for the mirror ball; the
-/// second ball's mass `mass2`, kg, for [`Target::Ball`]): the scale of the stop rule and the
+/// second ball's mass `mass2`, kg, for [`Target::Ball`]; a ball on an elastic half-space of
+/// the block's material for [`Target::ElasticWall`]): the scale of the stop rule and the
 /// history interval.
 pub fn hertz_duration(h: &HeadOn, radius: f64, ball_mass: f64, mass2: f64) -> f64 {
     let c1 = (1.0 - h.material.nu * h.material.nu) / h.material.youngs;
     let (e_star, r_star, m_star, v) = match &h.target {
         Target::MirrorBall => (0.5 / c1, radius / 2.0, ball_mass / 2.0, 2.0 * h.speed),
         Target::RigidWall => (1.0 / c1, radius, ball_mass, h.speed),
+        Target::ElasticWall(w) => {
+            let c2 = (1.0 - w.material.nu * w.material.nu) / w.material.youngs;
+            (1.0 / (c1 + c2), radius, ball_mass, h.speed)
+        }
         Target::Ball(o) => {
             let c2 = (1.0 - o.material.nu * o.material.nu) / o.material.youngs;
             let r2 = o.mesh.nodes.iter().map(|p| p[1]).fold(f64::MIN, f64::max);
@@ -223,6 +246,64 @@ fn mirrored(mesh: &MeridianMesh, shift: f64) -> MeridianMesh {
 }
 
 impl HeadOn {
+    /// The model and contact of the ball against the elastic wall `w`: the block mirrored so
+    /// that its face z = 0 lies on the ball's pole z = `radius` (m), its base fixed, its
+    /// material second; node-to-segment contact on the smaller Young's modulus.
+    fn wall_model(
+        &self,
+        w: &WallBlock,
+        radius: f64,
+        mat: J2Material,
+    ) -> Result<(SectionModel, Box<dyn SectionContact>)> {
+        let n1 = self.mesh.nodes.len();
+        let base = w.mesh.node_sets.get("base").filter(|b| !b.is_empty());
+        let Some(base) = base else {
+            return Err(Error::invalid(
+                "wall.mesh",
+                "no node set base",
+                "a block mesh with its base nodes in node_sets[\"base\"]",
+            ));
+        };
+        let m2 = mirrored(&w.mesh, radius);
+        let mut nodes = self.mesh.nodes.clone();
+        nodes.extend(&m2.nodes);
+        let mut quads = self.mesh.quads.clone();
+        quads.extend(m2.quads.iter().map(|q| q.map(|i| i + n1 as u32)));
+        let mut model = SectionModel::new(nodes, quads, mat);
+        model
+            .materials
+            .push(J2Material::new(&w.material, w.elastic_only));
+        for e in self.mesh.quads.len()..model.quads.len() {
+            model.material_of[e] = 1;
+        }
+        model.velocity = vec![[0.0, self.speed]; n1];
+        model.velocity.extend(vec![[0.0, 0.0]; m2.nodes.len()]);
+        for &i in base {
+            model.fixed[n1 + i as usize] = [true, true];
+        }
+        let seg1 = self
+            .mesh
+            .segment_sets
+            .get("contact")
+            .unwrap_or(&self.mesh.boundary);
+        let seg2 = m2.segment_sets.get("contact").unwrap_or(&m2.boundary);
+        let pair = SegmentPair::new(
+            Boundary {
+                mesh: &self.mesh,
+                segments: seg1,
+                offset: 0,
+            },
+            Boundary {
+                mesh: &m2,
+                segments: seg2,
+                offset: n1,
+            },
+            self.fkn,
+            self.material.youngs.min(w.material.youngs),
+        )?;
+        Ok((model, Box::new(pair)))
+    }
+
     /// Defaults around `mesh`, `material` and `speed`: one-point quads, FKN = 10, the 3D
     /// study's hold fraction 0.03, 200 history rows, step factor 0.9, subcycled.
     pub fn new(mesh: MeridianMesh, material: Material, speed: f64, target: Target) -> Self {
@@ -292,8 +373,14 @@ impl HeadOn {
                 .fold(f64::INFINITY, f64::min))
         };
         let mut thickness = thinnest(&self.mesh, &seg1)?;
-        if let Target::Ball(o) = &self.target {
-            thickness = thickness.min(thinnest(&o.mesh, contact_of(&o.mesh).as_slice())?);
+        match &self.target {
+            Target::Ball(o) => {
+                thickness = thickness.min(thinnest(&o.mesh, contact_of(&o.mesh).as_slice())?);
+            }
+            Target::ElasticWall(w) => {
+                thickness = thickness.min(thinnest(&w.mesh, contact_of(&w.mesh).as_slice())?);
+            }
+            _ => {}
         }
         let limit_fraction = match self.target {
             Target::MirrorBall => 0.25,
@@ -365,6 +452,7 @@ impl HeadOn {
                 )?;
                 (model, Box::new(pair) as Box<dyn SectionContact>)
             }
+            Target::ElasticWall(w) => self.wall_model(w, radius, mat)?,
         };
         let mut model = model;
         model.formulation = self.formulation;
@@ -375,7 +463,8 @@ impl HeadOn {
         let ball_mass: f64 = solver.masses()[..n1].iter().sum();
         let mass2: f64 = solver.masses()[n1..].iter().sum();
         let duration = hertz_duration(self, radius, ball_mass, mass2);
-        let two = n > n1;
+        let two = matches!(self.target, Target::Ball(_));
+        let block = matches!(self.target, Target::ElasticWall(_));
         let (scale, pair) = match self.target {
             Target::MirrorBall => (2.0, 2.0),
             _ => (1.0, 1.0),
@@ -394,6 +483,11 @@ impl HeadOn {
                 let z2 = s.axial_centre(n1..n);
                 let (p2, m2) = s.axial_momentum(n1..n);
                 (z1 - z2, p1 / m1 - p2 / m2, [p1 / m1, p2 / m2])
+            } else if block {
+                // The block's base is fixed: the ball's own displacement is its approach to
+                // the base (docs/design.md §6).
+                let (p2, m2) = s.axial_momentum(n1..n);
+                (z1, p1 / m1, [p1 / m1, p2 / m2])
             } else {
                 (pair * z1, pair * p1 / m1, [p1 / m1, mirror * p1 / m1])
             }

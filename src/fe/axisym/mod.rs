@@ -13,7 +13,8 @@
 //!   boundary segment (the contact area grows continuously);
 //! - [`segment`]: two-pass node-to-segment penalty contact of two meridian boundaries;
 //! - [`subcycle`]: multi-time-step integration (power-of-two step classes, nodal partition);
-//! - [`impact`]: a head-on impact (mirror ball, rigid wall or a second ball) run end to end
+//! - [`impact`]: a head-on impact (mirror ball, rigid wall, elastic block or a second ball)
+//!   run end to end
 //!   (e, δ_max, contact duration, peak force,
 //!   energies, history).
 //!
