@@ -5,7 +5,9 @@
 use std::path::{Path, PathBuf};
 use std::process::Command;
 use twoball::analytic::laws::Registry;
+use twoball::study::laws_bench::fe::{head_on_fe, FePlan};
 use twoball::study::laws_bench::matrix::Matrix;
+use twoball::study::laws_bench::similarity::{check_differences, sources, Source};
 use twoball::study::laws_bench::{run_bench, BenchOptions, Mode};
 
 fn scratch(name: &str) -> PathBuf {
@@ -29,6 +31,8 @@ fn options(out: &Path, mode: Mode) -> BenchOptions {
         matrix: tiny(),
         mode,
         jobs: 2,
+        plan: FePlan::new(-1, 2).unwrap(),
+        similarity: true,
         command: "twoball laws bench --out DIR --matrix tiny.toml".into(),
     }
 }
@@ -60,6 +64,19 @@ fn tiny_matrix_runs_end_to_end_and_reuses_its_cache() {
         .map(|h| h.fe_done().unwrap().e.value)
         .collect();
     assert!(e[1] < e[0] && e[0] < 0.6 && e[1] > 0.1, "FE e {e:?}");
+    // Every FE point carries finite, positive bars (plan -1, M = 2: a few per cent in e;
+    // the peak force's reaches about 20 % on these coarse meshes).
+    for h in &r.head_on {
+        let f = h.fe_done().unwrap();
+        assert!(f.e.relative_error() < 0.05, "{:?}", f.e);
+        for b in [f.e, f.delta_max, f.contact_duration, f.peak_force] {
+            assert!(
+                b.error.is_finite() && b.error > 0.0 && b.relative_error() < 0.5,
+                "{b:?}"
+            );
+        }
+        assert!(f.cpu_seconds > 0.0 && f.scaled_from.is_none());
+    }
     // Hertz is elastic: its e is 1 and its error is 1/e_FE − 1.
     let k = r.normal_laws.iter().position(|l| l == "hertz").unwrap();
     let lh = &r.head_on[1].laws[k];
@@ -84,6 +101,19 @@ fn tiny_matrix_runs_end_to_end_and_reuses_its_cache() {
     assert_eq!(mtimes(&out.join("fe")), cached, "the cache was rewritten");
     let again = std::fs::read_to_string(out.join("REPORT.md")).unwrap();
     assert_eq!(again, report, "a rerun from the cache changed the report");
+    // A cache file of another FE model (the single level-0 run's) is rerun, the other reused.
+    let file = &cached[0].0;
+    let text = std::fs::read_to_string(file).unwrap();
+    let model = format!("\"model\":\"{}\"", FePlan::new(-1, 2).unwrap().model());
+    assert!(text.contains(&model), "{text:.200}");
+    let old = "\"model\":\"section, ladder level 0 sized from the Hertz contact radius, one run\"";
+    std::fs::write(file, text.replace(&model, old)).unwrap();
+    let third = run_bench(&options(&out, Mode::Full), &registry, &quiet).unwrap();
+    assert_eq!((third.stats[0].computed, third.stats[0].reused), (1, 1));
+    let mut other_plan = options(&out, Mode::LawsOnly);
+    other_plan.plan = FePlan::new(-1, 4).unwrap();
+    let fourth = run_bench(&other_plan, &registry, &quiet).unwrap();
+    assert_eq!((fourth.stats[0].reused, fourth.stats[0].missing), (0, 2));
     let empty = scratch("laws-bench-empty");
     let none = run_bench(&options(&empty, Mode::LawsOnly), &registry, &quiet).unwrap();
     assert_eq!((none.stats[0].computed, none.stats[0].missing), (0, 2));
@@ -120,4 +150,84 @@ fn a_bad_matrix_file_is_one_line_naming_the_field() {
         assert!(err.contains(&format!("invalid {field} =")), "{text}: {err}");
     }
     let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// Similarity: for a bilinear metal the D = 5 mm point is the D = 20 mm one scaled (e
+/// unchanged, δ_max and t_c ∝ D, F ∝ D²) to 1e-6 (aluminum at 1.39 m/s, v/v_y = 10: little
+/// plasticity, so round-off is not amplified as on copper-fe, docs/contact-laws.md), and the bench scales the smaller diameter
+/// of a bilinear metal except at the check speed, and runs the Johnson-Cook copper at both.
+#[test]
+fn a_scaled_point_equals_a_run_one() {
+    let plan = FePlan::new(-1, 2).unwrap();
+    let point = |d: f64| {
+        let m = Matrix::from_toml(
+            &format!(
+                "metals = [\"aluminum\"]\nspeeds = [1.3895]\ndiameters = [{d}]\noblique = false"
+            ),
+            "one",
+        )
+        .unwrap();
+        m.head_on_points().unwrap().remove(0)
+    };
+    let large = head_on_fe(&point(0.02), &plan).unwrap();
+    let small = head_on_fe(&point(0.005), &plan).unwrap();
+    let d = check_differences(&small, 0.005, &large, 0.02);
+    assert!(d.iter().all(|x| x.abs() < 1e-6), "{d:?}");
+    let scaled = large.scaled(0.25, 0.02);
+    let (a, b) = (&small.curve, &scaled.curve);
+    assert_eq!(a.len(), b.len());
+    for k in 0..3 {
+        let peak = b.iter().map(|r| r[k].abs()).fold(0.0, f64::max);
+        for (x, y) in a.iter().zip(b) {
+            assert!((x[k] - y[k]).abs() <= 1e-6 * peak, "{x:?} {y:?}");
+        }
+    }
+    let m = Matrix::from_toml(
+        "metals = [\"steel\", \"ofhc-copper\"]\nspeeds = [0.1, 1.0, 10.0]\ndiameters = [0.005, 0.02]",
+        "m",
+    )
+    .unwrap();
+    let pts = m.head_on_points().unwrap();
+    let scaled: Vec<(String, f64, f64)> = sources(&pts)
+        .iter()
+        .zip(&pts)
+        .filter_map(|(s, p)| match s {
+            Source::Scaled { from } => {
+                assert_eq!(
+                    (&pts[*from].metal, pts[*from].diameter, pts[*from].speed),
+                    (&p.metal, 0.02, p.speed)
+                );
+                Some((p.metal.clone(), p.diameter, p.speed))
+            }
+            Source::Run => None,
+        })
+        .collect();
+    assert_eq!(
+        scaled,
+        vec![("steel".into(), 0.005, 0.1), ("steel".into(), 0.005, 10.0)]
+    );
+}
+
+#[test]
+fn a_bad_plan_is_one_line_naming_the_flag() {
+    for (args, flag) in [
+        (["--fe-level", "9"], "--fe-level"),
+        (["--fe-level=-3", "--jobs=2"], "--fe-level"),
+        (["--phase-meshes", "3"], "--phase-meshes"),
+        (["--phase-meshes", "0"], "--phase-meshes"),
+    ] {
+        let out = Command::new(env!("CARGO_BIN_EXE_twoball"))
+            .args(["laws", "bench", "--laws-only", "--out"])
+            .arg(std::env::temp_dir().join("twoball-bad-plan"))
+            .args(args)
+            .output()
+            .unwrap();
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert!(!out.status.success(), "{args:?}: accepted");
+        assert_eq!(err.trim().lines().count(), 1, "{args:?}: {err}");
+        assert!(
+            err.contains(&format!("invalid {flag} =")),
+            "{args:?}: {err}"
+        );
+    }
 }

@@ -51,11 +51,23 @@ pub struct LawBenchArgs {
     /// FE points run at once.
     #[arg(long, default_value_t = 2)]
     pub jobs: usize,
+    /// Family level of the fine phase ensemble of each head-on FE point (coarse: one below).
+    #[arg(long, value_name = "L", allow_hyphen_values = true,
+          default_value_t = crate::study::laws_bench::fe::DEFAULT_FE_PLAN.level)]
+    pub fe_level: i32,
+    /// Meshes per phase ensemble (even, >= 2).
+    #[arg(long, value_name = "M",
+          default_value_t = crate::study::laws_bench::fe::DEFAULT_FE_PLAN.meshes)]
+    pub phase_meshes: usize,
+    /// Run every diameter of the bilinear metals instead of scaling the smaller ones from
+    /// the largest (similarity).
+    #[arg(long)]
+    pub no_similarity: bool,
 }
 
 /// `twoball laws bench` with `registry`.
 pub fn bench_with(a: LawBenchArgs, registry: &Registry) -> Result<()> {
-    use crate::study::laws_bench::{matrix::Matrix, run_bench, BenchOptions, Mode};
+    use crate::study::laws_bench::{fe::FePlan, matrix::Matrix, run_bench, BenchOptions, Mode};
     if a.jobs == 0 {
         return Err(Error::invalid("--jobs", a.jobs, ">= 1"));
     }
@@ -71,7 +83,8 @@ pub fn bench_with(a: LawBenchArgs, registry: &Registry) -> Result<()> {
         (_, true) => Mode::LawsOnly,
         _ => Mode::Full,
     };
-    let command = format!(
+    let plan = FePlan::new(a.fe_level, a.phase_meshes)?;
+    let mut command = format!(
         "twoball laws bench --out {}{} --jobs {}",
         a.out.display(),
         a.matrix
@@ -79,18 +92,26 @@ pub fn bench_with(a: LawBenchArgs, registry: &Registry) -> Result<()> {
             .map_or(String::new(), |p| format!(" --matrix {}", p.display())),
         a.jobs
     );
+    if plan != FePlan::default() {
+        command += &format!(" --fe-level {} --phase-meshes {}", plan.level, plan.meshes);
+    }
+    if a.no_similarity {
+        command += " --no-similarity";
+    }
     let opts = BenchOptions {
         out: a.out,
         matrix,
         mode,
         jobs: a.jobs,
+        plan,
+        similarity: !a.no_similarity,
         command,
     };
     let r = run_bench(&opts, registry, &|line: &str| eprintln!("{line}"))?;
     let [h, o] = r.stats;
     println!(
-        "FE points: head-on {} run, {} from the cache, {} missing; oblique {} run, {} from the cache, {} missing",
-        h.computed, h.reused, h.missing, o.computed, o.reused, o.missing
+        "FE points: head-on {} run, {} from the cache, {} scaled, {} missing; oblique {} run, {} from the cache, {} missing",
+        h.computed, h.reused, h.scaled, h.missing, o.computed, o.reused, o.missing
     );
     if let Some(p) = r.report {
         println!("wrote {}", p.display());

@@ -105,6 +105,8 @@ pub struct CacheStats {
     pub reused: usize,
     /// Points neither cached nor run (`--laws-only`).
     pub missing: usize,
+    /// Points scaled from another point's answer (similarity), not run.
+    pub scaled: usize,
 }
 
 /// The cache folder `DIR/fe` of a benchmark output folder.

@@ -1,13 +1,17 @@
-//! The FE side of the benchmark: one head-on point on the meridian section
-//! ([`head_on_fe`]) and one oblique point on the 3D half model ([`oblique_fe`]), each with
-//! the numbers the laws are compared with.
+//! The FE side of the benchmark: one head-on point on the meridian section, converged over
+//! the phase of its rings with error bars under an [`FePlan`] ([`head_on_fe`]; a point of a
+//! rate-independent metal may be scaled from one of another diameter, [`FePoint::scaled`]),
+//! and one oblique point on the 3D half model ([`oblique_fe`]), each with the numbers the
+//! laws are compared with.
 
 use super::matrix::{HeadOnPoint, ObliquePoint};
 use crate::analytic::{Body, HertzPair};
 use crate::error::{Error, Result};
-use crate::fe::axisym::impact::{HeadOn, Target};
-use crate::mesh::meridian::ladder_ball;
+use crate::fe::axisym::element::QuadFormulation;
 use crate::scene::Scene;
+use crate::study::phase_ensemble::{
+    converged_head_on, Bar as EnsembleBar, HeadOnCase, HeadOnTarget, PhasePlan, MIN_LEVEL,
+};
 use crate::study::simulate::RunOptions;
 use crate::study::single::run_scene;
 use serde::{Deserialize, Deserializer, Serialize, Serializer};
@@ -63,8 +67,12 @@ pub struct FePoint {
     pub peak_force: Bar,
     /// The pilot run's contact history: rows [t (s), δ (m), F (N)].
     pub curve: Vec<[f64; 3]>,
-    /// Seconds of one core the point cost (the runs' wall time, each run on one thread).
+    /// Seconds of one core the point cost (the runs' wall times, each run on one thread;
+    /// 0 for a scaled point).
     pub cpu_seconds: f64,
+    /// Diameter (m) of the run point this one is scaled from by similarity (`None`: run).
+    #[serde(default)]
+    pub scaled_from: Option<f64>,
 }
 
 /// What the FE says about one oblique point (contact frame: normal x, tangential y, spins
@@ -89,6 +97,78 @@ pub struct ObliqueFe {
     pub wall_seconds: f64,
 }
 
+/// How converged every head-on FE point is: the phase ensembles of
+/// [`crate::study::phase_ensemble::converged_head_on`], fine on family level `level`,
+/// coarse on `level − 1`, `meshes` meshes each.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct FePlan {
+    /// Family level of the fine ensemble ([`PhasePlan::level`]).
+    pub level: i32,
+    /// Meshes per ensemble (even, ≥ 2).
+    pub meshes: usize,
+}
+
+/// The bench's default plan: fine level 0, coarse level −1, four meshes each.
+pub const DEFAULT_FE_PLAN: FePlan = FePlan {
+    level: 0,
+    meshes: 4,
+};
+
+impl Default for FePlan {
+    fn default() -> Self {
+        DEFAULT_FE_PLAN
+    }
+}
+
+impl FePlan {
+    /// A checked plan.
+    ///
+    /// Errors: a level outside the fine levels phase_ensemble accepts, or `meshes` odd or
+    /// below 2 (one line naming `--fe-level` or `--phase-meshes`).
+    pub fn new(level: i32, meshes: usize) -> Result<FePlan> {
+        let max = crate::mesh::meridian_ladder::MAX_LEVEL as i32;
+        if !(MIN_LEVEL..=max).contains(&level) {
+            return Err(Error::invalid(
+                "--fe-level",
+                level,
+                format!("an integer in {MIN_LEVEL}..={max}"),
+            ));
+        }
+        if meshes < 2 || !meshes.is_multiple_of(2) {
+            return Err(Error::invalid(
+                "--phase-meshes",
+                meshes,
+                "an even number >= 2",
+            ));
+        }
+        Ok(FePlan { level, meshes })
+    }
+
+    /// The FE model's name stored in every cache file of this plan (a file of another plan
+    /// is rerun).
+    pub fn model(&self) -> String {
+        format!(
+            "{FE_MODEL}: fine family level {}, coarse {}, {} meshes each, sized from the Hertz \
+             contact radius",
+            self.level,
+            self.level - 1,
+            self.meshes
+        )
+    }
+
+    /// The plan of `study::phase_ensemble`.
+    pub fn phase_plan(&self) -> PhasePlan {
+        PhasePlan {
+            level: self.level,
+            meshes: self.meshes,
+        }
+    }
+}
+
+/// The FE model of the head-on points, the start of every cache file's model name
+/// ([`FePlan::model`] adds the plan).
+pub const FE_MODEL: &str = "section phase ensemble with error bars";
+
 /// Hertz's contact radius a = √(R*δ_max) (m) of the point's pair at its speed.
 ///
 /// Errors: a diameter or material the ball rejects.
@@ -98,30 +178,74 @@ pub fn hertz_contact_radius(p: &HeadOnPoint) -> Result<f64> {
     Ok(pair.contact_radius(pair.max_approach(p.speed)))
 }
 
-/// The FE answer for one head-on point: e, δ_max, t_c and the peak force with their error
-/// bars, the pilot run's (t, δ, F) rows and the CPU seconds spent.
+/// The head-on case of `point` for `study::phase_ensemble` (two identical balls, the
+/// default one-point quads).
+pub fn head_on_case(point: &HeadOnPoint) -> HeadOnCase {
+    HeadOnCase {
+        diameter: point.diameter,
+        material: point.material,
+        relative_speed: point.speed,
+        target: HeadOnTarget::IdenticalBall,
+        formulation: QuadFormulation::default(),
+    }
+}
+
+/// A bar of `study::phase_ensemble` as a bench bar.
+fn bar_of(b: &EnsembleBar) -> Bar {
+    Bar {
+        value: b.value,
+        error: b.error,
+    }
+}
+
+/// The FE answer for one head-on point under `plan`: e, δ_max, t_c and the peak force as
+/// the fine ensemble's means with their error bars, the fine pilot run's (t, δ, F) rows and
+/// the CPU seconds of all runs.
 ///
 /// Errors: a mesh the ladder rejects (contact radius outside its range), a run that fails
 /// (named by the section model).
-pub fn head_on_fe(point: &HeadOnPoint) -> Result<FePoint> {
-    // One level-0 run: no error bar. `study::phase_ensemble::converged_head_on` gives the
-    // bar at about 8-16 times this cost (over the bench's 20 min at the low speeds); using it
-    // here must also rename super::FE_MODEL, so that cached single runs are rerun.
-    let a = hertz_contact_radius(point)?;
-    let mesh = ladder_ball(point.diameter, a, 0)?;
-    let run = HeadOn::new(mesh, point.material, 0.5 * point.speed, Target::MirrorBall).run()?;
+pub fn head_on_fe(point: &HeadOnPoint, plan: &FePlan) -> Result<FePoint> {
+    let answer = converged_head_on(&head_on_case(point), &plan.phase_plan())?;
     Ok(FePoint {
-        e: Bar::bare(run.e),
-        delta_max: Bar::bare(run.delta_max),
-        contact_duration: Bar::bare(run.contact_duration),
-        peak_force: Bar::bare(run.peak_force),
-        curve: run
+        e: bar_of(&answer.e),
+        delta_max: bar_of(&answer.delta_max),
+        contact_duration: bar_of(&answer.contact_duration),
+        peak_force: bar_of(&answer.peak_force),
+        curve: answer
+            .pilot
             .history
             .iter()
             .map(|r| [r.t, r.delta, r.normal_force])
             .collect(),
-        cpu_seconds: run.wall_time_s,
+        cpu_seconds: answer.cpu_time_s,
+        scaled_from: None,
     })
+}
+
+impl FePoint {
+    /// The point of the geometrically similar pair `factor` times larger (rate-independent
+    /// material, mesh sized from the Hertz contact radius ∝ D): e unchanged, δ_max and t_c
+    /// times `factor`, the peak force times `factor`², the curve likewise; no CPU time.
+    /// `from_diameter` (m) is this point's diameter, recorded in `scaled_from`.
+    pub fn scaled(&self, factor: f64, from_diameter: f64) -> FePoint {
+        let times = |b: Bar, k: f64| Bar {
+            value: k * b.value,
+            error: k * b.error,
+        };
+        FePoint {
+            e: self.e,
+            delta_max: times(self.delta_max, factor),
+            contact_duration: times(self.contact_duration, factor),
+            peak_force: times(self.peak_force, factor * factor),
+            curve: self
+                .curve
+                .iter()
+                .map(|r| [factor * r[0], factor * r[1], factor * factor * r[2]])
+                .collect(),
+            cpu_seconds: 0.0,
+            scaled_from: Some(from_diameter),
+        }
+    }
 }
 
 /// The scene of an oblique point: two identical balls touching along x, relative velocity

@@ -3,13 +3,17 @@
 //! impacts (tangential laws), with a cached FE side, a report, figures and fits.
 //!
 //! - [`matrix`]: the matrix (defaults, TOML) and the pair's yield speed v_y;
-//! - [`fe`]: the FE answer for one head-on point ([`fe::head_on_fe`]) or oblique point;
+//! - [`fe`]: the FE answer for one head-on point ([`fe::head_on_fe`], with error bars under
+//!   an [`fe::FePlan`]) or oblique point;
+//! - [`similarity`]: which head-on points are scaled from another diameter;
 //! - [`cache`]: one JSON per FE point, reused, written as each finishes, run in parallel;
 //! - [`law_side`]: the laws on the same points;
+//! - [`bars`]: the FE error bars in e per metal and the laws within them;
 //! - [`ranking`]: each law's errors against FE and the ranking;
 //! - [`fit`]: the laws fitted to the FE points;
 //! - [`figures`]: the SVG figures; [`report`]: REPORT.md.
 
+pub mod bars;
 pub mod cache;
 pub mod fe;
 pub mod figures;
@@ -18,19 +22,17 @@ pub mod law_side;
 pub mod matrix;
 pub mod ranking;
 pub mod report;
+pub mod similarity;
 
 use crate::analytic::law_fit::Observation;
 use crate::analytic::laws::Registry;
 use crate::error::Result;
 use cache::{CacheStats, FeCache, Stored};
-use fe::{FePoint, ObliqueFe};
+use fe::{FePlan, FePoint, ObliqueFe};
 use law_side::{LawPoint, ObliqueLaw};
 use matrix::{HeadOnPoint, Matrix, ObliquePoint};
 use rayon::prelude::*;
 use std::path::PathBuf;
-
-/// The name of the FE model stored in every cache file (a file of another model is rerun).
-pub const FE_MODEL: &str = "section, ladder level 0 sized from the Hertz contact radius, one run";
 
 /// What a benchmark run does.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -54,6 +56,11 @@ pub struct BenchOptions {
     pub mode: Mode,
     /// FE points run at once.
     pub jobs: usize,
+    /// How converged each head-on FE point is.
+    pub plan: FePlan,
+    /// Scale the smaller diameters of rate-independent metals from the largest
+    /// ([`similarity`]) instead of running them.
+    pub similarity: bool,
     /// The commands that reproduce the run, quoted at the top of the report.
     pub command: String,
 }
@@ -94,6 +101,8 @@ pub struct ObliqueResult {
 pub struct BenchResults {
     /// The matrix.
     pub matrix: Matrix,
+    /// The head-on FE plan.
+    pub plan: FePlan,
     /// Normal law names, in registry order.
     pub normal_laws: Vec<String>,
     /// Tangential law names, in registry order.
@@ -140,6 +149,70 @@ pub fn observations(
         .collect()
 }
 
+/// The FE answers of the head-on `points`: run (through `cache`) or, with
+/// `opts.similarity`, scaled from the run point of the largest diameter
+/// ([`similarity::sources`]); a scaled point is stored in the cache under the model name
+/// with ", scaled by similarity" added.
+///
+/// Errors: a cache file that cannot be written, the thread pool.
+fn head_on_fe_all(
+    opts: &BenchOptions,
+    cache: &FeCache,
+    points: &[HeadOnPoint],
+    progress: &(dyn Fn(&str) + Sync),
+) -> Result<(Vec<Option<Stored<FePoint>>>, CacheStats)> {
+    let sources = if opts.similarity {
+        similarity::sources(points)
+    } else {
+        vec![similarity::Source::Run; points.len()]
+    };
+    let run: Vec<usize> = (0..points.len())
+        .filter(|&i| sources[i] == similarity::Source::Run)
+        .collect();
+    let run_points: Vec<HeadOnPoint> = run.iter().map(|&i| points[i].clone()).collect();
+    let plan = opts.plan;
+    let (answers, mut stats) = cache.run_all(
+        &run_points,
+        opts.jobs,
+        opts.mode == Mode::LawsOnly,
+        |p: &HeadOnPoint| fe::head_on_fe(p, &plan),
+        progress,
+    )?;
+    let mut fe: Vec<Option<Stored<FePoint>>> = vec![None; points.len()];
+    for (i, a) in run.into_iter().zip(answers) {
+        fe[i] = a;
+    }
+    let scaled_cache = FeCache::new(
+        &opts.out,
+        &format!("{}, scaled by similarity", opts.plan.model()),
+    );
+    for (i, source) in sources.iter().enumerate() {
+        let similarity::Source::Scaled { from } = *source else {
+            continue;
+        };
+        let (p, q) = (&points[i], &points[from]);
+        fe[i] = match &fe[from] {
+            Some(Stored::Done(f)) => {
+                Some(Stored::Done(f.scaled(p.diameter / q.diameter, q.diameter)))
+            }
+            Some(Stored::Failed(m)) => Some(Stored::Failed(format!(
+                "scaled from the failed D = {} mm point: {m}",
+                1e3 * q.diameter
+            ))),
+            None => None,
+        };
+        if let Some(f) = &fe[i] {
+            stats.scaled += 1;
+            if scaled_cache.load::<_, FePoint>(p).is_none() {
+                scaled_cache.store(p, f)?;
+            }
+        } else {
+            stats.missing += 1;
+        }
+    }
+    Ok((fe, stats))
+}
+
 /// Runs the benchmark: FE points (cached, `jobs` at once), the laws, the fits, the report
 /// and figures in `opts.out`. `progress` receives one line per FE point run and per stage.
 ///
@@ -150,10 +223,10 @@ pub fn run_bench(
     registry: &Registry,
     progress: &(dyn Fn(&str) + Sync),
 ) -> Result<BenchSummary> {
-    let cache = FeCache::new(&opts.out, FE_MODEL);
+    let cache = FeCache::new(&opts.out, &opts.plan.model());
     let laws_only = opts.mode == Mode::LawsOnly;
     let points = opts.matrix.head_on_points()?;
-    let (fe, s1) = cache.run_all(&points, opts.jobs, laws_only, fe::head_on_fe, progress)?;
+    let (fe, s1) = head_on_fe_all(opts, &cache, &points, progress)?;
     let oblique_points = opts.matrix.oblique_points()?;
     let (ofe, s2) = cache.run_all(
         &oblique_points,
@@ -216,6 +289,7 @@ pub fn run_bench(
         .collect::<Result<Vec<_>>>()?;
     let results = BenchResults {
         matrix: opts.matrix.clone(),
+        plan: opts.plan,
         normal_laws,
         tangential_laws: registry.tangential.iter().map(|s| s.name.into()).collect(),
         head_on,

@@ -2,10 +2,12 @@
 //! metal, the ranking, where each law fails (in numbers), D = 5 against 20 mm, the oblique
 //! impacts, the fits and the cost.
 
+use super::bars::{metal_bars, TARGET_E_BAR};
 use super::figures::Figure;
 use super::fit::{LawFit, MetalFit, FIT_RANGE, TARGET_E_ERROR};
 use super::ranking::{relative_errors, MetalRanking, QUANTITIES};
-use super::{BenchResults, HeadOnResult, FE_MODEL};
+use super::similarity::{check_differences, rate_independent};
+use super::{BenchResults, HeadOnResult};
 use crate::atomic::write_atomic;
 use crate::error::{Error, Result};
 use std::fmt::Write as _;
@@ -70,31 +72,92 @@ fn header(s: &mut String, command: &str, r: &BenchResults) {
          `--laws-only` reruns the laws, fits, figures and this report on the cached FE):\n\n\
          ```sh\n{command}\n```\n"
     );
-    let estimated = r
+    let scaled = r
         .head_on
         .iter()
         .filter_map(|h| h.fe_done())
-        .any(|f| f.e.error.is_finite());
+        .filter(|f| f.scaled_from.is_some())
+        .count();
     let _ = writeln!(
         s,
         "What is measured. Head-on impacts of two identical balls: FE on the meridian section \
-         (one ball against the symmetry plane; FE model: {FE_MODEL}){}; every normal law of \
+         (one ball against the symmetry plane; FE model: {}). Each FE quantity is the fine \
+         ensemble's mean over the phase of the section's surface rings with its error bar: \
+         the two-level estimate from the coarse ensemble plus the fine mean's sampling error \
+         (`study::phase_ensemble::converged_head_on`; docs/contact-penalty.md, \"The section's \
+         converged answer\" and \"Is the ensemble's bar honest?\"){}. Every normal law of \
          `twoball laws` with its default parameters for the pair (as `twoball laws run`), \
          integrated with the Coulomb tangential law (no tangential speed). Errors are relative, \
          (law − FE)/FE, in per cent. Oblique impacts: the 3D half model (default graded mesh, \
-         one run) against every tangential law. v_y is the relative speed at which the pair \
+         one run, no error bar) against every tangential law. v_y is the relative speed at which the pair \
          starts to yield: the Hertz impact whose maximum approach is the three-phase model's \
          yield approach δ₁ = R*(πσ_p/(2E*))² (Li, Yang & Shi eq. 10, σ_p = (1 + π/2)σ_s; two-ball \
          E*, R* = R/2, m* = m/2), v_y = √(16E*√R*δ₁^(5/2)/(15m*)); it does not depend on D. \
          Johnson's onset p₀ = 1.6σ_s gives a v_y smaller by (1.6/(1 + π/2))^(5/2) = 0.306.\n",
-        if estimated {
-            ""
+        r.plan.model(),
+        if scaled > 0 {
+            format!(
+                ". {scaled} head-on points of the bilinear metals are not run but scaled from the \
+                 largest diameter by similarity (e unchanged, δ_max and t_c ∝ D, F ∝ D²; \
+                 marked \"scaled\" in the FE table; the check is in \"D = … against …\")"
+            )
         } else {
-            ". The FE error bars are not estimated in this run (one pilot run per point): the \
-             section's e scatters over the mesh by a few per cent (docs/contact-penalty.md, \
-             \"Why the section's e scatters\"), so law errors in e below about 3 % are within \
-             the FE's own uncertainty"
+            String::new()
         }
+    );
+}
+
+fn bars_section(s: &mut String, r: &BenchResults) {
+    let _ = writeln!(
+        s,
+        "## FE error bars
+"
+    );
+    let _ = writeln!(
+        s,
+        "Per metal, over the head-on points with an FE answer (scaled points included): the \
+         relative FE error bar in e (per cent), the points whose bar is below {:.1} %, and the \
+         laws whose e lies within the FE bar at some points (there the law's error in e cannot \
+         be told from the FE's; count of points).\n",
+        100.0 * TARGET_E_BAR
+    );
+    let _ = writeln!(
+        s,
+        "| metal | points | e bar min (%) | median (%) | max (%) | bar < {:.1} % | laws with e within the FE bar |",
+        100.0 * TARGET_E_BAR
+    );
+    let _ = writeln!(s, "|---|---|---|---|---|---|---|");
+    let stats = metal_bars(r);
+    for m in &stats {
+        let [lo, med, hi] = m.min_median_max();
+        let laws = if m.laws_inside.is_empty() {
+            "none".to_string()
+        } else {
+            m.laws_inside
+                .iter()
+                .map(|(l, n)| format!("{l} ({n})"))
+                .collect::<Vec<_>>()
+                .join(", ")
+        };
+        let _ = writeln!(
+            s,
+            "| {} | {} | {:.2} | {:.2} | {:.2} | {} | {laws} |",
+            m.metal,
+            m.relative.len(),
+            100.0 * lo,
+            100.0 * med,
+            100.0 * hi,
+            m.below_target
+        );
+    }
+    let below: usize = stats.iter().map(|m| m.below_target).sum();
+    let total: usize = stats.iter().map(|m| m.relative.len()).sum();
+    let _ = writeln!(
+        s,
+        "\n{below} of {total} head-on points have an FE bar below {:.1} % in e. The cost and bars \
+         of other plans (`--fe-level`, `--phase-meshes`) are in docs/contact-laws.md, \"FE error \
+         bars\".\n",
+        100.0 * TARGET_E_BAR
     );
 }
 
@@ -158,9 +221,9 @@ fn fe_section(s: &mut String, r: &BenchResults) {
     );
     let _ = writeln!(
         s,
-        "| metal | D (mm) | v (m/s) | v/v_y | e | δ_max (µm) | δ/δ_H | t_c (µs) | F_peak (N) | CPU (s) |"
+        "| metal | D (mm) | v (m/s) | v/v_y | e | e bar (%) | δ_max (µm) | δ/δ_H | t_c (µs) | F_peak (N) | CPU (s) |"
     );
-    let _ = writeln!(s, "|---|---|---|---|---|---|---|---|---|---|");
+    let _ = writeln!(s, "|---|---|---|---|---|---|---|---|---|---|---|");
     for h in &r.head_on {
         let p = &h.point;
         let lead = format!(
@@ -172,22 +235,26 @@ fn fe_section(s: &mut String, r: &BenchResults) {
         );
         match (&h.fe, h.fe_done()) {
             (_, Some(f)) => {
+                let cpu = match f.scaled_from {
+                    Some(d) => format!("scaled from {} mm", 1e3 * d),
+                    None => format!("{:.1}", f.cpu_seconds),
+                };
                 let _ = writeln!(
                     s,
-                    "{lead} {} | {} | {:.3} | {} | {} | {:.1} |",
+                    "{lead} {} | {:.2} | {} | {:.3} | {} | {} | {cpu} |",
                     bar(f.e.value, f.e.error, 1.0, 4),
+                    100.0 * f.e.relative_error(),
                     bar(f.delta_max.value, f.delta_max.error, 1e6, 3),
                     f.delta_max.value / hertz_approach(h),
                     bar(f.contact_duration.value, f.contact_duration.error, 1e6, 2),
                     bar(f.peak_force.value, f.peak_force.error, 1.0, 1),
-                    f.cpu_seconds
                 );
             }
             (Some(super::cache::Stored::Failed(m)), None) => {
-                let _ = writeln!(s, "{lead} failed: {} | | | | | |", m.replace('|', "/"));
+                let _ = writeln!(s, "{lead} failed: {} | | | | | | |", m.replace('|', "/"));
             }
             _ => {
-                let _ = writeln!(s, "{lead} not run | | | | | |");
+                let _ = writeln!(s, "{lead} not run | | | | | | |");
             }
         }
     }
@@ -390,8 +457,10 @@ fn diameter_section(s: &mut String, r: &BenchResults) {
         "v_y does not depend on D, so a rate-independent, size-free model gives the same e at \
          the same v (and the same v/v_y) for both diameters, and δ_max, t_c scale with D. \
          The FE's departures from that (per cent): e({s_}) / e({l_}) − 1 and \
-         (δ_max/D)({s_}) / (δ_max/D)({l_}) − 1; beside them the laws whose e differs between the \
-         diameters (a law with a material time or a speed-fixed stiffness).\n",
+         (δ_max/D)({s_}) / (δ_max/D)({l_}) − 1 (\"scaled\": the {s_} point is the {l_} one \
+         scaled by similarity, so the ratio is 1 by construction; the check below); beside \
+         them the laws whose e differs between the diameters (a law with a material time or a \
+         speed-fixed stiffness).\n",
         s_ = format!("{} mm", 1e3 * small),
         l_ = format!("{} mm", 1e3 * large)
     );
@@ -420,8 +489,16 @@ fn diameter_section(s: &mut String, r: &BenchResults) {
                 "| {metal} | {:.4} | {:.1} | {} | {} | {} |",
                 x.point.speed,
                 x.point.speed / x.yield_speed,
-                pct(fx.e.value / fy.e.value - 1.0),
-                pct((fx.delta_max.value / small) / (fy.delta_max.value / large) - 1.0),
+                if fx.scaled_from.is_some() {
+                    "scaled".to_string()
+                } else {
+                    pct(fx.e.value / fy.e.value - 1.0)
+                },
+                if fx.scaled_from.is_some() {
+                    "scaled".to_string()
+                } else {
+                    pct((fx.delta_max.value / small) / (fy.delta_max.value / large) - 1.0)
+                },
                 if laws.is_empty() {
                     "none".to_string()
                 } else {
@@ -429,6 +506,52 @@ fn diameter_section(s: &mut String, r: &BenchResults) {
                 }
             );
         }
+    }
+    let _ = writeln!(s);
+    similarity_check(s, r, small, large);
+}
+
+/// The similarity check: the rate-independent metals' points run at both diameters while
+/// others of theirs are scaled.
+fn similarity_check(s: &mut String, r: &BenchResults, small: f64, large: f64) {
+    let mut rows = vec![];
+    for metal in &r.matrix.metals {
+        let a = points(r, metal, small);
+        let b = points(r, metal, large);
+        if !a
+            .iter()
+            .any(|h| h.fe_done().is_some_and(|f| f.scaled_from.is_some()))
+        {
+            continue;
+        }
+        for (x, y) in a.iter().zip(&b) {
+            let (Some(fx), Some(fy)) = (x.fe_done(), y.fe_done()) else {
+                continue;
+            };
+            if fx.scaled_from.is_some() || !rate_independent(&x.point.material) {
+                continue;
+            }
+            let d = check_differences(fx, small, fy, large);
+            rows.push(format!(
+                "| {metal} | {:.4} | {:.1e} | {:.1e} | {:.1e} | {:.1e} |",
+                x.point.speed, d[0], d[1], d[2], d[3]
+            ));
+        }
+    }
+    if rows.is_empty() {
+        return;
+    }
+    let _ = writeln!(
+        s,
+        "Similarity check: the {} mm point run, against the {} mm point scaled to it (run / \
+         scaled − 1):\n",
+        1e3 * small,
+        1e3 * large
+    );
+    let _ = writeln!(s, "| metal | v (m/s) | e | δ_max | t_c | F_peak |");
+    let _ = writeln!(s, "|---|---|---|---|---|---|");
+    for row in rows {
+        let _ = writeln!(s, "{row}");
     }
     let _ = writeln!(s);
 }
@@ -639,6 +762,7 @@ pub fn report_text(
     let mut s = String::new();
     header(&mut s, command, r);
     matrix_section(&mut s, r);
+    bars_section(&mut s, r);
     ranking_section(&mut s, rank);
     failures_section(&mut s, r);
     diameter_section(&mut s, r);
