@@ -225,6 +225,28 @@ pub fn hertz_duration(h: &HeadOn, radius: f64, ball_mass: f64, mass2: f64) -> f6
     2.868 * (m_star * m_star / (r_star * e_star * e_star * v)).powf(0.2)
 }
 
+/// One section model of two bodies: `first` (material `mat1`) and `second` (material
+/// `mat2`), whose nodes and quads follow the first's; velocities and supports are left to the
+/// caller.
+fn two_bodies(
+    first: &MeridianMesh,
+    mat1: J2Material,
+    second: &MeridianMesh,
+    mat2: J2Material,
+) -> SectionModel {
+    let n1 = first.nodes.len() as u32;
+    let mut nodes = first.nodes.clone();
+    nodes.extend(&second.nodes);
+    let mut quads = first.quads.clone();
+    quads.extend(second.quads.iter().map(|q| q.map(|i| i + n1)));
+    let mut model = SectionModel::new(nodes, quads, mat1);
+    model.materials.push(mat2);
+    for e in first.quads.len()..model.quads.len() {
+        model.material_of[e] = 1;
+    }
+    model
+}
+
 /// `mesh` mirrored about z = 0 and shifted by `shift` along z (m): quads and segments
 /// re-ordered to stay counter-clockwise.
 fn mirrored(mesh: &MeridianMesh, shift: f64) -> MeridianMesh {
@@ -265,17 +287,12 @@ impl HeadOn {
             ));
         };
         let m2 = mirrored(&w.mesh, radius);
-        let mut nodes = self.mesh.nodes.clone();
-        nodes.extend(&m2.nodes);
-        let mut quads = self.mesh.quads.clone();
-        quads.extend(m2.quads.iter().map(|q| q.map(|i| i + n1 as u32)));
-        let mut model = SectionModel::new(nodes, quads, mat);
-        model
-            .materials
-            .push(J2Material::new(&w.material, w.elastic_only));
-        for e in self.mesh.quads.len()..model.quads.len() {
-            model.material_of[e] = 1;
-        }
+        let mut model = two_bodies(
+            &self.mesh,
+            mat,
+            &m2,
+            J2Material::new(&w.material, w.elastic_only),
+        );
         model.velocity = vec![[0.0, self.speed]; n1];
         model.velocity.extend(vec![[0.0, 0.0]; m2.nodes.len()]);
         for &i in base {
@@ -421,17 +438,12 @@ impl HeadOn {
                 }
                 let r2 = o.mesh.nodes.iter().map(|p| p[1]).fold(f64::MIN, f64::max);
                 let m2 = mirrored(&o.mesh, radius + r2);
-                let mut nodes = self.mesh.nodes.clone();
-                nodes.extend(&m2.nodes);
-                let mut quads = self.mesh.quads.clone();
-                quads.extend(m2.quads.iter().map(|q| q.map(|i| i + n1 as u32)));
-                let mut model = SectionModel::new(nodes, quads, mat);
-                model
-                    .materials
-                    .push(J2Material::new(&o.material, o.elastic_only));
-                for e in self.mesh.quads.len()..model.quads.len() {
-                    model.material_of[e] = 1;
-                }
+                let mut model = two_bodies(
+                    &self.mesh,
+                    mat,
+                    &m2,
+                    J2Material::new(&o.material, o.elastic_only),
+                );
                 let n2 = m2.nodes.len();
                 model.velocity = vec![[0.0, self.speed]; n1];
                 model.velocity.extend(vec![[0.0, -o.speed]; n2]);

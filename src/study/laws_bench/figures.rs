@@ -198,7 +198,7 @@ pub fn write_figures(out: &Path, r: &BenchResults, registry: &Registry) -> Resul
             write(
                 format!("e_v_{metal}.svg"),
                 format!(
-                    "e(v), {metal}, D = {} mm: every law (lines) and FE (points)",
+                    "e(v), {metal}, D = {} mm: every law (lines) and FE (points with their error bars)",
                     1e3 * d
                 ),
                 &c,
