@@ -51,6 +51,17 @@ pub fn segment_length_and_thickness(mesh: &MeridianMesh, s: [u32; 2]) -> Result<
     Ok((l, super::quad::area(&q.map(|n| mesh.nodes[n as usize])) / l))
 }
 
+/// Checks a penalty factor FKN: finite and > 0.
+///
+/// Errors: `contact.fkn` outside that range.
+pub fn check_fkn(fkn: f64) -> Result<()> {
+    if fkn.is_finite() && fkn > 0.0 {
+        Ok(())
+    } else {
+        Err(Error::invalid("contact.fkn", fkn, "FKN > 0, finite"))
+    }
+}
+
 /// Consistent ring areas (m²) and mean element thicknesses (m) of the nodes of `segments`.
 pub fn ring_areas_and_thickness(
     mesh: &MeridianMesh,
@@ -85,9 +96,7 @@ impl RigidPlane {
         fkn: f64,
         youngs: f64,
     ) -> Result<Self> {
-        if !(fkn.is_finite() && fkn > 0.0) {
-            return Err(Error::invalid("contact.fkn", fkn, "FKN > 0, finite"));
-        }
+        check_fkn(fkn)?;
         let nh = ring_areas_and_thickness(mesh, segments)?;
         Ok(RigidPlane {
             z0,

@@ -22,9 +22,9 @@
 //! which bounds its largest eigenvalue by Gershgorin's theorem), shared by the two nodes of a
 //! segment, which the penalty couples.
 
-use super::plane::{segment_length_and_thickness, Side};
+use super::plane::{check_fkn, segment_length_and_thickness, Side};
 use super::section::{ContactState, SectionContact};
-use crate::error::{Error, Result};
+use crate::error::Result;
 use crate::fe::contact::penalty::stable_step;
 use crate::mesh::meridian::MeridianMesh;
 use std::f64::consts::PI;
@@ -93,9 +93,7 @@ impl SegmentPlane {
         fkn: f64,
         youngs: f64,
     ) -> Result<Self> {
-        if !(fkn.is_finite() && fkn > 0.0) {
-            return Err(Error::invalid("contact.fkn", fkn, "FKN > 0, finite"));
-        }
+        check_fkn(fkn)?;
         let mut rings = Vec::with_capacity(segments.len());
         for s in segments {
             let (a, b) = (s[0] as usize, s[1] as usize);
