@@ -19,7 +19,7 @@
 //! (`fe::axisym::plane_segment`) instead of lumping it at the nodes.
 
 use twoball::fe::axisym::element::QuadFormulation;
-use twoball::fe::axisym::impact::{HeadOn, Target};
+use twoball::fe::axisym::impact::{HeadOn, PlaneContact, Target};
 use twoball::fe::axisym::section::SectionSolver;
 use twoball::fe::axisym::subcycle::Integration;
 use twoball::material::Material;
@@ -139,8 +139,11 @@ fn run(arg: &str) -> Result<String, String> {
     let mut h = HeadOn::new(mesh, material, 1.0, Target::MirrorBall);
     h.formulation = form;
     h.integration = integ;
-    if std::env::var("SECTION_CONTACT").as_deref() == Ok("segment") {
-        h.plane_contact = twoball::fe::axisym::impact::PlaneContact::Segment;
+    match std::env::var("SECTION_CONTACT").as_deref() {
+        Ok("segment") => h.plane_contact = PlaneContact::Segment,
+        Ok("kinematic") => h.plane_contact = PlaneContact::Kinematic,
+        Ok("nodal") => h.plane_contact = PlaneContact::Nodal,
+        _ => {}
     }
     let plane = D / 2.0;
     let mut end = [0.0; 5];
@@ -186,7 +189,7 @@ fn run(arg: &str) -> Result<String, String> {
     Ok(format!(
         "{arg}: {} quads, e {:.5}, delta_max {:.3} um, t_c {:.3} us | over KE0: rebound {:.5}, \
          vibration kinetic {:.5}, strain {:.5}, plastic {:.5}, hourglass {:.5}, sum {:.5} | \
-         last ring {:.1} um at {:.1} us, next {:.1} um | energy error {:.1e}, wall {:.1} s",
+         last ring {:.1} um at {:.1} us, next {:.1} um | energy error {:.1e}, wall {:.1} s, {} steps of {:.2e} s, {} quad updates",
         r.elements,
         r.e,
         r.delta_max * 1e6,
@@ -201,7 +204,10 @@ fn run(arg: &str) -> Result<String, String> {
         t_last * 1e6,
         next * 1e6,
         r.energy_error,
-        r.wall_time_s
+        r.wall_time_s,
+        r.steps,
+        r.dt,
+        r.element_updates
     ))
 }
 

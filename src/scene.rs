@@ -119,6 +119,20 @@ pub struct ContactSettings {
     pub penalty_factor: f64,
     /// Friction model.
     pub friction: Friction,
+    /// How the axisymmetric section enforces its rigid plane (the mirror plane of two equal
+    /// balls, or a rigid wall); the 3D model always uses its penalty.
+    pub plane: PlaneEnforcement,
+}
+
+/// How the section's rigid plane is enforced (`contact.plane`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Default)]
+#[serde(rename_all = "lowercase")]
+pub enum PlaneEnforcement {
+    /// A unilateral kinematic constraint: no penalty compliance, no step limit of its own.
+    #[default]
+    Kinematic,
+    /// The 3D model's penalty rule (FKN · E · A / h per node, times `penalty_factor`).
+    Penalty,
 }
 
 pub use crate::fe::Formulation;
@@ -244,7 +258,7 @@ const MATERIAL_KEYS: [&str; 9] = [
     "mu_static",
 ];
 const MESH_KEYS: [&str; 3] = ["size", "pole_size", "file"];
-const CONTACT_KEYS: [&str; 2] = ["penalty_factor", "friction"];
+const CONTACT_KEYS: [&str; 3] = ["penalty_factor", "friction", "plane"];
 const SOLVER_KEYS: [&str; 6] = [
     "element",
     "time_step_factor",
@@ -611,9 +625,16 @@ fn read_contact(c: Option<Reader<'_>>) -> Result<ContactSettings> {
     let mut out = ContactSettings {
         penalty_factor: 1.0,
         friction: Friction::On,
+        plane: PlaneEnforcement::Kinematic,
     };
     let Some(c) = c else { return Ok(out) };
     c.only(&CONTACT_KEYS)?;
+    if let Some(p) = c.choice("plane", &["kinematic", "penalty"])? {
+        out.plane = match p {
+            "kinematic" => PlaneEnforcement::Kinematic,
+            _ => PlaneEnforcement::Penalty,
+        };
+    }
     if let Some(p) = c.f64(
         "penalty_factor",
         |p| (1e-3..=1e3).contains(&p),

@@ -192,3 +192,53 @@ fn default_scene_ladder() {
         }
     }
 }
+
+/// The kinematic plane (the default) is the penalty plane's FKN → ∞ limit: on the level-0
+/// ladder at 2 m/s, elastic, the penalty's δ_max falls as 1/FKN (FKN = 40, 80 extrapolated
+/// linearly in 1/FKN), and the kinematic plane run on the same small step lands on that
+/// limit; at its own step (the quads', 3x the FKN = 10 penalty's) it stays within 0.1 %, and
+/// it returns the energy (the run's last energy balance and e). Fails if the plane keeps a
+/// compliance (e.g. a node put at a fixed fraction of its predicted penetration) or pulls.
+#[test]
+fn the_kinematic_plane_is_the_stiff_limit_of_the_penalty_plane() {
+    use twoball::fe::axisym::impact::PlaneContact;
+    use twoball::mesh::meridian::ladder_ball;
+    let run = |plane: PlaneContact, fkn: f64, factor: f64| {
+        let mesh = ladder_ball(DIAMETER, 470.4e-6, 0).unwrap();
+        let mut h = HeadOn::new(mesh, elastic_copper(), 1.0, Target::MirrorBall);
+        h.elastic_only = true;
+        h.plane_contact = plane;
+        h.fkn = fkn;
+        h.time_step_factor = factor;
+        h.run().unwrap()
+    };
+    let p40 = run(PlaneContact::Nodal, 40.0, 0.9);
+    let p80 = run(PlaneContact::Nodal, 80.0, 0.9);
+    let stiff = 2.0 * p80.delta_max - p40.delta_max;
+    let own = run(PlaneContact::Kinematic, 10.0, 0.9);
+    let small = run(PlaneContact::Kinematic, 10.0, 0.9 * p80.dt / own.dt);
+    let p10 = run(PlaneContact::Nodal, 10.0, 0.9);
+    let rel = |a: f64, b: f64| a / b - 1.0;
+    println!(
+        "δ_max: penalty 40 {:.4e}, 80 {:.4e}, limit {:.4e}; kinematic at step {:.2e} s {:.4e}, \
+         at its own {:.2e} s {:.4e} (penalty 10: step {:.2e} s); e {:.6}, energy error {:.1e}",
+        p40.delta_max,
+        p80.delta_max,
+        stiff,
+        small.dt,
+        small.delta_max,
+        own.dt,
+        own.delta_max,
+        p10.dt,
+        own.e,
+        own.energy_error
+    );
+    assert!(rel(small.delta_max, stiff).abs() < 2e-4);
+    assert!(rel(own.delta_max, stiff).abs() < 1e-3);
+    assert!(own.dt > 3.0 * p10.dt);
+    assert!(own.max_penetration <= 1e-12 * own.delta_max);
+    assert!((0.9999..=1.0).contains(&own.e), "e {}", own.e);
+    let first = own.history.first().unwrap().total;
+    let last = own.history.last().unwrap().total;
+    assert!(rel(last, first).abs() < 1e-5, "{last} vs {first}");
+}

@@ -6,7 +6,8 @@
 //! The ladders are `#[ignore]`d (minutes each); rerun one with
 //! `cargo test --release --test section_ladder NAME -- --ignored --nocapture`; `LADDER_TOP=K`
 //! runs levels 0..=K (default 3; 1 for `plastic_phase_average`, whose `PHASE_MESHES=M` sets
-//! the meshes per level, default 12), `LADDER_FORMULATION=b-bar` the B-bar quads.
+//! the meshes per level, default 12), `LADDER_FORMULATION=b-bar` the B-bar quads,
+//! `LADDER_CONTACT=nodal` the penalty plane instead of the kinematic one.
 
 #[path = "contact_support/hertz.rs"]
 mod hertz;
@@ -14,7 +15,7 @@ mod hertz;
 use hertz::{finite_ball_reference, windowed_peak};
 use twoball::analytic::hertz::HertzPair;
 use twoball::fe::axisym::element::QuadFormulation;
-use twoball::fe::axisym::impact::{HeadOn, ImpactResult, Target};
+use twoball::fe::axisym::impact::{HeadOn, ImpactResult, PlaneContact, Target};
 use twoball::material::Material;
 use twoball::mesh::meridian::{ball, ladder_ball, ladder_pole_size, MeridianMesh, SectionSpec};
 use twoball::mesh::section::quad_area;
@@ -88,6 +89,14 @@ fn formulation() -> QuadFormulation {
     }
 }
 
+/// The plane's enforcement: kinematic, or the nodal penalty with `LADDER_CONTACT=nodal`.
+fn plane_contact() -> PlaneContact {
+    match std::env::var("LADDER_CONTACT").as_deref() {
+        Ok("nodal") => PlaneContact::Nodal,
+        _ => PlaneContact::Kinematic,
+    }
+}
+
 /// Runs levels `0..=top` of the ladder at relative speed `v` (m/s).
 fn ladder(v: f64, elastic: bool, top: u32) -> Vec<Rung> {
     let a = contact_radius(v);
@@ -100,6 +109,7 @@ fn ladder(v: f64, elastic: bool, top: u32) -> Vec<Rung> {
             let mut h = HeadOn::new(mesh, copper(elastic), 0.5 * v, Target::MirrorBall);
             h.elastic_only = elastic;
             h.formulation = formulation();
+            h.plane_contact = plane_contact();
             let run = h.run().unwrap();
             let force_window = windowed_peak(&run.pulse, window);
             let hourglass = run.history.last().map_or(0.0, |r| r.hourglass) / run.initial_kinetic;
@@ -381,6 +391,7 @@ fn plastic_phase_average() {
                 let mesh = ladder_ball(D, aj, level).unwrap();
                 let mut h = HeadOn::new(mesh, copper(false), 1.0, Target::MirrorBall);
                 h.formulation = formulation();
+                h.plane_contact = plane_contact();
                 let run = h.run().unwrap();
                 println!(
                     "level {level}, A {:.3} µm: e {:.5}, δ_max {:.4} µm, {:.1} s",

@@ -14,12 +14,12 @@ use super::simulate::{
 use super::snapshots::Snapshots;
 use crate::error::{Error, Result};
 use crate::fe::axisym::element::QuadFormulation;
-use crate::fe::axisym::impact::{HeadOn, ImpactRow, OtherBall, Target, WallBlock};
+use crate::fe::axisym::impact::{HeadOn, ImpactRow, OtherBall, PlaneContact, Target, WallBlock};
 use crate::fe::axisym::subcycle::Integration;
 use crate::fe::solver::subcycle::{SubcycleReport, Subcycling};
 use crate::fe::Formulation;
 use crate::mesh::meridian::{ball, block, BlockSpec, MeridianMesh, SectionSpec};
-use crate::scene::{BallScene, MeshSettings, Scene, Switch, Touch};
+use crate::scene::{BallScene, MeshSettings, PlaneEnforcement, Scene, Switch, Touch};
 use std::time::Instant;
 
 /// What the section run needs beyond the scene: the kinematics at touch, the analytical
@@ -137,6 +137,10 @@ fn head_on(run: &SectionRun<'_>) -> Result<HeadOn> {
     h.elastic_only = run.elastic_only[0];
     h.formulation = formulation(scene);
     h.fkn = 10.0 * scene.contact.penalty_factor;
+    h.plane_contact = match scene.contact.plane {
+        PlaneEnforcement::Kinematic => PlaneContact::Kinematic,
+        PlaneEnforcement::Penalty => PlaneContact::Nodal,
+    };
     h.time_step_factor = scene.solver.time_step_factor;
     let duration = usable_duration(run.expected_duration);
     h.hold_time = Some(

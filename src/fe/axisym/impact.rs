@@ -9,6 +9,7 @@
 
 use super::element::QuadFormulation;
 use super::plane::{ring_areas_and_thickness, RigidPlane, Side};
+use super::plane_kinematic::KinematicPlane;
 use super::plane_segment::SegmentPlane;
 use super::section::{SectionContact, SectionModel, SectionSolver};
 use super::segment::{Boundary, SegmentPair};
@@ -57,11 +58,14 @@ pub struct WallBlock {
 #[serde(rename_all = "kebab-case")]
 pub enum PlaneContact {
     /// A penalty spring per boundary node ([`RigidPlane`]): the contact area grows ring by ring.
-    #[default]
     Nodal,
     /// Penalty pressure integrated over the penetrated part of each segment
     /// ([`SegmentPlane`]): the contact area grows continuously.
     Segment,
+    /// A unilateral kinematic constraint ([`KinematicPlane`]): no penalty, no compliance, no
+    /// step limit of its own.
+    #[default]
+    Kinematic,
 }
 
 /// The second ball of a two-ball head-on impact.
@@ -429,6 +433,9 @@ impl HeadOn {
                         fkn,
                         youngs,
                     )?),
+                    PlaneContact::Kinematic => {
+                        Box::new(KinematicPlane::new(m, &seg1, radius, Side::Below)?)
+                    }
                 };
                 (model, plane)
             }

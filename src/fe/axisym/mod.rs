@@ -11,6 +11,7 @@
 //! - [`plane`]: penalty contact against a rigid plane z = const;
 //! - [`plane_segment`]: the same plane with the penalty pressure integrated over each
 //!   boundary segment (the contact area grows continuously);
+//! - [`plane_kinematic`]: the same plane as a unilateral kinematic constraint (no penalty);
 //! - [`segment`]: two-pass node-to-segment penalty contact of two meridian boundaries;
 //! - [`subcycle`]: multi-time-step integration (power-of-two step classes, nodal partition);
 //! - [`impact`]: a head-on impact (mirror ball, rigid wall, elastic block or a second ball)
@@ -25,6 +26,7 @@ pub mod element;
 pub mod impact;
 pub mod mass;
 pub mod plane;
+pub mod plane_kinematic;
 pub mod plane_segment;
 pub mod quad;
 pub mod section;

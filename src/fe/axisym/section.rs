@@ -35,6 +35,32 @@ pub trait SectionContact {
     /// it; nodes whose forces are coupled (a node and the segments it meets) share one step.
     /// The smallest of them is [`SectionContact::stable_step`].
     fn node_limits(&self, mass: &[f64], omega: &[f64]) -> Vec<(usize, f64)>;
+    /// True for a node the contact constrains kinematically at its kicks (none for a
+    /// penalty contact).
+    fn holds(&self, _i: usize) -> bool {
+        false
+    }
+    /// A kinematic contact's correction of the acceleration `a` (m/s²) of node `i` at its
+    /// kick `node` (forces already in `a`); returns the work of its force over the kick, J.
+    fn constrain(&mut self, _i: usize, _node: Kick, _a: &mut [f64; 2]) -> f64 {
+        0.0
+    }
+}
+
+/// What the solver passes for one node's kick: its position x^n (m), half-step velocity
+/// v^{n−1/2} (m/s), ring mass (kg), and the steps closed and opened (s).
+#[derive(Debug, Clone, Copy)]
+pub struct Kick {
+    /// Position (r, z), m.
+    pub x: [f64; 2],
+    /// Half-step velocity of the step just closed, m/s.
+    pub v_half: [f64; 2],
+    /// Ring mass, kg.
+    pub mass: f64,
+    /// The step the kick closes, s (0 at the start).
+    pub close: f64,
+    /// The step the kick opens, s.
+    pub open: f64,
 }
 
 /// The meridian model: nodes, quads with their materials, initial velocities, supports and
@@ -181,6 +207,8 @@ pub struct SectionSolver {
     pub(super) element_dt_of: Vec<f64>,
     /// Stable step of each node's contact springs, s (∞ off the contacts).
     pub(super) contact_dt: Vec<f64>,
+    /// 1 + the index of the contact holding each node kinematically (0: none).
+    pub(super) held: Vec<u8>,
     pub(super) schedule: Schedule,
     pub(super) synced_energy: SectionEnergy,
     pub(super) element_updates: u64,
@@ -221,6 +249,16 @@ impl SectionSolver {
                 contact_dt[i] = contact_dt[i].min(dt);
             }
         }
+        let mut held = vec![0u8; n];
+        for (k, c) in contacts.iter().enumerate() {
+            for (i, h) in held.iter_mut().enumerate() {
+                if c.holds(i) {
+                    *h = u8::try_from(k + 1).map_err(|_| {
+                        Error::invalid("contacts", contacts.len(), "at most 255 contacts")
+                    })?;
+                }
+            }
+        }
         let axis = model.nodes.iter().map(|p| p[0] == 0.0).collect();
         let ne = model.quads.len();
         let mut s = SectionSolver {
@@ -236,6 +274,7 @@ impl SectionSolver {
             element_dt: f64::INFINITY,
             element_dt_of: vec![f64::INFINITY; ne],
             contact_dt,
+            held,
             schedule: Schedule::default(),
             synced_energy: SectionEnergy::default(),
             element_updates: 0,
@@ -257,7 +296,16 @@ impl SectionSolver {
         s.dt = s.stable_step();
         if s.subcycled() {
             s.v_prev.clone_from(&s.v);
-            s.synchronise(Schedule::default())?;
+            let (h, sched) = s.plan_cycle(&Schedule::default())?;
+            for i in 0..n {
+                let open = f64::from(1u32 << sched.node_level[i]) * h;
+                s.external_work += s.kick_constraint(i, 0.0, open);
+            }
+            s.start_cycle(h, sched);
+        } else {
+            for i in 0..n {
+                s.external_work += s.kick_constraint(i, 0.0, s.dt);
+            }
         }
         Ok(s)
     }
@@ -287,6 +335,24 @@ impl SectionSolver {
         if self.model.fixed[i][1] {
             self.a[i][1] = 0.0;
         }
+    }
+
+    /// Lets a kinematic contact holding node `i` correct its acceleration at a kick that
+    /// closes a step of `close` s and opens one of `open` s; returns the contact's work, J.
+    #[inline]
+    pub(super) fn kick_constraint(&mut self, i: usize, close: f64, open: f64) -> f64 {
+        let k = self.held[i];
+        if k == 0 || self.model.fixed[i][1] {
+            return 0.0;
+        }
+        let node = Kick {
+            x: self.x[i],
+            v_half: self.v_half[i],
+            mass: self.mass[i],
+            close,
+            open,
+        };
+        self.contacts[usize::from(k) - 1].constrain(i, node, &mut self.a[i])
     }
 
     /// Updates quad `e` over `dt` (s) with the current x and v^{n+1/2} of its nodes, adds its
@@ -396,20 +462,22 @@ impl SectionSolver {
         self.time += dt;
         self.steps += 1;
         self.forces(dt)?;
+        let next = self.stable_step();
+        if !next.is_finite() || next <= 0.0 {
+            return Err(Error::Numerical(format!(
+                "stable step {next:.3e} s at t = {:.6e} s",
+                self.time
+            )));
+        }
         for i in 0..n {
+            ext += self.kick_constraint(i, dt, next);
             for c in 0..2 {
                 self.v[i][c] = self.v_half[i][c] + 0.5 * dt * self.a[i][c];
             }
         }
         self.kinetic_central = if self.steps > 1 { kc } else { self.kinetic() };
         self.external_work += ext;
-        self.dt = self.stable_step();
-        if !self.dt.is_finite() || self.dt <= 0.0 {
-            return Err(Error::Numerical(format!(
-                "stable step {:.3e} s at t = {:.6e} s",
-                self.dt, self.time
-            )));
-        }
+        self.dt = next;
         Ok(())
     }
 

@@ -205,6 +205,13 @@ impl SectionSolver {
         }
         self.element_updates += due_elements.len() as u64;
         self.contact_forces();
+        // At the end of a cycle the next one is planned first: a kinematic contact needs the
+        // step each node opens.
+        let next = if sync {
+            Some(self.plan_cycle(&sched)?)
+        } else {
+            None
+        };
         let alpha = self.model.damping;
         let mut ext = 0.0;
         for &i in due_nodes {
@@ -219,6 +226,11 @@ impl SectionSolver {
                 ext += big * vh[c] * (self.model.loads[i][c] - alpha * self.mass[i] * vh[c]);
             }
             self.constrain_acceleration(i);
+            let open = match &next {
+                Some((h2, s2)) => f64::from(1u32 << s2.node_level[i]) * h2,
+                None => big,
+            };
+            ext += self.kick_constraint(i, big, open);
             for c in 0..2 {
                 self.v[i][c] = vh[c] + 0.5 * big * self.a[i][c];
             }
@@ -227,11 +239,15 @@ impl SectionSolver {
             }
         }
         self.external_work += ext;
-        if sync {
-            self.synchronise(sched)
-        } else {
-            self.schedule = sched;
-            Ok(())
+        match next {
+            Some((h2, s2)) => {
+                self.start_cycle(h2, s2);
+                Ok(())
+            }
+            None => {
+                self.schedule = sched;
+                Ok(())
+            }
         }
     }
 
@@ -249,11 +265,11 @@ impl SectionSolver {
         }
     }
 
-    /// Chooses h and the levels from the current limits, opens every node's kick, and stores
-    /// the energies of this instant (the central kinetic energy ½ m v^{n−1/2}·v^{n+1/2}).
-    pub(super) fn synchronise(&mut self, old: Schedule) -> Result<()> {
+    /// The fine step h (s) and the levels of the next cycle from the current limits (`old`
+    /// is reused when the levels are unchanged).
+    pub(super) fn plan_cycle(&self, old: &Schedule) -> Result<(f64, Schedule)> {
         let Integration::Subcycled { max_level } = self.model.integration else {
-            unreachable!("synchronise is only called by the subcycled integration")
+            unreachable!("plan_cycle is only called by the subcycled integration")
         };
         let lim = node_limits(&self.model.quads, &self.element_dt_of, &self.contact_dt);
         let factor = self.model.time_step_factor;
@@ -269,10 +285,19 @@ impl SectionSolver {
             .map(|&l| node_level(l, h, factor, max_level))
             .collect();
         let sched = if levels == old.node_level {
-            Schedule { count: 0, ..old }
+            Schedule {
+                count: 0,
+                ..old.clone()
+            }
         } else {
             Schedule::new(&self.model.quads, levels)
         };
+        Ok((h, sched))
+    }
+
+    /// Starts a cycle of fine step `h` (s) and schedule `sched`: opens every node's kick and
+    /// stores the energies of this instant (the central kinetic energy ½ m v^{n−1/2}·v^{n+1/2}).
+    pub(super) fn start_cycle(&mut self, h: f64, sched: Schedule) {
         self.dt = h;
         let mut kc = 0.0;
         for i in 0..self.x.len() {
@@ -284,7 +309,6 @@ impl SectionSolver {
         self.kinetic_central = if self.steps == 0 { self.kinetic() } else { kc };
         self.schedule = sched;
         self.synced_energy = self.fresh_energy();
-        Ok(())
     }
 }
 

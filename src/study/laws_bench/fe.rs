@@ -167,7 +167,7 @@ impl FePlan {
 
 /// The FE model of the head-on points, the start of every cache file's model name
 /// ([`FePlan::model`] adds the plan).
-pub const FE_MODEL: &str = "section phase ensemble with error bars";
+pub const FE_MODEL: &str = "section phase ensemble with error bars, kinematic symmetry plane";
 
 /// Hertz's contact radius a = √(R*δ_max) (m) of the point's pair at its speed.
 ///
