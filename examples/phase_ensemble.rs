@@ -5,9 +5,11 @@
 //!
 //! `cargo run --release --example phase_ensemble -- LEVEL MESHES V_REL [MATERIAL] [one-point|b-bar] [D]`
 //! (LEVEL −2..7, MESHES even, V_REL the relative speed in m/s, MATERIAL a preset, default
-//! copper-fe, D the diameter in m, default 0.02).
+//! copper-fe, D the diameter in m, default 0.02). `PHASE_CONTACT=nodal` enforces the symmetry
+//! plane by the penalty springs instead of the kinematic constraint.
 
 use twoball::fe::axisym::element::QuadFormulation;
+use twoball::fe::axisym::impact::PlaneContact;
 use twoball::material::Material;
 use twoball::study::phase_ensemble::{converged_head_on, HeadOnCase, HeadOnTarget, PhasePlan};
 
@@ -47,6 +49,10 @@ fn run(args: &[String]) -> Result<(), String> {
         relative_speed: v,
         target: HeadOnTarget::IdenticalBall,
         formulation,
+        plane: match std::env::var("PHASE_CONTACT").as_deref() {
+            Ok("nodal") => PlaneContact::Nodal,
+            _ => PlaneContact::Kinematic,
+        },
     };
     let ans = converged_head_on(&case, &PhasePlan { level, meshes }).map_err(|e| e.to_string())?;
     for (label, en) in [("coarse", &ans.coarse), ("fine", &ans.fine)] {

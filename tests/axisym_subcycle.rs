@@ -114,7 +114,7 @@ fn default_scene_updates_under_a_third_of_the_quads_per_step() {
         J2Material::new(&material, false),
     );
     model.velocity = vec![[0.0, 1.0]; n];
-    model.integration = Integration::subcycled();
+    model.integration = Integration::Subcycled { max_level: 3 };
     let contact = &mesh.segment_sets["contact"];
     let plane =
         RigidPlane::new(&mesh, contact, D / 2.0, Side::Below, 10.0, material.youngs).unwrap();

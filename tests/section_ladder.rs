@@ -466,6 +466,7 @@ fn phase_honesty() {
             relative_speed: 2.0 * scene.ball1.velocity[0],
             target: HeadOnTarget::IdenticalBall,
             formulation: formulation(),
+            plane: plane_contact(),
         };
         let family = level - 1;
         let meshes = if level > 0 { truth_meshes } else { 8 };

@@ -22,7 +22,7 @@ use super::convergence::{estimate, Estimate};
 use crate::analytic::hertz::HertzPair;
 use crate::error::{Error, Result};
 use crate::fe::axisym::element::QuadFormulation;
-use crate::fe::axisym::impact::{HeadOn, ImpactResult, Target};
+use crate::fe::axisym::impact::{HeadOn, ImpactResult, PlaneContact, Target};
 use crate::material::Material;
 use crate::mesh::meridian::{ladder_ball, MeridianMesh};
 use rayon::prelude::*;
@@ -181,6 +181,8 @@ pub struct HeadOnCase {
     pub target: HeadOnTarget,
     /// Element formulation.
     pub formulation: QuadFormulation,
+    /// How the rigid plane (the symmetry plane, or the wall) is enforced.
+    pub plane: PlaneContact,
 }
 
 /// How fine and how large the ensembles are.
@@ -360,6 +362,7 @@ fn head_on(case: &HeadOnCase, mesh: MeridianMesh) -> HeadOn {
     };
     let mut h = HeadOn::new(mesh, case.material, speed, target);
     h.formulation = case.formulation;
+    h.plane_contact = case.plane;
     h
 }
 

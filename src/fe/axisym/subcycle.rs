@@ -31,7 +31,7 @@ pub enum Integration {
 pub const MAX_LEVEL: u8 = 10;
 
 /// Default highest level of [`Integration::Subcycled`].
-pub const DEFAULT_MAX_LEVEL: u8 = 3;
+pub const DEFAULT_MAX_LEVEL: u8 = 2;
 
 /// Margin on a node's limit for the levels above 0: room for its quads to deform during a
 /// cycle, whose limits are measured at its start.

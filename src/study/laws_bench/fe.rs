@@ -8,6 +8,7 @@ use super::matrix::{HeadOnPoint, ObliquePoint};
 use crate::analytic::{Body, HertzPair};
 use crate::error::{Error, Result};
 use crate::fe::axisym::element::QuadFormulation;
+use crate::fe::axisym::impact::PlaneContact;
 use crate::scene::Scene;
 use crate::study::phase_ensemble::{
     converged_head_on, Bar as EnsembleBar, HeadOnCase, HeadOnTarget, PhasePlan, MIN_LEVEL,
@@ -187,6 +188,7 @@ pub fn head_on_case(point: &HeadOnPoint) -> HeadOnCase {
         relative_speed: point.speed,
         target: HeadOnTarget::IdenticalBall,
         formulation: QuadFormulation::default(),
+        plane: PlaneContact::Kinematic,
     }
 }
 
