@@ -297,6 +297,7 @@ impl SectionSolver {
         if s.subcycled() {
             s.v_prev.clone_from(&s.v);
             let (h, sched) = s.plan_cycle(&Schedule::default())?;
+            let sched = sched.unwrap_or_default();
             for i in 0..n {
                 let open = f64::from(1u32 << sched.node_level[i]) * h;
                 s.external_work += s.kick_constraint(i, 0.0, open);

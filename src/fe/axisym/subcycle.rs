@@ -227,7 +227,8 @@ impl SectionSolver {
             }
             self.constrain_acceleration(i);
             let open = match &next {
-                Some((h2, s2)) => f64::from(1u32 << s2.node_level[i]) * h2,
+                Some((h2, Some(s2))) => f64::from(1u32 << s2.node_level[i]) * h2,
+                Some((h2, None)) => f64::from(1u32 << sched.node_level[i]) * h2,
                 None => big,
             };
             ext += self.kick_constraint(i, big, open);
@@ -241,6 +242,7 @@ impl SectionSolver {
         self.external_work += ext;
         match next {
             Some((h2, s2)) => {
+                let s2 = s2.unwrap_or(Schedule { count: 0, ..sched });
                 self.start_cycle(h2, s2);
                 Ok(())
             }
@@ -265,9 +267,9 @@ impl SectionSolver {
         }
     }
 
-    /// The fine step h (s) and the levels of the next cycle from the current limits (`old`
-    /// is reused when the levels are unchanged).
-    pub(super) fn plan_cycle(&self, old: &Schedule) -> Result<(f64, Schedule)> {
+    /// The fine step h (s) of the next cycle from the current limits, and its schedule, or
+    /// `None` when its levels are `old`'s (which is then reused).
+    pub(super) fn plan_cycle(&self, old: &Schedule) -> Result<(f64, Option<Schedule>)> {
         let Integration::Subcycled { max_level } = self.model.integration else {
             unreachable!("plan_cycle is only called by the subcycled integration")
         };
@@ -284,14 +286,7 @@ impl SectionSolver {
             .iter()
             .map(|&l| node_level(l, h, factor, max_level))
             .collect();
-        let sched = if levels == old.node_level {
-            Schedule {
-                count: 0,
-                ..old.clone()
-            }
-        } else {
-            Schedule::new(&self.model.quads, levels)
-        };
+        let sched = (levels != old.node_level).then(|| Schedule::new(&self.model.quads, levels));
         Ok((h, sched))
     }
 
