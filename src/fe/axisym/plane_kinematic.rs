@@ -83,6 +83,12 @@ impl KinematicPlane {
             slot,
         })
     }
+
+    /// The index into the plane's nodes of mesh node `i`, or `None` if the plane does not
+    /// hold it.
+    fn slot_of(&self, i: usize) -> Option<usize> {
+        self.slot.get(i).copied().filter(|&k| k != usize::MAX)
+    }
 }
 
 impl SectionContact for KinematicPlane {
@@ -108,11 +114,11 @@ impl SectionContact for KinematicPlane {
     }
 
     fn holds(&self, i: usize) -> bool {
-        self.slot.get(i).is_some_and(|&k| k != usize::MAX)
+        self.slot_of(i).is_some()
     }
 
     fn constrain(&mut self, i: usize, node: Kick, a: &mut [f64; 2]) -> f64 {
-        let Some(&k) = self.slot.get(i).filter(|&&k| k != usize::MAX) else {
+        let Some(k) = self.slot_of(i) else {
             return 0.0;
         };
         let (z, vz) = (node.x[1], node.v_half[1]);
