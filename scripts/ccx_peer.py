@@ -599,6 +599,9 @@ def run_twoball(twoball, scene_path, scene, sets, out):
     twoball's own wall time (results.json wall_time_s, the solve without start-up) is what the
     ratio uses; the wall time of the whole process is printed beside it."""
     cmd = [twoball, "run"] + ([str(scene_path)] if scene_path else [])
+    # ccx runs the 3D balls: twoball's 3D model with its automatic 3D reductions (a variant's
+    # own reduction.symmetry comes later and wins).
+    cmd += ["--set", 'reduction.symmetry="auto-3d"']
     for i, b in enumerate(scene["balls"], start=1):
         m = b["mesh"]
         if "file" not in m:
@@ -653,7 +656,7 @@ def main(argv=None):
     ap.add_argument("--threads", type=int, default=1, help="threads ccx may use (1)")
     ap.add_argument("--twoball-results", help="a twoball results.json of the same scene, to compare")
     ap.add_argument("--run-twoball", action="store_true",
-                    help="run `twoball run` on the same scene and mesh first (its automatic reductions on, "
+                    help="run `twoball run` on the same scene and mesh first (its automatic 3D reductions on, "
                          "unless --twoball-set says otherwise) and compare with it")
     ap.add_argument("--twoball-variant", action="append", default=[], metavar="LABEL=KEY=VALUE;KEY=VALUE",
                     help="also run twoball with these `--set`s (';'-separated) and compare under LABEL "

@@ -31,7 +31,7 @@ import sys
 def run(twoball, out, name, sets):
     """Runs one scene; returns (results dict, peak RSS in bytes)."""
     d = os.path.join(out, name)
-    cmd = [twoball, "run", "--out", d]
+    cmd = [twoball, "run", "--out", d, "--set", 'reduction.symmetry="auto-3d"']
     for s in sets:
         cmd += ["--set", s]
     p = subprocess.Popen(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)

@@ -178,11 +178,13 @@ pub enum Switch {
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "snake_case")]
 pub enum Symmetry {
-    /// The cheapest exact 3D model the scene allows: the quarter or half model of identical
-    /// balls, the full model else.
+    /// The cheapest model the scene allows: the meridian section for a head-on impact of
+    /// built-in meshes starting at first touch, else as [`Symmetry::Auto3d`].
     Auto,
-    /// The meridian section (a head-on impact only): asked for, not chosen automatically
-    /// while its mesh ladders scatter by about 2 % in e (docs/status.md).
+    /// The cheapest exact 3D model the scene allows: the quarter or half model of identical
+    /// balls (or the quarter ball on a wall), the full model else.
+    Auto3d,
+    /// The meridian section (a head-on impact only).
     Axisymmetric,
     /// A quarter of ball 1 against the frictionless symmetry plane (identical balls, head-on).
     Quarter,
@@ -753,9 +755,10 @@ fn read_reduction(r: Option<Reader<'_>>) -> Result<ReductionSettings> {
             }
         }))
     };
-    let symmetries = ["auto", "axisymmetric", "quarter", "half", "off"];
+    let symmetries = ["auto", "auto-3d", "axisymmetric", "quarter", "half", "off"];
     if let Some(s) = r.choice("symmetry", &symmetries)? {
         out.symmetry = match s {
+            "auto-3d" => Symmetry::Auto3d,
             "axisymmetric" => Symmetry::Axisymmetric,
             "quarter" => Symmetry::Quarter,
             "half" => Symmetry::Half,

@@ -251,6 +251,8 @@ fn a_soft_penalty_run_warns_and_the_default_run_does_not() {
             "run",
             "--set",
             "contact.penalty_factor=0.001",
+            "--set",
+            "reduction.symmetry=\"auto-3d\"",
             "--out",
             "soft",
         ],
@@ -282,7 +284,7 @@ pole_size_per_diameter = 0.17
 quick = []
 [axis]
 speed = [{ label = "v1", set = ["ball1.velocity=[0.5,0,0]", "ball2.velocity=[-0.5,0,0]"] }]
-material = [{ label = "steel", set = ["ball1.material=steel", "ball2.material=steel"] }]
+material = [{ label = "steel", set = ["ball1.material=steel", "ball2.material=steel", "reduction.symmetry=\"auto-3d\""] }]
 [[group]]
 axes = ["speed", "material"]
 "#,

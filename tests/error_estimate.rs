@@ -18,7 +18,10 @@ use twoball::study::single::{run_level, run_scene, run_scene_with_estimate};
 
 /// The default scene with dotted-path overrides.
 fn scene(sets: &[&str]) -> Scene {
-    let sets: Vec<Override> = sets.iter().map(|s| Override::parse(s).unwrap()).collect();
+    let sets: Vec<Override> = std::iter::once(&"reduction.symmetry=\"auto-3d\"")
+        .chain(sets)
+        .map(|s| Override::parse(s).unwrap())
+        .collect();
     Scene::from_toml(DEFAULT_SCENE, Path::new("."), &sets).unwrap()
 }
 

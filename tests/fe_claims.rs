@@ -13,9 +13,13 @@ use twoball::scene::{Override, Scene, DEFAULT_SCENE};
 use twoball::study::simulate::RunOptions;
 use twoball::study::single::{run_scene, RunReport};
 
-/// The default scene with dotted-path overrides.
+/// The default scene on the 3D model (`auto-3d`: these are the 3D model's claims) with
+/// dotted-path overrides.
 fn scene(sets: &[&str]) -> Scene {
-    let sets: Vec<Override> = sets.iter().map(|s| Override::parse(s).unwrap()).collect();
+    let sets: Vec<Override> = std::iter::once(&"reduction.symmetry=\"auto-3d\"")
+        .chain(sets)
+        .map(|s| Override::parse(s).unwrap())
+        .collect();
     Scene::from_toml(DEFAULT_SCENE, Path::new("."), &sets).unwrap()
 }
 

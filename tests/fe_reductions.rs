@@ -12,8 +12,13 @@ use twoball::scene::{Override, Scene, DEFAULT_SCENE};
 use twoball::study::simulate::{RunOptions, Simulation};
 use twoball::study::single::{run_scene, RunReport};
 
+/// The default scene on the 3D model (`auto-3d`; the section model has no simulated free
+/// flight) with dotted-path overrides.
 fn scene(sets: &[String]) -> Scene {
-    let sets: Vec<Override> = sets.iter().map(|s| Override::parse(s).unwrap()).collect();
+    let sets: Vec<Override> = std::iter::once("reduction.symmetry=\"auto-3d\"")
+        .chain(sets.iter().map(String::as_str))
+        .map(|s| Override::parse(s).unwrap())
+        .collect();
     Scene::from_toml(DEFAULT_SCENE, Path::new("."), &sets).unwrap()
 }
 

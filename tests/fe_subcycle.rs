@@ -520,7 +520,8 @@ fn squeezed_elements_drop_a_level_and_stay_stable() {
 /// element updates than single-step integration, with e, delta_max and the contact duration
 /// unchanged within 0.2 %. About 7 s in the test profile (print the figures with
 /// `cargo test --release --test fe_subcycle default_scene -- --nocapture`); the same
-/// comparison from the command line: `twoball run --set solver.subcycling=off` and `=on`
+/// comparison from the command line: `twoball run --set 'reduction.symmetry="auto-3d"' --set
+/// solver.subcycling=off` and `=on`
 /// (results.json `element_cycles`).
 #[test]
 fn default_scene_three_times_fewer_updates_same_results() {
@@ -529,6 +530,7 @@ fn default_scene_three_times_fewer_updates_same_results() {
     use twoball::study::single::run_scene;
     let run = |sub: Subcycling| {
         let mut scene = Scene::default();
+        scene.reduction.symmetry = twoball::scene::Symmetry::Auto3d;
         scene.solver.subcycling = sub;
         let opts = RunOptions {
             history_rows: 400,

@@ -55,6 +55,8 @@ fn peak_force(r: &RunReport) -> f64 {
 const AXI: &str = "reduction.symmetry=\"axisymmetric\"";
 /// The section's plane as the 3D model's penalty (the default is kinematic).
 const PENALTY_PLANE: &str = "contact.plane=\"penalty\"";
+/// The cheapest exact 3D model: the quarter ball on the wall.
+const QUARTER: &str = "reduction.symmetry=\"auto-3d\"";
 
 #[test]
 fn a_wall_scene_is_ball_one_and_its_mirror_image() {
@@ -86,17 +88,26 @@ fn a_wall_scene_is_ball_one_and_its_mirror_image() {
     assert!((t.t_touch - 0.02).abs() < 1e-12, "{}", t.t_touch);
     let n = t.frame.axes[0];
     assert!(n[0].abs() < 1e-15 && (n[1] - 1.0).abs() < 1e-15 && n[2].abs() < 1e-15);
-    // The models: quarter automatically, the section when asked, no half or full model.
+    // The models: the section automatically and when asked, the quarter ball as the 3D
+    // model (and with the simulated free flight), no half or full model.
     let pick = |sets: &[&str]| {
         let s = wall(sets);
         choose_reduction(&s, &touch(&s))
     };
     let (r, why) = pick(&[]).unwrap();
-    assert_eq!(r, Reduction::Quarter);
-    assert!(why.contains("rigid wall"), "{why}");
+    assert_eq!(r, Reduction::Axisymmetric);
+    assert!(
+        why.contains("rigid wall") && why.contains("kinematic"),
+        "{why}"
+    );
     let (r, why) = pick(&[AXI]).unwrap();
     assert_eq!(r, Reduction::Axisymmetric);
     assert!(why.contains("rigid wall"), "{why}");
+    let (r, why) = pick(&[QUARTER]).unwrap();
+    assert_eq!(r, Reduction::Quarter);
+    assert!(why.contains("rigid wall"), "{why}");
+    let flight = "reduction.start_at_touch=\"off\"";
+    assert_eq!(pick(&[flight]).unwrap().0, Reduction::Quarter);
     assert_eq!(
         pick(&["reduction.symmetry=\"quarter\""]).unwrap().0,
         Reduction::Quarter
@@ -182,7 +193,7 @@ fn bad_wall_scenes_get_one_line_errors_naming_the_field() {
 /// and energies, and ball 2 (the wall) at rest. At its own factor the wall is softer.
 #[test]
 fn a_rigid_wall_at_twice_the_penalty_is_the_mirror_pair() {
-    for model in [&[][..], &[AXI, PENALTY_PLANE][..]] {
+    for model in [&[QUARTER][..], &[AXI, PENALTY_PLANE][..]] {
         let coarse = |b: &str| format!("{b}.mesh={{size=0.004,pole_size=0.0004}}");
         let (c1, c2) = (coarse("ball1"), coarse("ball2"));
         let mut pair_sets = vec![c1.as_str(), c2.as_str()];
@@ -298,7 +309,7 @@ fn an_elastic_ball_on_a_rigid_wall_matches_hertz() {
 /// gives e 0.31954 (−0.72 %), δ_max +0.36 %: no penalty compliance, on a single mesh's phase.
 #[test]
 fn plastic_ball_on_a_wall_section_and_quarter_agree() {
-    let quarter = run(&wall(&[]));
+    let quarter = run(&wall(&[QUARTER]));
     let section = run(&wall(&[
         AXI,
         PENALTY_PLANE,
@@ -345,6 +356,10 @@ fn a_wall_run_writes_the_two_ball_keys() {
     let (p, hp, _) = cli("pair", None, &[&c1, &c2]);
     assert!(printed.contains("rigid wall"), "{printed}");
     assert_eq!(w["v2_after"], serde_json::json!([0.0, 0.0, 0.0]));
+    // The velocity after carries e (the wall at rest). (This coarse bulk has no coarser
+    // level, so no bar and no phase mean: scene_axisymmetric checks those.)
+    let (e, v1) = (w["e"].as_f64().unwrap(), w["v1_after"][0].as_f64().unwrap());
+    assert!((v1 + e).abs() < 1e-12, "v1 {v1} e {e}");
     let why = w["fe"]["savings"]["reduction_reason"].as_str().unwrap();
     assert!(why.contains("rigid wall"), "{why}");
     let keys = |v: &serde_json::Value| {

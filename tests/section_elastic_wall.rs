@@ -285,7 +285,7 @@ fn bad_elastic_walls_get_one_line_errors_naming_the_field() {
         assert!(!e.contains('\n'), "more than one line: {e}");
     };
     // The 3D models have a rigid wall only.
-    for m in ["auto", "quarter", "half", "off"] {
+    for m in ["auto-3d", "quarter", "half", "off"] {
         let sym = format!("reduction.symmetry=\"{m}\"");
         let s = parse(ELASTIC_WALL, &[&sym]).unwrap();
         let Approach::Impact(t) = approach(&s).unwrap() else {

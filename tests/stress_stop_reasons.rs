@@ -150,6 +150,8 @@ fn excessive_penetration_names_the_node_time_and_cause() {
         .args([
             "run",
             "--set",
+            "reduction.symmetry=\"auto-3d\"",
+            "--set",
             "contact.penalty_factor=0.001",
             "--set",
             "ball1.velocity=[200,0,0]",

@@ -11,8 +11,12 @@ use twoball::analytic::{Body, HertzPair};
 use twoball::scene::{approach, Approach, Override, Scene, DEFAULT_SCENE};
 use twoball::study::simulate::{simulate, Reduction, RunOptions, Simulation};
 
+/// The default scene on the 3D model (`auto-3d`) with dotted-path overrides.
 fn scene(sets: &[&str]) -> Scene {
-    let sets: Vec<Override> = sets.iter().map(|s| Override::parse(s).unwrap()).collect();
+    let sets: Vec<Override> = std::iter::once(&"reduction.symmetry=\"auto-3d\"")
+        .chain(sets)
+        .map(|s| Override::parse(s).unwrap())
+        .collect();
     Scene::from_toml(DEFAULT_SCENE, Path::new("."), &sets).unwrap()
 }
 

@@ -46,6 +46,8 @@ fn run_writes_a_playable_snapshot_series() {
             "run",
             "--vtu-ascii",
             "--set",
+            "reduction.symmetry=\"auto-3d\"",
+            "--set",
             "output.vtu_snapshots=4",
             "--set",
             "ball1.mesh={size=0.004,pole_size=0.002}",

@@ -163,6 +163,8 @@ fn run_snapshots_are_binary_with_the_pvd_time_in_each_file() {
         .args([
             "run",
             "--set",
+            "reduction.symmetry=\"auto-3d\"",
+            "--set",
             "output.vtu_snapshots=3",
             "--set",
             "ball1.mesh={size=0.004,pole_size=0.002}",

@@ -134,7 +134,7 @@ def test_run_default_scene_equals_the_cli(cli, tmp_path):
     assert code == 0, err
     r = twoball.run(out=py_out, **COARSE_SETS)
     check_run_against_cli(r, py_out, cli_out)
-    assert r.results["reduction"] == "quarter"
+    assert r.results["reduction"] == "axisymmetric"
 
 
 def test_run_oblique_unequal_pair_equals_the_cli(cli, tmp_path):
@@ -163,8 +163,11 @@ def test_overrides_use_the_cli_set_syntax(cli, tmp_path):
 
 
 def test_progress_callback_sees_the_run_advance():
+    # The 3D model: long enough on this coarse mesh for several polls (the section's run
+    # takes milliseconds).
     seen = []
-    twoball.run(progress=lambda done, total: seen.append((done, total)), **COARSE_SETS)
+    twoball.run(progress=lambda done, total: seen.append((done, total)), **COARSE_SETS,
+                **{"reduction.symmetry": "auto-3d"})
     assert len(seen) >= 2
     done = [d for d, _ in seen]
     assert done == sorted(done) and all(t > 0 for _, t in seen)
@@ -268,7 +271,8 @@ def test_keyboard_interrupt_stops_a_long_run_within_half_a_second(tmp_path):
     started = time.monotonic()
     timer.start()
     with pytest.raises(KeyboardInterrupt):
-        twoball.run(out=tmp_path / "out")  # the full default mesh: many seconds
+        # The full default mesh on the 3D model: seconds (the section takes about one).
+        twoball.run(out=tmp_path / "out", **{"reduction.symmetry": "auto-3d"})
     stopped = time.monotonic()
     timer.join()
     assert sent, "the run ended before the interrupt"
@@ -279,12 +283,13 @@ def test_keyboard_interrupt_stops_a_long_run_within_half_a_second(tmp_path):
 
 
 MEDIUM = {"size": 0.003, "pole_size": 0.0015}
+THREE_D = {"reduction.symmetry": "auto-3d"}
 
 
 def test_two_threads_run_two_scenes_faster_than_one_after_the_other():
     scenes = [
-        dict(overrides={"ball1.mesh": MEDIUM, "ball2.mesh": MEDIUM}),
-        dict(overrides={"ball1.mesh": MEDIUM, "ball2.mesh": MEDIUM,
+        dict(overrides={"ball1.mesh": MEDIUM, "ball2.mesh": MEDIUM, **THREE_D}),
+        dict(overrides={"ball1.mesh": MEDIUM, "ball2.mesh": MEDIUM, **THREE_D,
                         "ball1.velocity": [2.0, 0.0, 0.0]}),
     ]
     t0 = time.monotonic()

@@ -21,7 +21,9 @@ use crate::fe::profile::Totals;
 use crate::fe::subcycle::SubcycleReport;
 use crate::mesh::ball::{ball, BallSpec, Cut};
 use crate::mesh::Mesh;
-use crate::scene::{BallScene, MeshSettings, Scene, Switch, Symmetry, Touch, WallKind};
+use crate::scene::{
+    BallScene, MeshSettings, PlaneEnforcement, Scene, Switch, Symmetry, Touch, WallKind,
+};
 use serde::Serialize;
 use std::time::Instant;
 
@@ -93,13 +95,14 @@ fn allowed(scene: &Scene, touch: &Touch) -> Allowed {
 
 /// The symmetry reduction `scene` runs with when touching as `touch`, and why.
 ///
-/// Automatically, identical balls in a head-on impact (velocities along the line of
-/// centres, no spin) run as a quarter ball against the frictionless symmetry plane; with
-/// tangential motion in the x-y plane (and spins about z only) the plane z = 0 stays a
-/// symmetry plane: half model. Anything else runs full. `reduction.symmetry` forces a model:
-/// `axisymmetric` runs a head-on impact on the meridian section (a body of revolution about
-/// the line of centres, exactly), with the frictionless symmetry plane for identical balls
-/// and both sections for unequal ones.
+/// Automatically (`auto`), a head-on impact (velocities along the line of centres, no spin)
+/// of built-in meshes starting at first touch runs on the meridian section (a body of
+/// revolution about the line of centres, exactly): one ball's section against the
+/// frictionless symmetry plane for identical balls, both sections for unequal ones. Every
+/// other scene gets the cheapest exact 3D model (`auto-3d`): a head-on impact of identical
+/// balls runs as a quarter ball against the symmetry plane; with tangential motion in the
+/// x-y plane (and spins about z only) the plane z = 0 stays a symmetry plane: half model;
+/// anything else runs full. `reduction.symmetry` forces a model.
 ///
 /// Errors: a forced model the motion does not allow (axisymmetric or quarter for an oblique
 /// impact, quarter or half for unequal balls, any reduction for meshes read from files).
@@ -143,6 +146,7 @@ pub fn choose_reduction(scene: &Scene, touch: &Touch) -> Result<(Reduction, Stri
     };
     let head_on =
         "a head-on impact (velocities on the line of centres, no spin) of built-in meshes";
+    let section_allowed = ok.head_on && scene.reduction.start_at_touch != Switch::Off;
     match scene.reduction.symmetry {
         Symmetry::Off => Ok((Reduction::Full, "symmetry reduction switched off".into())),
         Symmetry::Axisymmetric if scene.reduction.start_at_touch == Switch::Off => refuse(
@@ -158,17 +162,20 @@ pub fn choose_reduction(scene: &Scene, touch: &Touch) -> Result<(Reduction, Stri
             "half",
             "identical built-in balls with tangential motion in one plane",
         ),
-        Symmetry::Auto if !scene.identical_balls() => Ok((
+        Symmetry::Auto if section_allowed => Ok(axisymmetric()),
+        Symmetry::Auto | Symmetry::Auto3d if !scene.identical_balls() => Ok((
             Reduction::Full,
             "the balls differ (material, diameter or mesh)".into(),
         )),
-        Symmetry::Auto if !ok.identical => Ok((
+        Symmetry::Auto | Symmetry::Auto3d if !ok.identical => Ok((
             Reduction::Full,
             "meshes read from files are used whole".into(),
         )),
-        Symmetry::Auto if ok.head_on => Ok(quarter()),
-        Symmetry::Auto if ok.planar => Ok(half()),
-        Symmetry::Auto => Ok((Reduction::Full, "motion out of one plane".into())),
+        Symmetry::Auto | Symmetry::Auto3d if ok.head_on => Ok(quarter()),
+        Symmetry::Auto | Symmetry::Auto3d if ok.planar => Ok(half()),
+        Symmetry::Auto | Symmetry::Auto3d => {
+            Ok((Reduction::Full, "motion out of one plane".into()))
+        }
     }
 }
 
@@ -181,7 +188,9 @@ fn wall_reduction(scene: &Scene, ok: Allowed) -> Result<(Reduction, String)> {
         Err(Error::invalid(
             "reduction.symmetry",
             format!("\"{what}\""),
-            format!("auto, quarter or axisymmetric for a ball on a wall: {what} needs {needs}"),
+            format!(
+                "auto, auto-3d, quarter or axisymmetric for a ball on a wall: {what} needs {needs}"
+            ),
         ))
     };
     if !ok.head_on {
@@ -192,15 +201,25 @@ fn wall_reduction(scene: &Scene, ok: Allowed) -> Result<(Reduction, String)> {
         ));
     }
     let elastic = scene.wall.is_some_and(|w| w.kind == WallKind::Elastic);
-    if elastic && scene.reduction.symmetry != Symmetry::Axisymmetric {
+    let symmetry = scene.reduction.symmetry;
+    if elastic && !matches!(symmetry, Symmetry::Axisymmetric | Symmetry::Auto) {
         return Err(Error::invalid(
             "reduction.symmetry",
-            format!("\"{}\"", symmetry_name(scene.reduction.symmetry)),
-            "\"axisymmetric\" for an elastic wall (the 3D models have a rigid wall only)",
+            format!("\"{}\"", symmetry_name(symmetry)),
+            "\"auto\" or \"axisymmetric\" for an elastic wall (the 3D models have a rigid wall \
+             only)",
         ));
     }
-    match scene.reduction.symmetry {
-        Symmetry::Axisymmetric if elastic && scene.reduction.start_at_touch != Switch::Off => Ok((
+    let start_at_touch = scene.reduction.start_at_touch != Switch::Off;
+    // `auto` runs the section wherever it can; with start_at_touch = "off" only the 3D
+    // quarter ball can, except on an elastic wall (refused below).
+    let symmetry = match symmetry {
+        Symmetry::Auto if start_at_touch || elastic => Symmetry::Axisymmetric,
+        Symmetry::Auto => Symmetry::Auto3d,
+        s => s,
+    };
+    match symmetry {
+        Symmetry::Axisymmetric if elastic && start_at_touch => Ok((
             Reduction::Axisymmetric,
             "ball head-on against an elastic wall: axisymmetric, the ball's section against \
                  the meshed block's face (node-to-segment penalty)"
@@ -217,17 +236,22 @@ fn wall_reduction(scene: &Scene, ok: Allowed) -> Result<(Reduction, String)> {
                 "two balls (the wall is modelled on the quarter ball or the section)",
             )
         }
-        Symmetry::Axisymmetric if scene.reduction.start_at_touch == Switch::Off => refuse(
+        Symmetry::Axisymmetric if !start_at_touch => refuse(
             "axisymmetric",
             "reduction.start_at_touch = \"auto\" (the section model starts at first touch)",
         ),
         Symmetry::Axisymmetric => Ok((
             Reduction::Axisymmetric,
-            "ball head-on against a rigid wall: axisymmetric, the ball's section against the \
-             wall (penalty of the ball's own stiffness)"
-                .into(),
+            format!(
+                "ball head-on against a rigid wall: axisymmetric, the ball's section against the \
+                 wall ({})",
+                match scene.contact.plane {
+                    PlaneEnforcement::Kinematic => "a unilateral kinematic constraint",
+                    PlaneEnforcement::Penalty => "penalty of the ball's own stiffness",
+                }
+            ),
         )),
-        Symmetry::Auto | Symmetry::Quarter => Ok((
+        Symmetry::Auto | Symmetry::Auto3d | Symmetry::Quarter => Ok((
             Reduction::Quarter,
             "ball head-on against a rigid wall: quarter ball against the rigid wall plane \
              (penalty of the ball's own stiffness)"
@@ -240,6 +264,7 @@ fn wall_reduction(scene: &Scene, ok: Allowed) -> Result<(Reduction, String)> {
 fn symmetry_name(s: Symmetry) -> &'static str {
     match s {
         Symmetry::Auto => "auto",
+        Symmetry::Auto3d => "auto-3d",
         Symmetry::Axisymmetric => "axisymmetric",
         Symmetry::Quarter => "quarter",
         Symmetry::Half => "half",

@@ -5,7 +5,9 @@ use super::error_estimate::{mesh_sizes, run_ladder, scene_at_level, ErrorEstimat
 use super::error_estimate::{LevelOutcome, PhaseSummary};
 use super::law_compare::{compare_laws, law_table, LawOutcome};
 use super::number::sci;
-use super::outcome::{analytic_outcome, relative_difference, Outcome};
+use super::outcome::{
+    analytic_outcome, ball_inertia, dissipation_factor, relative_difference, Outcome,
+};
 use super::phase_ensemble::{ring_ratio, PhaseMean};
 use super::simulate::{
     choose_reduction, simulate, Reduction, RunOptions, Simulation, HISTORY_HEADER,
@@ -211,9 +213,81 @@ pub fn run_scene_with_estimate(
     })?;
     let mut report =
         finest.ok_or_else(|| Error::Numerical("error estimate: the ladder ran no mesh".into()))?;
+    if let Some(level) = estimate.meshes.last().filter(|m| m.phase.is_some()) {
+        take_phase_mean(&mut report, level)?;
+    }
     report.error_estimate = Some(estimate);
     report.wall_time_s = start.elapsed().as_secs_f64();
     Ok(report)
+}
+
+/// Makes `report` (the run of a section scene's finest level) that level's answer: e,
+/// δ_max and the contact duration become the means of its phase ensemble `level`, since one
+/// ring phase alone scatters by about ±2 % in e ([`super::phase_ensemble`]). The after-impact
+/// velocities are the run's with their normal parts about the fixed one (the centre of mass,
+/// or the wall) scaled to the mean e, which keeps momentum and the head-on direction; η and
+/// the differences from the analytical model and `fe.outcome` follow; the rest of `fe`
+/// (steps, energy, history) stays the run's.
+///
+/// Errors: a report without an impact or without its analytical outcome.
+fn take_phase_mean(report: &mut RunReport, level: &LevelOutcome) -> Result<()> {
+    let (Some(e_run), Some(an)) = (report.e, report.analytic.as_ref()) else {
+        return Err(Error::Numerical(
+            "phase mean: the finest run reports no impact".into(),
+        ));
+    };
+    let scene = &report.scene;
+    let Approach::Impact(touch) = approach(scene)? else {
+        return Err(Error::Numerical(
+            "phase mean: the scene has no impact".into(),
+        ));
+    };
+    let n = touch.frame.axes[0];
+    let weight = |b: &crate::scene::BallScene| ball_inertia(b.material.rho, b.diameter).0;
+    let (m1, m2) = (weight(&scene.ball1), weight(&scene.ball2));
+    // The wall (ball 2's columns) does not move: all the weight is its.
+    let share1 = if scene.wall.is_some() {
+        0.0
+    } else {
+        m1 / (m1 + m2)
+    };
+    let dot = |a: [f64; 3]| a[0] * n[0] + a[1] * n[1] + a[2] * n[2];
+    let fixed = share1 * dot(report.v1_after) + (1.0 - share1) * dot(report.v2_after);
+    let scale = if e_run != 0.0 { level.e / e_run } else { 1.0 };
+    let rescale = |v: [f64; 3]| {
+        let shift = (dot(v) - fixed) * (scale - 1.0);
+        [
+            v[0] + shift * n[0],
+            v[1] + shift * n[1],
+            v[2] + shift * n[2],
+        ]
+    };
+    report.v1_after = rescale(report.v1_after);
+    report.v2_after = rescale(report.v2_after);
+    report.e = Some(level.e);
+    report.delta_max = level.delta_max;
+    report.contact_duration = level.contact_duration;
+    let eta = dissipation_factor(
+        scene,
+        [report.v1_after, report.v2_after],
+        [report.w1_after, report.w2_after],
+    );
+    report.eta = Some(eta);
+    let fe = Outcome {
+        e: level.e,
+        v1_after: report.v1_after,
+        v2_after: report.v2_after,
+        w1_after: report.w1_after,
+        w2_after: report.w2_after,
+        delta_max: level.delta_max,
+        contact_duration: level.contact_duration,
+        eta,
+    };
+    report.relative_difference = Some(Differences::between(&fe, an, n));
+    if let Some(sim) = report.fe.as_mut() {
+        sim.outcome = fe;
+    }
+    Ok(())
 }
 
 /// Runs `scene` on mesh level `level` of its ladder ([`scene_at_level`]): the level's
@@ -239,9 +313,13 @@ pub fn run_level(
         wall_time_s: report.wall_time_s,
         phase: None,
     };
+    // A section run whose contact never reached the first ring (radius 0: a mesh too coarse
+    // for the contact, which its warnings say) has no ring phase to average.
     let section = report.fe.as_ref().and_then(|f| f.contact_radius);
     match section {
-        Some(radius) if SCENE_PHASE_MESHES > 1 => Ok((phase_level(&s, radius, out, opts)?, report)),
+        Some(radius) if radius > 0.0 && SCENE_PHASE_MESHES > 1 => {
+            Ok((phase_level(&s, radius, out, opts)?, report))
+        }
         _ => Ok((out, report)),
     }
 }
