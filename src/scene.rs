@@ -194,6 +194,17 @@ pub enum Symmetry {
     Off,
 }
 
+impl Symmetry {
+    /// `auto` as `auto-3d`, any other choice as it is: for the tools that time or study the
+    /// 3D model (the benchmarks).
+    pub fn three_d(self) -> Symmetry {
+        match self {
+            Symmetry::Auto => Symmetry::Auto3d,
+            s => s,
+        }
+    }
+}
+
 /// The automatic savings (issue 6 item 3), each switchable off.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct ReductionSettings {

@@ -146,6 +146,10 @@ fn a_head_on_run_reports_its_error_bar_and_the_pair_symmetry() {
     let e = r.e.unwrap();
     assert_eq!(e, est.e.finest);
     assert_eq!(r.fe.as_ref().unwrap().outcome.e, e);
+    // A sweep runs a head-on case the same way: its FE e is the run's mean.
+    let case = twoball::study::single::sweep_case(&s).unwrap();
+    assert_eq!(case.summary.outcome.e, e);
+    assert_eq!(case.summary.reduction, "axisymmetric");
     let phase = est.meshes[1]
         .phase
         .expect("a phase ensemble on the section");

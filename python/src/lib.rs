@@ -216,7 +216,7 @@ fn sweep(
         mesh: None,
     };
     wait_job(py, progress, move || {
-        let fe: twoball::study::sweep::FeRunner<'_> = &twoball::study::simulate::sweep_case;
+        let fe: twoball::study::sweep::FeRunner<'_> = &twoball::study::single::sweep_case;
         let s = run_sweep(&spec, &opts, Some(fe))?;
         Ok(serde_json::json!({
             "total": s.total,

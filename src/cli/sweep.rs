@@ -1,6 +1,6 @@
 //! `twoball sweep FILE --out DIR [--jobs N] [--shard I/N]`: a parameter sweep such as the
 //! paper's ANSYS study, resumable and shardable; each impacting case runs the FE model
-//! ([`crate::study::simulate::sweep_case`]) beside the analytical one. `--slurm` writes the
+//! ([`crate::study::single::sweep_case`]) beside the analytical one. `--slurm` writes the
 //! sweep as a Slurm job array instead; `twoball sweep status DIR` tells where a sweep stands.
 
 use crate::error::{Error, Result};
@@ -144,7 +144,7 @@ pub fn run(a: SweepArgs) -> Result<()> {
         verbose: true,
         mesh: a.mesh.clone(),
     };
-    let fe: crate::study::sweep::FeRunner<'_> = &crate::study::simulate::sweep_case;
+    let fe: crate::study::sweep::FeRunner<'_> = &crate::study::single::sweep_case;
     let s = run_sweep(&spec, &opts, Some(fe))?;
     let csv = if s.csv_written {
         format!("{} in {}", s.in_csv, out.join("sweep.csv").display())

@@ -264,7 +264,8 @@ impl Ladder {
     }
 }
 
-/// The scene with one ladder setting applied to both balls.
+/// The scene with one ladder setting applied to both balls, on the 3D model (the hex
+/// meshes of the ladder; `reduction.symmetry = "auto"` runs as `"auto-3d"`).
 pub fn scene_for(base: &Scene, toml: &str, dir: &Path, s: &Setting) -> Result<Scene> {
     let mut sets = Vec::new();
     for (k, b) in [(1, &base.ball1), (2, &base.ball2)] {
@@ -282,7 +283,9 @@ pub fn scene_for(base: &Scene, toml: &str, dir: &Path, s: &Setting) -> Result<Sc
         "solver.time_step_factor={}",
         s.time_step_factor
     ))?);
-    Scene::from_toml(toml, dir, &sets)
+    let mut scene = Scene::from_toml(toml, dir, &sets)?;
+    scene.reduction.symmetry = scene.reduction.symmetry.three_d();
+    Ok(scene)
 }
 
 /// Runs (or reads back from `dir/cases/`) every setting of `ladder` on the scene `toml`

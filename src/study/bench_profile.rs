@@ -11,6 +11,7 @@ use std::time::Instant;
 
 /// Runs `scene` once on `threads` threads (`None`: all available) with the phase timer on,
 /// and writes the phase table, the setup and wall times (s) and the contact share to `out`.
+/// The profile is the 3D solver's: `reduction.symmetry = "auto"` runs as `"auto-3d"`.
 ///
 /// Errors: zero threads ([`Error::Invalid`] naming `--threads`); a thread pool that cannot be
 /// built; any error of the run; a failed write to `out`.
@@ -24,10 +25,12 @@ pub fn profile(scene: &Scene, threads: Option<usize>, out: &mut impl Write) -> R
         .num_threads(threads)
         .build()
         .map_err(|e| Error::External(format!("thread pool: {e}")))?;
+    let mut scene = scene.clone();
+    scene.reduction.symmetry = scene.reduction.symmetry.three_d();
     let t0 = Instant::now();
     let report = pool.install(|| {
         run_scene(
-            scene,
+            &scene,
             &RunOptions {
                 history_rows: 400,
                 progress: false,

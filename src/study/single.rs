@@ -191,6 +191,37 @@ pub fn run_scene_default(scene: &Scene, opts: &RunOptions) -> Result<RunReport> 
     }
 }
 
+/// The FE runner of a sweep case: a head-on case on the section as `twoball run` runs it
+/// (its default ladder, the result the finest level's phase mean, the wall time the
+/// ladder's), any other case as one run ([`super::simulate::sweep_case`]).
+///
+/// Errors: as [`run_scene_with_estimate`] and [`super::simulate::sweep_case`].
+pub fn sweep_case(scene: &Scene) -> Result<super::sweep::FeCase> {
+    let Some(plan) = default_plan(scene)? else {
+        return super::simulate::sweep_case(scene);
+    };
+    let opts = RunOptions {
+        history_rows: 400,
+        ..RunOptions::default()
+    };
+    let report = run_scene_with_estimate(scene, &opts, plan)?;
+    let sim = report
+        .fe
+        .as_ref()
+        .ok_or_else(|| Error::Numerical("sweep case: the run reports no impact".into()))?;
+    Ok(super::sweep::FeCase {
+        delta_history: sim.history.iter().map(|r| [r.t, r.delta]).collect(),
+        summary: super::sweep::FeSummary {
+            outcome: sim.outcome,
+            energy_error: report.energy_error,
+            reduction: report.reduction.clone(),
+            elements: sim.elements,
+            element_cycles: report.element_cycles,
+            wall_time_s: report.wall_time_s,
+        },
+    })
+}
+
 /// Runs `scene` on the mesh ladder `plan` ([`run_ladder`], each level a full run of
 /// [`run_scene`] on [`scene_at_level`]): the report of the finest mesh, with its
 /// `error_estimate` and `wall_time_s` the total over the ladder. A scene without impact gives

@@ -364,7 +364,7 @@ pub fn csv_has_non_finite(text: &str) -> bool {
 
 /// Keys of results.json that may legitimately be `null` (unset options). JSON writes a
 /// non-finite number as `null`, so a `null` anywhere else is a NaN or infinity.
-const OPTIONAL_KEYS: [&str; 7] = [
+const OPTIONAL_KEYS: [&str; 12] = [
     "position",
     "end_time",
     "hold_time",
@@ -372,6 +372,13 @@ const OPTIONAL_KEYS: [&str; 7] = [
     "fe",
     "analytic",
     "relative_difference",
+    // `error_estimate`'s documented nulls: no order with two meshes or an oscillating
+    // ladder, no relative error of a zero value, no tolerance unless asked.
+    "observed_order",
+    "order_used",
+    "relative_error",
+    "tolerance",
+    "tolerance_met",
 ];
 
 /// Whether a results.json value holds a non-finite number (a `null` outside [`OPTIONAL_KEYS`]).
@@ -721,4 +728,26 @@ pub fn summary(records: &[StressRecord], tol: f64) -> (StressCounts, String) {
         ));
     }
     (c, t)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use serde_json::json;
+
+    #[test]
+    fn a_null_is_a_non_finite_number_except_where_documented() {
+        // An error bar's documented nulls (two meshes: no observed order; no tolerance).
+        let bar = json!({"e": 0.3, "error_estimate": {"e": {"finest": 0.3, "error": 0.01,
+            "observed_order": null, "order_used": 2.0, "relative_error": 0.03},
+            "tolerance": null, "tolerance_met": null}});
+        assert!(!json_has_non_finite(&bar));
+        // A NaN written as null where a number belongs.
+        let nan = json!({"e": null});
+        assert!(json_has_non_finite(&nan));
+        let nan_bar = json!({"error_estimate": {"e": {"error": null}}});
+        assert!(json_has_non_finite(&nan_bar));
+        assert!(json_has_non_finite(&json!({"v1_after": [1.0, null, 0.0]})));
+        assert!(csv_has_non_finite("t [s],e\n1,NaN\n") && !csv_has_non_finite("t [s]\n1e-3\n"));
+    }
 }
