@@ -444,7 +444,7 @@ fn plastic_phase_average() {
 #[test]
 #[ignore]
 fn phase_honesty() {
-    use twoball::study::error_estimate::LevelOutcome;
+    use twoball::study::error_estimate::{LevelOutcome, PhaseSummary};
     use twoball::study::error_honesty::{check_honesty, honesty_cases, honesty_table};
     use twoball::study::phase_ensemble::{ensemble_at, HeadOnCase, HeadOnTarget};
     let truth_meshes: usize = std::env::var("HONESTY_TRUTH_MESHES")
@@ -479,7 +479,14 @@ fn phase_honesty() {
             delta_max: ens.delta_max.mean,
             contact_duration: ens.contact_duration.mean,
             wall_time_s: ens.runs.iter().map(|r| r.wall_time_s).sum(),
-            phase: None,
+            // The bar adds the fine mean's sampling error, as a run's and the bench's do.
+            phase: Some(PhaseSummary {
+                meshes,
+                ring_ratio: ens.ring_ratio,
+                e_sampling_error: ens.e.sampling_error,
+                e_min: ens.e.min,
+                e_max: ens.e.max,
+            }),
         })
     };
     let rows = check_honesty(&cases, run, |r| {
