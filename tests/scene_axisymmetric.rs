@@ -210,6 +210,14 @@ fn the_default_run_is_the_sections_phase_mean_near_the_converged_e() {
     let an = r.analytic.as_ref().unwrap();
     let d = r.relative_difference.as_ref().unwrap();
     assert!((d.e - (e / an.e - 1.0)).abs() < 1e-12, "{d:?}");
+    // One mesh alone is one ring phase, and says so; an elastic impact has no sawtooth.
+    let alone = twoball::study::single::run_scene_alone(&s, &opts()).unwrap();
+    let phase = twoball::study::warnings::Check::SingleRingPhase;
+    assert!(alone.warnings.iter().any(|w| w.check == phase));
+    assert!(r.warnings.iter().all(|w| w.check != phase));
+    let elastic = scene(&["ball1.material.yield=1e11", "ball2.material.yield=1e11"]);
+    let alone = twoball::study::single::run_scene_alone(&elastic, &opts()).unwrap();
+    assert!(alone.warnings.iter().all(|w| w.check != phase));
     // On a rigid wall the wall is what stays at rest: v1 after = −e v1.
     let sets: Vec<Override> = Vec::new();
     let w = Scene::from_toml(twoball::scene::WALL_SCENE, Path::new("."), &sets).unwrap();

@@ -7,7 +7,7 @@ use crate::scene::{Override, Scene, DEFAULT_SCENE};
 use crate::study::error_estimate::{LadderPlan, DEFAULT_MAX_REFINEMENTS};
 use crate::study::simulate::RunOptions;
 use crate::study::single::{
-    default_plan, run_scene, run_scene_with_estimate, side_by_side, write_outputs,
+    default_plan, run_scene_alone, run_scene_with_estimate, side_by_side, write_outputs,
 };
 use clap::Args;
 use std::path::{Path, PathBuf};
@@ -110,7 +110,7 @@ pub fn run(a: RunArgs) -> Result<()> {
     let started = SystemTime::now();
     let plan = ladder_plan(&a, &scene)?;
     let report = match plan.map_or_else(
-        || run_scene(&scene, &opts),
+        || run_scene_alone(&scene, &opts),
         |p| run_scene_with_estimate(&scene, &opts, p),
     ) {
         Err(Error::Interrupted(at)) => {

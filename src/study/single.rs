@@ -187,8 +187,25 @@ pub fn default_plan(scene: &Scene) -> Result<Option<LadderPlan>> {
 pub fn run_scene_default(scene: &Scene, opts: &RunOptions) -> Result<RunReport> {
     match default_plan(scene)? {
         Some(plan) => run_scene_with_estimate(scene, opts, plan),
-        None => run_scene(scene, opts),
+        None => run_scene_alone(scene, opts),
     }
+}
+
+/// [`run_scene`] as a run of its own (no ladder): a plastic impact on the section gets the
+/// warning that its e is one phase of the surface rings.
+pub fn run_scene_alone(scene: &Scene, opts: &RunOptions) -> Result<RunReport> {
+    let mut report = run_scene(scene, opts)?;
+    let section = report.reduction == Reduction::Axisymmetric.name();
+    let energies = report.fe.as_ref().and_then(|f| {
+        let (first, last) = (f.history.first()?, f.history.last()?);
+        Some((last.plastic, first.kinetic))
+    });
+    if let (true, Some((plastic, kinetic))) = (section, energies) {
+        report
+            .warnings
+            .extend(super::warnings::single_ring_phase(plastic, kinetic));
+    }
+    Ok(report)
 }
 
 /// The FE runner of a sweep case: a head-on case on the section as `twoball run` runs it

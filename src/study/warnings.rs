@@ -5,7 +5,8 @@
 //! above 1 (the run made energy); penetration deeper than 5 % of δ_max (the penalty is too
 //! soft for the contact it carries); a contact patch at δ_max narrower than 3 elements of
 //! the pole mesh (the contact is not resolved); hourglass energy above 5 % of the internal
-//! energy (the one-point elements deform in zero-energy modes). Analytical checks
+//! energy (the one-point elements deform in zero-energy modes); a plastic impact on the
+//! meridian section run on one mesh (its e is one ring phase). Analytical checks
 //! ([`analytic_warnings`]): a maximum approach above a tenth of the effective radius R*,
 //! where the small-deformation contact laws the model is built on no longer hold.
 
@@ -38,6 +39,9 @@ pub enum Check {
     Hourglass,
     /// Analytical approach above [`APPROACH_LIMIT`] of R*.
     AnalyticRange,
+    /// A plastic impact on the meridian section run on one mesh alone: its e is one phase of
+    /// the surface rings, not the phase mean.
+    SingleRingPhase,
 }
 
 /// One warning: the check and its one-line message (values with units).
@@ -134,6 +138,19 @@ pub fn fe_warnings(f: &FeFigures) -> Vec<Warning> {
         });
     }
     w
+}
+
+/// Plastic work above this fraction of the initial kinetic energy makes a single section
+/// run's e a ring-phase sample.
+pub const PLASTIC_SHARE_MIN: f64 = 1e-3;
+
+/// The check of a section run on one mesh (no ensemble) whose plastic work is `plastic` (J)
+/// out of an initial kinetic energy `kinetic` (J): its e is one ring phase.
+pub fn single_ring_phase(plastic: f64, kinetic: f64) -> Option<Warning> {
+    (kinetic > 0.0 && plastic > PLASTIC_SHARE_MIN * kinetic).then(|| Warning {
+        check: Check::SingleRingPhase,
+        message: "e of a plastic impact on the section from one mesh is one phase of its surface rings (about ±2 % on the default mesh); its error estimate (the default, with mesh.size at most D/8) gives the phase mean and its bar".into(),
+    })
 }
 
 /// The analytical model's range check: maximum approach `delta2` (m) against the effective
