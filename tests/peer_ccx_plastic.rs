@@ -26,7 +26,8 @@ fn static_ccx_loop_matches_the_dynamic_loading_branch() {
     let _ = std::fs::remove_dir_all(&dir);
     std::fs::create_dir_all(&dir).unwrap();
     let run = Command::new(env!("CARGO_BIN_EXE_twoball"))
-        .args(["run", "--out"])
+        // The 3D quarter model's loading branch (docs/peer.md).
+        .args(["run", "--set", "reduction.symmetry=\"auto-3d\"", "--out"])
         .arg(dir.join("default"))
         .output()
         .unwrap();
