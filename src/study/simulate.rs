@@ -146,8 +146,8 @@ pub fn choose_reduction(scene: &Scene, touch: &Touch) -> Result<(Reduction, Stri
     };
     let head_on =
         "a head-on impact (velocities on the line of centres, no spin) of built-in meshes";
-    let section_allowed = ok.head_on && scene.reduction.start_at_touch != Switch::Off;
-    match scene.reduction.symmetry {
+    let symmetry = resolve_auto(scene, ok.head_on);
+    match symmetry {
         Symmetry::Off => Ok((Reduction::Full, "symmetry reduction switched off".into())),
         Symmetry::Axisymmetric if scene.reduction.start_at_touch == Switch::Off => refuse(
             "axisymmetric",
@@ -162,7 +162,7 @@ pub fn choose_reduction(scene: &Scene, touch: &Touch) -> Result<(Reduction, Stri
             "half",
             "identical built-in balls with tangential motion in one plane",
         ),
-        Symmetry::Auto if section_allowed => Ok(axisymmetric()),
+        // `resolve_auto` leaves no `Auto`.
         Symmetry::Auto | Symmetry::Auto3d if !scene.identical_balls() => Ok((
             Reduction::Full,
             "the balls differ (material, diameter or mesh)".into(),
@@ -176,6 +176,19 @@ pub fn choose_reduction(scene: &Scene, touch: &Touch) -> Result<(Reduction, Stri
         Symmetry::Auto | Symmetry::Auto3d => {
             Ok((Reduction::Full, "motion out of one plane".into()))
         }
+    }
+}
+
+/// `reduction.symmetry` with `auto` made concrete: the section where the scene allows it
+/// (`section`: a head-on impact of built-in meshes, or a block wall that only the section
+/// models; and the run starting at touch), else `auto-3d`. Any other choice is kept.
+fn resolve_auto(scene: &Scene, section: bool) -> Symmetry {
+    match scene.reduction.symmetry {
+        Symmetry::Auto if section && scene.reduction.start_at_touch != Switch::Off => {
+            Symmetry::Axisymmetric
+        }
+        Symmetry::Auto => Symmetry::Auto3d,
+        s => s,
     }
 }
 
@@ -211,11 +224,10 @@ fn wall_reduction(scene: &Scene, ok: Allowed) -> Result<(Reduction, String)> {
         ));
     }
     let start_at_touch = scene.reduction.start_at_touch != Switch::Off;
-    // `auto` runs the section wherever it can; with start_at_touch = "off" only the 3D
-    // quarter ball can, except on an elastic wall (refused below).
-    let symmetry = match symmetry {
-        Symmetry::Auto if start_at_touch || elastic => Symmetry::Axisymmetric,
-        Symmetry::Auto => Symmetry::Auto3d,
+    // An elastic wall has the section only: with start_at_touch = "off" its `auto` is
+    // refused below as the section is.
+    let symmetry = match resolve_auto(scene, true) {
+        Symmetry::Auto3d if elastic && symmetry == Symmetry::Auto => Symmetry::Axisymmetric,
         s => s,
     };
     match symmetry {
@@ -1120,17 +1132,24 @@ pub fn sweep_case(scene: &Scene) -> Result<super::sweep::FeCase> {
             ..RunOptions::default()
         },
     )?;
-    Ok(super::sweep::FeCase {
-        delta_history: sim.history.iter().map(|r| [r.t, r.delta]).collect(),
-        summary: super::sweep::FeSummary {
-            outcome: sim.outcome,
-            energy_error: sim.energy_error,
-            reduction: sim.savings.reduction.name().into(),
-            elements: sim.elements,
-            element_cycles: sim.element_cycles,
-            wall_time_s: sim.wall_time_s,
-        },
-    })
+    Ok(sim.fe_case())
+}
+
+impl Simulation {
+    /// The run as a sweep case: its outcome, figures and δ(t).
+    pub fn fe_case(&self) -> super::sweep::FeCase {
+        super::sweep::FeCase {
+            delta_history: self.history.iter().map(|r| [r.t, r.delta]).collect(),
+            summary: super::sweep::FeSummary {
+                outcome: self.outcome,
+                energy_error: self.energy_error,
+                reduction: self.savings.reduction.name().into(),
+                elements: self.elements,
+                element_cycles: self.element_cycles,
+                wall_time_s: self.wall_time_s,
+            },
+        }
+    }
 }
 
 #[cfg(test)]

@@ -226,17 +226,9 @@ pub fn sweep_case(scene: &Scene) -> Result<super::sweep::FeCase> {
         .fe
         .as_ref()
         .ok_or_else(|| Error::Numerical("sweep case: the run reports no impact".into()))?;
-    Ok(super::sweep::FeCase {
-        delta_history: sim.history.iter().map(|r| [r.t, r.delta]).collect(),
-        summary: super::sweep::FeSummary {
-            outcome: sim.outcome,
-            energy_error: report.energy_error,
-            reduction: report.reduction.clone(),
-            elements: sim.elements,
-            element_cycles: report.element_cycles,
-            wall_time_s: report.wall_time_s,
-        },
-    })
+    let mut case = sim.fe_case();
+    case.summary.wall_time_s = report.wall_time_s;
+    Ok(case)
 }
 
 /// Runs `scene` on the mesh ladder `plan` ([`run_ladder`], each level a full run of
