@@ -10,6 +10,8 @@ use crate::study::single::{
     default_plan, run_scene_alone, run_scene_with_estimate, side_by_side, write_outputs,
 };
 use clap::Args;
+use std::collections::HashMap;
+use std::ffi::OsString;
 use std::path::{Path, PathBuf};
 use std::time::SystemTime;
 
@@ -107,7 +109,7 @@ pub fn run(a: RunArgs) -> Result<()> {
     } else if scene.output.vtu_snapshots > 0 {
         eprintln!("note: output.vtu_snapshots needs --out DIR; no snapshots written");
     }
-    let started = SystemTime::now();
+    let before = a.out.as_deref().map(snapshot_files).unwrap_or_default();
     let plan = ladder_plan(&a, &scene)?;
     let report = match plan.map_or_else(
         || run_scene_alone(&scene, &opts),
@@ -117,7 +119,7 @@ pub fn run(a: RunArgs) -> Result<()> {
             let removed = a
                 .out
                 .as_ref()
-                .map_or(0, |d| remove_partial_output(d, started, created));
+                .map_or(0, |d| remove_partial_output(d, &before, created));
             let what = if removed > 0 {
                 format!("; nothing written ({removed} snapshot files of this run removed)")
             } else {
@@ -143,23 +145,38 @@ pub fn run(a: RunArgs) -> Result<()> {
     Ok(())
 }
 
-/// Removes the snapshot files (`snapshot_*.vtu`, `snapshots.pvd`) that an interrupted run
-/// wrote into `dir` since `started`, and `dir` itself if the run `created` it and it is now
-/// empty, so that no folder looks complete; returns the number of files removed.
-fn remove_partial_output(dir: &Path, started: SystemTime, created: bool) -> usize {
-    let mut removed = 0;
-    if let Ok(entries) = std::fs::read_dir(dir) {
-        for e in entries.flatten() {
+/// The snapshot files (`snapshot_*.vtu`, `snapshots.pvd`) in `dir`, with their modification
+/// times; empty if `dir` cannot be read.
+fn snapshot_files(dir: &Path) -> HashMap<OsString, Option<SystemTime>> {
+    let Ok(entries) = std::fs::read_dir(dir) else {
+        return HashMap::new();
+    };
+    entries
+        .flatten()
+        .filter(|e| {
             let name = e.file_name().to_string_lossy().to_string();
-            let ours = (name.starts_with("snapshot_") && name.ends_with(".vtu"))
-                || name == "snapshots.pvd";
-            let new = e
-                .metadata()
-                .and_then(|m| m.modified())
-                .is_ok_and(|t| t >= started);
-            if ours && new && std::fs::remove_file(e.path()).is_ok() {
-                removed += 1;
-            }
+            (name.starts_with("snapshot_") && name.ends_with(".vtu")) || name == "snapshots.pvd"
+        })
+        .map(|e| (e.file_name(), e.metadata().and_then(|m| m.modified()).ok()))
+        .collect()
+}
+
+/// Removes the snapshot files that an interrupted run wrote into `dir` (those not in `before`
+/// or modified since), and `dir` itself if the run `created` it and it is now empty, so that
+/// no folder looks complete; returns the number of files removed.
+///
+/// The comparison is with the listing taken before the run, not with a clock: file-system
+/// timestamps come from a coarse clock and can lag the moment the run started.
+fn remove_partial_output(
+    dir: &Path,
+    before: &HashMap<OsString, Option<SystemTime>>,
+    created: bool,
+) -> usize {
+    let mut removed = 0;
+    for (name, modified) in snapshot_files(dir) {
+        let ours = before.get(&name).is_none_or(|m| *m != modified);
+        if ours && std::fs::remove_file(dir.join(&name)).is_ok() {
+            removed += 1;
         }
     }
     if created {
