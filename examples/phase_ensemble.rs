@@ -6,12 +6,15 @@
 //! `cargo run --release --example phase_ensemble -- LEVEL MESHES V_REL [MATERIAL] [one-point|b-bar] [D]`
 //! (LEVEL −2..7, MESHES even, V_REL the relative speed in m/s, MATERIAL a preset, default
 //! copper-fe, D the diameter in m, default 0.02). `PHASE_CONTACT=nodal` enforces the symmetry
-//! plane by the penalty springs instead of the kinematic constraint.
+//! plane by the penalty springs instead of the kinematic constraint. `PHASE_ONLY=1` runs the
+//! ensemble of LEVEL alone (no coarse ensemble, no bar): the deep levels of a ladder.
 
 use twoball::fe::axisym::element::QuadFormulation;
 use twoball::fe::axisym::impact::PlaneContact;
 use twoball::material::Material;
-use twoball::study::phase_ensemble::{converged_head_on, HeadOnCase, HeadOnTarget, PhasePlan};
+use twoball::study::phase_ensemble::{
+    converged_head_on, ensemble_at, HeadOnCase, HeadOnTarget, PhaseEnsemble, PhasePlan,
+};
 
 /// Argument `i` parsed, or `default` when absent.
 fn arg<T: std::str::FromStr>(
@@ -29,6 +32,23 @@ fn arg<T: std::str::FromStr>(
             "argument {i} ({what}) is missing: LEVEL MESHES V_REL [MATERIAL] [one-point|b-bar] [D]"
         )),
     }
+}
+
+/// Prints the members of `en` and its means, headed by `label`.
+fn print_ensemble(label: &str, en: &PhaseEnsemble) {
+    println!("{label} ensemble: ring ratio q {:.4}", en.ring_ratio);
+    for r in &en.runs {
+        println!(
+            "  s {:.4}: e {:.5}, δ_max {:.4} µm, t_c {:.3} µs, F_peak {:.1} N, contact radius {:.1} µm, energy error {:.1e}, {:.2} s",
+            r.scale, r.e, r.delta_max * 1e6, r.contact_duration * 1e6, r.peak_force,
+            r.contact_radius * 1e6, r.energy_error, r.wall_time_s
+        );
+    }
+    println!(
+        "  mean: e {:.5} (sampling error {:.1e}, members {:.5}-{:.5}), δ_max {:.4} µm, t_c {:.3} µs",
+        en.e.mean, en.e.sampling_error, en.e.min, en.e.max,
+        en.delta_max.mean * 1e6, en.contact_duration.mean * 1e6
+    );
 }
 
 fn run(args: &[String]) -> Result<(), String> {
@@ -54,21 +74,16 @@ fn run(args: &[String]) -> Result<(), String> {
             _ => PlaneContact::Kinematic,
         },
     };
+    if std::env::var("PHASE_ONLY").as_deref() == Ok("1") {
+        let (en, _) = ensemble_at(&case, level, meshes).map_err(|e| e.to_string())?;
+        print_ensemble(&format!("level {level}"), &en);
+        let cpu: f64 = en.runs.iter().map(|r| r.wall_time_s).sum();
+        println!("{cpu:.1} s CPU");
+        return Ok(());
+    }
     let ans = converged_head_on(&case, &PhasePlan { level, meshes }).map_err(|e| e.to_string())?;
     for (label, en) in [("coarse", &ans.coarse), ("fine", &ans.fine)] {
-        println!("{label} ensemble: ring ratio q {:.4}", en.ring_ratio);
-        for r in &en.runs {
-            println!(
-                "  s {:.4}: e {:.5}, δ_max {:.4} µm, t_c {:.3} µs, F_peak {:.1} N, contact radius {:.1} µm, energy error {:.1e}, {:.2} s",
-                r.scale, r.e, r.delta_max * 1e6, r.contact_duration * 1e6, r.peak_force,
-                r.contact_radius * 1e6, r.energy_error, r.wall_time_s
-            );
-        }
-        println!(
-            "  mean: e {:.5} (sampling error {:.1e}, members {:.5}-{:.5}), δ_max {:.4} µm, t_c {:.3} µs",
-            en.e.mean, en.e.sampling_error, en.e.min, en.e.max,
-            en.delta_max.mean * 1e6, en.contact_duration.mean * 1e6
-        );
+        print_ensemble(label, en);
     }
     let pct = |b: &twoball::study::phase_ensemble::Bar| 100.0 * b.relative_error();
     println!(
