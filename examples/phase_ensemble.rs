@@ -9,16 +9,14 @@
 //! plane by the penalty springs instead of the kinematic constraint. `PHASE_ONLY=1` runs the
 //! ensemble of LEVEL alone (no coarse ensemble, no bar): the deep levels of a ladder. With
 //! `PHASE_RING_AT=R` (µm) as well, the ring ratio q is read at the contact radius R instead
-//! of from a pilot run, and all members run at once (the pilot's wait saved).
+//! of from a pilot run, and all members run at once (`ensemble_at_radius`).
 
-use rayon::prelude::*;
 use twoball::fe::axisym::element::QuadFormulation;
 use twoball::fe::axisym::impact::PlaneContact;
-use twoball::fe::axisym::impact::{HeadOn, Target};
 use twoball::material::Material;
 use twoball::study::phase_ensemble::{
-    converged_head_on, ensemble_at, family_mesh, hertz_contact_radius, ring_ratio, HeadOnCase,
-    HeadOnTarget, PhaseEnsemble, PhasePlan,
+    converged_head_on, ensemble_at, ensemble_at_radius, HeadOnCase, HeadOnTarget, PhaseEnsemble,
+    PhasePlan,
 };
 
 /// Argument `i` parsed, or `default` when absent.
@@ -56,54 +54,6 @@ fn print_ensemble(label: &str, en: &PhaseEnsemble) {
     );
 }
 
-/// The `meshes` members of `case` on family level `level` with the ring ratio read at the
-/// contact radius `radius` (m), all run at once; prints them and their means.
-fn members_at_ring(
-    case: &HeadOnCase,
-    level: i32,
-    meshes: usize,
-    radius: f64,
-) -> Result<(), String> {
-    let a = hertz_contact_radius(case);
-    let d = case.diameter;
-    let q = ring_ratio(
-        &family_mesh(d, a, level).map_err(|e| e.to_string())?,
-        radius,
-    )
-    .map_err(|e| e.to_string())?;
-    println!(
-        "level {level}: ring ratio q {q:.5} at {:.1} µm",
-        radius * 1e6
-    );
-    let runs: Vec<(f64, f64, f64, f64)> = (0..meshes)
-        .into_par_iter()
-        .map(|j| {
-            let s = q.powf(j as f64 / meshes as f64);
-            let mesh = family_mesh(d, a * s, level).map_err(|e| e.to_string())?;
-            let mut h = HeadOn::new(mesh, case.material, case.relative_speed / 2.0, Target::MirrorBall);
-            h.formulation = case.formulation;
-            h.plane_contact = case.plane;
-            let r = h.run().map_err(|e| e.to_string())?;
-            println!(
-                "  s {s:.5}: e {:.5}, δ_max {:.4} µm, t_c {:.3} µs, contact radius {:.1} µm, energy error {:.1e}, {:.1} s",
-                r.e, r.delta_max * 1e6, r.contact_duration * 1e6, r.contact_radius_max * 1e6,
-                r.energy_error, r.wall_time_s
-            );
-            Ok((r.e, r.delta_max, r.contact_duration, r.wall_time_s))
-        })
-        .collect::<Result<_, String>>()?;
-    let mean =
-        |f: fn(&(f64, f64, f64, f64)) -> f64| runs.iter().map(f).sum::<f64>() / runs.len() as f64;
-    println!(
-        "  mean: e {:.5}, δ_max {:.4} µm, t_c {:.3} µs; {:.1} s CPU",
-        mean(|r| r.0),
-        mean(|r| r.1) * 1e6,
-        mean(|r| r.2) * 1e6,
-        runs.iter().map(|r| r.3).sum::<f64>()
-    );
-    Ok(())
-}
-
 fn run(args: &[String]) -> Result<(), String> {
     let level: i32 = arg(args, 1, "LEVEL", None)?;
     let meshes: usize = arg(args, 2, "MESHES", None)?;
@@ -134,7 +84,11 @@ fn run(args: &[String]) -> Result<(), String> {
         let r: f64 = r
             .parse()
             .map_err(|_| format!("PHASE_RING_AT: {r:?} is not a radius in µm"))?;
-        return members_at_ring(&case, level, meshes, r * 1e-6);
+        let en = ensemble_at_radius(&case, level, meshes, r * 1e-6).map_err(|e| e.to_string())?;
+        print_ensemble(&format!("level {level}"), &en);
+        let cpu: f64 = en.runs.iter().map(|r| r.wall_time_s).sum();
+        println!("{cpu:.1} s CPU");
+        return Ok(());
     }
     if std::env::var("PHASE_ONLY").as_deref() == Ok("1") {
         let (en, _) = ensemble_at(&case, level, meshes).map_err(|e| e.to_string())?;

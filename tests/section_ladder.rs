@@ -515,9 +515,8 @@ fn phase_honesty() {
 #[test]
 #[ignore]
 fn plastic_b_bar_ladder_is_monotone() {
-    use rayon::prelude::*;
     use twoball::study::phase_ensemble::{
-        ensemble_at, family_mesh, hertz_contact_radius, ring_ratio, HeadOnCase, HeadOnTarget,
+        ensemble_at, ensemble_at_radius, HeadOnCase, HeadOnTarget,
     };
     let top: i32 = std::env::var("LADDER_TOP")
         .ok()
@@ -531,32 +530,14 @@ fn plastic_b_bar_ladder_is_monotone() {
         formulation: QuadFormulation::SelectiveReduced,
         plane: PlaneContact::Kinematic,
     };
-    let a = hertz_contact_radius(&case);
     let mut rows: Vec<[f64; 3]> = Vec::new();
     for level in -1..=top {
-        let mean = if level < 3 {
-            let (en, _) = ensemble_at(&case, level, 8).unwrap();
-            [en.e.mean, en.delta_max.mean, en.contact_duration.mean]
+        let en = if level < 3 {
+            ensemble_at(&case, level, 8).unwrap().0
         } else {
-            let q = ring_ratio(&family_mesh(D, a, level).unwrap(), 890e-6).unwrap();
-            let runs: Vec<ImpactResult> = (0..4)
-                .into_par_iter()
-                .map(|j| {
-                    let s = q.powf(f64::from(j) / 4.0);
-                    let mut h = HeadOn::new(
-                        family_mesh(D, a * s, level).unwrap(),
-                        case.material,
-                        1.0,
-                        Target::MirrorBall,
-                    );
-                    h.formulation = case.formulation;
-                    h.plane_contact = case.plane;
-                    h.run().unwrap()
-                })
-                .collect();
-            let m = |f: fn(&ImpactResult) -> f64| runs.iter().map(f).sum::<f64>() / 4.0;
-            [m(|r| r.e), m(|r| r.delta_max), m(|r| r.contact_duration)]
+            ensemble_at_radius(&case, level, 4, 890e-6).unwrap()
         };
+        let mean = [en.e.mean, en.delta_max.mean, en.contact_duration.mean];
         println!(
             "level {level}: e {:.5}, δ_max {:.4} µm, t_c {:.3} µs",
             mean[0],

@@ -263,6 +263,18 @@ impl PhaseMean {
     }
 }
 
+/// Checks that an ensemble has an even number of meshes, at least two.
+fn check_meshes(meshes: usize) -> Result<()> {
+    if meshes < 2 || !meshes.is_multiple_of(2) {
+        return Err(Error::invalid(
+            "phase_meshes",
+            meshes,
+            "an even number of meshes >= 2",
+        ));
+    }
+    Ok(())
+}
+
 /// One member's summary.
 fn member(scale: f64, r: &ImpactResult) -> PhaseRun {
     PhaseRun {
@@ -287,13 +299,7 @@ pub fn run_ensemble(
     run: &(dyn Fn(MeridianMesh) -> Result<ImpactResult> + Sync),
     meshes: usize,
 ) -> Result<(PhaseEnsemble, ImpactResult)> {
-    if meshes < 2 || !meshes.is_multiple_of(2) {
-        return Err(Error::invalid(
-            "phase_meshes",
-            meshes,
-            "an even number of meshes >= 2",
-        ));
-    }
+    check_meshes(meshes)?;
     let pilot_mesh = mesh_at(1.0)?;
     let pilot = run(pilot_mesh.clone())?;
     let q = ring_ratio(&pilot_mesh, pilot.contact_radius_max)?;
@@ -306,15 +312,19 @@ pub fn run_ensemble(
         .collect::<Result<_>>()?;
     let mut runs = vec![member(1.0, &pilot)];
     runs.extend(rest);
-    let ensemble = PhaseEnsemble {
+    Ok((ensemble_of(q, runs), pilot))
+}
+
+/// The ensemble of the members `runs` (in phase order) of ring ratio `q`.
+fn ensemble_of(q: f64, runs: Vec<PhaseRun>) -> PhaseEnsemble {
+    PhaseEnsemble {
         ring_ratio: q,
         e: phase_mean(&runs, |r| r.e),
         delta_max: phase_mean(&runs, |r| r.delta_max),
         contact_duration: phase_mean(&runs, |r| r.contact_duration),
         peak_force: phase_mean(&runs, |r| r.peak_force),
         runs,
-    };
-    Ok((ensemble, pilot))
+    }
 }
 
 /// Hertz's contact radius (m) of `case` (the elastic estimate that sizes the ladder).
@@ -391,6 +401,42 @@ pub fn ensemble_at(
     run_ensemble(&mesh_at, &run, meshes)
 }
 
+/// The ensemble of `meshes` members of `case` on family level `level`, like [`ensemble_at`],
+/// but with the ring ratio read at the contact radius `radius` (m; e.g. a coarser level's)
+/// instead of from a pilot run, so that all members run at once: the deep levels of a
+/// ladder, whose pilot alone would take as long as the rest.
+///
+/// Errors: as [`ensemble_at`]; a `radius` not inside the meshed contact surface.
+pub fn ensemble_at_radius(
+    case: &HeadOnCase,
+    level: i32,
+    meshes: usize,
+    radius: f64,
+) -> Result<PhaseEnsemble> {
+    check(
+        case,
+        &PhasePlan {
+            level: level + 1,
+            meshes,
+        },
+    )?;
+    check_meshes(meshes)?;
+    let a = hertz_contact_radius(case);
+    let d = case.diameter;
+    let q = ring_ratio(&family_mesh(d, a, level)?, radius)?;
+    let runs: Vec<PhaseRun> = (0..meshes)
+        .into_par_iter()
+        .map(|j| {
+            let s = q.powf(j as f64 / meshes as f64);
+            Ok(member(
+                s,
+                &head_on(case, family_mesh(d, a * s, level)?).run()?,
+            ))
+        })
+        .collect::<Result<_>>()?;
+    Ok(ensemble_of(q, runs))
+}
+
 /// The head-on impact of `case` converged over the phase of the section's rings, with error
 /// bars: an ensemble of `plan.meshes` meshes on family level `plan.level` (sized from
 /// Hertz's contact radius a; [`family_mesh`]) and one on the next coarser level.
@@ -462,6 +508,31 @@ mod tests {
         let run = |_m: MeridianMesh| -> Result<ImpactResult> { unreachable!() };
         let e = run_ensemble(&mesh_at, &run, 3).unwrap_err().to_string();
         assert!(e.contains("phase_meshes") && e.contains("3"), "{e}");
+    }
+
+    /// An ensemble read at a given radius checks its numbers before running anything.
+    #[test]
+    fn an_ensemble_at_a_radius_refuses_bad_numbers_before_running() {
+        let case = HeadOnCase {
+            diameter: 0.02,
+            material: Material::preset("copper-fe").unwrap(),
+            relative_speed: 2.0,
+            target: HeadOnTarget::IdenticalBall,
+            formulation: QuadFormulation::default(),
+            plane: PlaneContact::Kinematic,
+        };
+        let odd = ensemble_at_radius(&case, 0, 3, 890e-6)
+            .unwrap_err()
+            .to_string();
+        assert!(odd.contains("phase_meshes"), "{odd}");
+        let outside = ensemble_at_radius(&case, 0, 2, 0.05)
+            .unwrap_err()
+            .to_string();
+        assert!(outside.contains("contact_radius"), "{outside}");
+        let deep = ensemble_at_radius(&case, 9, 2, 890e-6)
+            .unwrap_err()
+            .to_string();
+        assert!(deep.contains("level"), "{deep}");
     }
 
     #[test]
