@@ -364,6 +364,18 @@ fn check(case: &HeadOnCase, plan: &PhasePlan) -> Result<()> {
     Ok(())
 }
 
+/// Checks `case` for an ensemble on family level `level` (which may be one below a plan's
+/// coarsest fine level: it is checked as the coarse ensemble of level + 1).
+fn check_ensemble_level(case: &HeadOnCase, level: i32, meshes: usize) -> Result<()> {
+    check(
+        case,
+        &PhasePlan {
+            level: level + 1,
+            meshes,
+        },
+    )
+}
+
 /// The HeadOn model of `case` on `mesh`.
 fn head_on(case: &HeadOnCase, mesh: MeridianMesh) -> HeadOn {
     let (speed, target) = match case.target {
@@ -387,13 +399,7 @@ pub fn ensemble_at(
     level: i32,
     meshes: usize,
 ) -> Result<(PhaseEnsemble, ImpactResult)> {
-    check(
-        case,
-        &PhasePlan {
-            level: level + 1,
-            meshes,
-        },
-    )?;
+    check_ensemble_level(case, level, meshes)?;
     let a = hertz_contact_radius(case);
     let d = case.diameter;
     let run = |mesh: MeridianMesh| head_on(case, mesh).run();
@@ -413,13 +419,7 @@ pub fn ensemble_at_radius(
     meshes: usize,
     radius: f64,
 ) -> Result<PhaseEnsemble> {
-    check(
-        case,
-        &PhasePlan {
-            level: level + 1,
-            meshes,
-        },
-    )?;
+    check_ensemble_level(case, level, meshes)?;
     check_meshes(meshes)?;
     let a = hertz_contact_radius(case);
     let d = case.diameter;
