@@ -507,7 +507,7 @@ fn phase_honesty() {
 
 /// Issue 26, acceptance 2 (docs/contact-penalty.md, "The B-bar ladder"): the plastic default
 /// scene's phase means on the B-bar quads converge monotonically in e, δ_max and t_c from
-/// family level 0 to `LADDER_TOP` (default 3, pole D/2156; about 40 min on 2 cores, 10 for
+/// family level 0 to `LADDER_TOP` (default 3, pole D/2156; about 30 min on 2 cores, 7 for
 /// `LADDER_TOP=2`), e also from level −1, and the finest mean, extrapolated at order 2,
 /// lies within 0.3 % of the 3D quarter model's converged e. Eight members per level, four on
 /// level 3, whose ring ratio is read at the contact radius of level 2 (890 µm) so that all
