@@ -77,21 +77,17 @@ fn run(args: &[String]) -> Result<(), String> {
             _ => PlaneContact::Kinematic,
         },
     };
-    if let (Ok("1"), Ok(r)) = (
-        std::env::var("PHASE_ONLY").as_deref(),
-        std::env::var("PHASE_RING_AT"),
-    ) {
-        let r: f64 = r
-            .parse()
-            .map_err(|_| format!("PHASE_RING_AT: {r:?} is not a radius in µm"))?;
-        let en = ensemble_at_radius(&case, level, meshes, r * 1e-6).map_err(|e| e.to_string())?;
-        print_ensemble(&format!("level {level}"), &en);
-        let cpu: f64 = en.runs.iter().map(|r| r.wall_time_s).sum();
-        println!("{cpu:.1} s CPU");
-        return Ok(());
-    }
     if std::env::var("PHASE_ONLY").as_deref() == Ok("1") {
-        let (en, _) = ensemble_at(&case, level, meshes).map_err(|e| e.to_string())?;
+        let en = match std::env::var("PHASE_RING_AT") {
+            Ok(r) => {
+                let r: f64 = r
+                    .parse()
+                    .map_err(|_| format!("PHASE_RING_AT: {r:?} is not a radius in µm"))?;
+                ensemble_at_radius(&case, level, meshes, r * 1e-6)
+            }
+            Err(_) => ensemble_at(&case, level, meshes).map(|(en, _)| en),
+        }
+        .map_err(|e| e.to_string())?;
         print_ensemble(&format!("level {level}"), &en);
         let cpu: f64 = en.runs.iter().map(|r| r.wall_time_s).sum();
         println!("{cpu:.1} s CPU");
