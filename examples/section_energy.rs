@@ -12,7 +12,9 @@
 //! `ball:SIZE:POLE` (`mesh::meridian::ball`, lengths in m) or `ladder:LEVEL[:A]`
 //! (`mesh::meridian::ladder_ball` sized from the contact radius A in µm, by default Hertz's
 //! at 2 m/s: 470.4 µm); a suffix `:b-bar` picks the B-bar quads, `:single` single-rate
-//! integration, `:move=FROM/TO` moves the surface ring nearest the rest radius FROM (µm)
+//! integration, `:band=SPLIT/INNER/OUTER` (ladder only) splits the layers whose surface rings
+//! lie between the rest radii INNER and OUTER (µm) into SPLIT shells each
+//! (`mesh::meridian::ladder_ball_banded`), `:move=FROM/TO` moves the surface ring nearest the rest radius FROM (µm)
 //! along the surface to the radius TO (µm). `SECTION_RINGS=1` also prints every ring
 //! arrival, `SECTION_PULSE=FILE` writes the force pulse (t in s, F in N) of the last mesh as
 //! CSV, `SECTION_CONTACT=segment` integrates the plane's penalty pressure over each segment
@@ -23,7 +25,9 @@ use twoball::fe::axisym::impact::{HeadOn, PlaneContact, Target};
 use twoball::fe::axisym::section::SectionSolver;
 use twoball::fe::axisym::subcycle::Integration;
 use twoball::material::Material;
-use twoball::mesh::meridian::{ball, ladder_ball, MeridianMesh, SectionSpec};
+use twoball::mesh::meridian::{
+    ball, ladder_ball, ladder_ball_banded, EdgeBand, MeridianMesh, SectionSpec,
+};
 
 const D: f64 = 0.02;
 
@@ -66,7 +70,15 @@ fn parse(arg: &str) -> Result<(MeridianMesh, QuadFormulation, Integration), Stri
                 Some(um) => (um * 1e-6, &parts[3..]),
                 None => (contact_radius(2.0)?, &parts[2..]),
             };
-            (ladder_ball(D, a, level).map_err(|e| e.to_string())?, rest)
+            let mesh = match rest.iter().find_map(|o| o.strip_prefix("band=")) {
+                Some(b) => {
+                    let band = parse_band(b)
+                        .ok_or_else(|| format!("{arg:?}: {b:?} is not SPLIT/INNER/OUTER"))?;
+                    ladder_ball_banded(D, a, level, &band)
+                }
+                None => ladder_ball(D, a, level),
+            };
+            (mesh.map_err(|e| e.to_string())?, rest)
         }
         _ => return Err(format!("{arg:?}: not ball:SIZE:POLE or ladder:LEVEL[:A]")),
     };
@@ -77,12 +89,26 @@ fn parse(arg: &str) -> Result<(MeridianMesh, QuadFormulation, Integration), Stri
         match *r {
             "b-bar" => form = QuadFormulation::SelectiveReduced,
             "single" => integ = Integration::SingleRate,
+            o if o.starts_with("band=") => {}
             o if o.starts_with("move=") => move_ring(&mut mesh, &o[5..])
                 .ok_or_else(|| format!("{arg:?}: {o:?} is not move=FROM/TO (µm)"))?,
             o => return Err(format!("{arg:?}: unknown option {o:?}")),
         }
     }
     Ok((mesh, form, integ))
+}
+
+/// The edge band "SPLIT/INNER/OUTER" (radii in µm).
+fn parse_band(spec: &str) -> Option<EdgeBand> {
+    let mut it = spec.split('/');
+    let split = it.next()?.parse().ok()?;
+    let inner = it.next()?.parse::<f64>().ok()? * 1e-6;
+    let outer = it.next()?.parse::<f64>().ok()? * 1e-6;
+    Some(EdgeBand {
+        inner,
+        outer,
+        split,
+    })
 }
 
 /// Moves the surface ring nearest the rest radius FROM (µm) along the surface to the radius
@@ -214,7 +240,7 @@ fn run(arg: &str) -> Result<String, String> {
 fn main() {
     let args: Vec<String> = std::env::args().skip(1).collect();
     if args.is_empty() {
-        eprintln!("usage: section_energy ball:SIZE:POLE|ladder:LEVEL[:A][:b-bar][:single][:move=FROM/TO] ...");
+        eprintln!("usage: section_energy ball:SIZE:POLE|ladder:LEVEL[:A][:b-bar][:single][:band=SPLIT/INNER/OUTER][:move=FROM/TO] ...");
         std::process::exit(2);
     }
     for a in &args {

@@ -7,8 +7,9 @@
 use std::collections::BTreeMap;
 
 pub use super::meridian_ball::{ball, SectionSpec};
+pub use super::meridian_band::EdgeBand;
 pub use super::meridian_block::{block, BlockSpec};
-pub use super::meridian_ladder::{ladder_ball, ladder_pole_size};
+pub use super::meridian_ladder::{ladder_ball, ladder_ball_banded, ladder_pole_size};
 
 /// A mesh of 4-node quadrilaterals on the meridian half-plane r ≥ 0. Coordinates in metres.
 #[derive(Debug, Clone, Default, PartialEq)]

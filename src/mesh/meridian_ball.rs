@@ -60,8 +60,8 @@ pub fn ball(spec: &SectionSpec) -> Result<MeridianMesh> {
         ));
     }
     let mut mesh = MeridianMesh::default();
-    let dome = build_quarter(&front, &mut mesh, false, None);
-    build_quarter(&back, &mut mesh, true, Some(&dome));
+    let dome = build_quarter(&front, &mut mesh, false, None, &uniform_layers(&front));
+    build_quarter(&back, &mut mesh, true, Some(&dome), &uniform_layers(&back));
     Ok(with_sets(mesh, r))
 }
 
@@ -106,14 +106,36 @@ fn quads_of(plan: &Plan) -> usize {
     m * m + plan.layers * 2 * m
 }
 
-/// Appends one quarter (the front z ≥ 0, or with `mirror` the back z ≤ 0) to `mesh`.
-/// `dome` (the front's node ids on z = 0, by ray index) makes the back share them. Returns
-/// this quarter's node ids on z = 0, from the axis to the equator.
+/// The layer fractions l/L, l = 1..=L, of `plan`'s evenly spaced layers.
+pub(super) fn uniform_layers(plan: &Plan) -> Vec<f64> {
+    (1..=plan.layers)
+        .map(|l| l as f64 / plan.layers as f64)
+        .collect()
+}
+
+/// The rest radius (m) of the front quarter's surface ring at layer fraction f (0 the
+/// core's outermost surface node, 1 the equator), for [`super::meridian_band`].
+pub(super) fn surface_ring_radius(plan: &Plan) -> impl Fn(f64) -> f64 {
+    let (n, m, r) = (plan.n, plan.n / 2, plan.r);
+    let p = core_point(0, 2 * m, m, n, plan.a, plan.deepen);
+    let len = p[0].hypot(p[1]);
+    move |f: f64| {
+        let rad = len.powf(1.0 - f) * (2.0 * r).powf(f);
+        invert([p[0] / len * rad, p[1] / len * rad, 0.0], r)[1]
+    }
+}
+
+/// Appends one quarter (the front z ≥ 0, or with `mirror` the back z ≤ 0) to `mesh`, its
+/// layers at the fractions `layers` (increasing, the last 1: [`uniform_layers`], or with an
+/// edge band [`super::meridian_band::layer_fractions`]). `dome` (the front's node ids on
+/// z = 0, by ray index) makes the back share them. Returns this quarter's node ids on z = 0,
+/// from the axis to the equator.
 pub(super) fn build_quarter(
     plan: &Plan,
     mesh: &mut MeridianMesh,
     mirror: bool,
     dome: Option<&[u32]>,
+    layers: &[f64],
 ) -> Vec<u32> {
     let (n, m, r) = (plan.n, plan.n / 2, plan.r);
     // Local coordinates (u inward from the pole along the axis, v away from the axis) of the
@@ -131,9 +153,8 @@ pub(super) fn build_quarter(
     let mut pattern: Vec<usize> = (0..=m).map(|j| core_id(m, j)).collect();
     pattern.extend((0..m).rev().map(|i| core_id(i, m)));
     let np = pattern.len();
-    let big_l = plan.layers;
-    for l in 1..=big_l {
-        let frac = l as f64 / big_l as f64;
+    let big_l = layers.len();
+    for (l, &frac) in (1..=big_l).zip(layers) {
         for &c in &pattern {
             let t = local[c];
             let len = (t[0] * t[0] + t[1] * t[1]).sqrt();

@@ -17,7 +17,10 @@
 
 use super::ball::{Plan, MAX_ELEMENTS};
 use super::meridian::MeridianMesh;
-use super::meridian_ball::{build_quarter, pole_edge, with_sets};
+use super::meridian_ball::{
+    build_quarter, pole_edge, surface_ring_radius, uniform_layers, with_sets,
+};
+use super::meridian_band::{layer_fractions, EdgeBand};
 use crate::error::{Error, Result};
 
 /// Half-width of the refined core around the pole, in predicted contact radii: the plastic
@@ -121,10 +124,40 @@ fn check(diameter: f64, contact_radius: f64, level: u32) -> Result<()> {
 /// [`CONTACT_RADIUS_RANGE_PER_D`] of the diameter, a level above [`MAX_LEVEL`], or more than
 /// [`MAX_ELEMENTS`] quads.
 pub fn ladder_ball(diameter: f64, contact_radius: f64, level: u32) -> Result<MeridianMesh> {
+    build(diameter, contact_radius, level, None)
+}
+
+/// [`ladder_ball`] with an edge band: the layer intervals whose surface rings overlap
+/// [`EdgeBand::inner`, `outer`] split into `band.split` shells each, so that the rings at
+/// the contact edge are `band.split` times closer ([`super::meridian_band`]). Every node of
+/// the mesh without the band is a node of this one.
+///
+/// Errors: those of [`ladder_ball`]; a band out of range, or starting inside the refined core
+/// (size the mesh from a contact radius below `band.inner` / 1.5).
+pub fn ladder_ball_banded(
+    diameter: f64,
+    contact_radius: f64,
+    level: u32,
+    band: &EdgeBand,
+) -> Result<MeridianMesh> {
+    check(diameter, contact_radius, level)?;
+    band.check(0.5 * diameter)?;
+    build(diameter, contact_radius, level, Some(band))
+}
+
+/// The ladder mesh, with or without a band.
+fn build(
+    diameter: f64,
+    contact_radius: f64,
+    level: u32,
+    band: Option<&EdgeBand>,
+) -> Result<MeridianMesh> {
     check(diameter, contact_radius, level)?;
     let r = 0.5 * diameter;
     let (front, back) = plans(r, contact_radius, level);
-    let quads = quads_of(&front) + quads_of(&back);
+    let layers = layer_fractions(front.layers, band, surface_ring_radius(&front))?;
+    let m = front.n / 2;
+    let quads = quads_of(&front) + quads_of(&back) + (layers.len() - front.layers) * 2 * m;
     if quads > MAX_ELEMENTS {
         return Err(Error::invalid(
             "level",
@@ -133,8 +166,8 @@ pub fn ladder_ball(diameter: f64, contact_radius: f64, level: u32) -> Result<Mer
         ));
     }
     let mut mesh = MeridianMesh::default();
-    let dome = build_quarter(&front, &mut mesh, false, None);
-    build_quarter(&back, &mut mesh, true, Some(&dome));
+    let dome = build_quarter(&front, &mut mesh, false, None, &layers);
+    build_quarter(&back, &mut mesh, true, Some(&dome), &uniform_layers(&back));
     Ok(with_sets(mesh, r))
 }
 
@@ -224,6 +257,70 @@ mod tests {
         // The pole follows the contact radius.
         let small = ladder_pole_size(D, A / 4.0, 0).unwrap();
         assert!((pole / small / 4.0 - 1.0).abs() < 0.02, "{}", pole / small);
+    }
+
+    /// Rest radii of the front surface rings (z > 0), increasing.
+    fn rings(m: &MeridianMesh) -> Vec<f64> {
+        let mut r: Vec<f64> = m.node_sets["surface"]
+            .iter()
+            .map(|&i| m.nodes[i as usize])
+            .filter(|p| p[1] > 0.0)
+            .map(|p| p[0])
+            .collect();
+        r.sort_by(f64::total_cmp);
+        r
+    }
+
+    #[test]
+    fn an_edge_band_splits_the_rings_at_the_edge_and_keeps_every_other_node() {
+        let edge = 2.0 * A;
+        for (level, split) in [(0, 4), (1, 2)] {
+            let plain = ladder_ball(D, A, level).unwrap();
+            let band = EdgeBand::around(edge, split);
+            let m = ladder_ball_banded(D, A, level, &band).unwrap();
+            assert!(m.quads.iter().all(|q| area(&m, q) > 0.0), "level {level}");
+            let r = 0.5 * D;
+            for &i in &m.node_sets["surface"] {
+                let p = m.nodes[i as usize];
+                assert!((p[0].hypot(p[1]) - r).abs() < 1e-12 * r, "{p:?}");
+            }
+            // Every node of the plain mesh is a node of the banded one.
+            for p in &plain.nodes {
+                let found = m
+                    .nodes
+                    .iter()
+                    .any(|q| (q[0] - p[0]).abs() < 1e-12 && (q[1] - p[1]).abs() < 1e-12);
+                assert!(found, "level {level}: {p:?} missing");
+            }
+            // The ring spacing at the edge is split times the plain mesh's; outside the band
+            // the rings are the plain ones.
+            let spacing = |rings: &[f64], at: f64| {
+                let k = rings.partition_point(|&x| x < at);
+                rings[k] - rings[k - 1]
+            };
+            let (pr, br) = (rings(&plain), rings(&m));
+            let ratio = spacing(&pr, edge) / spacing(&br, edge);
+            assert!((ratio / split as f64 - 1.0).abs() < 0.05, "{ratio}");
+            let far = |rs: &[f64]| -> Vec<f64> {
+                rs.iter()
+                    .copied()
+                    .filter(|&x| x < 0.7 * edge || x > 1.3 * edge)
+                    .collect()
+            };
+            assert_eq!(far(&pr), far(&br));
+            assert!(m.quads.len() > plain.quads.len());
+        }
+    }
+
+    #[test]
+    fn a_band_inside_the_refined_core_is_refused() {
+        // The core reaches 1.5 contact radii along the surface.
+        let band = EdgeBand::around(1.2 * A, 4);
+        let e = ladder_ball_banded(D, A, 0, &band).unwrap_err().to_string();
+        assert!(e.contains("band.inner") && e.contains("core"), "{e}");
+        let bad = EdgeBand { split: 0, ..band };
+        let e = ladder_ball_banded(D, A, 0, &bad).unwrap_err().to_string();
+        assert!(e.contains("band.split"), "{e}");
     }
 
     #[test]

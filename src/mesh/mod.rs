@@ -9,6 +9,7 @@ pub mod block;
 pub mod gmsh;
 pub mod meridian;
 pub mod meridian_ball;
+pub mod meridian_band;
 pub mod meridian_block;
 pub mod meridian_ladder;
 pub mod msh;

@@ -1,0 +1,170 @@
+//! A band of finer surface rings at the contact edge of a meridian ball mesh.
+//!
+//! On the section every surface node is a whole ring, so a plastic contact grows ring by ring
+//! and e follows where the last ring to land before maximum compression sits: a sawtooth over
+//! the mesh whose half-width shrinks about as the ring spacing at the contact edge
+//! (docs/contact-penalty.md, "Why the section's e scatters"). The band splits the ring
+//! spacing there, and only there: the O-grid's layers are shells around the refined core, each
+//! meeting the surface in one ring, so splitting the layer intervals whose surface rings fall
+//! in the band into `split` shells each puts `split` times more rings across the band. The
+//! shells run through the depth as thin quads, which the subcycled loop integrates at their
+//! own small step; everything outside the band keeps its nodes (a banded mesh contains every
+//! node of the mesh without the band).
+
+use crate::error::{Error, Result};
+
+/// Most shells one layer may be split into.
+pub const MAX_SPLIT: usize = 16;
+
+/// Band around a predicted contact edge a: rest radii from `BAND_INNER_PER_EDGE` a to
+/// `BAND_OUTER_PER_EDGE` a. The rings landing in the last 40 % of the loading of the default
+/// scene lie between about 0.8 a and a; the outer margin covers an edge predicted short.
+pub const BAND_INNER_PER_EDGE: f64 = 0.8;
+/// Outer end of the band, in predicted contact edges (see [`BAND_INNER_PER_EDGE`]).
+pub const BAND_OUTER_PER_EDGE: f64 = 1.15;
+
+/// Surface rings refined at the contact edge: every layer interval of the mesh whose surface
+/// ring radii overlap [`inner`, `outer`] (rest radii, m) is split into `split` shells.
+///
+/// [`inner`]: EdgeBand::inner
+/// [`outer`]: EdgeBand::outer
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct EdgeBand {
+    /// Inner rest radius of the band, m (> 0, outside the refined core).
+    pub inner: f64,
+    /// Outer rest radius of the band, m (> inner, < the ball radius).
+    pub outer: f64,
+    /// Shells per layer interval in the band, 1..=[`MAX_SPLIT`] (1: no refinement).
+    pub split: usize,
+}
+
+impl EdgeBand {
+    /// The band [0.8 a, 1.15 a] around the predicted contact edge `edge` = a (m), each layer
+    /// in it split into `split` shells.
+    pub fn around(edge: f64, split: usize) -> EdgeBand {
+        EdgeBand {
+            inner: BAND_INNER_PER_EDGE * edge,
+            outer: BAND_OUTER_PER_EDGE * edge,
+            split,
+        }
+    }
+
+    /// Checks the band on a ball of radius `radius` (m).
+    ///
+    /// Errors: `band.inner`, `band.outer` or `band.split` out of range, naming the range.
+    pub fn check(&self, radius: f64) -> Result<()> {
+        if !(self.inner.is_finite() && self.inner > 0.0) {
+            return Err(Error::invalid("band.inner", self.inner, "> 0 m, finite"));
+        }
+        if !(self.outer.is_finite() && self.outer > self.inner && self.outer < radius) {
+            return Err(Error::invalid(
+                "band.outer",
+                self.outer,
+                format!(
+                    "in ({:e}, {radius:e}) m (band.inner to the ball radius)",
+                    self.inner
+                ),
+            ));
+        }
+        if !(1..=MAX_SPLIT).contains(&self.split) {
+            return Err(Error::invalid(
+                "band.split",
+                self.split,
+                format!("an integer in [1, {MAX_SPLIT}]"),
+            ));
+        }
+        Ok(())
+    }
+}
+
+/// Layer fractions l/L, l = 1..=`layers` (0 is the core's side, 1 the last layer), with
+/// every interval whose surface ring radii overlap `band` split into `band.split` equal
+/// parts. `surface_radius(f)` is the rest radius (m) of the surface ring at fraction f,
+/// increasing in f; `surface_radius(0)` is the core's outermost surface ring.
+///
+/// Errors: a band that starts inside the refined core (`band.inner` ≤ `surface_radius(0)`),
+/// where layers cannot split it; `band.inner` names the core's radius.
+pub fn layer_fractions(
+    layers: usize,
+    band: Option<&EdgeBand>,
+    surface_radius: impl Fn(f64) -> f64,
+) -> Result<Vec<f64>> {
+    let uniform = (1..=layers).map(|l| l as f64 / layers as f64);
+    let Some(band) = band else {
+        return Ok(uniform.collect());
+    };
+    let core = surface_radius(0.0);
+    if band.inner <= core {
+        return Err(Error::invalid(
+            "band.inner",
+            band.inner,
+            format!(
+                "> {core:e} m (the refined core's surface radius: size the mesh from a \
+                 smaller contact radius)"
+            ),
+        ));
+    }
+    let mut fracs = Vec::with_capacity(layers * band.split);
+    let mut prev = 0.0;
+    for f in uniform {
+        let (r0, r1) = (surface_radius(prev), surface_radius(f));
+        if r0 < band.outer && r1 > band.inner {
+            let s = band.split as f64;
+            fracs.extend((1..band.split).map(|k| prev + (f - prev) * k as f64 / s));
+        }
+        fracs.push(f);
+        prev = f;
+    }
+    Ok(fracs)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn only_the_intervals_in_the_band_are_split() {
+        // Surface rings at 1 + 9 f mm: the core's at 1 mm, the layers' at 2, 3, ..., 10 mm
+        // (the spacings below are those between the layers' rings).
+        let radius = |f: f64| 1e-3 + 9e-3 * f;
+        let band = EdgeBand {
+            inner: 3.5e-3,
+            outer: 4.5e-3,
+            split: 4,
+        };
+        let f = layer_fractions(9, Some(&band), radius).unwrap();
+        // The intervals [3, 4] and [4, 5] mm overlap the band: 3 extra fractions each.
+        assert_eq!(f.len(), 9 + 6);
+        let rings: Vec<f64> = f.iter().map(|&x| radius(x) * 1e3).collect();
+        let fine: Vec<f64> = rings.windows(2).map(|w| w[1] - w[0]).collect();
+        assert!(fine.iter().filter(|&&d| (d - 0.25).abs() < 1e-9).count() == 8);
+        assert!(fine.iter().filter(|&&d| (d - 1.0).abs() < 1e-9).count() == 6);
+        assert!(f.windows(2).all(|w| w[1] > w[0]) && *f.last().unwrap() == 1.0);
+        // Without a band, or with split 1: the uniform fractions.
+        let plain = layer_fractions(9, None, radius).unwrap();
+        let one = EdgeBand { split: 1, ..band };
+        assert_eq!(layer_fractions(9, Some(&one), radius).unwrap(), plain);
+        assert_eq!(plain.len(), 9);
+    }
+
+    #[test]
+    fn a_band_inside_the_core_or_out_of_range_is_refused() {
+        let radius = |f: f64| 1e-3 + 9e-3 * f;
+        let inside = EdgeBand {
+            inner: 0.5e-3,
+            outer: 2e-3,
+            split: 2,
+        };
+        let e = layer_fractions(9, Some(&inside), radius).unwrap_err();
+        assert!(e.to_string().contains("band.inner"), "{e}");
+        let r = 10e-3;
+        let bad = |b: EdgeBand| b.check(r).unwrap_err().to_string();
+        let ok = EdgeBand::around(5e-3, 4);
+        assert!(ok.check(r).is_ok());
+        assert!(bad(EdgeBand { inner: -1.0, ..ok }).contains("band.inner"));
+        assert!(bad(EdgeBand { outer: 2e-3, ..ok }).contains("band.outer"));
+        assert!(bad(EdgeBand { outer: r, ..ok }).contains("band.outer"));
+        assert!(bad(EdgeBand { split: 0, ..ok }).contains("band.split"));
+        assert!(bad(EdgeBand { split: 17, ..ok }).contains("band.split"));
+    }
+}
