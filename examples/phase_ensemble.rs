@@ -9,7 +9,9 @@
 //! plane by the penalty springs instead of the kinematic constraint. `PHASE_ONLY=1` runs the
 //! ensemble of LEVEL alone (no coarse ensemble, no bar): the deep levels of a ladder. With
 //! `PHASE_RING_AT=R` (µm) as well, the ring ratio q is read at the contact radius R instead
-//! of from a pilot run, and all members run at once (`ensemble_at_radius`).
+//! of from a pilot run, and all members run at once (`ensemble_at_radius`). `PHASE_BAND=SPLIT`
+//! runs the banded family instead (`study::phase_band`: the surface rings at the contact edge
+//! of a level-0 run split SPLIT-fold; LEVEL ≥ 1).
 
 use twoball::fe::axisym::element::QuadFormulation;
 use twoball::fe::axisym::impact::PlaneContact;
@@ -93,7 +95,26 @@ fn run(args: &[String]) -> Result<(), String> {
         println!("{cpu:.1} s CPU");
         return Ok(());
     }
-    let ans = converged_head_on(&case, &PhasePlan { level, meshes }).map_err(|e| e.to_string())?;
+    let band = match std::env::var("PHASE_BAND") {
+        Ok(b) => Some(
+            b.parse::<usize>()
+                .map_err(|_| format!("PHASE_BAND: {b:?} is not a split (1-16)"))?,
+        ),
+        Err(_) => None,
+    };
+    let plan = PhasePlan {
+        level,
+        meshes,
+        band,
+    };
+    let ans = converged_head_on(&case, &plan).map_err(|e| e.to_string())?;
+    if let Some(edge) = ans.band_edge {
+        println!(
+            "edge band: split {}, around the contact edge {:.1} µm",
+            band.unwrap_or(1),
+            edge * 1e6
+        );
+    }
     for (label, en) in [("coarse", &ans.coarse), ("fine", &ans.fine)] {
         print_ensemble(label, en);
     }

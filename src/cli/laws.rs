@@ -59,6 +59,10 @@ pub struct LawBenchArgs {
     #[arg(long, value_name = "M",
           default_value_t = crate::study::laws_bench::fe::DEFAULT_FE_PLAN.meshes)]
     pub phase_meshes: usize,
+    /// Split the surface rings at each head-on point's contact edge SPLIT-fold (the banded
+    /// mesh family; needs --fe-level >= 1).
+    #[arg(long, value_name = "SPLIT")]
+    pub fe_band: Option<usize>,
     /// Run every diameter of the bilinear metals instead of scaling the smaller ones from
     /// the largest (similarity).
     #[arg(long)]
@@ -83,7 +87,7 @@ pub fn bench_with(a: LawBenchArgs, registry: &Registry) -> Result<()> {
         (_, true) => Mode::LawsOnly,
         _ => Mode::Full,
     };
-    let plan = FePlan::new(a.fe_level, a.phase_meshes)?;
+    let plan = FePlan::new(a.fe_level, a.phase_meshes)?.with_band(a.fe_band)?;
     let mut command = format!(
         "twoball laws bench --out {}{} --jobs {}",
         a.out.display(),
@@ -94,6 +98,9 @@ pub fn bench_with(a: LawBenchArgs, registry: &Registry) -> Result<()> {
     );
     if plan != FePlan::default() {
         command += &format!(" --fe-level {} --phase-meshes {}", plan.level, plan.meshes);
+    }
+    if let Some(split) = plan.band {
+        command += &format!(" --fe-band {split}");
     }
     if a.no_similarity {
         command += " --no-similarity";

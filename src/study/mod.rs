@@ -43,6 +43,7 @@ pub mod law_fit_files;
 pub mod laws_bench;
 pub mod number;
 pub mod outcome;
+pub mod phase_band;
 pub mod phase_ensemble;
 pub mod plots;
 pub mod progress;

@@ -153,6 +153,8 @@ pub struct HeadOnAnswer {
     /// The fine ensemble's pilot run (history and force pulse for curves).
     #[serde(skip)]
     pub pilot: ImpactResult,
+    /// With a banded plan, the contact edge the band is centred on, m.
+    pub band_edge: Option<f64>,
     /// CPU time of all runs (sum of their wall times), s.
     pub cpu_time_s: f64,
 }
@@ -194,6 +196,10 @@ pub struct PhasePlan {
     pub level: i32,
     /// Meshes per ensemble (even, ≥ 2).
     pub meshes: usize,
+    /// With `Some(split)`, the banded family ([`super::phase_band`]): the ladder around the
+    /// contact edge with the rings there split `split`-fold (1..=16); the fine level is then
+    /// ≥ 1 (its coarse level ≥ 0).
+    pub band: Option<usize>,
 }
 
 impl Default for PhasePlan {
@@ -201,6 +207,7 @@ impl Default for PhasePlan {
         PhasePlan {
             level: 0,
             meshes: DEFAULT_PHASE_MESHES,
+            band: None,
         }
     }
 }
@@ -361,7 +368,17 @@ fn check(case: &HeadOnCase, plan: &PhasePlan) -> Result<()> {
             format!("{MIN_LEVEL}..={max}"),
         ));
     }
-    Ok(())
+    if let Some(split) = plan.band {
+        super::phase_band::check_split(split)?;
+        if plan.level < 1 {
+            return Err(Error::invalid(
+                "level",
+                plan.level,
+                format!("1..={max} with an edge band (its coarse level is the ladder's 0)"),
+            ));
+        }
+    }
+    check_meshes(plan.meshes)
 }
 
 /// Checks `case` for an ensemble on family level `level` (which may be one below a plan's
@@ -372,12 +389,13 @@ fn check_ensemble_level(case: &HeadOnCase, level: i32, meshes: usize) -> Result<
         &PhasePlan {
             level: level + 1,
             meshes,
+            band: None,
         },
     )
 }
 
 /// The HeadOn model of `case` on `mesh`.
-fn head_on(case: &HeadOnCase, mesh: MeridianMesh) -> HeadOn {
+pub(super) fn head_on(case: &HeadOnCase, mesh: MeridianMesh) -> HeadOn {
     let (speed, target) = match case.target {
         HeadOnTarget::IdenticalBall => (case.relative_speed / 2.0, Target::MirrorBall),
         HeadOnTarget::RigidWall => (case.relative_speed, Target::RigidWall),
@@ -420,38 +438,70 @@ pub fn ensemble_at_radius(
     radius: f64,
 ) -> Result<PhaseEnsemble> {
     check_ensemble_level(case, level, meshes)?;
-    check_meshes(meshes)?;
     let a = hertz_contact_radius(case);
     let d = case.diameter;
     let q = ring_ratio(&family_mesh(d, a, level)?, radius)?;
-    let runs: Vec<PhaseRun> = (0..meshes)
+    let mesh_at = |s: f64| family_mesh(d, a * s, level);
+    let run = |mesh: MeridianMesh| head_on(case, mesh).run();
+    Ok(ensemble_over(q, meshes, &mesh_at, &run)?.0)
+}
+
+/// The ensemble of `meshes` (even, ≥ 2) members at s = q^{j/M}, all run at once: `mesh_at(s)`
+/// builds a member's mesh, `run` runs it. Returns the ensemble and the run at s = 1.
+///
+/// Errors: an odd or too small `meshes`; any error of `mesh_at` or `run` (the first one).
+pub fn ensemble_over(
+    q: f64,
+    meshes: usize,
+    mesh_at: &(dyn Fn(f64) -> Result<MeridianMesh> + Sync),
+    run: &(dyn Fn(MeridianMesh) -> Result<ImpactResult> + Sync),
+) -> Result<(PhaseEnsemble, ImpactResult)> {
+    check_meshes(meshes)?;
+    let mut results: Vec<(PhaseRun, ImpactResult)> = (0..meshes)
         .into_par_iter()
         .map(|j| {
             let s = q.powf(j as f64 / meshes as f64);
-            Ok(member(
-                s,
-                &head_on(case, family_mesh(d, a * s, level)?).run()?,
-            ))
+            let r = run(mesh_at(s)?)?;
+            Ok((member(s, &r), r))
         })
         .collect::<Result<_>>()?;
-    Ok(ensemble_of(q, runs))
+    let runs = results.iter().map(|t| t.0).collect();
+    let first = results.swap_remove(0).1;
+    Ok((ensemble_of(q, runs), first))
 }
 
 /// The head-on impact of `case` converged over the phase of the section's rings, with error
 /// bars: an ensemble of `plan.meshes` meshes on family level `plan.level` (sized from
-/// Hertz's contact radius a; [`family_mesh`]) and one on the next coarser level.
+/// Hertz's contact radius a; [`family_mesh`]) and one on the next coarser level; with
+/// `plan.band`, on the banded family around the contact edge of a level-0 run
+/// ([`super::phase_band`]).
 ///
-/// Errors: as [`ensemble_at`].
+/// Errors: as [`ensemble_at`]; a band's split outside 1..=16 or a banded fine level below 1.
 pub fn converged_head_on(case: &HeadOnCase, plan: &PhasePlan) -> Result<HeadOnAnswer> {
     check(case, plan)?;
-    let (coarse, _) = ensemble_at(case, plan.level - 1, plan.meshes)?;
-    let (fine, pilot) = ensemble_at(case, plan.level, plan.meshes)?;
-    let cpu_time_s = coarse
-        .runs
-        .iter()
-        .chain(&fine.runs)
-        .map(|r| r.wall_time_s)
-        .sum();
+    let (coarse, fine, pilot, band_edge, edge_cpu) = match plan.band {
+        None => {
+            let (coarse, _) = ensemble_at(case, plan.level - 1, plan.meshes)?;
+            let (fine, pilot) = ensemble_at(case, plan.level, plan.meshes)?;
+            (coarse, fine, pilot, None, 0.0)
+        }
+        Some(split) => {
+            use super::phase_band::{banded_ensemble_at, contact_edge};
+            let (edge, edge_run) = contact_edge(case)?;
+            let level = plan.level as u32;
+            let at = |l: u32| banded_ensemble_at(case, l, plan.meshes, edge, split);
+            let (coarse, fine) = rayon::join(|| at(level - 1), || at(level));
+            let ((coarse, _), (fine, pilot)) = (coarse?, fine?);
+            (coarse, fine, pilot, Some(edge), edge_run.wall_time_s)
+        }
+    };
+    let cpu_time_s = edge_cpu
+        + coarse
+            .runs
+            .iter()
+            .chain(&fine.runs)
+            .map(|r| r.wall_time_s)
+            .sum::<f64>();
     Ok(HeadOnAnswer {
         e: Bar::of(&coarse.e, &fine.e)?,
         delta_max: Bar::of(&coarse.delta_max, &fine.delta_max)?,
@@ -460,6 +510,7 @@ pub fn converged_head_on(case: &HeadOnCase, plan: &PhasePlan) -> Result<HeadOnAn
         coarse,
         fine,
         pilot,
+        band_edge,
         cpu_time_s,
     })
 }

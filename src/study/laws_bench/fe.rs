@@ -107,12 +107,15 @@ pub struct FePlan {
     pub level: i32,
     /// Meshes per ensemble (even, ≥ 2).
     pub meshes: usize,
+    /// With `Some(split)`, the banded family ([`PhasePlan::band`]).
+    pub band: Option<usize>,
 }
 
 /// The bench's default plan: fine level 0, coarse level −1, four meshes each.
 pub const DEFAULT_FE_PLAN: FePlan = FePlan {
     level: 0,
     meshes: 4,
+    band: None,
 };
 
 impl Default for FePlan {
@@ -142,19 +145,62 @@ impl FePlan {
                 "an even number >= 2",
             ));
         }
-        Ok(FePlan { level, meshes })
+        Ok(FePlan {
+            level,
+            meshes,
+            band: None,
+        })
+    }
+
+    /// The plan with an edge band of `split` (`None`: none) on the banded family.
+    ///
+    /// Errors: a split outside 1..=16 (naming `--fe-band`), or a band with a fine level
+    /// below 1 (naming `--fe-level`).
+    pub fn with_band(self, split: Option<usize>) -> Result<FePlan> {
+        if let Some(s) = split {
+            if crate::study::phase_band::check_split(s).is_err() {
+                return Err(Error::invalid(
+                    "--fe-band",
+                    s,
+                    format!(
+                        "an integer in [1, {}]",
+                        crate::mesh::meridian_band::MAX_SPLIT
+                    ),
+                ));
+            }
+            if self.level < 1 {
+                return Err(Error::invalid(
+                    "--fe-level",
+                    self.level,
+                    ">= 1 with --fe-band (the banded family's coarse level is 0)",
+                ));
+            }
+        }
+        Ok(FePlan {
+            band: split,
+            ..self
+        })
     }
 
     /// The FE model's name stored in every cache file of this plan (a file of another plan
     /// is rerun).
     pub fn model(&self) -> String {
-        format!(
-            "{FE_MODEL}: fine family level {}, coarse {}, {} meshes each, sized from the Hertz \
-             contact radius",
-            self.level,
-            self.level - 1,
-            self.meshes
-        )
+        match self.band {
+            None => format!(
+                "{FE_MODEL}: fine family level {}, coarse {}, {} meshes each, sized from the \
+                 Hertz contact radius",
+                self.level,
+                self.level - 1,
+                self.meshes
+            ),
+            Some(split) => format!(
+                "{FE_MODEL}: fine banded level {}, coarse {}, {} meshes each, the surface \
+                 rings at the contact edge (found on level 0) split {split}-fold",
+                self.level,
+                self.level - 1,
+                self.meshes
+            ),
+        }
     }
 
     /// The plan of `study::phase_ensemble`.
@@ -162,6 +208,7 @@ impl FePlan {
         PhasePlan {
             level: self.level,
             meshes: self.meshes,
+            band: self.band,
         }
     }
 }
