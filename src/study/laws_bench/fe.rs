@@ -349,3 +349,31 @@ pub fn oblique_fe(p: &ObliquePoint) -> Result<ObliqueFe> {
         wall_seconds: r.wall_time_s,
     })
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A banded plan names its band in the cache's model (so that its files are not taken
+    /// for a plain plan's, nor the other way round), and the plain plans keep their names.
+    #[test]
+    fn a_banded_plan_has_a_model_of_its_own() {
+        let plain = FePlan::new(1, 2).unwrap();
+        let banded = plain.with_band(Some(4)).unwrap();
+        assert_ne!(plain.model(), banded.model());
+        assert!(
+            banded.model().contains("split 4-fold"),
+            "{}",
+            banded.model()
+        );
+        assert_eq!(plain.with_band(None).unwrap(), plain);
+        assert_eq!(
+            DEFAULT_FE_PLAN.model(),
+            format!(
+                "{FE_MODEL}: fine family level 0, coarse -1, 4 meshes each, sized from the \
+                 Hertz contact radius"
+            )
+        );
+        assert_eq!(banded.phase_plan().band, Some(4));
+    }
+}
