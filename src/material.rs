@@ -100,6 +100,12 @@ impl Material {
         m
     }
 
+    /// The `copper-fe` preset: the copper of the ANSYS model in Section 3 of the paper (the
+    /// default scene's balls).
+    pub const fn copper_fe() -> Material {
+        Self::table(120.0, 100.0, 7900.0, 0.20, 0.33)
+    }
+
     /// The named preset (`copper`, `steel`, …, `copper-fe`), or an error listing the names.
     pub fn preset(name: &str) -> Result<Material> {
         // Table 1 of the paper: E (GPa), σ_s (MPa), ρ (kg/m³), μ_s, ν.
@@ -113,8 +119,7 @@ impl Material {
             "wood" => Self::table(14.0, 40.0, 600.0, 0.40, 0.25),
             "aluminum" => Self::table(75.0, 300.0, 2700.0, 0.32, 0.33),
             "rubber" => Self::table(0.0061, 7.0, 1000.0, 0.45, 0.45),
-            // Section 3 of the paper: the ANSYS model's copper.
-            "copper-fe" => Self::table(120.0, 100.0, 7900.0, 0.20, 0.33),
+            "copper-fe" => Self::copper_fe(),
             // Johnson & Cook (1983, 1985): OFHC copper and 4340 steel, with their densities;
             // E and ν are handbook values (124 GPa, 0.34; 200 GPa, 0.29), μ Table 1's.
             "ofhc-copper" => {

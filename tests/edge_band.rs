@@ -6,14 +6,10 @@
 //! answers with their bars are `#[ignore]`d (half a minute and more):
 //! `cargo test --release --test edge_band -- --ignored --nocapture`.
 
-use twoball::fe::axisym::element::QuadFormulation;
-use twoball::fe::axisym::impact::{HeadOn, PlaneContact, Target};
-use twoball::material::Material;
+use twoball::fe::axisym::impact::{HeadOn, Target};
 use twoball::mesh::meridian::{ladder_ball, MeridianMesh};
 use twoball::study::phase_band::{banded_mesh, contact_edge, SIZING_PER_EDGE};
-use twoball::study::phase_ensemble::{
-    converged_head_on, ring_ratio, HeadOnCase, HeadOnTarget, PhasePlan,
-};
+use twoball::study::phase_ensemble::{converged_head_on, ring_ratio, HeadOnCase, PhasePlan};
 
 const D: f64 = 0.02;
 
@@ -22,14 +18,7 @@ const D: f64 = 0.02;
 const E_CONVERGED: f64 = 0.3184;
 
 fn case() -> HeadOnCase {
-    HeadOnCase {
-        diameter: D,
-        material: Material::preset("copper-fe").unwrap(),
-        relative_speed: 2.0,
-        target: HeadOnTarget::IdenticalBall,
-        formulation: QuadFormulation::default(),
-        plane: PlaneContact::Kinematic,
-    }
+    HeadOnCase::default_scene()
 }
 
 /// e of the default scene on `mesh`.

@@ -122,11 +122,14 @@ pub fn layer_fractions(
 mod tests {
     use super::*;
 
+    /// Surface rings at 1 + 9 f mm: the core's at 1 mm, the layers' at 2, 3, ..., 10 mm.
+    fn radius(f: f64) -> f64 {
+        1e-3 + 9e-3 * f
+    }
+
     #[test]
     fn only_the_intervals_in_the_band_are_split() {
-        // Surface rings at 1 + 9 f mm: the core's at 1 mm, the layers' at 2, 3, ..., 10 mm
-        // (the spacings below are those between the layers' rings).
-        let radius = |f: f64| 1e-3 + 9e-3 * f;
+        // The spacings below are those between the layers' rings.
         let band = EdgeBand {
             inner: 3.5e-3,
             outer: 4.5e-3,
@@ -149,7 +152,6 @@ mod tests {
 
     #[test]
     fn a_band_inside_the_core_or_out_of_range_is_refused() {
-        let radius = |f: f64| 1e-3 + 9e-3 * f;
         let inside = EdgeBand {
             inner: 0.5e-3,
             outer: 2e-3,

@@ -187,6 +187,21 @@ pub struct HeadOnCase {
     pub plane: PlaneContact,
 }
 
+impl HeadOnCase {
+    /// The default scene as a head-on case: two D = 20 mm copper-fe balls at 2 m/s relative
+    /// speed, one-point quads, the kinematic symmetry plane.
+    pub fn default_scene() -> HeadOnCase {
+        HeadOnCase {
+            diameter: 0.02,
+            material: Material::copper_fe(),
+            relative_speed: 2.0,
+            target: HeadOnTarget::IdenticalBall,
+            formulation: QuadFormulation::default(),
+            plane: PlaneContact::Kinematic,
+        }
+    }
+}
+
 /// How fine and how large the ensembles are.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct PhasePlan {
@@ -564,14 +579,7 @@ mod tests {
     /// An ensemble read at a given radius checks its numbers before running anything.
     #[test]
     fn an_ensemble_at_a_radius_refuses_bad_numbers_before_running() {
-        let case = HeadOnCase {
-            diameter: 0.02,
-            material: Material::preset("copper-fe").unwrap(),
-            relative_speed: 2.0,
-            target: HeadOnTarget::IdenticalBall,
-            formulation: QuadFormulation::default(),
-            plane: PlaneContact::Kinematic,
-        };
+        let case = HeadOnCase::default_scene();
         let odd = ensemble_at_radius(&case, 0, 3, 890e-6)
             .unwrap_err()
             .to_string();
