@@ -140,8 +140,6 @@ pub fn ladder_ball_banded(
     level: u32,
     band: &EdgeBand,
 ) -> Result<MeridianMesh> {
-    check(diameter, contact_radius, level)?;
-    band.check(0.5 * diameter)?;
     build(diameter, contact_radius, level, Some(band))
 }
 
@@ -154,6 +152,9 @@ fn build(
 ) -> Result<MeridianMesh> {
     check(diameter, contact_radius, level)?;
     let r = 0.5 * diameter;
+    if let Some(b) = band {
+        b.check(r)?;
+    }
     let (front, back) = plans(r, contact_radius, level);
     let layers = layer_fractions(front.layers, band, surface_ring_radius(&front))?;
     let m = front.n / 2;
