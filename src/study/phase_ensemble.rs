@@ -464,13 +464,17 @@ pub fn ensemble_at_radius(
 /// The ensemble of `meshes` (even, ≥ 2) members at s = q^{j/M}, all run at once: `mesh_at(s)`
 /// builds a member's mesh, `run` runs it. Returns the ensemble and the run at s = 1.
 ///
-/// Errors: an odd or too small `meshes`; any error of `mesh_at` or `run` (the first one).
+/// Errors: a ring ratio `q` that is not finite and > 1; an odd or too small `meshes`; any
+/// error of `mesh_at` or `run` (the first one).
 pub fn ensemble_over(
     q: f64,
     meshes: usize,
     mesh_at: &(dyn Fn(f64) -> Result<MeridianMesh> + Sync),
     run: &(dyn Fn(MeridianMesh) -> Result<ImpactResult> + Sync),
 ) -> Result<(PhaseEnsemble, ImpactResult)> {
+    if !(q.is_finite() && q > 1.0) {
+        return Err(Error::invalid("ring_ratio", q, "> 1, finite"));
+    }
     check_meshes(meshes)?;
     let mut results: Vec<(PhaseRun, ImpactResult)> = (0..meshes)
         .into_par_iter()
@@ -574,6 +578,10 @@ mod tests {
         let run = |_m: MeridianMesh| -> Result<ImpactResult> { unreachable!() };
         let e = run_ensemble(&mesh_at, &run, 3).unwrap_err().to_string();
         assert!(e.contains("phase_meshes") && e.contains("3"), "{e}");
+        for q in [f64::NAN, 1.0, 0.5] {
+            let e = ensemble_over(q, 2, &mesh_at, &run).unwrap_err().to_string();
+            assert!(e.contains("ring_ratio"), "{e}");
+        }
     }
 
     /// An ensemble read at a given radius checks its numbers before running anything.
