@@ -66,14 +66,22 @@ impl EdgeBand {
                 ),
             ));
         }
-        if !(1..=MAX_SPLIT).contains(&self.split) {
-            return Err(Error::invalid(
-                "band.split",
-                self.split,
-                format!("an integer in [1, {MAX_SPLIT}]"),
-            ));
-        }
+        check_split(self.split)
+    }
+}
+
+/// Checks a band's split.
+///
+/// Errors: `split` outside 1..=[`MAX_SPLIT`] (naming `band.split`).
+pub fn check_split(split: usize) -> Result<()> {
+    if (1..=MAX_SPLIT).contains(&split) {
         Ok(())
+    } else {
+        Err(Error::invalid(
+            "band.split",
+            split,
+            format!("an integer in [1, {MAX_SPLIT}]"),
+        ))
     }
 }
 

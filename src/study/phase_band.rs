@@ -19,30 +19,15 @@ use super::phase_ensemble::{
     ensemble_over, family_mesh, head_on, hertz_contact_radius, ring_ratio, HeadOnCase,
     PhaseEnsemble,
 };
-use crate::error::{Error, Result};
+use crate::error::Result;
 use crate::fe::axisym::impact::ImpactResult;
 use crate::mesh::meridian::{ladder_ball_banded, EdgeBand, MeridianMesh};
-use crate::mesh::meridian_band::MAX_SPLIT;
+pub use crate::mesh::meridian_band::check_split;
 
 /// The banded family's sizing radius over the edge: its core reaches 1.5 × 0.45 = 0.675
 /// edges along the surface, inside the band's 0.8 even for an ensemble member scaled by a
 /// ring ratio of 1.15.
 pub const SIZING_PER_EDGE: f64 = 0.45;
-
-/// Checks a band's split.
-///
-/// Errors: `split` outside 1..=[`MAX_SPLIT`] (naming `band.split`).
-pub fn check_split(split: usize) -> Result<()> {
-    if (1..=MAX_SPLIT).contains(&split) {
-        Ok(())
-    } else {
-        Err(Error::invalid(
-            "band.split",
-            split,
-            format!("an integer in [1, {MAX_SPLIT}]"),
-        ))
-    }
-}
 
 /// The contact edge (m) of `case`: the midpoint of the rest radii of the outermost surface
 /// ring that reached the plane and the next one, on the plain family's level 0 (sized from
@@ -100,7 +85,7 @@ mod tests {
     #[test]
     fn a_bad_split_is_refused_before_running() {
         let case = HeadOnCase::default_scene();
-        for split in [0, MAX_SPLIT + 1] {
+        for split in [0, crate::mesh::meridian_band::MAX_SPLIT + 1] {
             let e = banded_ensemble_at(&case, 0, 2, 9e-4, split)
                 .unwrap_err()
                 .to_string();
