@@ -11,7 +11,8 @@
 //! `PHASE_RING_AT=R` (µm) as well, the ring ratio q is read at the contact radius R instead
 //! of from a pilot run, and all members run at once (`ensemble_at_radius`). `PHASE_BAND=SPLIT`
 //! runs the banded family instead (`study::phase_band`: the surface rings at the contact edge
-//! of a level-0 run split SPLIT-fold; LEVEL ≥ 1).
+//! of a level-0 run split SPLIT-fold; LEVEL ≥ 1). `PHASE_MASS_SCALING=BUDGET` mass-scales
+//! every run within BUDGET (added mass over the section's; `fe::axisym::mass_scaling`).
 
 use twoball::fe::axisym::element::QuadFormulation;
 use twoball::fe::axisym::impact::PlaneContact;
@@ -77,6 +78,12 @@ fn run(args: &[String]) -> Result<(), String> {
         plane: match std::env::var("PHASE_CONTACT").as_deref() {
             Ok("nodal") => PlaneContact::Nodal,
             _ => PlaneContact::Kinematic,
+        },
+        mass_scaling: match std::env::var("PHASE_MASS_SCALING") {
+            Ok(b) => b
+                .parse()
+                .map_err(|_| format!("PHASE_MASS_SCALING: {b:?} is not a budget"))?,
+            Err(_) => 0.0,
         },
     };
     if std::env::var("PHASE_ONLY").as_deref() == Ok("1") {

@@ -215,10 +215,15 @@ fn a_bad_plan_is_one_line_naming_the_flag() {
         (["--fe-level=-3", "--jobs=2"], "--fe-level"),
         (["--phase-meshes", "3"], "--phase-meshes"),
         (["--phase-meshes", "0"], "--phase-meshes"),
+        (["--fe-level", "-1"], "--fe-level"),
         (["--fe-band", "0"], "--fe-band"),
         (["--fe-band=17", "--fe-level=1"], "--fe-band"),
-        // A band needs a fine level of at least 1 (its coarse level is the ladder's 0).
-        (["--fe-band", "4"], "--fe-level"),
+        (["--fe-band", "many"], "--fe-band"),
+        // A band (the default) needs a fine level of at least 1 (its coarse level is the
+        // ladder's 0).
+        (["--fe-band=4", "--fe-level=0"], "--fe-level"),
+        (["--fe-mass-scaling", "0.5"], "--fe-mass-scaling"),
+        (["--fe-mass-scaling=-1e-4", "--jobs=2"], "--fe-mass-scaling"),
     ] {
         let out = Command::new(env!("CARGO_BIN_EXE_twoball"))
             .args(["laws", "bench", "--laws-only", "--out"])

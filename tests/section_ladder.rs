@@ -467,6 +467,7 @@ fn phase_honesty() {
             target: HeadOnTarget::IdenticalBall,
             formulation: formulation(),
             plane: plane_contact(),
+            mass_scaling: 0.0,
         };
         let family = level - 1;
         let meshes = if level > 0 { truth_meshes } else { 8 };
@@ -529,6 +530,7 @@ fn plastic_b_bar_ladder_is_monotone() {
         target: HeadOnTarget::IdenticalBall,
         formulation: QuadFormulation::SelectiveReduced,
         plane: PlaneContact::Kinematic,
+        mass_scaling: 0.0,
     };
     let mut rows: Vec<[f64; 3]> = Vec::new();
     for level in -1..=top {

@@ -60,9 +60,15 @@ pub struct LawBenchArgs {
           default_value_t = crate::study::laws_bench::fe::DEFAULT_FE_PLAN.meshes)]
     pub phase_meshes: usize,
     /// Split the surface rings at each head-on point's contact edge SPLIT-fold (the banded
-    /// mesh family; needs --fe-level >= 1).
-    #[arg(long, value_name = "SPLIT")]
-    pub fe_band: Option<usize>,
+    /// mesh family; needs --fe-level >= 1); `none`: the plain family, sized from Hertz's
+    /// contact radius.
+    #[arg(long, value_name = "SPLIT|none", default_value = "4")]
+    pub fe_band: String,
+    /// Mass-scale every head-on FE run: raise the smallest quads' density, adding at most
+    /// BUDGET of the section's mass (0: none); the bias bound 10 x BUDGET joins every bar.
+    #[arg(long, value_name = "BUDGET",
+          default_value_t = crate::study::laws_bench::fe::DEFAULT_FE_PLAN.mass_scaling)]
+    pub fe_mass_scaling: f64,
     /// Run every diameter of the bilinear metals instead of scaling the smaller ones from
     /// the largest (similarity).
     #[arg(long)]
@@ -87,7 +93,17 @@ pub fn bench_with(a: LawBenchArgs, registry: &Registry) -> Result<()> {
         (_, true) => Mode::LawsOnly,
         _ => Mode::Full,
     };
-    let plan = FePlan::new(a.fe_level, a.phase_meshes)?.with_band(a.fe_band)?;
+    let band = match a.fe_band.as_str() {
+        "none" => None,
+        s => Some(
+            s.parse::<usize>()
+                .map_err(|_| Error::invalid("--fe-band", s, "an integer in [1, 16], or none"))?,
+        ),
+    };
+    let plan = FePlan::new(a.fe_level, a.phase_meshes)?
+        .with_band(band)?
+        .with_mass_scaling(a.fe_mass_scaling)?;
+    let default = FePlan::default();
     let mut command = format!(
         "twoball laws bench --out {}{} --jobs {}",
         a.out.display(),
@@ -96,11 +112,17 @@ pub fn bench_with(a: LawBenchArgs, registry: &Registry) -> Result<()> {
             .map_or(String::new(), |p| format!(" --matrix {}", p.display())),
         a.jobs
     );
-    if plan != FePlan::default() {
+    if (plan.level, plan.meshes) != (default.level, default.meshes) {
         command += &format!(" --fe-level {} --phase-meshes {}", plan.level, plan.meshes);
     }
-    if let Some(split) = plan.band {
-        command += &format!(" --fe-band {split}");
+    if plan.band != default.band {
+        match plan.band {
+            Some(split) => command += &format!(" --fe-band {split}"),
+            None => command += " --fe-band none",
+        }
+    }
+    if plan.mass_scaling != default.mass_scaling {
+        command += &format!(" --fe-mass-scaling {:e}", plan.mass_scaling);
     }
     if a.no_similarity {
         command += " --no-similarity";

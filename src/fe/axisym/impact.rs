@@ -120,6 +120,9 @@ pub struct HeadOn {
     pub integration: Integration,
     /// How the mirror plane or the wall takes the boundary.
     pub plane_contact: PlaneContact,
+    /// Mass-scaling budget: the added mass over the model's mass that may raise the
+    /// smallest quads' steps ([`super::mass_scaling`]; 0, the default: none).
+    pub mass_scaling: f64,
 }
 
 /// One history row (whole system; for [`Target::MirrorBall`] the pair).
@@ -172,6 +175,8 @@ pub struct ImpactResult {
     pub energy_error: f64,
     /// Largest penetration into the plane, m.
     pub max_penetration: f64,
+    /// Mass added by mass scaling over the model's mass (0 without).
+    pub added_mass_fraction: f64,
     /// Largest contact radius over the run (the current r of the outermost node in contact),
     /// m.
     pub contact_radius_max: f64,
@@ -345,6 +350,7 @@ impl HeadOn {
             max_steps: u64::MAX,
             integration: Integration::subcycled(),
             plane_contact: PlaneContact::default(),
+            mass_scaling: 0.0,
         }
     }
 
@@ -477,6 +483,22 @@ impl HeadOn {
         model.formulation = self.formulation;
         model.time_step_factor = self.time_step_factor;
         model.integration = self.integration;
+        let mut added_mass_fraction = 0.0;
+        if self.mass_scaling > 0.0 {
+            let mats = &model.materials;
+            let of = &model.material_of;
+            let scaling = super::mass_scaling::within_budget(
+                &model.nodes,
+                &model.quads,
+                |e| mats[of[e]].wave_speed,
+                |e| mats[of[e]].rho,
+                self.mass_scaling,
+            )?;
+            added_mass_fraction = scaling.added_fraction;
+            model.density_scale = scaling.scale;
+        } else {
+            super::mass_scaling::check_budget(self.mass_scaling)?;
+        }
         let mut solver = SectionSolver::new(model, vec![contact])?;
         let n = solver.masses().len();
         let ball_mass: f64 = solver.masses()[..n1].iter().sum();
@@ -618,6 +640,7 @@ impl HeadOn {
             peak_force: pulse.iter().map(|p| p.1).fold(0.0, f64::max),
             energy_error: drift,
             max_penetration: max_pen,
+            added_mass_fraction,
             contact_radius_max,
             plastic: scale * en.plastic,
             initial_kinetic: scale * e0.kinetic,

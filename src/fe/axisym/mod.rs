@@ -7,6 +7,7 @@
 //! - [`element`]: its update in two formulations (one point with hourglass control, and
 //!   selectively reduced B-bar), through the 3D objective rate and material seam;
 //! - [`mass`]: lumped ring masses;
+//! - [`mass_scaling`]: raised densities of the smallest quads within an added-mass budget;
 //! - [`section`]: the model and the explicit loop (Box 6.1), with energy accounting;
 //! - [`plane`]: penalty contact against a rigid plane z = const;
 //! - [`plane_segment`]: the same plane with the penalty pressure integrated over each
@@ -25,6 +26,7 @@
 pub mod element;
 pub mod impact;
 pub mod mass;
+pub mod mass_scaling;
 pub mod plane;
 pub mod plane_kinematic;
 pub mod plane_segment;

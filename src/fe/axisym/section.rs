@@ -89,6 +89,8 @@ pub struct SectionModel {
     pub time_step_factor: f64,
     /// Single-rate or subcycled time integration.
     pub integration: Integration,
+    /// Density factor of each quad (≥ 1, [`super::mass_scaling`]); empty: none.
+    pub density_scale: Vec<f64>,
 }
 
 impl SectionModel {
@@ -105,6 +107,7 @@ impl SectionModel {
             damping: 0.0,
             time_step_factor: 0.9,
             integration: Integration::SingleRate,
+            density_scale: Vec::new(),
             nodes,
             quads,
         }
@@ -151,6 +154,17 @@ impl SectionModel {
                 self.damping,
                 ">= 0, finite",
             ));
+        }
+        let ds = &self.density_scale;
+        if !(ds.is_empty() || ds.len() == self.quads.len()) {
+            return Err(Error::invalid(
+                "model.density_scale",
+                ds.len(),
+                format!("empty or one factor per quad ({})", self.quads.len()),
+            ));
+        }
+        if let Some(f) = ds.iter().find(|f| !(f.is_finite() && **f >= 1.0)) {
+            return Err(Error::invalid("model.density_scale", f, ">= 1, finite"));
         }
         let lens = [self.velocity.len(), self.fixed.len(), self.loads.len()];
         if lens.iter().any(|&l| l != n) || self.material_of.len() != self.quads.len() {
@@ -229,8 +243,9 @@ impl SectionSolver {
         for (e, q) in model.quads.iter().enumerate() {
             let x = q.map(|i| model.nodes[i as usize]);
             let mat = &model.materials[model.material_of[e]];
-            let m = element_masses(&x, mat.rho);
-            let w = 2.0 * mat.wave_speed / super::quad::characteristic_length(&x);
+            let s = model.density_scale.get(e).copied().unwrap_or(1.0);
+            let m = element_masses(&x, s * mat.rho);
+            let w = 2.0 * mat.wave_speed / (s.sqrt() * super::quad::characteristic_length(&x));
             for (k, &i) in q.iter().enumerate() {
                 mass[i as usize] += m[k];
                 omega[i as usize] = omega[i as usize].max(w);
@@ -375,8 +390,13 @@ impl SectionSolver {
             self.f_int[i as usize][0] += out.force[k][0];
             self.f_int[i as usize][1] += out.force[k][1];
         }
-        self.element_dt_of[e] = out.dt_crit;
-        Ok(out.dt_crit)
+        // A density raised by s slows the quad's waves by √s.
+        let dt = match self.model.density_scale.get(e) {
+            Some(s) => out.dt_crit * s.sqrt(),
+            None => out.dt_crit,
+        };
+        self.element_dt_of[e] = dt;
+        Ok(dt)
     }
 
     /// Evaluates every contact at the current x into `f_c` and the contact states.

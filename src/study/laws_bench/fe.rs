@@ -101,7 +101,7 @@ pub struct ObliqueFe {
 /// How converged every head-on FE point is: the phase ensembles of
 /// [`crate::study::phase_ensemble::converged_head_on`], fine on family level `level`,
 /// coarse on `level − 1`, `meshes` meshes each.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, PartialEq)]
 pub struct FePlan {
     /// Family level of the fine ensemble ([`PhasePlan::level`]).
     pub level: i32,
@@ -109,13 +109,19 @@ pub struct FePlan {
     pub meshes: usize,
     /// With `Some(split)`, the banded family ([`PhasePlan::band`]).
     pub band: Option<usize>,
+    /// Mass-scaling budget of every head-on run (added mass over the section's; 0: none;
+    /// [`HeadOnCase::mass_scaling`]).
+    pub mass_scaling: f64,
 }
 
-/// The bench's default plan: fine level 0, coarse level −1, four meshes each.
+/// The bench's default plan: the banded family (four-fold band) with fine level 1 and
+/// coarse level 0, two meshes each, every run mass-scaled within 1e-4 of the section's mass
+/// (docs/contact-laws.md, "FE error bars").
 pub const DEFAULT_FE_PLAN: FePlan = FePlan {
-    level: 0,
-    meshes: 4,
-    band: None,
+    level: 1,
+    meshes: 2,
+    band: Some(4),
+    mass_scaling: 1e-4,
 };
 
 impl Default for FePlan {
@@ -125,7 +131,7 @@ impl Default for FePlan {
 }
 
 impl FePlan {
-    /// A checked plan.
+    /// A checked plan on the plain family (no band, no mass scaling).
     ///
     /// Errors: a level outside the fine levels phase_ensemble accepts, or `meshes` odd or
     /// below 2 (one line naming `--fe-level` or `--phase-meshes`).
@@ -149,6 +155,7 @@ impl FePlan {
             level,
             meshes,
             band: None,
+            mass_scaling: 0.0,
         })
     }
 
@@ -182,10 +189,36 @@ impl FePlan {
         })
     }
 
+    /// The plan with every head-on run mass-scaled within `budget` (0: none).
+    ///
+    /// Errors: a budget outside [0, 1e-2] (naming `--fe-mass-scaling`).
+    pub fn with_mass_scaling(self, budget: f64) -> Result<FePlan> {
+        use crate::fe::axisym::mass_scaling::{check_budget, MAX_BUDGET};
+        if check_budget(budget).is_err() {
+            return Err(Error::invalid(
+                "--fe-mass-scaling",
+                budget,
+                format!("a fraction in [0, {MAX_BUDGET}] (added mass over the section's)"),
+            ));
+        }
+        Ok(FePlan {
+            mass_scaling: budget,
+            ..self
+        })
+    }
+
     /// The FE model's name stored in every cache file of this plan (a file of another plan
     /// is rerun).
     pub fn model(&self) -> String {
-        match self.band {
+        let scaled = if self.mass_scaling > 0.0 {
+            format!(
+                ", mass-scaled within {:e} of the section's mass",
+                self.mass_scaling
+            )
+        } else {
+            String::new()
+        };
+        let plan = match self.band {
             None => format!(
                 "{FE_MODEL}: fine family level {}, coarse {}, {} meshes each, sized from the \
                  Hertz contact radius",
@@ -200,7 +233,8 @@ impl FePlan {
                 self.level - 1,
                 self.meshes
             ),
-        }
+        };
+        plan + &scaled
     }
 
     /// The plan of `study::phase_ensemble`.
@@ -236,6 +270,7 @@ pub fn head_on_case(point: &HeadOnPoint) -> HeadOnCase {
         target: HeadOnTarget::IdenticalBall,
         formulation: QuadFormulation::default(),
         plane: PlaneContact::Kinematic,
+        mass_scaling: 0.0,
     }
 }
 
@@ -254,7 +289,11 @@ fn bar_of(b: &EnsembleBar) -> Bar {
 /// Errors: a mesh the ladder rejects (contact radius outside its range), a run that fails
 /// (named by the section model).
 pub fn head_on_fe(point: &HeadOnPoint, plan: &FePlan) -> Result<FePoint> {
-    let answer = converged_head_on(&head_on_case(point), &plan.phase_plan())?;
+    let case = HeadOnCase {
+        mass_scaling: plan.mass_scaling,
+        ..head_on_case(point)
+    };
+    let answer = converged_head_on(&case, &plan.phase_plan())?;
     Ok(FePoint {
         e: bar_of(&answer.e),
         delta_max: bar_of(&answer.delta_max),
@@ -368,12 +407,30 @@ mod tests {
         );
         assert_eq!(plain.with_band(None).unwrap(), plain);
         assert_eq!(
-            DEFAULT_FE_PLAN.model(),
+            FePlan::new(0, 4).unwrap().model(),
             format!(
                 "{FE_MODEL}: fine family level 0, coarse -1, 4 meshes each, sized from the \
                  Hertz contact radius"
             )
         );
         assert_eq!(banded.phase_plan().band, Some(4));
+    }
+
+    /// A mass-scaled plan names its budget in the cache's model; a budget of 0 leaves the
+    /// model (and so the cache) of the unscaled plan.
+    #[test]
+    fn a_mass_scaled_plan_has_a_model_of_its_own() {
+        let banded = FePlan::new(1, 2).unwrap().with_band(Some(4)).unwrap();
+        let scaled = banded.with_mass_scaling(1e-4).unwrap();
+        assert_ne!(banded.model(), scaled.model());
+        assert!(scaled
+            .model()
+            .ends_with("mass-scaled within 1e-4 of the section's mass"));
+        assert_eq!(
+            banded.with_mass_scaling(0.0).unwrap().model(),
+            banded.model()
+        );
+        let e = banded.with_mass_scaling(0.02).unwrap_err().to_string();
+        assert!(e.contains("--fe-mass-scaling"), "{e}");
     }
 }

@@ -83,7 +83,7 @@ fn header(s: &mut String, command: &str, r: &BenchResults) {
         "What is measured. Head-on impacts of two identical balls: FE on the meridian section \
          (one ball against the symmetry plane; FE model: {}). Each FE quantity is the fine \
          ensemble's mean over the phase of the section's surface rings with its error bar: \
-         the two-level estimate from the coarse ensemble plus the fine mean's sampling error \
+         the two-level estimate from the coarse ensemble plus the fine mean's sampling error{} \
          (`study::phase_ensemble::converged_head_on`; docs/contact-penalty.md, \"The section's \
          converged answer\" and \"Is the ensemble's bar honest?\"){}. Every normal law of \
          `twoball laws` with its default parameters for the pair (as `twoball laws run`), \
@@ -95,6 +95,12 @@ fn header(s: &mut String, command: &str, r: &BenchResults) {
          E*, R* = R/2, m* = m/2), v_y = √(16E*√R*δ₁^(5/2)/(15m*)); it does not depend on D. \
          Johnson's onset p₀ = 1.6σ_s gives a v_y smaller by (1.6/(1 + π/2))^(5/2) = 0.306.\n",
         r.plan.model(),
+        if r.plan.mass_scaling > 0.0 {
+            " plus the mass-scaling bias bound, 10 × the budget relative (docs/contact-penalty.md, \
+             \"Mass scaling of the contact region\")"
+        } else {
+            ""
+        },
         if scaled > 0 {
             format!(
                 ". {scaled} head-on points of the bilinear metals are not run but scaled from the \
@@ -155,7 +161,7 @@ fn bars_section(s: &mut String, r: &BenchResults) {
     let _ = writeln!(
         s,
         "\n{below} of {total} head-on points have an FE bar below {:.1} % in e. The cost and bars \
-         of other plans (`--fe-level`, `--phase-meshes`) are in docs/contact-laws.md, \"FE error \
+         of other plans (`--fe-level`, `--phase-meshes`, `--fe-band`, `--fe-mass-scaling`) are in docs/contact-laws.md, \"FE error \
          bars\".\n",
         100.0 * TARGET_E_BAR
     );
