@@ -113,6 +113,7 @@ fn run(args: &[String]) -> Result<(), String> {
         level,
         meshes,
         band,
+        ..PhasePlan::default()
     };
     let ans = converged_head_on(&case, &plan).map_err(|e| e.to_string())?;
     if let Some(edge) = ans.band_edge {

@@ -89,6 +89,7 @@ fn banded_answer(level: i32, within: f64) {
         level,
         meshes: 2,
         band: Some(4),
+        ..PhasePlan::default()
     };
     let a = converged_head_on(&case(), &plan).unwrap();
     let rel = a.e.value / E_CONVERGED - 1.0;

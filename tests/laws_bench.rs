@@ -223,6 +223,8 @@ fn a_bad_plan_is_one_line_naming_the_flag() {
         // ladder's 0).
         (["--fe-band=4", "--fe-level=0"], "--fe-level"),
         (["--fe-mass-scaling", "0.5"], "--fe-mass-scaling"),
+        (["--fe-tolerance", "-0.01"], "--fe-tolerance"),
+        (["--fe-tolerance=0.005", "--fe-level=7"], "--fe-tolerance"),
         (["--fe-mass-scaling=-1e-4", "--jobs=2"], "--fe-mass-scaling"),
     ] {
         let out = Command::new(env!("CARGO_BIN_EXE_twoball"))

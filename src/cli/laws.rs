@@ -69,6 +69,11 @@ pub struct LawBenchArgs {
     #[arg(long, value_name = "BUDGET",
           default_value_t = crate::study::laws_bench::fe::DEFAULT_FE_PLAN.mass_scaling)]
     pub fe_mass_scaling: f64,
+    /// Run a head-on point one level finer when the relative bar of its e exceeds this
+    /// fraction (0: never).
+    #[arg(long, value_name = "FRACTION",
+          default_value_t = crate::study::laws_bench::fe::DEFAULT_FE_PLAN.tolerance.unwrap_or(0.0))]
+    pub fe_tolerance: f64,
     /// Run every diameter of the bilinear metals instead of scaling the smaller ones from
     /// the largest (similarity).
     #[arg(long)]
@@ -102,7 +107,8 @@ pub fn bench_with(a: LawBenchArgs, registry: &Registry) -> Result<()> {
     };
     let plan = FePlan::new(a.fe_level, a.phase_meshes)?
         .with_band(band)?
-        .with_mass_scaling(a.fe_mass_scaling)?;
+        .with_mass_scaling(a.fe_mass_scaling)?
+        .with_tolerance((a.fe_tolerance != 0.0).then_some(a.fe_tolerance))?;
     let default = FePlan::default();
     let mut command = format!(
         "twoball laws bench --out {}{} --jobs {}",
@@ -123,6 +129,9 @@ pub fn bench_with(a: LawBenchArgs, registry: &Registry) -> Result<()> {
     }
     if plan.mass_scaling != default.mass_scaling {
         command += &format!(" --fe-mass-scaling {:e}", plan.mass_scaling);
+    }
+    if plan.tolerance != default.tolerance {
+        command += &format!(" --fe-tolerance {:e}", plan.tolerance.unwrap_or(0.0));
     }
     if a.no_similarity {
         command += " --no-similarity";

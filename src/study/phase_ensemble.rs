@@ -165,6 +165,8 @@ pub struct HeadOnAnswer {
     pub pilot: ImpactResult,
     /// With a banded plan, the contact edge the band is centred on, m.
     pub band_edge: Option<f64>,
+    /// Level of the fine ensemble that answered (the plan's, or deeper after refinements).
+    pub fine_level: i32,
     /// CPU time of all runs (sum of their wall times), s.
     pub cpu_time_s: f64,
 }
@@ -218,7 +220,7 @@ impl HeadOnCase {
 }
 
 /// How fine and how large the ensembles are.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, PartialEq)]
 pub struct PhasePlan {
     /// Level of the fine ensemble: ℓ ≥ 0 the ladder level of `mesh::meridian::ladder_ball`
     /// sized from Hertz's contact radius a; ℓ < 0 the level-0 ladder sized from 2^−ℓ a (pole
@@ -230,6 +232,11 @@ pub struct PhasePlan {
     /// contact edge with the rings there split `split`-fold (1..=16); the fine level is then
     /// ≥ 1 (its coarse level ≥ 0).
     pub band: Option<usize>,
+    /// With `Some(t)`: while the relative bar of e exceeds t (> 0), run the next finer level
+    /// (the fine ensemble becomes the coarse one), at most `max_refinements` times.
+    pub tolerance: Option<f64>,
+    /// Most refinements beyond `level` under `tolerance`.
+    pub max_refinements: u32,
 }
 
 impl Default for PhasePlan {
@@ -238,6 +245,8 @@ impl Default for PhasePlan {
             level: 0,
             meshes: DEFAULT_PHASE_MESHES,
             band: None,
+            tolerance: None,
+            max_refinements: 0,
         }
     }
 }
@@ -409,6 +418,22 @@ fn check(case: &HeadOnCase, plan: &PhasePlan) -> Result<()> {
             ));
         }
     }
+    if let Some(t) = plan.tolerance {
+        if !(t.is_finite() && t > 0.0) {
+            return Err(Error::invalid("tolerance", t, "> 0, finite"));
+        }
+        let deepest = plan.level + plan.max_refinements as i32;
+        if deepest > max {
+            return Err(Error::invalid(
+                "max_refinements",
+                plan.max_refinements,
+                format!(
+                    "<= {} (the ladder's deepest level is {max})",
+                    max - plan.level
+                ),
+            ));
+        }
+    }
     check_meshes(plan.meshes)
 }
 
@@ -420,7 +445,7 @@ fn check_ensemble_level(case: &HeadOnCase, level: i32, meshes: usize) -> Result<
         &PhasePlan {
             level: level + 1,
             meshes,
-            band: None,
+            ..PhasePlan::default()
         },
     )
 }
@@ -510,35 +535,50 @@ pub fn ensemble_over(
 /// bars: an ensemble of `plan.meshes` meshes on family level `plan.level` (sized from
 /// Hertz's contact radius a; [`family_mesh`]) and one on the next coarser level; with
 /// `plan.band`, on the banded family around the contact edge of a level-0 run
-/// ([`super::phase_band`]).
+/// ([`super::phase_band`]). With `plan.tolerance`, while e's relative bar exceeds it the
+/// next finer level runs and the fine ensemble becomes the coarse one, at most
+/// `plan.max_refinements` times ([`HeadOnAnswer::fine_level`] says where it stopped).
 ///
-/// Errors: as [`ensemble_at`]; a band's split outside 1..=16 or a banded fine level below 1.
+/// Errors: as [`ensemble_at`]; a band's split outside 1..=16 or a banded fine level below 1;
+/// a tolerance that is not finite and positive, or refinements past the ladder's level 7.
 pub fn converged_head_on(case: &HeadOnCase, plan: &PhasePlan) -> Result<HeadOnAnswer> {
     check(case, plan)?;
-    let (coarse, fine, pilot, band_edge, edge_cpu) = match plan.band {
-        None => {
-            let (coarse, _) = ensemble_at(case, plan.level - 1, plan.meshes)?;
-            let (fine, pilot) = ensemble_at(case, plan.level, plan.meshes)?;
-            (coarse, fine, pilot, None, 0.0)
-        }
-        Some(split) => {
-            use super::phase_band::{banded_ensemble_at, contact_edge};
-            let (edge, edge_run) = contact_edge(case)?;
-            let level = plan.level as u32;
-            let at = |l: u32| banded_ensemble_at(case, l, plan.meshes, edge, split);
-            let (coarse, fine) = rayon::join(|| at(level - 1), || at(level));
-            let ((coarse, _), (fine, pilot)) = (coarse?, fine?);
-            (coarse, fine, pilot, Some(edge), edge_run.wall_time_s)
+    use super::phase_band::{banded_ensemble_at, contact_edge};
+    let edge = match plan.band {
+        Some(_) => Some(contact_edge(case)?),
+        None => None,
+    };
+    // The ensemble of `level` and its pilot run, on the plan's family.
+    let at = |level: i32| -> Result<(PhaseEnsemble, ImpactResult)> {
+        match (plan.band, &edge) {
+            (Some(split), Some((e, _))) => {
+                banded_ensemble_at(case, level as u32, plan.meshes, *e, split)
+            }
+            _ => ensemble_at(case, level, plan.meshes),
         }
     };
+    let (coarse, fine) = match plan.band {
+        // The banded ring ratio is read at the edge: both levels' members run at once.
+        Some(_) => rayon::join(|| at(plan.level - 1), || at(plan.level)),
+        None => (at(plan.level - 1), at(plan.level)),
+    };
+    let (mut coarse, (mut fine, mut pilot)) = (coarse?.0, fine?);
+    let mut level = plan.level;
+    let mut cpu_time_s = edge.as_ref().map_or(0.0, |(_, r)| r.wall_time_s) + cpu_of(&coarse);
+    let bar_e = |c: &PhaseEnsemble, f: &PhaseEnsemble| Bar::of(&c.e, &f.e, case.mass_scaling);
+    if let Some(tol) = plan.tolerance {
+        while bar_e(&coarse, &fine)?.relative_error() > tol
+            && level < plan.level + plan.max_refinements as i32
+        {
+            cpu_time_s += cpu_of(&fine);
+            level += 1;
+            let (finer, finer_pilot) = at(level)?;
+            coarse = std::mem::replace(&mut fine, finer);
+            pilot = finer_pilot;
+        }
+    }
+    cpu_time_s += cpu_of(&fine);
     let ms = case.mass_scaling;
-    let cpu_time_s = edge_cpu
-        + coarse
-            .runs
-            .iter()
-            .chain(&fine.runs)
-            .map(|r| r.wall_time_s)
-            .sum::<f64>();
     Ok(HeadOnAnswer {
         e: Bar::of(&coarse.e, &fine.e, ms)?,
         delta_max: Bar::of(&coarse.delta_max, &fine.delta_max, ms)?,
@@ -547,9 +587,15 @@ pub fn converged_head_on(case: &HeadOnCase, plan: &PhasePlan) -> Result<HeadOnAn
         coarse,
         fine,
         pilot,
-        band_edge,
+        band_edge: edge.map(|(e, _)| e),
+        fine_level: level,
         cpu_time_s,
     })
+}
+
+/// CPU time of an ensemble's runs (the sum of their wall times), s.
+fn cpu_of(en: &PhaseEnsemble) -> f64 {
+    en.runs.iter().map(|r| r.wall_time_s).sum()
 }
 
 #[cfg(test)]

@@ -78,12 +78,33 @@ pub trait Hardening: Copy + std::fmt::Debug + Send + Sync {
 /// (bisection whenever a step would leave it or the slope is not finite), for a flow
 /// stress `flow(Δp) = (σ_y, dσ_y/dΔp)` non-decreasing in Δp. `q` (Pa) exceeds `sy` =
 /// σ_y at Δp = 0 at the reference rate; the root lies in (0, (q − sy)/(3G)], since σ_y never
-/// falls below `sy`. Returns Δp and the plastic work per unit volume by the trapezoidal rule
+/// falls below `sy`; `flow(0)` must be exactly (`sy`, ·). Returns Δp and the plastic work per unit volume by the trapezoidal rule
 /// on the flow stress at the two ends of the increment, J/m³.
 pub fn newton_return(q: f64, sy: f64, shear: f64, flow: impl Fn(f64) -> (f64, f64)) -> (f64, f64) {
+    let hi = (q - sy) / (3.0 * shear);
+    let x = newton_root(q, shear, (0.0, hi), hi, &flow);
+    // σ_y at Δp = 0 is `sy` (the contract above): no second evaluation of the flow stress.
+    let end = flow(x).0;
+    (x, 0.5 * x * (sy + end))
+}
+
+/// The root Δp (dimensionless) of q − 3G Δp = σ_y(Δp) in the bracket `(lo, hi]`, where
+/// the residual is positive at lo and not positive at hi: Newton's method from `start`
+/// (in the bracket) kept inside the shrinking bracket, bisection whenever a step would
+/// leave it or the slope is not finite. `q` and `flow` as in [`newton_return`]; `shear` G
+/// in Pa. Where the residual is convex (a concave flow stress), Newton from the left end
+/// climbs to the root monotonically, while from the right it overshoots below the root
+/// (and out of a tight bracket, into bisection steps).
+pub fn newton_root(
+    q: f64,
+    shear: f64,
+    bracket: (f64, f64),
+    start: f64,
+    flow: impl Fn(f64) -> (f64, f64),
+) -> f64 {
     let three_g = 3.0 * shear;
-    let (mut lo, mut hi) = (0.0, (q - sy) / three_g);
-    let mut x = hi;
+    let (mut lo, mut hi) = bracket;
+    let mut x = start;
     for _ in 0..200 {
         let (s, ds) = flow(x);
         let f = q - three_g * x - s;
@@ -106,9 +127,7 @@ pub fn newton_return(q: f64, sy: f64, shear: f64, flow: impl Fn(f64) -> (f64, f6
             x = 0.5 * (lo + hi);
         }
     }
-    let start = flow(0.0).0;
-    let end = flow(x).0;
-    (x, 0.5 * x * (start + end))
+    x
 }
 
 #[cfg(test)]

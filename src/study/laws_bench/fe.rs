@@ -74,6 +74,10 @@ pub struct FePoint {
     /// Diameter (m) of the run point this one is scaled from by similarity (`None`: run).
     #[serde(default)]
     pub scaled_from: Option<f64>,
+    /// Family level of the fine ensemble that answered (the plan's, or one deeper where the
+    /// plan's tolerance refined the point; `None` in caches written before it was recorded).
+    #[serde(default)]
+    pub fine_level: Option<i32>,
 }
 
 /// What the FE says about one oblique point (contact frame: normal x, tangential y, spins
@@ -112,16 +116,21 @@ pub struct FePlan {
     /// Mass-scaling budget of every head-on run (added mass over the section's; 0: none;
     /// [`HeadOnCase::mass_scaling`]).
     pub mass_scaling: f64,
+    /// With `Some(t)`, a point whose relative bar of e exceeds t runs one level finer
+    /// ([`PhasePlan::tolerance`]).
+    pub tolerance: Option<f64>,
 }
 
 /// The bench's default plan: the banded family (four-fold band) with fine level 1 and
-/// coarse level 0, two meshes each, every run mass-scaled within 1e-4 of the section's mass
-/// (docs/contact-laws.md, "FE error bars").
+/// coarse level 0, two meshes each, every run mass-scaled within 1e-4 of the section's mass,
+/// a point whose bar of e exceeds 0.5 % refined one level (docs/contact-laws.md, "FE error
+/// bars").
 pub const DEFAULT_FE_PLAN: FePlan = FePlan {
     level: 1,
     meshes: 2,
     band: Some(4),
     mass_scaling: 1e-4,
+    tolerance: Some(0.005),
 };
 
 impl Default for FePlan {
@@ -156,6 +165,7 @@ impl FePlan {
             meshes,
             band: None,
             mass_scaling: 0.0,
+            tolerance: None,
         })
     }
 
@@ -207,6 +217,25 @@ impl FePlan {
         })
     }
 
+    /// The plan refining a point one level where e's relative bar exceeds `tolerance`
+    /// (`None`: never).
+    ///
+    /// Errors: a tolerance that is not finite and positive, or a fine level of 7 (naming
+    /// `--fe-tolerance`).
+    pub fn with_tolerance(self, tolerance: Option<f64>) -> Result<FePlan> {
+        if let Some(t) = tolerance {
+            let max = crate::mesh::meridian_ladder::MAX_LEVEL as i32;
+            if !(t.is_finite() && t > 0.0) || self.level >= max {
+                return Err(Error::invalid(
+                    "--fe-tolerance",
+                    t,
+                    format!("a fraction > 0 (or 0: none) with a fine level below {max}"),
+                ));
+            }
+        }
+        Ok(FePlan { tolerance, ..self })
+    }
+
     /// The FE model's name stored in every cache file of this plan (a file of another plan
     /// is rerun).
     pub fn model(&self) -> String {
@@ -217,6 +246,10 @@ impl FePlan {
             )
         } else {
             String::new()
+        };
+        let refined = match self.tolerance {
+            Some(t) => format!(", refined one level where the bar of e exceeds {t:e}"),
+            None => String::new(),
         };
         let plan = match self.band {
             None => format!(
@@ -234,7 +267,7 @@ impl FePlan {
                 self.meshes
             ),
         };
-        plan + &scaled
+        plan + &scaled + &refined
     }
 
     /// The plan of `study::phase_ensemble`.
@@ -243,6 +276,8 @@ impl FePlan {
             level: self.level,
             meshes: self.meshes,
             band: self.band,
+            tolerance: self.tolerance,
+            max_refinements: u32::from(self.tolerance.is_some()),
         }
     }
 }
@@ -307,6 +342,7 @@ pub fn head_on_fe(point: &HeadOnPoint, plan: &FePlan) -> Result<FePoint> {
             .collect(),
         cpu_seconds: answer.cpu_time_s,
         scaled_from: None,
+        fine_level: Some(answer.fine_level),
     })
 }
 
@@ -332,6 +368,7 @@ impl FePoint {
                 .collect(),
             cpu_seconds: 0.0,
             scaled_from: Some(from_diameter),
+            fine_level: self.fine_level,
         }
     }
 }

@@ -158,10 +158,25 @@ fn bars_section(s: &mut String, r: &BenchResults) {
     }
     let below: usize = stats.iter().map(|m| m.below_target).sum();
     let total: usize = stats.iter().map(|m| m.relative.len()).sum();
+    let refined = r
+        .head_on
+        .iter()
+        .filter_map(|h| h.fe_done())
+        .filter(|f| f.fine_level.is_some_and(|l| l > r.plan.level))
+        .count();
+    let refined = if refined > 0 {
+        format!(
+            " {refined} of them were refined one level (their bar on level {} exceeded the \
+             tolerance; \"(level …)\" in the FE table).",
+            r.plan.level
+        )
+    } else {
+        String::new()
+    };
     let _ = writeln!(
         s,
-        "\n{below} of {total} head-on points have an FE bar below {:.1} % in e. The cost and bars \
-         of other plans (`--fe-level`, `--phase-meshes`, `--fe-band`, `--fe-mass-scaling`) are in docs/contact-laws.md, \"FE error \
+        "\n{below} of {total} head-on points have an FE bar below {:.1} % in e.{refined} The cost and bars \
+         of other plans (`--fe-level`, `--phase-meshes`, `--fe-band`, `--fe-mass-scaling`, `--fe-tolerance`) are in docs/contact-laws.md, \"FE error \
          bars\".\n",
         100.0 * TARGET_E_BAR
     );
@@ -241,9 +256,13 @@ fn fe_section(s: &mut String, r: &BenchResults) {
         );
         match (&h.fe, h.fe_done()) {
             (_, Some(f)) => {
+                let refined = match f.fine_level {
+                    Some(l) if l > r.plan.level => format!(" (level {l})"),
+                    _ => String::new(),
+                };
                 let cpu = match f.scaled_from {
-                    Some(d) => format!("scaled from {} mm", 1e3 * d),
-                    None => format!("{:.1}", f.cpu_seconds),
+                    Some(d) => format!("scaled from {} mm{refined}", 1e3 * d),
+                    None => format!("{:.1}{refined}", f.cpu_seconds),
                 };
                 let _ = writeln!(
                     s,
