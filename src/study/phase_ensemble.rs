@@ -105,9 +105,10 @@ pub struct PhaseEnsemble {
 
 /// Bound on the relative bias of a mass-scaled run per unit budget: |q(s) − q(0)| ≤
 /// MASS_SCALING_BIAS · budget · |q| for e, δ_max, the contact duration and the peak force.
-/// Measured on copper-fe, banded levels 0 and 1, 0.01 to 10 m/s, budgets 1e-5 to 1e-4: the
-/// largest ratio was 5.5 (e at 1.39 m/s; docs/contact-penalty.md, "Mass scaling of the
-/// contact region").
+/// Measured on copper-fe (banded levels 0 and 1, 0.01 to 10 m/s, budgets 1e-5 to 1e-4) and
+/// on steel, aluminum and the Johnson-Cook copper at one speed each, budget 1e-4: the
+/// largest ratio was 9.1 (e of steel at 1.39 m/s on banded level 0; 4.5 on its level 1;
+/// docs/contact-penalty.md, "Mass scaling of the contact region").
 pub const MASS_SCALING_BIAS: f64 = 10.0;
 
 /// A value with its error bar (same unit).
