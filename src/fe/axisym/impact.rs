@@ -483,6 +483,7 @@ impl HeadOn {
         model.formulation = self.formulation;
         model.time_step_factor = self.time_step_factor;
         model.integration = self.integration;
+        super::mass_scaling::check_budget(self.mass_scaling)?;
         let mut added_mass_fraction = 0.0;
         if self.mass_scaling > 0.0 {
             let mats = &model.materials;
@@ -496,8 +497,6 @@ impl HeadOn {
             )?;
             added_mass_fraction = scaling.added_fraction;
             model.density_scale = scaling.scale;
-        } else {
-            super::mass_scaling::check_budget(self.mass_scaling)?;
         }
         let mut solver = SectionSolver::new(model, vec![contact])?;
         let n = solver.masses().len();

@@ -190,14 +190,35 @@ mod tests {
     }
 
     #[test]
-    fn a_large_budget_stops_at_the_largest_step() {
+    fn a_budget_too_small_for_the_thin_quad_leaves_the_target_between_the_steps() {
+        // Two quads of heights 1 and 1/2: raising the thin one to the thick one's step costs
+        // three of its masses, all of the strip's, far above 1 %.
         let (nodes, quads) = strip(2);
         let s = within_budget(&nodes, &quads, |_| 1.0, |_| 1.0, MAX_BUDGET).unwrap();
-        // The two quads differ by 2 in height: raising the thin one costs 3 of its masses,
-        // more than 1 % of the strip, so the target stays between the two steps.
-        assert!(s.target_step < s.scale.len() as f64 && s.added_fraction <= MAX_BUDGET);
         let sm = steps_and_masses(&nodes, &quads, |_| 1.0, |_| 1.0);
-        assert!(s.target_step > sm[1].0 && s.target_step < sm[0].0);
+        assert!(s.target_step > sm[1].0 && s.target_step < sm[0].0, "{s:?}");
+        assert!((s.added_fraction / MAX_BUDGET - 1.0).abs() < 1e-9, "{s:?}");
+        assert_eq!(s.scale[0], 1.0);
+    }
+
+    #[test]
+    fn a_budget_that_covers_every_quad_stops_at_the_largest_step() {
+        // 200 unit squares and one of height 1/2 on top: raising the thin one costs three
+        // of its half masses, 0.75 % of the strip, within a budget of 1 %.
+        let mut nodes = Vec::new();
+        for k in 0..=200 {
+            nodes.push([1.0, k as f64]);
+            nodes.push([2.0, k as f64]);
+        }
+        nodes.push([1.0, 200.5]);
+        nodes.push([2.0, 200.5]);
+        let quads: Vec<[u32; 4]> = (0..201u32)
+            .map(|k| [2 * k, 2 * k + 1, 2 * k + 3, 2 * k + 2])
+            .collect();
+        let s = within_budget(&nodes, &quads, |_| 1.0, |_| 1.0, MAX_BUDGET).unwrap();
+        assert_eq!(s.target_step, 1.0);
+        assert!((s.scale[200] - 4.0).abs() < 1e-12 && s.scale[..200].iter().all(|&f| f == 1.0));
+        assert!(s.added_fraction < MAX_BUDGET && s.added_fraction > 0.5 * MAX_BUDGET);
     }
 
     #[test]

@@ -219,6 +219,8 @@ pub struct SectionSolver {
     element_dt: f64,
     /// Courant step of each quad at its last update, s.
     pub(super) element_dt_of: Vec<f64>,
+    /// √ of each quad's density factor, the factor on its Courant step (empty: none).
+    step_scale: Vec<f64>,
     /// Stable step of each node's contact springs, s (∞ off the contacts).
     pub(super) contact_dt: Vec<f64>,
     /// 1 + the index of the contact holding each node kinematically (0: none).
@@ -288,6 +290,7 @@ impl SectionSolver {
             contact: Vec::with_capacity(contacts.len()),
             element_dt: f64::INFINITY,
             element_dt_of: vec![f64::INFINITY; ne],
+            step_scale: model.density_scale.iter().map(|s| s.sqrt()).collect(),
             contact_dt,
             held,
             schedule: Schedule::default(),
@@ -391,8 +394,8 @@ impl SectionSolver {
             self.f_int[i as usize][1] += out.force[k][1];
         }
         // A density raised by s slows the quad's waves by √s.
-        let dt = match self.model.density_scale.get(e) {
-            Some(s) => out.dt_crit * s.sqrt(),
+        let dt = match self.step_scale.get(e) {
+            Some(r) => out.dt_crit * r,
             None => out.dt_crit,
         };
         self.element_dt_of[e] = dt;
