@@ -98,16 +98,22 @@ fn parse(arg: &str) -> Result<(MeridianMesh, QuadFormulation, Integration), Stri
     Ok((mesh, form, integ))
 }
 
-/// The edge band "SPLIT/INNER/OUTER" (radii in µm).
+/// The edge band "SPLIT/INNER/OUTER[/DEPTH]" (radii in µm; DEPTH the share of the rays from
+/// the surface, 1 by default).
 fn parse_band(spec: &str) -> Option<EdgeBand> {
     let mut it = spec.split('/');
     let split = it.next()?.parse().ok()?;
     let inner = it.next()?.parse::<f64>().ok()? * 1e-6;
     let outer = it.next()?.parse::<f64>().ok()? * 1e-6;
+    let depth = match it.next() {
+        Some(d) => d.parse().ok()?,
+        None => 1.0,
+    };
     Some(EdgeBand {
         inner,
         outer,
         split,
+        depth,
     })
 }
 

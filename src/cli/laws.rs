@@ -60,9 +60,10 @@ pub struct LawBenchArgs {
           default_value_t = crate::study::laws_bench::fe::DEFAULT_FE_PLAN.meshes)]
     pub phase_meshes: usize,
     /// Split the surface rings at each head-on point's contact edge SPLIT-fold (the banded
-    /// mesh family; needs --fe-level >= 1); `none`: the plain family, sized from Hertz's
-    /// contact radius.
-    #[arg(long, value_name = "SPLIT|none", default_value = "4")]
+    /// mesh family; needs --fe-level >= 1; an odd split stops a sixth of the rays below the
+    /// surface, an even one runs through the depth); `none`: the plain family, sized from
+    /// Hertz's contact radius.
+    #[arg(long, value_name = "SPLIT|none", default_value = "5")]
     pub fe_band: String,
     /// Mass-scale every head-on FE run: raise the smallest quads' density, adding at most
     /// BUDGET of the section's mass (0: none); the bias bound 10 x BUDGET joins every bar.

@@ -106,10 +106,24 @@ fn quads_of(plan: &Plan) -> usize {
     m * m + plan.layers * 2 * m
 }
 
-/// The layer fractions l/L, l = 1..=L, of `plan`'s evenly spaced layers.
-pub(super) fn uniform_layers(plan: &Plan) -> Vec<f64> {
+/// One ring of an O-grid quarter's layers: its layer fraction l/L (0 the core's side, 1 the
+/// equator) and the first ray it reaches (0: every ray, from the axis; a ring of an edge band
+/// confined to the surface starts at a later ray, [`super::meridian_band`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(super) struct LayerRing {
+    /// Layer fraction, in (0, 1].
+    pub frac: f64,
+    /// First ray index (0 = the axis, 2m = the surface) the ring reaches.
+    pub from: usize,
+}
+
+/// The rings l/L, l = 1..=L, of `plan`'s evenly spaced layers, each reaching every ray.
+pub(super) fn uniform_layers(plan: &Plan) -> Vec<LayerRing> {
     (1..=plan.layers)
-        .map(|l| l as f64 / plan.layers as f64)
+        .map(|l| LayerRing {
+            frac: l as f64 / plan.layers as f64,
+            from: 0,
+        })
         .collect()
 }
 
@@ -126,16 +140,22 @@ pub(super) fn surface_ring_radius(plan: &Plan) -> impl Fn(f64) -> f64 {
 }
 
 /// Appends one quarter (the front z ≥ 0, or with `mirror` the back z ≤ 0) to `mesh`, its
-/// layers at the fractions `layers` (increasing, the last 1: [`uniform_layers`], or with an
-/// edge band [`super::meridian_band::layer_fractions`]). `dome` (the front's node ids on
-/// z = 0, by ray index) makes the back share them. Returns this quarter's node ids on z = 0,
-/// from the axis to the equator.
+/// layers the rings `layers` (fractions increasing, the last 1 and reaching every ray:
+/// [`uniform_layers`], or with an edge band [`super::meridian_band::layer_rings`]). `dome`
+/// (the front's node ids on z = 0, by ray index) makes the back share them. Returns this
+/// quarter's node ids on z = 0, from the axis to the equator.
+///
+/// A ring that starts at ray p₀ > 0 (a band confined to the surface) splits the interval
+/// between its two neighbouring full rings only from ray p₀ on; the quads between rays p₀ − 1
+/// and p₀ are a transition: s − 1 such rings in one interval (s odd) meet the two full rings
+/// at ray p₀ − 1 through s − 1 interior nodes, s quads along the fine side and (s − 1)/2 on
+/// the coarse side, so every quad keeps four corners and no node hangs.
 pub(super) fn build_quarter(
     plan: &Plan,
     mesh: &mut MeridianMesh,
     mirror: bool,
     dome: Option<&[u32]>,
-    layers: &[f64],
+    layers: &[LayerRing],
 ) -> Vec<u32> {
     let (n, m, r) = (plan.n, plan.n / 2, plan.r);
     // Local coordinates (u inward from the pole along the axis, v away from the axis) of the
@@ -154,20 +174,58 @@ pub(super) fn build_quarter(
     pattern.extend((0..m).rev().map(|i| core_id(i, m)));
     let np = pattern.len();
     let big_l = layers.len();
-    for (l, &frac) in (1..=big_l).zip(layers) {
-        for &c in &pattern {
-            let t = local[c];
-            let len = (t[0] * t[0] + t[1] * t[1]).sqrt();
-            let rad = if l == big_l {
-                2.0 * r
-            } else {
-                len.powf(1.0 - frac) * (2.0 * r).powf(frac)
-            };
-            local.push(t.map(|x| x / len * rad));
+    // The point of ray p at layer fraction f.
+    let ray_point = |local: &[[f64; 2]], p: usize, f: f64, last: bool| -> [f64; 2] {
+        let t = local[pattern[p]];
+        let len = (t[0] * t[0] + t[1] * t[1]).sqrt();
+        let rad = if last {
+            2.0 * r
+        } else {
+            len.powf(1.0 - f) * (2.0 * r).powf(f)
+        };
+        t.map(|x| x / len * rad)
+    };
+    // Ring l's node at ray p is local[offset[l] + p − from]; the dome (the last ring) last.
+    let mut offset = vec![0usize; big_l + 1];
+    for (l, ring) in layers.iter().enumerate().take(big_l - 1) {
+        offset[l + 1] = local.len();
+        for p in ring.from..np {
+            let y = ray_point(&local, p, ring.frac, false);
+            local.push(y);
         }
     }
+    // Transition nodes between rays p₀ − 1 and p₀ of each interval of partial rings.
+    let mut transitions: Vec<(usize, usize, usize)> = Vec::new();
+    let mut l = 0;
+    while l < big_l {
+        let from = layers[l].from;
+        if from == 0 {
+            l += 1;
+            continue;
+        }
+        let first = l;
+        while l < big_l && layers[l].from == from {
+            l += 1;
+        }
+        let s = l - first + 1;
+        debug_assert!(s % 2 == 1 && l < big_l, "an odd split between full rings");
+        let start = local.len();
+        for k in 1..s {
+            let f = layers[first + k - 1].frac;
+            let a = ray_point(&local, from - 1, f, false);
+            let b = ray_point(&local, from, f, false);
+            let x = 0.5 + 0.25 * (std::f64::consts::PI * k as f64 / s as f64).sin();
+            local.push([(1.0 - x) * a[0] + x * b[0], (1.0 - x) * a[1] + x * b[1]]);
+        }
+        transitions.push((first, s, start));
+    }
+    let dome_start = local.len();
+    offset[big_l] = dome_start;
+    for p in 0..np {
+        let y = ray_point(&local, p, 1.0, true);
+        local.push(y);
+    }
     let n_core = (m + 1) * (m + 1);
-    let dome_start = n_core + (big_l - 1) * np;
     let mut global = Vec::with_capacity(local.len());
     for (loc, y) in local.iter().enumerate() {
         if loc >= dome_start {
@@ -196,11 +254,13 @@ pub(super) fn build_quarter(
         global.push(mesh.nodes.len() as u32);
         mesh.nodes.push([rr, zz]);
     }
+    // Ring l (0 the core's side, 1..=L the layers) at ray p.
+    let from_of = |l: usize| if l == 0 { 0 } else { layers[l - 1].from };
     let layer_node = |l: usize, p: usize| -> u32 {
         if l == 0 {
             global[pattern[p]]
         } else {
-            global[n_core + (l - 1) * np + p]
+            global[offset[l] + p - from_of(l)]
         }
     };
     let start = mesh.quads.len();
@@ -216,15 +276,49 @@ pub(super) fn build_quarter(
         }
     }
     for p in 0..np - 1 {
+        // The rings present on both rays of the column, inside out; an interval with rings
+        // that start on ray p + 1 is a transition, built below.
+        let mut inner = 0;
+        let mut transition = false;
         for l in 1..=big_l {
-            // Outward along ray p, then around P the same way as the core's (u, v) order.
-            mesh.quads.push([
-                layer_node(l - 1, p),
-                layer_node(l, p),
-                layer_node(l, p + 1),
-                layer_node(l - 1, p + 1),
-            ]);
+            if from_of(l) > p {
+                transition |= from_of(l) == p + 1;
+                continue;
+            }
+            if !transition {
+                // Outward along ray p, then around P the same way as the core's (u, v) order.
+                mesh.quads.push([
+                    layer_node(inner, p),
+                    layer_node(l, p),
+                    layer_node(l, p + 1),
+                    layer_node(inner, p + 1),
+                ]);
+            }
+            inner = l;
+            transition = false;
         }
+    }
+    // The transitions, in the same orientation: coarse ray c = p₀ − 1, fine ray p₀.
+    for &(first, s, start_node) in &transitions {
+        let p0 = layers[first].from;
+        let c = p0 - 1;
+        let (lo, hi) = (first, first + s);
+        let left = [layer_node(lo, c), layer_node(hi, c)];
+        let right = |k: usize| layer_node(lo + k, p0);
+        let mid = |k: usize| global[start_node + k - 1];
+        // Beside the fine side: s quads.
+        mesh.quads.push([left[0], mid(1), right(1), right(0)]);
+        for k in 1..s - 1 {
+            mesh.quads.push([mid(k), mid(k + 1), right(k + 1), right(k)]);
+        }
+        mesh.quads.push([mid(s - 1), left[1], right(s), right(s - 1)]);
+        // Beside the coarse side: a fan of (s − 1)/2 quads from its inner node.
+        let mut k = 1;
+        while k + 2 < s {
+            mesh.quads.push([left[0], mid(k + 2), mid(k + 1), mid(k)]);
+            k += 2;
+        }
+        mesh.quads.push([left[0], left[1], mid(s - 1), mid(s - 2)]);
     }
     // The inversion reverses orientation (and the mirror reverses it back).
     let corners = |q: &[u32; 4]| q.map(|i| mesh.nodes[i as usize]);

@@ -6,11 +6,14 @@
 //! (docs/contact-penalty.md, "Why the section's e scatters"). The band splits the ring
 //! spacing there, and only there: the O-grid's layers are shells around the refined core, each
 //! meeting the surface in one ring, so splitting the layer intervals whose surface rings fall
-//! in the band into `split` shells each puts `split` times more rings across the band. The
-//! shells run through the depth as thin quads, which the subcycled loop integrates at their
-//! own small step; everything outside the band keeps its nodes (a banded mesh contains every
-//! node of the mesh without the band).
+//! in the band into `split` shells each puts `split` times more rings across the band. An
+//! even split runs the shells through the depth to the axis as thin quads; an odd one stops
+//! them a share [`SURFACE_DEPTH`] of the rays below the surface, where s shells meet the
+//! layer's two rings through a one-cell transition (s − 1 interior nodes, s quads on the fine
+//! side, (s − 1)/2 on the coarse side; [`super::meridian_ball`]). Everything outside the band
+//! keeps its nodes (a banded mesh contains every node of the mesh without the band).
 
+use super::meridian_ball::LayerRing;
 use crate::error::{Error, Result};
 
 /// Most shells one layer may be split into.
@@ -22,6 +25,15 @@ pub const MAX_SPLIT: usize = 16;
 pub const BAND_INNER_PER_EDGE: f64 = 0.8;
 /// Outer end of the band, in predicted contact edges (see [`BAND_INNER_PER_EDGE`]).
 pub const BAND_OUTER_PER_EDGE: f64 = 1.15;
+
+/// Share of a split layer's rays, from the surface, that an odd split's shells reach: a sixth
+/// (3 of the 18 cells of a level-0 layer, 6 of level 1's). The rings at the surface are what
+/// the sawtooth follows; shells run through the depth are thin quads down to the axis whose
+/// small steps, in the contact region's mass-scaled level, cost half a banded run. Confined,
+/// a five-fold band's level-1 ensemble of the default scene costs 0.65 of the four-fold
+/// through-depth one's at the same or smaller level-to-level change
+/// (docs/contact-penalty.md, "An edge band of finer rings").
+pub const SURFACE_DEPTH: f64 = 1.0 / 6.0;
 
 /// Surface rings refined at the contact edge: every layer interval of the mesh whose surface
 /// ring radii overlap [`inner`, `outer`] (rest radii, m) is split into `split` shells.
@@ -36,17 +48,39 @@ pub struct EdgeBand {
     pub outer: f64,
     /// Shells per layer interval in the band, 1..=[`MAX_SPLIT`] (1: no refinement).
     pub split: usize,
+    /// Share of each split layer's rays, from the surface, that its shells reach, in (0, 1]:
+    /// 1 runs them through the depth to the axis; below 1 they end in a transition (an odd
+    /// split only).
+    pub depth: f64,
 }
 
 impl EdgeBand {
     /// The band [0.8 a, 1.15 a] around the predicted contact edge `edge` = a (m), each layer
-    /// in it split into `split` shells.
+    /// in it split into `split` shells: an odd split confined to the share [`SURFACE_DEPTH`]
+    /// of the rays from the surface (ending in a transition), an even one through the depth.
     pub fn around(edge: f64, split: usize) -> EdgeBand {
         EdgeBand {
             inner: BAND_INNER_PER_EDGE * edge,
             outer: BAND_OUTER_PER_EDGE * edge,
             split,
+            depth: if split % 2 == 1 { SURFACE_DEPTH } else { 1.0 },
         }
+    }
+
+    /// This band with its shells reaching the share `depth` of each layer's rays from the
+    /// surface (see [`EdgeBand::depth`]).
+    pub fn to_depth(self, depth: f64) -> EdgeBand {
+        EdgeBand { depth, ..self }
+    }
+
+    /// The first ray (0 the axis, 2m the surface) that the band's shells reach on a layer of
+    /// 2m cells: 0 through the depth, else 2m less the share `depth` of 2m (at least one).
+    pub fn first_ray(&self, cells: usize) -> usize {
+        if self.depth >= 1.0 {
+            return 0;
+        }
+        let w = ((self.depth * cells as f64).round() as usize).clamp(1, cells);
+        cells - w
     }
 
     /// Checks the band on a ball of radius `radius` (m).
@@ -66,7 +100,18 @@ impl EdgeBand {
                 ),
             ));
         }
-        check_split(self.split)
+        check_split(self.split)?;
+        if !(self.depth > 0.0 && self.depth <= 1.0) {
+            return Err(Error::invalid("band.depth", self.depth, "in (0, 1]"));
+        }
+        if self.depth < 1.0 && self.split % 2 == 0 {
+            return Err(Error::invalid(
+                "band.split",
+                self.split,
+                "an odd split when band.depth < 1 (the transition needs it)",
+            ));
+        }
+        Ok(())
     }
 }
 
@@ -83,6 +128,30 @@ pub fn check_split(split: usize) -> Result<()> {
             format!("an integer in [1, {MAX_SPLIT}]"),
         ))
     }
+}
+
+/// The rings of [`layer_fractions`], the band's own starting at ray `first_ray` (0: through
+/// the depth; [`EdgeBand::first_ray`]).
+///
+/// Errors: those of [`layer_fractions`].
+pub(super) fn layer_rings(
+    layers: usize,
+    band: Option<&EdgeBand>,
+    surface_radius: impl Fn(f64) -> f64,
+    first_ray: usize,
+) -> Result<Vec<LayerRing>> {
+    let fracs = layer_fractions(layers, band, surface_radius)?;
+    let full = |f: f64| {
+        let l = f * layers as f64;
+        (l - l.round()).abs() < 1e-9
+    };
+    Ok(fracs
+        .into_iter()
+        .map(|frac| LayerRing {
+            frac,
+            from: if full(frac) { 0 } else { first_ray },
+        })
+        .collect())
 }
 
 /// Layer fractions l/L, l = 1..=`layers` (0 is the core's side, 1 the last layer), with
@@ -142,6 +211,7 @@ mod tests {
             inner: 3.5e-3,
             outer: 4.5e-3,
             split: 4,
+            depth: 1.0,
         };
         let f = layer_fractions(9, Some(&band), radius).unwrap();
         // The intervals [3, 4] and [4, 5] mm overlap the band: 3 extra fractions each.
@@ -164,6 +234,7 @@ mod tests {
             inner: 0.5e-3,
             outer: 2e-3,
             split: 2,
+            depth: 1.0,
         };
         let e = layer_fractions(9, Some(&inside), radius).unwrap_err();
         assert!(e.to_string().contains("band.inner"), "{e}");

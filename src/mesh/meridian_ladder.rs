@@ -20,7 +20,7 @@ use super::meridian::MeridianMesh;
 use super::meridian_ball::{
     build_quarter, pole_edge, surface_ring_radius, uniform_layers, with_sets,
 };
-use super::meridian_band::{layer_fractions, EdgeBand};
+use super::meridian_band::{layer_rings, EdgeBand};
 use crate::error::{Error, Result};
 
 /// Half-width of the refined core around the pole, in predicted contact radii: the plastic
@@ -156,8 +156,10 @@ fn build(
         b.check(r)?;
     }
     let (front, back) = plans(r, contact_radius, level);
-    let layers = layer_fractions(front.layers, band, surface_ring_radius(&front))?;
     let m = front.n / 2;
+    let first_ray = band.map_or(0, |b| b.first_ray(2 * m));
+    let layers = layer_rings(front.layers, band, surface_ring_radius(&front), first_ray)?;
+    // Exact through the depth, an upper bound for a band confined to the surface.
     let quads = quads_of(&front) + quads_of(&back) + (layers.len() - front.layers) * 2 * m;
     if quads > MAX_ELEMENTS {
         return Err(Error::invalid(
@@ -184,6 +186,7 @@ pub fn ladder_pole_size(diameter: f64, contact_radius: f64, level: u32) -> Resul
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::fe::axisym::quad::gauss_points;
     use crate::mesh::section::quad_area;
 
     const D: f64 = 0.02;
@@ -275,11 +278,26 @@ mod tests {
     #[test]
     fn an_edge_band_splits_the_rings_at_the_edge_and_keeps_every_other_node() {
         let edge = 2.0 * A;
-        for (level, split) in [(0, 4), (1, 2)] {
+        // Even splits run through the depth, odd ones end in a transition below the surface.
+        for (level, split) in [(0, 4), (1, 2), (0, 5), (1, 3)] {
             let plain = ladder_ball(D, A, level).unwrap();
             let band = EdgeBand::around(edge, split);
             let m = ladder_ball_banded(D, A, level, &band).unwrap();
             assert!(m.quads.iter().all(|q| area(&m, q) > 0.0), "level {level}");
+            assert!(
+                m.quads.iter().all(|q| gauss_points(&q.map(|i| m.nodes[i as usize]))
+                    .iter()
+                    .all(|p| p.det_j > 0.0)),
+                "level {level}, split {split}: an inverted Gauss point"
+            );
+            assert_conforming(&m);
+            // Confined shells leave the axis alone; through-depth ones reach it.
+            let axis = |m: &MeridianMesh| m.node_sets["axis"].len();
+            if split % 2 == 1 {
+                assert_eq!(axis(&m), axis(&plain), "split {split}");
+            } else {
+                assert!(axis(&m) > axis(&plain), "split {split}");
+            }
             let r = 0.5 * D;
             for &i in &m.node_sets["surface"] {
                 let p = m.nodes[i as usize];
@@ -311,6 +329,41 @@ mod tests {
             assert_eq!(far(&pr), far(&br));
             assert!(m.quads.len() > plain.quads.len());
         }
+    }
+
+    /// Every edge of `m` is shared by two quads, or lies on the arc or the axis.
+    fn assert_conforming(m: &MeridianMesh) {
+        let mut count = std::collections::HashMap::new();
+        for q in &m.quads {
+            for k in 0..4 {
+                let (a, b) = (q[k], q[(k + 1) % 4]);
+                *count.entry((a.min(b), a.max(b))).or_insert(0) += 1;
+            }
+        }
+        let r = 0.5 * D;
+        for (&(a, b), &c) in &count {
+            let (p, q) = (m.nodes[a as usize], m.nodes[b as usize]);
+            let on_arc = |p: [f64; 2]| (p[0].hypot(p[1]) - r).abs() < 1e-12 * r;
+            let outer = (p[0] == 0.0 && q[0] == 0.0) || (on_arc(p) && on_arc(q));
+            assert!(c == 2 || (c == 1 && outer), "edge {p:?}-{q:?} in {c} quads");
+        }
+    }
+
+    #[test]
+    fn a_confined_band_needs_an_odd_split_and_a_depth_in_range() {
+        let band = EdgeBand::around(2.0 * A, 5);
+        assert!(band.depth < 1.0);
+        let even = EdgeBand { split: 4, ..band };
+        let e = ladder_ball_banded(D, A, 0, &even).unwrap_err().to_string();
+        assert!(e.contains("band.split") && e.contains("odd"), "{e}");
+        for depth in [0.0, 1.5, f64::NAN] {
+            let e = ladder_ball_banded(D, A, 0, &band.to_depth(depth))
+                .unwrap_err()
+                .to_string();
+            assert!(e.contains("band.depth"), "{e}");
+        }
+        // A sixth of level 0's 18 rays and of level 1's 36.
+        assert_eq!((band.first_ray(18), band.first_ray(36)), (15, 30));
     }
 
     #[test]

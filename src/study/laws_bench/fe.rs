@@ -9,6 +9,7 @@ use crate::analytic::{Body, HertzPair};
 use crate::error::{Error, Result};
 use crate::fe::axisym::element::QuadFormulation;
 use crate::fe::axisym::impact::PlaneContact;
+use crate::mesh::meridian::EdgeBand;
 use crate::scene::Scene;
 use crate::study::phase_ensemble::{
     converged_head_on, Bar as EnsembleBar, HeadOnCase, HeadOnTarget, PhasePlan, MIN_LEVEL,
@@ -121,14 +122,15 @@ pub struct FePlan {
     pub tolerance: Option<f64>,
 }
 
-/// The bench's default plan: the banded family (four-fold band) with fine level 1 and
+/// The bench's default plan: the banded family (a five-fold band confined to a sixth of the
+/// rays below the surface, [`crate::mesh::meridian_band::SURFACE_DEPTH`]) with fine level 1 and
 /// coarse level 0, two meshes each, every run mass-scaled within 1e-4 of the section's mass,
 /// a point whose bar of e exceeds 0.5 % refined one level (docs/contact-laws.md, "FE error
 /// bars").
 pub const DEFAULT_FE_PLAN: FePlan = FePlan {
     level: 1,
     meshes: 2,
-    band: Some(4),
+    band: Some(5),
     mass_scaling: 1e-4,
     tolerance: Some(0.005),
 };
@@ -259,13 +261,21 @@ impl FePlan {
                 self.level - 1,
                 self.meshes
             ),
-            Some(split) => format!(
-                "{FE_MODEL}: fine banded level {}, coarse {}, {} meshes each, the surface \
-                 rings at the contact edge (found on level 0) split {split}-fold",
-                self.level,
-                self.level - 1,
-                self.meshes
-            ),
+            Some(split) => {
+                let depth = EdgeBand::around(1.0, split).depth;
+                let reach = if depth < 1.0 {
+                    format!(" over {depth:.4} of each layer's rays from the surface")
+                } else {
+                    String::new()
+                };
+                format!(
+                    "{FE_MODEL}: fine banded level {}, coarse {}, {} meshes each, the surface \
+                     rings at the contact edge (found on level 0) split {split}-fold{reach}",
+                    self.level,
+                    self.level - 1,
+                    self.meshes
+                )
+            }
         };
         plan + &scaled + &refined
     }
