@@ -6,7 +6,9 @@
 //! `cargo run --release --example mass_scaling -- V_REL MESHES BUDGETS [MATERIAL]`: two
 //! identical D = 20 mm balls (MATERIAL a preset, default copper-fe) at relative speed V_REL
 //! (m/s); MESHES a comma list of `band:L` (the banded family's level L around the contact
-//! edge of a plain level-0 run, four-fold band: `study::phase_band`) and `plain:L` (the
+//! edge of a plain level-0 run, four-fold band through the depth: `study::phase_band`),
+//! `bandSPLIT:L` (the same with a SPLIT-fold band, `band5:L` the bench's five-fold band
+//! confined to the surface) and `plain:L` (the
 //! plain family's level L, sized from Hertz's contact radius); BUDGETS a comma list of
 //! added-mass fractions (0: none).
 
@@ -58,7 +60,10 @@ fn run() -> Result<(), String> {
         let mesh: MeridianMesh = match kind {
             "band" => banded_mesh(case.diameter, edge, level, 4, 1.0),
             "plain" => family_mesh(case.diameter, a, level as i32),
-            _ => return Err(format!("{m:?}: KIND is band or plain")),
+            k => match k.strip_prefix("band").map(str::parse::<usize>) {
+                Some(Ok(split)) => banded_mesh(case.diameter, edge, level, split, 1.0),
+                _ => return Err(format!("{m:?}: KIND is band, bandSPLIT or plain")),
+            },
         }
         .map_err(|e| e.to_string())?;
         for &b in &budgets {

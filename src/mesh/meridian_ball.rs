@@ -214,6 +214,8 @@ pub(super) fn build_quarter(
             let f = layers[first + k - 1].frac;
             let a = ray_point(&local, from - 1, f, false);
             let b = ray_point(&local, from, f, false);
+            // At height k/s between the rings, bulging towards the fine ray so that the fan
+            // on the coarse side stays convex.
             let x = 0.5 + 0.25 * (std::f64::consts::PI * k as f64 / s as f64).sin();
             local.push([(1.0 - x) * a[0] + x * b[0], (1.0 - x) * a[1] + x * b[1]]);
         }
@@ -298,27 +300,13 @@ pub(super) fn build_quarter(
             transition = false;
         }
     }
-    // The transitions, in the same orientation: coarse ray c = p₀ − 1, fine ray p₀.
+    // The transitions: coarse ray p₀ − 1, fine ray p₀.
     for &(first, s, start_node) in &transitions {
         let p0 = layers[first].from;
-        let c = p0 - 1;
-        let (lo, hi) = (first, first + s);
-        let left = [layer_node(lo, c), layer_node(hi, c)];
-        let right = |k: usize| layer_node(lo + k, p0);
-        let mid = |k: usize| global[start_node + k - 1];
-        // Beside the fine side: s quads.
-        mesh.quads.push([left[0], mid(1), right(1), right(0)]);
-        for k in 1..s - 1 {
-            mesh.quads.push([mid(k), mid(k + 1), right(k + 1), right(k)]);
-        }
-        mesh.quads.push([mid(s - 1), left[1], right(s), right(s - 1)]);
-        // Beside the coarse side: a fan of (s − 1)/2 quads from its inner node.
-        let mut k = 1;
-        while k + 2 < s {
-            mesh.quads.push([left[0], mid(k + 2), mid(k + 1), mid(k)]);
-            k += 2;
-        }
-        mesh.quads.push([left[0], left[1], mid(s - 1), mid(s - 2)]);
+        let coarse = [layer_node(first, p0 - 1), layer_node(first + s, p0 - 1)];
+        let fine: Vec<u32> = (0..=s).map(|k| layer_node(first + k, p0)).collect();
+        let inner: Vec<u32> = (0..s - 1).map(|k| global[start_node + k]).collect();
+        mesh.quads.extend(transition(coarse, &fine, &inner));
     }
     // The inversion reverses orientation (and the mirror reverses it back).
     let corners = |q: &[u32; 4]| q.map(|i| mesh.nodes[i as usize]);
@@ -328,6 +316,27 @@ pub(super) fn build_quarter(
         }
     }
     (0..np).map(|p| global[dome_start + p]).collect()
+}
+
+/// The quads of a one-cell transition from the `coarse` ray's two nodes (inner, outer ring)
+/// to the `fine` ray's s + 1 nodes (inner ring first) through the s − 1 `inner` nodes (s odd),
+/// in the layer quads' orientation: s quads on the fine side, a fan of (s − 1)/2 from the
+/// coarse inner node on the other.
+fn transition(coarse: [u32; 2], fine: &[u32], inner: &[u32]) -> Vec<[u32; 4]> {
+    let s = fine.len() - 1;
+    let mid = |k: usize| inner[k - 1];
+    let mut quads = vec![[coarse[0], mid(1), fine[1], fine[0]]];
+    for k in 1..s - 1 {
+        quads.push([mid(k), mid(k + 1), fine[k + 1], fine[k]]);
+    }
+    quads.push([mid(s - 1), coarse[1], fine[s], fine[s - 1]]);
+    let mut k = 1;
+    while k + 2 < s {
+        quads.push([coarse[0], mid(k + 2), mid(k + 1), mid(k)]);
+        k += 2;
+    }
+    quads.push([coarse[0], coarse[1], mid(s - 1), mid(s - 2)]);
+    quads
 }
 
 /// Adds the boundary and the sets (see [`ball`]).

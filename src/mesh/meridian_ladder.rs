@@ -285,9 +285,11 @@ mod tests {
             let m = ladder_ball_banded(D, A, level, &band).unwrap();
             assert!(m.quads.iter().all(|q| area(&m, q) > 0.0), "level {level}");
             assert!(
-                m.quads.iter().all(|q| gauss_points(&q.map(|i| m.nodes[i as usize]))
+                m.quads
                     .iter()
-                    .all(|p| p.det_j > 0.0)),
+                    .all(|q| gauss_points(&q.map(|i| m.nodes[i as usize]))
+                        .iter()
+                        .all(|p| p.det_j > 0.0)),
                 "level {level}, split {split}: an inverted Gauss point"
             );
             assert_conforming(&m);
