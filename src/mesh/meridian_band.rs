@@ -104,7 +104,7 @@ impl EdgeBand {
         if !(self.depth > 0.0 && self.depth <= 1.0) {
             return Err(Error::invalid("band.depth", self.depth, "in (0, 1]"));
         }
-        if self.depth < 1.0 && self.split % 2 == 0 {
+        if self.depth < 1.0 && self.split.is_multiple_of(2) {
             return Err(Error::invalid(
                 "band.split",
                 self.split,
