@@ -29,10 +29,10 @@ pub const BAND_OUTER_PER_EDGE: f64 = 1.15;
 /// Share of a split layer's rays, from the surface, that an odd split's shells reach: a sixth
 /// (3 of the 18 cells of a level-0 layer, 6 of level 1's). The rings at the surface are what
 /// the sawtooth follows; shells run through the depth are thin quads down to the axis whose
-/// small steps, in the contact region's mass-scaled level, cost half a banded run. Confined,
-/// a five-fold band's level-1 ensemble of the default scene costs 0.65 of the four-fold
-/// through-depth one's at the same or smaller level-to-level change
-/// (docs/contact-penalty.md, "An edge band of finer rings").
+/// small steps set the banded family's step and take most of the mass that mass scaling
+/// adds. Confined, the laws bench's five-fold points cost 0.54-0.75 of the four-fold
+/// through-depth ones' CPU at the same answers (docs/contact-penalty.md, "A band confined to
+/// the surface").
 pub const SURFACE_DEPTH: f64 = 1.0 / 6.0;
 
 /// Surface rings refined at the contact edge: every layer interval of the mesh whose surface
@@ -85,7 +85,8 @@ impl EdgeBand {
 
     /// Checks the band on a ball of radius `radius` (m).
     ///
-    /// Errors: `band.inner`, `band.outer` or `band.split` out of range, naming the range.
+    /// Errors: `band.inner`, `band.outer`, `band.split` or `band.depth` out of range, naming
+    /// the range; an even split with a depth below 1 (naming `band.split`).
     pub fn check(&self, radius: f64) -> Result<()> {
         if !(self.inner.is_finite() && self.inner > 0.0) {
             return Err(Error::invalid("band.inner", self.inner, "> 0 m, finite"));

@@ -129,8 +129,9 @@ pub fn ladder_ball(diameter: f64, contact_radius: f64, level: u32) -> Result<Mer
 
 /// [`ladder_ball`] with an edge band: the layer intervals whose surface rings overlap
 /// [`EdgeBand::inner`, `outer`] split into `band.split` shells each, so that the rings at
-/// the contact edge are `band.split` times closer ([`super::meridian_band`]). Every node of
-/// the mesh without the band is a node of this one.
+/// the contact edge are `band.split` times closer ([`super::meridian_band`]); the shells
+/// reach the share `band.depth` of each layer's rays from the surface (1: to the axis). Every
+/// node of the mesh without the band is a node of this one.
 ///
 /// Errors: those of [`ladder_ball`]; a band out of range, or starting inside the refined core
 /// (size the mesh from a contact radius below `band.inner` / 1.5).
