@@ -242,3 +242,33 @@ fn a_bad_plan_is_one_line_naming_the_flag() {
         );
     }
 }
+
+/// The oblique points (one run of the 3D half model each) keep their cache files when the
+/// head-on plan changes: their model is their own, not the plan's.
+#[test]
+fn oblique_points_are_cached_apart_from_the_head_on_plan() {
+    let out = scratch("laws-bench-oblique");
+    let registry = Registry::builtin();
+    let quiet = |_: &str| {};
+    let matrix = Matrix::from_toml(
+        "metals = [\"copper-fe\"]\nspeeds = [10.0]\ndiameters = [0.02]\n\
+         [oblique]\nmetals = [\"copper-fe\"]\ndiameter = 0.005\nratios = [0.5]",
+        "tiny-oblique",
+    )
+    .unwrap();
+    let run = |level: i32| {
+        let opts = BenchOptions {
+            matrix: matrix.clone(),
+            plan: FePlan::new(level, 2).unwrap(),
+            ..options(&out, Mode::FeOnly)
+        };
+        run_bench(&opts, &registry, &quiet).unwrap().stats
+    };
+    let first = run(-1);
+    assert_eq!((first[1].computed, first[1].reused), (1, 0));
+    let second = run(0);
+    // The head-on point reruns on the new plan; the oblique point does not.
+    assert_eq!((second[0].computed, second[1].computed), (1, 0));
+    assert_eq!(second[1].reused, 1);
+    let _ = std::fs::remove_dir_all(&out);
+}

@@ -296,6 +296,10 @@ impl FePlan {
 /// ([`FePlan::model`] adds the plan).
 pub const FE_MODEL: &str = "section phase ensemble with error bars, kinematic symmetry plane";
 
+/// The FE model of the oblique points: one run of the 3D half model on the default graded
+/// meshes ([`oblique_fe`]), whatever the head-on plan (its cache files are not tied to it).
+pub const OBLIQUE_MODEL: &str = "3D half model, default graded meshes, one run";
+
 /// Hertz's contact radius a = √(R*δ_max) (m) of the point's pair at its speed.
 ///
 /// Errors: a diameter or material the ball rejects.

@@ -228,7 +228,8 @@ pub fn run_bench(
     let points = opts.matrix.head_on_points()?;
     let (fe, s1) = head_on_fe_all(opts, &cache, &points, progress)?;
     let oblique_points = opts.matrix.oblique_points()?;
-    let (ofe, s2) = cache.run_all(
+    let oblique_cache = FeCache::new(&opts.out, fe::OBLIQUE_MODEL);
+    let (ofe, s2) = oblique_cache.run_all(
         &oblique_points,
         opts.jobs,
         laws_only,
