@@ -63,7 +63,7 @@ impl EdgeBand {
             inner: BAND_INNER_PER_EDGE * edge,
             outer: BAND_OUTER_PER_EDGE * edge,
             split,
-            depth: if split % 2 == 1 { SURFACE_DEPTH } else { 1.0 },
+            depth: depth_for(split),
         }
     }
 
@@ -113,6 +113,16 @@ impl EdgeBand {
             ));
         }
         Ok(())
+    }
+}
+
+/// The depth [`EdgeBand::around`] gives a band of `split` shells: [`SURFACE_DEPTH`] for an
+/// odd split, 1 (through the depth) for an even one.
+pub fn depth_for(split: usize) -> f64 {
+    if split % 2 == 1 {
+        SURFACE_DEPTH
+    } else {
+        1.0
     }
 }
 

@@ -9,7 +9,7 @@ use crate::analytic::{Body, HertzPair};
 use crate::error::{Error, Result};
 use crate::fe::axisym::element::QuadFormulation;
 use crate::fe::axisym::impact::PlaneContact;
-use crate::mesh::meridian::EdgeBand;
+use crate::mesh::meridian_band::depth_for;
 use crate::scene::Scene;
 use crate::study::phase_ensemble::{
     converged_head_on, Bar as EnsembleBar, HeadOnCase, HeadOnTarget, PhasePlan, MIN_LEVEL,
@@ -262,7 +262,7 @@ impl FePlan {
                 self.meshes
             ),
             Some(split) => {
-                let depth = EdgeBand::around(1.0, split).depth;
+                let depth = depth_for(split);
                 let reach = if depth < 1.0 {
                     format!(" over {depth:.4} of each layer's rays from the surface")
                 } else {
