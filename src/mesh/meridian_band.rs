@@ -28,9 +28,8 @@ pub const BAND_OUTER_PER_EDGE: f64 = 1.15;
 
 /// Share of a split layer's rays, from the surface, that an odd split's shells reach: a sixth
 /// (3 of the 18 cells of a level-0 layer, 6 of level 1's). The rings at the surface are what
-/// the sawtooth follows; shells run through the depth are thin quads down to the axis whose
-/// small steps set the banded family's step and take most of the mass that mass scaling
-/// adds. Confined, the laws bench's five-fold points cost 0.54-0.75 of the four-fold
+/// the sawtooth follows; shells run through the depth are thin quads down to the axis, among
+/// the smallest of the mesh, which mass scaling must raise all the way down. Confined, the laws bench's five-fold points cost 0.54-0.75 of the four-fold
 /// through-depth ones' CPU at the same answers (docs/contact-penalty.md, "A band confined to
 /// the surface").
 pub const SURFACE_DEPTH: f64 = 1.0 / 6.0;
