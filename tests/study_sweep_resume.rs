@@ -240,10 +240,35 @@ fn bad_sweep_flags_and_files_are_one_line_errors() {
             "size",
         ),
         (format!("{SWEEP}\n[extra]\n"), "extra"),
+        (
+            SWEEP.replace(
+                "model = \"analytic\"",
+                "model = \"analytic\"\ntolerance = 1.5",
+            ),
+            "study.tolerance",
+        ),
+        (
+            SWEEP.replace(
+                "model = \"analytic\"",
+                "model = \"analytic\"\ntolerance = 0",
+            ),
+            "study.tolerance",
+        ),
     ] {
         let e = SweepSpec::from_toml(&text, "test").unwrap_err().to_string();
         assert!(e.contains(key) && !e.contains('\n'), "{key}: {e}");
     }
+    // A tolerance for the head-on section cases, as a fraction.
+    let spec = SweepSpec::from_toml(
+        &SWEEP.replace(
+            "model = \"analytic\"",
+            "model = \"analytic\"\ntolerance = 0.005",
+        ),
+        "test",
+    )
+    .unwrap();
+    assert_eq!(spec.tolerance, Some(0.005));
+    assert_eq!(SweepSpec::from_toml(SWEEP, "test").unwrap().tolerance, None);
     // The command line: a missing file is a one-line error and exit code 1.
     let o = Command::new(env!("CARGO_BIN_EXE_twoball"))
         .args(["sweep", "/nonexistent/sweep.toml", "--out", "/tmp/x"])

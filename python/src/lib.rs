@@ -216,7 +216,10 @@ fn sweep(
         mesh: None,
     };
     wait_job(py, progress, move || {
-        let fe: twoball::study::sweep::FeRunner<'_> = &twoball::study::single::sweep_case;
+        let tolerance = spec.tolerance;
+        let runner =
+            move |s: &twoball::scene::Scene| twoball::study::single::sweep_case_to(s, tolerance);
+        let fe: twoball::study::sweep::FeRunner<'_> = &runner;
         let s = run_sweep(&spec, &opts, Some(fe))?;
         Ok(serde_json::json!({
             "total": s.total,

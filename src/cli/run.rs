@@ -36,8 +36,11 @@ pub struct RunArgs {
     /// With --error-estimate: also run the mesh before that, for an observed order.
     #[arg(long, requires = "error_estimate")]
     pub observed_order: bool,
-    /// Refine along the ladder (halving pole and bulk sizes) until the error estimate of e is
-    /// at most this, e.g. 0.1% or 0.001; the results are the finest mesh's.
+    /// Refine until the error estimate of e is at most this, e.g. 0.5% or 0.005. A head-on
+    /// scene of identical balls or of a ball on a rigid wall runs the section's banded,
+    /// mass-scaled mesh family sized from its contact (e, δ_max and the contact duration the
+    /// fine level's mean); any other scene refines its own ladder (halving pole and bulk
+    /// sizes), the results the finest mesh's.
     #[arg(long, value_name = "FRACTION|PERCENT%")]
     pub tolerance: Option<String>,
     /// With --tolerance: the most refinements beyond the scene's own mesh.

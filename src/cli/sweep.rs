@@ -144,7 +144,9 @@ pub fn run(a: SweepArgs) -> Result<()> {
         verbose: true,
         mesh: a.mesh.clone(),
     };
-    let fe: crate::study::sweep::FeRunner<'_> = &crate::study::single::sweep_case;
+    let tolerance = spec.tolerance;
+    let runner = move |s: &crate::scene::Scene| crate::study::single::sweep_case_to(s, tolerance);
+    let fe: crate::study::sweep::FeRunner<'_> = &runner;
     let s = run_sweep(&spec, &opts, Some(fe))?;
     let csv = if s.csv_written {
         format!("{} in {}", s.in_csv, out.join("sweep.csv").display())

@@ -7,6 +7,7 @@
 //! and returns its [`LevelOutcome`]; the 3D model's closure is [`scene_at_level`] followed by
 //! a run, and any other model plugs in the same way.
 
+pub use super::converged_scene::EstimateMethod;
 use super::convergence::{estimate, Estimate};
 use crate::error::{Error, Result};
 use crate::scene::{MeshSettings, Scene};
@@ -90,6 +91,9 @@ pub struct ErrorEstimate {
     pub tolerance: Option<f64>,
     /// Whether the estimate of e met the tolerance (with `--tolerance`).
     pub tolerance_met: Option<bool>,
+    /// How the estimate was obtained: the scene's own ladder, or the banded family that
+    /// `--tolerance` runs on a head-on section scene it covers.
+    pub method: EstimateMethod,
 }
 
 impl ErrorEstimate {
@@ -118,6 +122,9 @@ impl ErrorEstimate {
             meshes,
             tolerance,
             tolerance_met,
+            method: EstimateMethod::SceneLadder {
+                why_not_banded: None,
+            },
         })
     }
 
@@ -140,8 +147,20 @@ impl ErrorEstimate {
                 q.behaviour.name()
             )
         };
+        let family = match &self.method {
+            EstimateMethod::SceneLadder { .. } => "mesh levels".to_string(),
+            EstimateMethod::BandedFamily {
+                band_split,
+                band_edge_m,
+                mass_scaling,
+                ..
+            } => format!(
+                "banded family, rings at {:.0} µm split {band_split}-fold, mass scaling {mass_scaling:.1e}, levels",
+                band_edge_m * 1e6
+            ),
+        };
         let mut s = format!(
-            "error estimate (mesh levels {}): {}; {}; {}",
+            "error estimate ({family} {}): {}; {}; {}",
             levels.join(", "),
             one("e", "", &self.e),
             one("delta_max", " m", &self.delta_max),
@@ -153,6 +172,12 @@ impl ErrorEstimate {
                 100.0 * t,
                 if met { "met" } else { "NOT met" }
             ));
+        }
+        if let EstimateMethod::SceneLadder {
+            why_not_banded: Some(why),
+        } = &self.method
+        {
+            s.push_str(&format!("; the scene's own ladder ran: {why}"));
         }
         s
     }

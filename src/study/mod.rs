@@ -11,6 +11,7 @@
 //! - [`curves`]: contact-history CSV files of the analytical model and the law integrator;
 //! - [`convergence`]: Richardson extrapolation, observed order and error estimates of a ladder;
 //! - [`error_estimate`]: a run's own error bar from a mesh ladder (a run closure per level);
+//! - [`converged_scene`]: `--tolerance` on a head-on section scene, on the banded family;
 //! - [`error_honesty`]: whether the error estimates hold over a set of head-on cases;
 //! - [`slurm`]: a sweep as a Slurm job array;
 //! - [`sweep_status`]: cases done, failed, running and missing in a sweep folder;
@@ -30,6 +31,7 @@ pub mod bench;
 pub mod bench_kernel;
 pub mod bench_machine;
 pub mod bench_profile;
+pub mod converged_scene;
 pub mod convergence;
 pub mod cost;
 pub mod curves;

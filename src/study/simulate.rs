@@ -1147,6 +1147,7 @@ impl Simulation {
                 elements: self.elements,
                 element_cycles: self.element_cycles,
                 wall_time_s: self.wall_time_s,
+                e_error: None,
             },
         }
     }

@@ -1,8 +1,9 @@
 //! One scene, both models: the FE run beside the analytical answer, with relative
 //! differences, written as results.json and history.csv.
 
+use super::converged_scene::run_scene_converged;
 use super::error_estimate::{mesh_sizes, run_ladder, scene_at_level, ErrorEstimate, LadderPlan};
-use super::error_estimate::{LevelOutcome, PhaseSummary};
+use super::error_estimate::{EstimateMethod, LevelOutcome, PhaseSummary};
 use super::law_compare::{compare_laws, law_table, LawOutcome};
 use super::number::sci;
 use super::outcome::{
@@ -209,13 +210,21 @@ pub fn run_scene_alone(scene: &Scene, opts: &RunOptions) -> Result<RunReport> {
 }
 
 /// The FE runner of a sweep case: a head-on case on the section as `twoball run` runs it
-/// (its default ladder, the result the finest level's phase mean, the wall time the
-/// ladder's), any other case as one run ([`super::simulate::sweep_case`]).
+/// (its default ladder, or with `tolerance` as `--tolerance` does; the result the finest
+/// level's phase mean, the wall time the whole estimate's, `e_error` its bar), any other
+/// case as one run ([`super::simulate::sweep_case`]).
 ///
 /// Errors: as [`run_scene_with_estimate`] and [`super::simulate::sweep_case`].
-pub fn sweep_case(scene: &Scene) -> Result<super::sweep::FeCase> {
+pub fn sweep_case_to(scene: &Scene, tolerance: Option<f64>) -> Result<super::sweep::FeCase> {
     let Some(plan) = default_plan(scene)? else {
         return super::simulate::sweep_case(scene);
+    };
+    let plan = match tolerance {
+        Some(tolerance) => LadderPlan::Tolerance {
+            tolerance,
+            max_refinements: super::error_estimate::DEFAULT_MAX_REFINEMENTS,
+        },
+        None => plan,
     };
     let opts = RunOptions {
         history_rows: 400,
@@ -228,7 +237,15 @@ pub fn sweep_case(scene: &Scene) -> Result<super::sweep::FeCase> {
         .ok_or_else(|| Error::Numerical("sweep case: the run reports no impact".into()))?;
     let mut case = sim.fe_case();
     case.summary.wall_time_s = report.wall_time_s;
+    case.summary.e_error = report.error_estimate.as_ref().map(|est| est.e.error);
     Ok(case)
+}
+
+/// [`sweep_case_to`] with the default bar (no tolerance).
+///
+/// Errors: as [`sweep_case_to`].
+pub fn sweep_case(scene: &Scene) -> Result<super::sweep::FeCase> {
+    sweep_case_to(scene, None)
 }
 
 /// Runs `scene` on the mesh ladder `plan` ([`run_ladder`], each level a full run of
@@ -244,6 +261,17 @@ pub fn run_scene_with_estimate(
     if let Approach::NoImpact { .. } = approach(scene)? {
         return run_scene(scene, opts);
     }
+    let mut why_not_banded = None;
+    if let LadderPlan::Tolerance {
+        tolerance,
+        max_refinements,
+    } = plan
+    {
+        match run_scene_converged(scene, opts, tolerance, max_refinements)? {
+            Ok(report) => return Ok(report),
+            Err(why) => why_not_banded = Some(why),
+        }
+    }
     let start = Instant::now();
     let mut finest: Option<RunReport> = None;
     let estimate = run_ladder(plan, |level| {
@@ -256,7 +284,10 @@ pub fn run_scene_with_estimate(
     if let Some(level) = estimate.meshes.last().filter(|m| m.phase.is_some()) {
         take_phase_mean(&mut report, level)?;
     }
-    report.error_estimate = Some(estimate);
+    report.error_estimate = Some(ErrorEstimate {
+        method: EstimateMethod::SceneLadder { why_not_banded },
+        ..estimate
+    });
     report.wall_time_s = start.elapsed().as_secs_f64();
     Ok(report)
 }
@@ -270,7 +301,7 @@ pub fn run_scene_with_estimate(
 /// (steps, energy, history) stays the run's.
 ///
 /// Errors: a report without an impact or without its analytical outcome.
-fn take_phase_mean(report: &mut RunReport, level: &LevelOutcome) -> Result<()> {
+pub(super) fn take_phase_mean(report: &mut RunReport, level: &LevelOutcome) -> Result<()> {
     let (Some(e_run), Some(an)) = (report.e, report.analytic.as_ref()) else {
         return Err(Error::Numerical(
             "phase mean: the finest run reports no impact".into(),

@@ -96,6 +96,9 @@ pub struct SweepSpec {
     pub base: Vec<Override>,
     /// Points kept of each δ(t) history in the case files.
     pub history_points: usize,
+    /// Relative tolerance on e of the head-on cases on the section (`twoball run
+    /// --tolerance`); None: their default two-level bar.
+    pub tolerance: Option<f64>,
 }
 
 /// One case of a sweep.
@@ -155,6 +158,10 @@ pub struct FeSummary {
     pub element_cycles: u64,
     /// Wall time of the FE run, s.
     pub wall_time_s: f64,
+    /// The run's error estimate of e (absolute, -), when it has one (a head-on case on the
+    /// section).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub e_error: Option<f64>,
 }
 
 /// An FE run as a sweep sees it: the summary and the δ(t) history (t in s, δ in m).
@@ -329,13 +336,14 @@ pub fn shard_plan(spec: &SweepSpec, cases: &[&Case], count: usize) -> Vec<usize>
     super::cost::balance(&case_costs(spec, cases), count)
 }
 
-const STUDY_KEYS: [&str; 7] = [
+const STUDY_KEYS: [&str; 8] = [
     "model",
     "diameters",
     "left_velocity",
     "right_velocities",
     "tangential",
     "history_points",
+    "tolerance",
     "name",
 ];
 const MESH_KEYS: [&str; 6] = [
@@ -483,6 +491,11 @@ impl SweepSpec {
                 "2 <= history_points <= 100000",
             )?
             .unwrap_or(200) as usize;
+        let tolerance = s.f64(
+            "tolerance",
+            |t| t > 0.0 && t < 1.0,
+            "a fraction 0 < tolerance < 1, e.g. 0.005",
+        )?;
         let _ = s.string("name")?;
         let mut base = Vec::new();
         if let Some(b) = r.raw("base") {
@@ -563,6 +576,7 @@ impl SweepSpec {
             meshes,
             base,
             history_points,
+            tolerance,
         };
         spec.cases()?; // every case must be a valid scene
         Ok(spec)
@@ -900,7 +914,7 @@ fn run_cases(
 
 /// The CSV header (units in brackets).
 pub const CSV_HEADER: &str = "id,mesh,diameter [m],v1n [m/s],v2n [m/s],v1t [m/s],v2t [m/s],status,\
-e_fe [-],e_an [-],v1n_after_fe [m/s],v1n_after_an [m/s],v2n_after_fe [m/s],v2n_after_an [m/s],\
+e_fe [-],e_an [-],e_error_fe [-],v1n_after_fe [m/s],v1n_after_an [m/s],v2n_after_fe [m/s],v2n_after_an [m/s],\
 v1t_after_fe [m/s],v1t_after_an [m/s],v2t_after_fe [m/s],v2t_after_an [m/s],\
 delta_max_fe [m],delta_max_an [m],contact_duration_fe [s],contact_duration_an [s],\
 eta_fe [-],eta_an [-],energy_error_fe [-],reduction,elements,element_cycles,wall_time [s],message";
@@ -934,6 +948,7 @@ pub fn csv_row(r: &CaseRecord) -> String {
         status.to_string(),
     ];
     cols.extend(both(&|o| o.e));
+    cols.push(num(r.fe.as_ref().and_then(|f| f.e_error)));
     cols.extend(both(&|o| o.v1_after[0]));
     cols.extend(both(&|o| o.v2_after[0]));
     cols.extend(both(&|o| o.v1_after[1]));

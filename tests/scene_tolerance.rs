@@ -1,0 +1,76 @@
+//! `twoball run --tolerance` on a head-on scene of the meridian section (issue 26 item 5):
+//! the banded, mass-scaled family of `study::converged_scene` answers, its bar covers the
+//! converged e, and results.json says how the estimate was made.
+
+use std::path::Path;
+use twoball::scene::{Override, Scene, DEFAULT_SCENE};
+use twoball::study::error_estimate::{EstimateMethod, LadderPlan};
+use twoball::study::simulate::RunOptions;
+use twoball::study::single::run_scene_with_estimate;
+
+/// The default scene's converged e: the four-fold banded level-2 answer 0.31847 ± 0.21 %
+/// and the B-bar ladder's extrapolation 0.3184 (docs/contact-penalty.md, "The section's
+/// converged answer").
+const CONVERGED_E: f64 = 0.3184;
+
+fn scene(sets: &[&str]) -> Scene {
+    let sets: Vec<Override> = sets.iter().map(|s| Override::parse(s).unwrap()).collect();
+    Scene::from_toml(DEFAULT_SCENE, Path::new("."), &sets).unwrap()
+}
+
+/// The default scene to 0.5 %: the banded family runs (levels 0 and 1, two meshes each,
+/// mass scaling 1e-4), its bar meets the tolerance and covers the converged e, and the
+/// report's e, velocities and differences are the family's fine mean.
+#[test]
+fn a_tolerance_on_the_default_scene_runs_the_banded_family_and_its_bar_holds() {
+    let plan = LadderPlan::Tolerance {
+        tolerance: 0.005,
+        max_refinements: 2,
+    };
+    let opts = RunOptions {
+        history_rows: 100,
+        ..RunOptions::default()
+    };
+    let r = run_scene_with_estimate(&scene(&[]), &opts, plan).unwrap();
+    let est = r.error_estimate.as_ref().unwrap();
+    let EstimateMethod::BandedFamily {
+        band_split,
+        band_edge_m,
+        mass_scaling,
+        mass_scaling_bias,
+        ..
+    } = est.method
+    else {
+        panic!("{:?}", est.method);
+    };
+    assert_eq!((band_split, mass_scaling), (5, 1e-4));
+    assert!((mass_scaling_bias - 1e-3).abs() < 1e-15);
+    // The edge of the default contact, about 0.9 mm from the pole.
+    assert!(
+        band_edge_m > 0.8e-3 && band_edge_m < 1.0e-3,
+        "{band_edge_m}"
+    );
+    let levels: Vec<i32> = est.meshes.iter().map(|m| m.level).collect();
+    assert_eq!(levels, [0, 1]);
+    assert_eq!(est.tolerance_met, Some(true), "{}", est.summary());
+    let e = r.e.unwrap();
+    assert_eq!(e, est.e.finest);
+    assert_eq!(r.fe.as_ref().unwrap().outcome.e, e);
+    let bar = est.e.error;
+    assert!(
+        (e - CONVERGED_E).abs() <= bar,
+        "e {e} ± {bar} misses {CONVERGED_E}"
+    );
+    // The bar holds the mass-scaling bound and is within the tolerance.
+    assert!(bar >= mass_scaling_bias * e && bar <= 0.005 * e, "{bar}");
+    // ±1 m/s in the centre-of-mass frame: the balls leave at ∓e.
+    assert!((r.v1_after[0] + e).abs() < 1e-12 && (r.v2_after[0] - e).abs() < 1e-12);
+    let fine = est.meshes[1].phase.unwrap();
+    assert_eq!(fine.meshes, 2);
+    assert!(fine.e_min <= e && e <= fine.e_max);
+    // Pole segments of the family's meshes halve from level 0 to 1.
+    let ratio = est.meshes[0].pole_size / est.meshes[1].pole_size;
+    assert!((ratio - 2.0).abs() < 0.05, "{ratio}");
+    let json = serde_json::to_value(&r).unwrap();
+    assert_eq!(json["error_estimate"]["method"]["kind"], "banded_family");
+}
