@@ -74,3 +74,30 @@ fn a_tolerance_on_the_default_scene_runs_the_banded_family_and_its_bar_holds() {
     let json = serde_json::to_value(&r).unwrap();
     assert_eq!(json["error_estimate"]["method"]["kind"], "banded_family");
 }
+
+/// A ball at 5 m/s on a rigid wall is the pair at ±5 m/s (the wall is the pair's symmetry
+/// plane): under a tolerance both run the same banded family, and the sweep's runner carries
+/// the bar into the case (`e_error`).
+#[test]
+fn a_ball_on_a_rigid_wall_converges_as_the_pair_and_a_sweep_case_carries_its_bar() {
+    let plan = LadderPlan::Tolerance {
+        tolerance: 0.01,
+        max_refinements: 0,
+    };
+    let pair = scene(&["ball1.velocity=[5.0,0,0]", "ball2.velocity=[-5.0,0,0]"]);
+    let r = run_scene_with_estimate(&pair, &RunOptions::default(), plan).unwrap();
+    let est = r.error_estimate.as_ref().unwrap();
+    assert!(matches!(est.method, EstimateMethod::BandedFamily { .. }));
+    let sets: Vec<Override> = ["ball1.velocity=[5.0,0,0]"]
+        .iter()
+        .map(|s| Override::parse(s).unwrap())
+        .collect();
+    let wall = Scene::from_toml(twoball::scene::WALL_SCENE, Path::new("."), &sets).unwrap();
+    let case = twoball::study::single::sweep_case_to(&wall, Some(0.01)).unwrap();
+    let s = &case.summary;
+    assert_eq!(s.outcome.e, r.e.unwrap());
+    assert_eq!(s.e_error, Some(est.e.error));
+    assert!(est.e.error <= 0.01 * s.outcome.e, "{}", est.summary());
+    // The ball leaves the wall at e times its speed.
+    assert!((s.outcome.v1_after[0] + 5.0 * s.outcome.e).abs() < 1e-9);
+}

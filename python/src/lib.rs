@@ -12,10 +12,11 @@ use std::path::{Path, PathBuf};
 use std::sync::{Arc, Mutex};
 use std::time::{Duration, Instant};
 use twoball::scene::{Override, Scene, DEFAULT_SCENE};
+use twoball::study::error_estimate::LadderPlan;
 use twoball::study::interrupt::{self, CancelToken};
 use twoball::study::progress::{self, Hook};
 use twoball::study::simulate::{RunOptions, HISTORY_HEADER};
-use twoball::study::single::{run_scene_default, write_outputs};
+use twoball::study::single::{run_scene_default, run_scene_with_estimate, write_outputs};
 use twoball::Error;
 
 /// How often the waiting Python thread checks for Ctrl-C and progress.
@@ -124,7 +125,8 @@ type RunOutput = (String, Vec<String>, Vec<Vec<f64>>);
 /// else `scene_json` a scene as JSON text, else the default scene; `sets` the `--set`
 /// overrides; `out` a folder for results.json and history.csv.
 #[pyfunction]
-#[pyo3(signature = (scene_path, scene_json, sets, out, vtu_ascii, progress))]
+#[pyo3(signature = (scene_path, scene_json, sets, out, vtu_ascii, progress, tolerance, max_refinements))]
+#[allow(clippy::too_many_arguments)]
 fn run(
     py: Python<'_>,
     scene_path: Option<PathBuf>,
@@ -133,7 +135,20 @@ fn run(
     out: Option<PathBuf>,
     vtu_ascii: bool,
     progress: Option<&Bound<'_, PyAny>>,
+    tolerance: Option<f64>,
+    max_refinements: u32,
 ) -> PyResult<RunOutput> {
+    let plan = match tolerance {
+        Some(t) if t > 0.0 && t < 1.0 => Some(LadderPlan::Tolerance {
+            tolerance: t,
+            max_refinements,
+        }),
+        Some(t) => {
+            let range = "a fraction 0 < tolerance < 1, e.g. 0.005";
+            return Err(py_err(Error::invalid("tolerance", t, range)));
+        }
+        None => None,
+    };
     let sets = sets
         .iter()
         .map(|s| Override::parse(s))
@@ -157,7 +172,10 @@ fn run(
         ..RunOptions::default()
     };
     wait_job(py, progress, move || {
-        let report = run_scene_default(&scene, &opts)?;
+        let report = match plan {
+            Some(plan) => run_scene_with_estimate(&scene, &opts, plan)?,
+            None => run_scene_default(&scene, &opts)?,
+        };
         if let Some(dir) = &out {
             write_outputs(&report, dir)?;
         }

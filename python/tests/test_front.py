@@ -51,7 +51,11 @@ def exact(value):
 def without_wall_times(value):
     """`value` without the wall-clock fields (the only ones that differ between two runs)."""
     if isinstance(value, dict):
-        return {k: without_wall_times(v) for k, v in value.items() if k != "wall_time_s"}
+        return {
+            k: without_wall_times(v)
+            for k, v in value.items()
+            if k not in ("wall_time_s", "cpu_time_s")
+        }
     if isinstance(value, list):
         return [without_wall_times(v) for v in value]
     return value
@@ -135,6 +139,20 @@ def test_run_default_scene_equals_the_cli(cli, tmp_path):
     r = twoball.run(out=py_out, **COARSE_SETS)
     check_run_against_cli(r, py_out, cli_out)
     assert r.results["reduction"] == "axisymmetric"
+
+
+def test_run_to_a_tolerance_equals_the_cli(cli, tmp_path):
+    cli_out, py_out = tmp_path / "cli", tmp_path / "py"
+    code, _, err = cli("run", "--tolerance", "0.5%", "--out", str(cli_out))
+    assert code == 0, err
+    r = twoball.run(out=py_out, tolerance=0.005)
+    check_run_against_cli(r, py_out, cli_out)
+    est = r.results["error_estimate"]
+    assert est["method"]["kind"] == "banded_family"
+    assert est["tolerance_met"] is True and est["e"]["relative_error"] <= 0.005
+    for bad in (0.0, 1.5, float("nan")):
+        with pytest.raises(ValueError, match="tolerance"):
+            twoball.run(tolerance=bad)
 
 
 def test_run_oblique_unequal_pair_equals_the_cli(cli, tmp_path):

@@ -59,11 +59,14 @@ def run(
     progress: Optional[Progress] = None,
     vtu_ascii: bool = False,
     overrides: Optional[Mapping[str, Any]] = None,
+    tolerance: Optional[float] = None,
+    max_refinements: int = 2,
     **more: Any,
 ) -> Run:
     """One scene, FE beside the analytical model (``twoball run``); overrides are dotted
-    scene paths (``--set`` syntax); progress(done_s, total_s) in simulated seconds. Raises
-    ValueError on bad input, KeyboardInterrupt on Ctrl-C."""
+    scene paths (``--set`` syntax); progress(done_s, total_s) in simulated seconds;
+    tolerance: refine until the relative error estimate of e is at most this fraction
+    (``--tolerance``). Raises ValueError on bad input, KeyboardInterrupt on Ctrl-C."""
 
 def sweep(
     path: PathLike,

@@ -12,6 +12,8 @@ def run(
     out: Optional[str],
     vtu_ascii: bool,
     progress: Optional[Callable[[float, float], Any]],
+    tolerance: Optional[float],
+    max_refinements: int,
 ) -> Tuple[str, List[str], List[List[float]]]:
     """results.json text, history.csv column headers (with units) and the columns."""
 
