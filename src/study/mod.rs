@@ -7,6 +7,7 @@
 //! - [`bench_profile`]: where a scene's run spends its wall time, phase by phase;
 //! - [`bench_machine`]: this machine's ceilings (FMA throughput, memory bandwidth);
 //! - [`sweep`]: resumable, shardable parameter sweeps (the paper's ANSYS study);
+//! - [`similarity`]: scenes that are one another scaled, and the run of one as the other's;
 //! - [`cost`]: estimated cost of a case, shards balanced by it;
 //! - [`curves`]: contact-history CSV files of the analytical model and the law integrator;
 //! - [`convergence`]: Richardson extrapolation, observed order and error estimates of a ladder;
@@ -50,6 +51,7 @@ pub mod phase_ensemble;
 pub mod plots;
 pub mod progress;
 pub mod report;
+pub mod similarity;
 pub mod simulate;
 pub mod simulate_section;
 pub mod single;

@@ -1148,6 +1148,7 @@ impl Simulation {
                 element_cycles: self.element_cycles,
                 wall_time_s: self.wall_time_s,
                 e_error: None,
+                scaled_from: None,
             },
         }
     }

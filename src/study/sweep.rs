@@ -30,6 +30,7 @@ use crate::scene::reader::{parse_table, Reader};
 use crate::scene::{approach, Approach, Override, Scene, DEFAULT_SCENE};
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
+use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
 use toml::{Table, Value};
@@ -162,6 +163,10 @@ pub struct FeSummary {
     /// section).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub e_error: Option<f64>,
+    /// The case whose FE run this is, scaled by dimensional similarity
+    /// ([`super::similarity`]); None when the case ran its own.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub scaled_from: Option<String>,
 }
 
 /// An FE run as a sweep sees it: the summary and the δ(t) history (t in s, δ in m).
@@ -305,20 +310,65 @@ pub fn select<'a>(
 pub fn case_costs(spec: &SweepSpec, cases: &[&Case]) -> Vec<f64> {
     let fe = spec.model == SweepModel::Fe;
     let estimator = super::cost::Estimator::default();
+    let twins = twins(spec, cases);
     cases
         .par_iter()
-        .map(|c| {
-            estimator
+        .zip(&twins)
+        .map(|(c, twin)| match twin {
+            // Scaled from its twin's run: the analytical model only.
+            Some(_) => super::cost::CASE_OVERHEAD,
+            None => estimator
                 .estimate(&c.scene, fe)
-                .map_or(super::cost::CASE_OVERHEAD, |e| e.element_steps())
+                .map_or(super::cost::CASE_OVERHEAD, |e| e.element_steps()),
         })
         .collect()
+}
+
+/// True when `scene` collides and its FE model is the meridian section.
+fn runs_on_section(scene: &Scene) -> bool {
+    let Ok(Approach::Impact(touch)) = approach(scene) else {
+        return false;
+    };
+    super::simulate::choose_reduction(scene, &touch)
+        .is_ok_and(|(r, _)| r == super::simulate::Reduction::Axisymmetric)
+}
+
+/// For each of `cases`, the earlier case (its position in `cases`) whose FE run it is scaled
+/// by the factor k (dimensional similarity, [`super::similarity::similarity_factor`]): the
+/// first similar case that runs its own. None for a case that runs, for a case off the
+/// meridian section, and for every case of an analytic-only sweep.
+pub fn twins(spec: &SweepSpec, cases: &[&Case]) -> Vec<Option<(usize, f64)>> {
+    let mut out: Vec<Option<(usize, f64)>> = vec![None; cases.len()];
+    if spec.model != SweepModel::Fe {
+        return out;
+    }
+    // Only the section's runs are scaled: the 3D models' e and contact duration differ from
+    // their scaled twins' by up to 1e-4 and 2e-4 (some tolerance of theirs has a fixed
+    // length or time), the section's agree to 1e-7 (docs/design.md, "Sweeps").
+    let on_section: Vec<bool> = cases.iter().map(|c| runs_on_section(&c.scene)).collect();
+    for i in 0..cases.len() {
+        if !on_section[i] {
+            continue;
+        }
+        let (p, scene) = (&cases[i].params, &cases[i].scene);
+        out[i] = (0..i)
+            .filter(|&j| on_section[j])
+            .filter(|&j| out[j].is_none())
+            .filter(|&j| {
+                let q = &cases[j].params;
+                (q.v1n, q.v2n, q.v1t, q.v2t, &q.mesh) == (p.v1n, p.v2n, p.v1t, p.v2t, &p.mesh)
+            })
+            .find_map(|j| {
+                super::similarity::similarity_factor(&cases[j].scene, scene).map(|k| (j, k))
+            });
+    }
+    out
 }
 
 /// Cases and estimated cost (element-steps) of each shard when `cases` are split `count` ways.
 pub fn shard_costs(spec: &SweepSpec, cases: &[&Case], count: usize) -> Vec<(usize, f64)> {
     let costs = case_costs(spec, cases);
-    let plan = super::cost::balance(&costs, count);
+    let plan = shard_plan(spec, cases, count);
     let mut out = vec![(0, 0.0); count.max(1)];
     for (c, &s) in costs.iter().zip(&plan) {
         out[s].0 += 1;
@@ -333,7 +383,14 @@ pub fn shard_plan(spec: &SweepSpec, cases: &[&Case], count: usize) -> Vec<usize>
     if count <= 1 {
         return vec![0; cases.len()];
     }
-    super::cost::balance(&case_costs(spec, cases), count)
+    let mut plan = super::cost::balance(&case_costs(spec, cases), count);
+    // A case scaled from its twin's run goes with the twin (which comes first).
+    for (i, twin) in twins(spec, cases).iter().enumerate() {
+        if let Some((j, _)) = twin {
+            plan[i] = plan[*j];
+        }
+    }
+    plan
 }
 
 const STUDY_KEYS: [&str; 8] = [
@@ -796,7 +853,12 @@ pub fn run_sweep(
     let dir = opts.out.join("cases");
     let made_dir = !dir.exists();
     ensure_dir(&dir)?;
-    let result = run_cases(spec, opts, fe, &cases, &mine);
+    let twin_of: HashMap<usize, (&Case, f64)> = twins(spec, &selected)
+        .iter()
+        .enumerate()
+        .filter_map(|(i, t)| t.map(|(j, k)| (selected[i].index, (selected[j], k))))
+        .collect();
+    let result = run_cases(spec, opts, fe, &cases, &mine, &twin_of);
     if result.is_err() && made_dir {
         // A sweep that failed before finishing any case leaves no empty folders behind.
         let _ = std::fs::remove_dir(opts.out.join("running"));
@@ -805,13 +867,17 @@ pub fn run_sweep(
     result
 }
 
-/// Runs the unfinished cases of `mine` (this shard's) and sums up.
+/// Runs the unfinished cases of `mine` (this shard's) and sums up: first those that run their
+/// own FE model, then those of `twin_of` (case index → the similar case and the factor k),
+/// whose FE result is their twin's scaled ([`super::similarity::scaled_fe_case`]; their own
+/// run when the twin has no finished FE result).
 fn run_cases(
     spec: &SweepSpec,
     opts: &SweepOptions,
     fe: Option<FeRunner<'_>>,
     cases: &[Case],
     mine: &[&Case],
+    twin_of: &HashMap<usize, (&Case, f64)>,
 ) -> Result<SweepSummary> {
     let dirs = [
         opts.out.join("cases"),
@@ -852,7 +918,32 @@ fn run_cases(
         }
         let t0 = Instant::now();
         mark_running(&opts.out, &c.id, &shard_name)?;
-        let rec = run_case(c, fe, spec.history_points);
+        let scaled = twin_of.get(&c.index).and_then(|(twin, k)| {
+            let rec = read_case(&opts.out, &twin.id)?;
+            let summary = rec.fe.filter(|_| rec.status == Status::Done)?;
+            let run = FeCase {
+                summary,
+                delta_history: rec.fe_history,
+            };
+            let mut case = super::similarity::scaled_fe_case(&run, *k);
+            case.summary.scaled_from = Some(twin.id.clone());
+            Some(case)
+        });
+        let rec = match (&scaled, fe) {
+            (Some(case), Some(_)) => {
+                let from = |_: &Scene| -> Result<FeCase> { Ok(case.clone()) };
+                run_case(c, Some(&from), spec.history_points)
+            }
+            _ => run_case(c, fe, spec.history_points),
+        };
+        let mut rec = rec;
+        if let (Some(from), Status::Done) = (
+            rec.fe.as_ref().and_then(|f| f.scaled_from.clone()),
+            rec.status,
+        ) {
+            let k = twin_of.get(&c.index).map_or(1.0, |t| t.1);
+            rec.message = format!("FE scaled from case {from} (similar: lengths and times x {k})");
+        }
         if let Some(rest) = opts.pace.checked_sub(t0.elapsed()) {
             std::thread::sleep(rest);
         }
@@ -873,17 +964,24 @@ fn run_cases(
     };
     let work =
         |c: &&Case| -> Result<()> { super::interrupt::within(token.as_ref(), || run_one(c)) };
-    if opts.jobs > 1 && n_pending > 1 {
-        // More cases than one: spread whole cases over the workers (each FE run may still use
-        // the pool for its own loops).
-        let pool = rayon::ThreadPoolBuilder::new()
-            .num_threads(opts.jobs)
-            .build()
-            .map_err(|e| Error::External(format!("thread pool: {e}")))?;
-        pool.install(|| pending.par_iter().with_max_len(1).try_for_each(work))
-    } else {
-        pending.iter().try_for_each(work)
-    }
+    // The cases that run their own FE model first, then those scaled from them.
+    let (derived, own): (Vec<&Case>, Vec<&Case>) =
+        pending.iter().partition(|c| twin_of.contains_key(&c.index));
+    let run_all = |batch: &[&Case]| -> Result<()> {
+        if opts.jobs > 1 && batch.len() > 1 {
+            // More cases than one: spread whole cases over the workers (each FE run may
+            // still use the pool for its own loops).
+            let pool = rayon::ThreadPoolBuilder::new()
+                .num_threads(opts.jobs)
+                .build()
+                .map_err(|e| Error::External(format!("thread pool: {e}")))?;
+            pool.install(|| batch.par_iter().with_max_len(1).try_for_each(work))
+        } else {
+            batch.iter().try_for_each(work)
+        }
+    };
+    run_all(&own)
+        .and_then(|()| run_all(&derived))
     .map_err(|e| match e {
         Error::Interrupted(_) => Error::Interrupted(format!(
             "after {} of {n_pending} cases: they are in {} (the same command resumes); sweep.csv not written",
