@@ -343,9 +343,9 @@ pub fn twins(spec: &SweepSpec, cases: &[&Case]) -> Vec<Option<(usize, f64)>> {
         return out;
     }
     // Only the section's runs are scaled: the 3D models' e and contact duration differ from
-    // their scaled twins' by up to 1e-4 and 2e-4 (their step counts differ by a few steps in
-    // a thousand, a cause not yet traced), the section's agree to printed precision
-    // (docs/design.md, "Sweeps").
+    // their scaled twins' by up to 1e-4 and 2e-4 (round-off grows through the ringing of
+    // their penalty contact), the section's agree to printed precision (docs/design.md,
+    // "Similar cases").
     let on_section: Vec<bool> = cases.iter().map(|c| runs_on_section(&c.scene)).collect();
     for i in 0..cases.len() {
         if !on_section[i] {
