@@ -63,7 +63,7 @@ fn similar_cases_on_the_section_are_scaled_from_one_run() {
     };
     let fe: twoball::study::sweep::FeRunner<'_> = &twoball::study::single::sweep_case;
     let s = run_sweep(&spec, &opts, Some(fe)).unwrap();
-    assert_eq!((s.total, s.failed), (4, 0));
+    assert_eq!((s.total, s.failed, s.scaled), (4, 0, 2));
     let run = read_case(&out, &cases[0].id).unwrap();
     let scaled = read_case(&out, &cases[2].id).unwrap();
     let (a, b) = (run.fe.as_ref().unwrap(), scaled.fe.as_ref().unwrap());

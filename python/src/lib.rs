@@ -243,6 +243,7 @@ fn sweep(
             "total": s.total,
             "skipped": s.skipped,
             "ran": s.ran,
+            "scaled": s.scaled,
             "failed": s.failed,
             "in_csv": s.in_csv,
             "csv": opts.out.join("sweep.csv"),

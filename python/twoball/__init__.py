@@ -249,8 +249,9 @@ def sweep(
     in ``out/cases/`` are kept, so calling it again after an interruption finishes the rest.
 
     jobs: worker threads (default: all cores). progress: ``progress(done, total)`` in cases.
-    Returns a summary dict: total, ran, skipped (already done), failed, in_csv, csv (the
-    path of sweep.csv, units in its header). Raises ValueError on bad input,
+    Returns a summary dict: total, ran, scaled (of those, FE results scaled from a similar
+    case's run), skipped (already done), failed, in_csv, csv (the path of sweep.csv, units in
+    its header). Raises ValueError on bad input,
     KeyboardInterrupt on Ctrl-C (finished cases kept).
     """
     if jobs is not None and (isinstance(jobs, bool) or not isinstance(jobs, int)):

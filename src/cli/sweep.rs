@@ -157,7 +157,7 @@ pub fn run(a: SweepArgs) -> Result<()> {
         )
     };
     println!(
-        "sweep {}: {} cases, shard {}/{} has {} ({} already done, {} run now); {} ({} failed)",
+        "sweep {}: {} cases, shard {}/{} has {} ({} already done, {} run now{}); {} ({} failed)",
         file.display(),
         s.total,
         shard.index,
@@ -165,6 +165,11 @@ pub fn run(a: SweepArgs) -> Result<()> {
         s.in_shard,
         s.skipped,
         s.ran,
+        if s.scaled > 0 {
+            format!(", {} of them scaled from a similar case's FE run", s.scaled)
+        } else {
+            String::new()
+        },
         csv,
         s.failed
     );

@@ -800,6 +800,8 @@ pub struct SweepSummary {
     pub skipped: usize,
     /// Cases run now.
     pub ran: usize,
+    /// Of those, cases whose FE result was scaled from a similar case's run.
+    pub scaled: usize,
     /// Cases of the whole sweep finished (all in `DIR/sweep.csv` if `csv_written`).
     pub in_csv: usize,
     /// Cases that failed (of the whole sweep).
@@ -911,6 +913,7 @@ fn run_cases(
         "sweep",
         n_pending,
     );
+    let n_scaled = std::sync::atomic::AtomicUsize::new(0);
     // Workers of the pool stop on the caller's cancel request too (library callers).
     let token = super::interrupt::current();
     let run_one = |c: &&Case| -> Result<()> {
@@ -942,6 +945,7 @@ fn run_cases(
             rec.fe.as_ref().and_then(|f| f.scaled_from.clone()),
             rec.status,
         ) {
+            n_scaled.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
             let k = twin_of.get(&c.index).map_or(1.0, |t| t.1);
             rec.message = format!("FE scaled from case {from} (similar: lengths and times x {k})");
         }
@@ -1005,6 +1009,7 @@ fn run_cases(
         in_shard: mine.len(),
         skipped,
         ran: n_pending,
+        scaled: n_scaled.load(std::sync::atomic::Ordering::Relaxed),
         in_csv,
         failed,
         csv_written: opts.shard.count == 1,
