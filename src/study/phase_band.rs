@@ -18,7 +18,7 @@
 //! every level. Its levels are the ladder's (0, 1, …): a banded plan's fine level is ≥ 1.
 
 use super::phase_ensemble::{
-    ensemble_over, family_mesh, head_on, hertz_contact_radius, ring_ratio, HeadOnCase,
+    ensemble_over, family_mesh, hertz_contact_radius, ring_ratio, run_head_on, HeadOnCase,
     PhaseEnsemble,
 };
 use crate::error::Result;
@@ -38,7 +38,7 @@ pub const SIZING_PER_EDGE: f64 = 0.45;
 /// Errors: those of the run; a run that made no contact.
 pub fn contact_edge(case: &HeadOnCase) -> Result<(f64, ImpactResult)> {
     let mesh = family_mesh(case.diameter, hertz_contact_radius(case), 0)?;
-    let run = head_on(case, mesh.clone()).run()?;
+    let run = run_head_on(case, mesh.clone())?;
     let r = run.contact_radius_max;
     let q = ring_ratio(&mesh, r)?;
     Ok((0.5 * r * (1.0 + q), run))
@@ -76,7 +76,7 @@ pub fn banded_ensemble_at(
     let d = case.diameter;
     let q = ring_ratio(&banded_mesh(d, edge, level, split, 1.0)?, edge)?;
     let mesh_at = |s: f64| banded_mesh(d, edge, level, split, s);
-    let run = |mesh: MeridianMesh| head_on(case, mesh).run();
+    let run = |mesh: MeridianMesh| run_head_on(case, mesh);
     ensemble_over(q, meshes, &mesh_at, &run)
 }
 

@@ -350,11 +350,14 @@ pub fn run_ensemble(
     let pilot_mesh = mesh_at(1.0)?;
     let pilot = run(pilot_mesh.clone())?;
     let q = ring_ratio(&pilot_mesh, pilot.contact_radius_max)?;
+    let token = super::interrupt::current();
     let rest: Vec<PhaseRun> = (1..meshes)
         .into_par_iter()
         .map(|j| {
-            let s = q.powf(j as f64 / meshes as f64);
-            Ok(member(s, &run(mesh_at(s)?)?))
+            super::interrupt::within(token.as_ref(), || {
+                let s = q.powf(j as f64 / meshes as f64);
+                Ok(member(s, &run(mesh_at(s)?)?))
+            })
         })
         .collect::<Result<_>>()?;
     let mut runs = vec![member(1.0, &pilot)];
@@ -464,6 +467,22 @@ pub(super) fn head_on(case: &HeadOnCase, mesh: MeridianMesh) -> HeadOn {
     h
 }
 
+/// Runs `case` on `mesh`, stopping at the next observation of the solver when the job is
+/// interrupted (Ctrl-C, or its cancel token).
+///
+/// Errors: those of the run; [`Error::Interrupted`] on an interrupt.
+pub(super) fn run_head_on(case: &HeadOnCase, mesh: MeridianMesh) -> Result<ImpactResult> {
+    head_on(case, mesh).run_observed(&mut |solver, _| {
+        if super::interrupt::requested() {
+            return Err(Error::Interrupted(format!(
+                "at t = {:.3e} s of a head-on run",
+                solver.time()
+            )));
+        }
+        Ok(())
+    })
+}
+
 /// The ensemble of `meshes` members of `case` on family level `level` ([`family_mesh`],
 /// sized from Hertz's contact radius) and the pilot's run.
 ///
@@ -478,7 +497,7 @@ pub fn ensemble_at(
     check_ensemble_level(case, level, meshes)?;
     let a = hertz_contact_radius(case);
     let d = case.diameter;
-    let run = |mesh: MeridianMesh| head_on(case, mesh).run();
+    let run = |mesh: MeridianMesh| run_head_on(case, mesh);
     let mesh_at = |s: f64| family_mesh(d, a * s, level);
     run_ensemble(&mesh_at, &run, meshes)
 }
@@ -500,7 +519,7 @@ pub fn ensemble_at_radius(
     let d = case.diameter;
     let q = ring_ratio(&family_mesh(d, a, level)?, radius)?;
     let mesh_at = |s: f64| family_mesh(d, a * s, level);
-    let run = |mesh: MeridianMesh| head_on(case, mesh).run();
+    let run = |mesh: MeridianMesh| run_head_on(case, mesh);
     Ok(ensemble_over(q, meshes, &mesh_at, &run)?.0)
 }
 
@@ -519,12 +538,15 @@ pub fn ensemble_over(
         return Err(Error::invalid("ring_ratio", q, "> 1, finite"));
     }
     check_meshes(meshes)?;
+    let token = super::interrupt::current();
     let mut results: Vec<(PhaseRun, ImpactResult)> = (0..meshes)
         .into_par_iter()
         .map(|j| {
-            let s = q.powf(j as f64 / meshes as f64);
-            let r = run(mesh_at(s)?)?;
-            Ok((member(s, &r), r))
+            super::interrupt::within(token.as_ref(), || {
+                let s = q.powf(j as f64 / meshes as f64);
+                let r = run(mesh_at(s)?)?;
+                Ok((member(s, &r), r))
+            })
         })
         .collect::<Result<_>>()?;
     let runs = results.iter().map(|t| t.0).collect();
@@ -560,7 +582,11 @@ pub fn converged_head_on(case: &HeadOnCase, plan: &PhasePlan) -> Result<HeadOnAn
     };
     let (coarse, fine) = match plan.band {
         // The banded ring ratio is read at the edge: both levels' members run at once.
-        Some(_) => rayon::join(|| at(plan.level - 1), || at(plan.level)),
+        Some(_) => {
+            let token = super::interrupt::current();
+            let within = |level: i32| super::interrupt::within(token.as_ref(), || at(level));
+            rayon::join(|| within(plan.level - 1), || within(plan.level))
+        }
         None => (at(plan.level - 1), at(plan.level)),
     };
     let (mut coarse, (mut fine, mut pilot)) = (coarse?.0, fine?);
@@ -635,6 +661,29 @@ mod tests {
                 assert!(s <= 0.03 / m as f64 + 1e-15, "M = {m}: {s}");
             }
         }
+    }
+
+    /// A cancelled job stops every run of the ensembles (the pilot, and the members on the
+    /// pool's threads) at their first observation.
+    #[test]
+    fn a_cancelled_job_stops_the_ensembles() {
+        use super::super::interrupt::{within, CancelToken};
+        let token = CancelToken::new();
+        token.cancel();
+        let plan = PhasePlan {
+            level: 1,
+            meshes: 2,
+            band: Some(5),
+            ..PhasePlan::default()
+        };
+        let start = std::time::Instant::now();
+        let case = HeadOnCase::default_scene();
+        let e = within(Some(&token), || converged_head_on(&case, &plan)).unwrap_err();
+        assert!(matches!(e, Error::Interrupted(_)), "{e}");
+        let e = within(Some(&token), || ensemble_at(&case, 0, 2)).unwrap_err();
+        assert!(matches!(e, Error::Interrupted(_)), "{e}");
+        // Each run stops within its first observation (a few hundred steps).
+        assert!(start.elapsed().as_secs_f64() < 2.0, "{:?}", start.elapsed());
     }
 
     #[test]
