@@ -43,7 +43,8 @@ pub struct RunArgs {
     /// sizes), the results the finest mesh's.
     #[arg(long, value_name = "FRACTION|PERCENT%")]
     pub tolerance: Option<String>,
-    /// With --tolerance: the most refinements beyond the scene's own mesh.
+    /// With --tolerance: the most refinements beyond the first fine level (the scene's own
+    /// mesh, or the banded family's level 1).
     #[arg(long, default_value_t = DEFAULT_MAX_REFINEMENTS, requires = "tolerance")]
     pub max_refinements: u32,
     /// Run the scene's mesh alone: no error estimate, not even the one a head-on run on the

@@ -252,7 +252,9 @@ pub fn sweep_case(scene: &Scene) -> Result<super::sweep::FeCase> {
 /// [`run_scene`] on [`scene_at_level`]): the report of the finest mesh, with its
 /// `error_estimate` and `wall_time_s` the total over the ladder. A scene without impact gives
 /// its plain report. Snapshots, when asked, are those of the finest mesh (levels run coarse
-/// to fine and each overwrites the last).
+/// to fine and each overwrites the last). A [`LadderPlan::Tolerance`] on a head-on section
+/// scene that the banded family covers runs that family instead
+/// ([`super::converged_scene::run_scene_converged`]); the estimate's `method` says which ran.
 pub fn run_scene_with_estimate(
     scene: &Scene,
     opts: &RunOptions,
