@@ -23,12 +23,10 @@ use super::phase_ensemble::{
     MASS_SCALING_BIAS,
 };
 use super::simulate::{choose_reduction, Reduction, RunOptions};
+use super::simulate_section::{formulation, plane_contact};
 use super::single::{run_scene, take_phase_mean, RunReport};
 use crate::error::{Error, Result};
-use crate::fe::axisym::element::QuadFormulation;
-use crate::fe::axisym::impact::PlaneContact;
 use crate::fe::subcycle::Subcycling;
-use crate::fe::Formulation;
 use crate::mesh::meridian::MeridianMesh;
 use crate::scene::{approach, Approach, PlaneEnforcement, Scene, Switch, WallKind};
 use serde::Serialize;
@@ -131,14 +129,8 @@ pub fn head_on_case(scene: &Scene, budget: f64) -> Result<std::result::Result<He
             HeadOnTarget::RigidWall => touch.approach_speed / 2.0,
         },
         target,
-        formulation: match scene.solver.element {
-            Formulation::OnePoint => QuadFormulation::default(),
-            Formulation::BBar => QuadFormulation::SelectiveReduced,
-        },
-        plane: match scene.contact.plane {
-            PlaneEnforcement::Kinematic => PlaneContact::Kinematic,
-            PlaneEnforcement::Penalty => PlaneContact::Nodal,
-        },
+        formulation: formulation(scene),
+        plane: plane_contact(scene),
         mass_scaling: budget,
     }))
 }
@@ -290,6 +282,7 @@ fn contact_segment_sizes(mesh: &MeridianMesh) -> (f64, f64) {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::fe::axisym::element::QuadFormulation;
     use crate::scene::{Override, DEFAULT_SCENE, WALL_SCENE};
     use std::path::Path;
 

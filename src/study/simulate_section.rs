@@ -103,10 +103,18 @@ pub fn wall_block(scene: &Scene) -> Result<Option<WallBlock>> {
 
 /// The section element of the scene's 3D element choice: one point with hourglass control
 /// for the one-point hexahedron, selectively reduced (B-bar) for B-bar.
-fn formulation(scene: &Scene) -> QuadFormulation {
+pub(super) fn formulation(scene: &Scene) -> QuadFormulation {
     match scene.solver.element {
         Formulation::OnePoint => QuadFormulation::default(),
         Formulation::BBar => QuadFormulation::SelectiveReduced,
+    }
+}
+
+/// How the section enforces its rigid plane for the scene's `contact.plane`.
+pub(super) fn plane_contact(scene: &Scene) -> PlaneContact {
+    match scene.contact.plane {
+        PlaneEnforcement::Kinematic => PlaneContact::Kinematic,
+        PlaneEnforcement::Penalty => PlaneContact::Nodal,
     }
 }
 
@@ -137,10 +145,7 @@ fn head_on(run: &SectionRun<'_>) -> Result<HeadOn> {
     h.elastic_only = run.elastic_only[0];
     h.formulation = formulation(scene);
     h.fkn = 10.0 * scene.contact.penalty_factor;
-    h.plane_contact = match scene.contact.plane {
-        PlaneEnforcement::Kinematic => PlaneContact::Kinematic,
-        PlaneEnforcement::Penalty => PlaneContact::Nodal,
-    };
+    h.plane_contact = plane_contact(scene);
     h.time_step_factor = scene.solver.time_step_factor;
     let duration = usable_duration(run.expected_duration);
     h.hold_time = Some(
