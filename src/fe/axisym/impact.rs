@@ -17,6 +17,7 @@ use super::subcycle::Integration;
 use crate::error::{Error, Result};
 use crate::fe::contact::pulse::pulse_duration;
 use crate::fe::materials::J2Material;
+use crate::fe::simd::KernelPath;
 use crate::material::Material;
 use crate::mesh::meridian::MeridianMesh;
 use serde::Serialize;
@@ -123,6 +124,9 @@ pub struct HeadOn {
     /// Mass-scaling budget: the added mass over the model's mass that may raise the
     /// smallest quads' steps ([`super::mass_scaling`]; 0, the default: none).
     pub mass_scaling: f64,
+    /// The widest lane path of the one-point quads, `None` for scalar updates (the same
+    /// bits either way; [`super::section::SectionModel::kernel`]).
+    pub kernel: Option<KernelPath>,
 }
 
 /// One history row (whole system; for [`Target::MirrorBall`] the pair).
@@ -351,6 +355,7 @@ impl HeadOn {
             integration: Integration::subcycled(),
             plane_contact: PlaneContact::default(),
             mass_scaling: 0.0,
+            kernel: Some(KernelPath::Avx512),
         }
     }
 
@@ -483,6 +488,7 @@ impl HeadOn {
         model.formulation = self.formulation;
         model.time_step_factor = self.time_step_factor;
         model.integration = self.integration;
+        model.kernel = self.kernel;
         super::mass_scaling::check_budget(self.mass_scaling)?;
         let mut added_mass_fraction = 0.0;
         if self.mass_scaling > 0.0 {

@@ -3,11 +3,14 @@
 //! axis, internal forces from the quads, contact forces from the [`SectionContact`]s, and the
 //! energy balance (kinetic, internal, plastic, hourglass, contact) checked every step.
 
-use super::element::{update, QuadFormulation, QuadState};
+use super::element::{update, QuadFormulation, QuadOutput, QuadState};
 use super::mass::element_masses;
+use super::quad_lanes;
 use super::subcycle::{Integration, Schedule};
 use crate::error::{Error, Result};
 use crate::fe::materials::J2Material;
+use crate::fe::materials::{Hardening, LawVisitor};
+use crate::fe::simd::{build, Kernel, KernelPath, LaneIsa, LaneKernel};
 
 /// What a contact reports for one force evaluation.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
@@ -91,6 +94,9 @@ pub struct SectionModel {
     pub integration: Integration,
     /// Density factor of each quad (≥ 1, [`super::mass_scaling`]); empty: none.
     pub density_scale: Vec<f64>,
+    /// The widest lane path the one-point quads may run on ([`super::quad_lanes`]; the
+    /// same bits on every path), or `None` for the scalar update of each quad.
+    pub kernel: Option<KernelPath>,
 }
 
 impl SectionModel {
@@ -108,6 +114,7 @@ impl SectionModel {
             time_step_factor: 0.9,
             integration: Integration::SingleRate,
             density_scale: Vec::new(),
+            kernel: Some(KernelPath::Avx512),
             nodes,
             quads,
         }
@@ -226,6 +233,10 @@ pub struct SectionSolver {
     /// 1 + the index of the contact holding each node kinematically (0: none).
     pub(super) held: Vec<u8>,
     pub(super) schedule: Schedule,
+    /// Every quad's index, in order (the single-rate step's element list).
+    all_quads: Vec<u32>,
+    /// The lane path of the one-point quads, `None`: scalar updates.
+    kernel: Option<Kernel>,
     pub(super) synced_energy: SectionEnergy,
     pub(super) element_updates: u64,
     pub(super) dt: f64,
@@ -294,6 +305,8 @@ impl SectionSolver {
             contact_dt,
             held,
             schedule: Schedule::default(),
+            all_quads: (0..ne as u32).collect(),
+            kernel: model.kernel.map(Kernel::widest),
             synced_energy: SectionEnergy::default(),
             element_updates: 0,
             dt: 0.0,
@@ -383,12 +396,46 @@ impl SectionSolver {
         let v = q.map(|i| self.v_half[i as usize]);
         let mat = &self.model.materials[self.model.material_of[e]];
         let out = update(&x, &v, dt, mat, self.model.formulation, &mut self.states[e]);
+        self.finish_element(e, &out)
+    }
+
+    /// Updates the quads `list` in order, quad e over `dt` (s) times 2^`level[e]` (`level`
+    /// empty: all over `dt`), adding their forces into `f_int`; returns the smallest Courant
+    /// step (s). One-point quads of one material and step run W at a time on the lane path
+    /// ([`super::quad_lanes`]), with the same bits as one by one.
+    pub(super) fn update_elements(&mut self, list: &[u32], level: &[u8], dt: f64) -> Result<f64> {
+        let step = |e: u32| match level.get(e as usize) {
+            Some(&l) => f64::from(1u32 << l) * dt,
+            None => dt,
+        };
+        match (self.kernel, self.model.formulation) {
+            (Some(kernel), QuadFormulation::OnePoint { hourglass }) => kernel.run(QuadLoop {
+                s: self,
+                list,
+                step: &step,
+                hourglass,
+            }),
+            _ => {
+                let mut dt_min = f64::INFINITY;
+                for &e in list {
+                    dt_min = dt_min.min(self.update_element(e as usize, step(e))?);
+                }
+                Ok(dt_min)
+            }
+        }
+    }
+
+    /// Takes quad `e`'s update `out`: its forces into `f_int` and its Courant step (scaled by
+    /// its mass scaling), which it returns; an inverted quad is an error.
+    #[inline(always)]
+    fn finish_element(&mut self, e: usize, out: &QuadOutput) -> Result<f64> {
         if out.min_jacobian <= 0.0 {
             return Err(Error::Numerical(format!(
                 "quad {e} inverted at t = {:.6e} s (step {}): lower solver.time_step_factor or the penalty factor",
                 self.time, self.steps
             )));
         }
+        let q = self.model.quads[e];
         for (k, &i) in q.iter().enumerate() {
             self.f_int[i as usize][0] += out.force[k][0];
             self.f_int[i as usize][1] += out.force[k][1];
@@ -416,12 +463,11 @@ impl SectionSolver {
     fn forces(&mut self, dt: f64) -> Result<()> {
         let n = self.x.len();
         self.f_int.fill([0.0; 2]);
-        let mut dt_min = f64::INFINITY;
-        for e in 0..self.model.quads.len() {
-            dt_min = dt_min.min(self.update_element(e, dt)?);
-        }
+        let all = std::mem::take(&mut self.all_quads);
+        let done = self.update_elements(&all, &[], dt);
+        self.all_quads = all;
+        self.element_dt = done?;
         self.element_updates += self.model.quads.len() as u64;
-        self.element_dt = dt_min;
         self.contact_forces();
         let alpha = self.model.damping;
         for i in 0..n {
@@ -634,5 +680,90 @@ impl SectionSolver {
             (s + self.mass[i] * self.x[i][1], m + self.mass[i])
         });
         s / m
+    }
+}
+
+/// The one-point quads of a list, W at a time: runs of consecutive quads with one material
+/// and one step fill the lanes (a short run repeats its first quad in the spare lanes,
+/// whose results are dropped); forces are added quad by quad in list order.
+struct QuadLoop<'a, F: Fn(u32) -> f64> {
+    s: &'a mut SectionSolver,
+    list: &'a [u32],
+    step: &'a F,
+    hourglass: f64,
+}
+
+impl<F: Fn(u32) -> f64> LaneKernel for QuadLoop<'_, F> {
+    type Output = Result<f64>;
+    #[inline(always)]
+    fn run<const W: usize>(self, isa: LaneIsa<W>) -> Result<f64> {
+        let mut dt_min = f64::INFINITY;
+        let mut start = 0;
+        while start < self.list.len() {
+            let first = self.list[start];
+            let m = self.s.model.material_of[first as usize];
+            let dt = (self.step)(first);
+            let mut end = start + 1;
+            while end < self.list.len()
+                && end - start < W
+                && self.s.model.material_of[self.list[end] as usize] == m
+                && (self.step)(self.list[end]) == dt
+            {
+                end += 1;
+            }
+            let mat = self.s.model.materials[m];
+            let group = Group {
+                isa,
+                s: &mut *self.s,
+                quads: &self.list[start..end],
+                dt,
+                mat: &mat,
+                hourglass: self.hourglass,
+            };
+            dt_min = dt_min.min(mat.law.with(group)?);
+            start = end;
+        }
+        Ok(dt_min)
+    }
+}
+
+/// One lane group of [`QuadLoop`] (1..=W quads), for its material's hardening law.
+struct Group<'a, const W: usize> {
+    isa: LaneIsa<W>,
+    s: &'a mut SectionSolver,
+    quads: &'a [u32],
+    dt: f64,
+    mat: &'a J2Material,
+    hourglass: f64,
+}
+
+impl<const W: usize> LawVisitor for Group<'_, W> {
+    type Output = Result<f64>;
+    #[inline(always)]
+    fn visit<H: Hardening>(self, law: &H) -> Result<f64> {
+        let s = self.s;
+        let n = self.quads.len();
+        let lane_quad = |l: usize| self.quads[l.min(n - 1)] as usize;
+        let z = self.isa.splat(0.0);
+        let (mut x, mut v) = ([[z; 2]; 4], [[z; 2]; 4]);
+        for l in 0..W {
+            let q = s.model.quads[lane_quad(l)];
+            for k in 0..4 {
+                let (xn, vn) = (s.x[q[k] as usize], s.v_half[q[k] as usize]);
+                for c in 0..2 {
+                    x[k][c].0[l] = xn[c];
+                    v[k][c].0[l] = vn[c];
+                }
+            }
+        }
+        let mut st = quad_lanes::State::gather(self.isa, build(|l| &s.states[lane_quad(l)]));
+        let out =
+            quad_lanes::update_one_point(&x, &v, self.dt, self.mat, law, self.hourglass, &mut st);
+        let mut dt_min = f64::INFINITY;
+        for (l, &e) in self.quads.iter().enumerate() {
+            st.scatter(l, &mut s.states[e as usize]);
+            dt_min = dt_min.min(s.finish_element(e as usize, &out.lane(l))?);
+        }
+        Ok(dt_min)
     }
 }

@@ -199,10 +199,7 @@ impl SectionSolver {
             self.f_int[i as usize] = [0.0; 2];
         }
         let due_elements = &sched.elements[..sched.element_end[z]];
-        for &e in due_elements {
-            let dt = f64::from(1u32 << sched.element_level[e as usize]) * h;
-            self.update_element(e as usize, dt)?;
-        }
+        self.update_elements(due_elements, &sched.element_level, h)?;
         self.element_updates += due_elements.len() as u64;
         self.contact_forces();
         // At the end of a cycle the next one is planned first: a kinematic contact needs the

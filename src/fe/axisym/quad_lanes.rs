@@ -1,0 +1,432 @@
+//! The one-point quad of [`super::element`] on W elements at once (SIMD lanes).
+//!
+//! Each lane runs the scalar update's operations in the scalar update's order, with only
+//! the terms dropped that are zero on the section (the out-of-plane shear and spin of the
+//! 3D tensors: x + 0 = x and x · 0 = 0 exactly). So a quad gets the same bits from this
+//! kernel, on every kernel path, as from [`super::element::update`]: the scalar update stays
+//! the reference and the B-bar form's only implementation.
+
+use super::element::{PointState, QuadOutput, QuadState};
+use super::quad::{GAUSS_2X2, HOURGLASS_BASE, NODE_XI};
+#[cfg(test)]
+use crate::fe::materials::Law;
+use crate::fe::materials::{
+    j2::{ddot_lanes, update_lanes},
+    Hardening, J2Material,
+};
+use crate::fe::simd::{select, LaneIsa, Lanes};
+use std::f64::consts::{PI, SQRT_2};
+
+/// Nodal (r, z) pairs of W quads, lane-wise: `[node][component]`.
+pub type Nodes<const W: usize> = [[Lanes<W>; 2]; 4];
+
+/// The volume-averaged operator of W quads (see [`super::quad::Gradient`]).
+#[derive(Clone, Copy)]
+struct Gradient<const W: usize> {
+    /// ∂N_I/∂r, ∂N_I/∂z, 1/m.
+    b: [[Lanes<W>; 2]; 4],
+    /// N_I / r averaged, 1/m.
+    hoop: [Lanes<W>; 4],
+    /// Ring volume, m³.
+    volume: Lanes<W>,
+}
+
+/// The state of W one-point quads, lane-wise (the scalar [`QuadState`]'s first point).
+#[derive(Clone, Copy)]
+pub struct State<const W: usize> {
+    /// Cauchy stress [rr, zz, θθ, rz], Pa.
+    pub stress: [Lanes<W>; 4],
+    /// Equivalent plastic strain.
+    pub eps_p: Lanes<W>,
+    /// Hourglass generalised force (r, z), N.
+    pub hourglass: [Lanes<W>; 2],
+    /// ∫ V σ:D dt, J.
+    pub internal_energy: Lanes<W>,
+    /// Plastic work, J.
+    pub plastic_work: Lanes<W>,
+    /// Hourglass energy, J.
+    pub hourglass_energy: Lanes<W>,
+}
+
+impl<const W: usize> State<W> {
+    /// Lane l from `states[l]`.
+    #[inline(always)]
+    pub fn gather(isa: LaneIsa<W>, states: [&QuadState; W]) -> Self {
+        let z = isa.splat(0.0);
+        let mut g = State {
+            stress: [z; 4],
+            eps_p: z,
+            hourglass: [z; 2],
+            internal_energy: z,
+            plastic_work: z,
+            hourglass_energy: z,
+        };
+        for (l, st) in states.iter().enumerate() {
+            let p = &st.points[0];
+            for k in 0..4 {
+                g.stress[k].0[l] = p.stress[k];
+            }
+            g.eps_p.0[l] = p.eps_p;
+            g.hourglass[0].0[l] = st.hourglass[0];
+            g.hourglass[1].0[l] = st.hourglass[1];
+            g.internal_energy.0[l] = st.internal_energy;
+            g.plastic_work.0[l] = st.plastic_work;
+            g.hourglass_energy.0[l] = st.hourglass_energy;
+        }
+        g
+    }
+
+    /// Writes lane `l` into `st` (the stress's out-of-plane slots stay as they are: zero).
+    #[inline(always)]
+    pub fn scatter(&self, l: usize, st: &mut QuadState) {
+        let p: &mut PointState = &mut st.points[0];
+        for k in 0..4 {
+            p.stress[k] = self.stress[k].0[l];
+        }
+        p.eps_p = self.eps_p.0[l];
+        st.hourglass = [self.hourglass[0].0[l], self.hourglass[1].0[l]];
+        st.internal_energy = self.internal_energy.0[l];
+        st.plastic_work = self.plastic_work.0[l];
+        st.hourglass_energy = self.hourglass_energy.0[l];
+    }
+}
+
+/// Lane l of the scalar [`QuadOutput`], lane-wise.
+#[derive(Clone, Copy)]
+pub struct Output<const W: usize> {
+    /// Internal nodal forces (r, z) of the whole ring, N.
+    pub force: [[Lanes<W>; 2]; 4],
+    /// Ring volume at t^{n+1}, m³.
+    pub volume: Lanes<W>,
+    /// Smallest Gauss-point Jacobian, m².
+    pub min_jacobian: Lanes<W>,
+    /// Courant step L_e / c, s.
+    pub dt_crit: Lanes<W>,
+}
+
+impl<const W: usize> Output<W> {
+    /// Lane `l` as the scalar output.
+    #[inline(always)]
+    pub fn lane(&self, l: usize) -> QuadOutput {
+        let mut force = [[0.0; 2]; 4];
+        for (f, o) in force.iter_mut().zip(&self.force) {
+            *f = [o[0].0[l], o[1].0[l]];
+        }
+        QuadOutput {
+            force,
+            volume: self.volume.0[l],
+            min_jacobian: self.min_jacobian.0[l],
+            dt_crit: self.dt_crit.0[l],
+        }
+    }
+}
+
+/// Shape values and natural derivatives at the 2x2 Gauss points (as the scalar table).
+const GAUSS_SHAPE: [([f64; 4], [[f64; 2]; 4]); 4] = {
+    let mut t = [([0.0; 4], [[0.0; 2]; 4]); 4];
+    let mut g = 0;
+    while g < 4 {
+        let xi = GAUSS_2X2[g];
+        let mut i = 0;
+        while i < 4 {
+            let p = NODE_XI[i];
+            t[g].0[i] = 0.25 * (1.0 + p[0] * xi[0]) * (1.0 + p[1] * xi[1]);
+            t[g].1[i] = [
+                0.25 * p[0] * (1.0 + p[1] * xi[1]),
+                0.25 * p[1] * (1.0 + p[0] * xi[0]),
+            ];
+            i += 1;
+        }
+        g += 1;
+    }
+    t
+};
+
+/// [`super::quad::mean_gradient`] of W quads: the operator and the smallest Jacobian.
+#[inline(always)]
+fn mean_gradient<const W: usize>(x: &Nodes<W>) -> (Gradient<W>, Lanes<W>) {
+    let z = x[0][0].splat_like(0.0);
+    let mut b = [[z; 2]; 4];
+    let mut hoop = [z; 4];
+    let mut sum = z;
+    let mut min_j = z.splat_like(f64::INFINITY);
+    for (n, d) in &GAUSS_SHAPE {
+        let mut r = z;
+        let mut jac = [[z; 2]; 2];
+        for i in 0..4 {
+            r += n[i] * x[i][0];
+            for a in 0..2 {
+                for c in 0..2 {
+                    jac[a][c] += d[i][c] * x[i][a];
+                }
+            }
+        }
+        let det_j = jac[0][0] * jac[1][1] - jac[0][1] * jac[1][0];
+        min_j = min_j.min(det_j);
+        sum += r * det_j;
+        for i in 0..4 {
+            b[i][0] += r * (d[i][0] * jac[1][1] - d[i][1] * jac[1][0]);
+            b[i][1] += r * (d[i][1] * jac[0][0] - d[i][0] * jac[0][1]);
+            hoop[i] += det_j * n[i];
+        }
+    }
+    let inv = sum.recip();
+    for i in 0..4 {
+        b[i][0] = b[i][0] * inv;
+        b[i][1] = b[i][1] * inv;
+        hoop[i] = hoop[i] * inv;
+    }
+    let volume = 2.0 * PI * sum;
+    (Gradient { b, hoop, volume }, min_j)
+}
+
+/// The section's velocity gradient of W quads: (L_rr, L_rz, L_zr, L_zz, L_θθ), 1/s.
+#[inline(always)]
+fn velocity_gradient<const W: usize>(v: &Nodes<W>, g: &Gradient<W>) -> [Lanes<W>; 5] {
+    let z = v[0][0].splat_like(0.0);
+    let mut l = [z; 5];
+    for i in 0..4 {
+        l[0] += v[i][0] * g.b[i][0];
+        l[1] += v[i][0] * g.b[i][1];
+        l[2] += v[i][1] * g.b[i][0];
+        l[3] += v[i][1] * g.b[i][1];
+        l[4] += v[i][0] * g.hoop[i];
+    }
+    l
+}
+
+/// The in-plane Hughes-Winget rotation (r_rr, r_rz, r_zr, r_zz) of the spin of `l` over `dt`.
+#[inline(always)]
+fn rotation<const W: usize>(l: &[Lanes<W>; 5], dt: f64) -> [Lanes<W>; 4] {
+    let w = (0.5 * (l[2] - l[1])) * dt;
+    let a = 0.5 * w;
+    let f = a.splat_like(2.0) / (1.0 + a * a);
+    let aa = a * a;
+    let zero = a.splat_like(0.0);
+    let diag = f * (zero - aa) + 1.0;
+    [diag, f * (zero - a), f * a, diag]
+}
+
+/// One-point update of W quads: nodal coordinates `x1` = x^{n+1} (m), velocities `v` =
+/// v^{n+1/2} (m/s), step `dt` (s, shared by the lanes), hourglass coefficient `hourglass`
+/// (≥ 0), state `st`; as [`super::element::update`] with `QuadFormulation::OnePoint`.
+#[inline(always)]
+pub fn update_one_point<H: Hardening, const W: usize>(
+    x1: &Nodes<W>,
+    v: &Nodes<W>,
+    dt: f64,
+    mat: &J2Material,
+    law: &H,
+    hourglass: f64,
+    st: &mut State<W>,
+) -> Output<W> {
+    let zero = x1[0][0].splat_like(0.0);
+    let half = 0.5 * dt;
+    let mut xm = [[zero; 2]; 4];
+    for i in 0..4 {
+        for c in 0..2 {
+            xm[i][c] = x1[i][c] - half * v[i][c];
+        }
+    }
+    let (gm, _) = mean_gradient(&xm);
+    let (g1, min_j) = mean_gradient(x1);
+    let l = velocity_gradient(v, &gm);
+    // The point's update (element::advance_point): rotate, return, account.
+    let d = [
+        l[0] * dt,
+        l[3] * dt,
+        l[4] * dt,
+        (0.5 * (l[1] + l[2])) * dt,
+        zero,
+        zero,
+    ];
+    let r = rotation(&l, dt);
+    let s = st.stress;
+    let t = [
+        [r[0] * s[0] + r[1] * s[3], r[0] * s[3] + r[1] * s[1]],
+        [r[2] * s[0] + r[3] * s[3], r[2] * s[3] + r[3] * s[1]],
+    ];
+    let mut stress = [
+        t[0][0] * r[0] + t[0][1] * r[1],
+        t[1][0] * r[2] + t[1][1] * r[3],
+        s[2],
+        t[0][0] * r[2] + t[0][1] * r[3],
+        zero,
+        zero,
+    ];
+    let before = stress;
+    let dwp = update_lanes(mat, law, &mut stress, &mut st.eps_p, &d, dt);
+    st.internal_energy += 0.5 * gm.volume * (ddot_lanes(&before, &d) + ddot_lanes(&stress, &d));
+    st.plastic_work += dwp * gm.volume;
+    st.stress = [stress[0], stress[1], stress[2], stress[3]];
+    // Forces V B̄ᵀσ on x^{n+1} (quad::add_stress_forces onto zero).
+    let s = st.stress;
+    let mut force = [[zero; 2]; 4];
+    for i in 0..4 {
+        let b = g1.b[i];
+        force[i][0] = g1.volume * (s[0] * b[0] + s[3] * b[1] + s[2] * g1.hoop[i]);
+        force[i][1] = g1.volume * (s[3] * b[0] + s[1] * b[1]);
+    }
+    if hourglass > 0.0 {
+        hourglass_forces(x1, v, &g1, mat, hourglass, [r[0], r[2]], dt, st, &mut force);
+    }
+    Output {
+        force,
+        volume: g1.volume,
+        min_jacobian: min_j,
+        dt_crit: characteristic_length(x1) / mat.wave_speed,
+    }
+}
+
+/// The Flanagan-Belytschko stiffness hourglass forces of W quads added to `force`
+/// (element::hourglass_stiffness, quad::hourglass_gamma, element::hourglass_update); `rot`
+/// is the in-plane rotation (cos, sin) of the step.
+#[allow(clippy::too_many_arguments)]
+#[inline(always)]
+fn hourglass_forces<const W: usize>(
+    x1: &Nodes<W>,
+    v: &Nodes<W>,
+    g: &Gradient<W>,
+    mat: &J2Material,
+    coeff: f64,
+    rot: [Lanes<W>; 2],
+    dt: f64,
+    st: &mut State<W>,
+    force: &mut [[Lanes<W>; 2]; 4],
+) {
+    let zero = x1[0][0].splat_like(0.0);
+    let mut bb = zero.splat_like(-0.0);
+    for b in &g.b {
+        bb += b[0] * b[0] + b[1] * b[1];
+    }
+    let k = coeff * mat.p_modulus() * g.volume * bb / 2.0;
+    let mut hx = [zero; 2];
+    for i in 0..4 {
+        hx[0] += HOURGLASS_BASE[i] * x1[i][0];
+        hx[1] += HOURGLASS_BASE[i] * x1[i][1];
+    }
+    let gam: [Lanes<W>; 4] = std::array::from_fn(|i| {
+        0.25 * (zero.splat_like(HOURGLASS_BASE[i]) - hx[0] * g.b[i][0] - hx[1] * g.b[i][1])
+    });
+    let [c, s] = rot;
+    let q = st.hourglass;
+    let mut q = [c * q[0] - s * q[1], s * q[0] + c * q[1]];
+    let mut rate = [zero; 2];
+    for i in 0..4 {
+        rate[0] += gam[i] * v[i][0];
+        rate[1] += gam[i] * v[i][1];
+    }
+    let mut e = zero;
+    for a in 0..2 {
+        let old = q[a];
+        q[a] += k * dt * rate[a];
+        e += 0.5 * (old + q[a]) * rate[a] * dt;
+    }
+    for i in 0..4 {
+        force[i][0] += gam[i] * q[0];
+        force[i][1] += gam[i] * q[1];
+    }
+    st.hourglass = q;
+    st.hourglass_energy += e;
+}
+
+/// [`super::quad::characteristic_length`] of W quads, m.
+#[inline(always)]
+fn characteristic_length<const W: usize>(x: &Nodes<W>) -> Lanes<W> {
+    let mut l2max = x[0][0].splat_like(0.0);
+    let mut rmin = x[0][0].splat_like(f64::INFINITY);
+    for i in 0..4 {
+        let j = (i + 1) % 4;
+        let d = [x[j][0] - x[i][0], x[j][1] - x[i][1]];
+        l2max = l2max.max(d[0] * d[0] + d[1] * d[1]);
+        rmin = rmin.min(x[i][0]);
+    }
+    let area = 0.5
+        * ((x[2][0] - x[0][0]) * (x[3][1] - x[1][1]) - (x[3][0] - x[1][0]) * (x[2][1] - x[0][1]));
+    let l = area / l2max.sqrt();
+    select(l.gt(rmin), l / SQRT_2, l)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::fe::axisym::element::{update, QuadFormulation};
+    use crate::fe::simd::{Avx2, Avx512, LaneKernel, Portable, Simd};
+    use crate::material::Material;
+
+    /// W quads distorted and moving differently, with stresses past yield.
+    fn quads(k: usize) -> ([[f64; 2]; 4], [[f64; 2]; 4], QuadState) {
+        let f = k as f64;
+        let r0 = if k.is_multiple_of(3) { 0.0 } else { 1e-3 * f };
+        let x = [
+            [r0, 0.0],
+            [r0 + 1e-3 + 1e-5 * f, -2e-5 * f],
+            [r0 + 1.1e-3, 0.9e-3 + 1e-5 * f],
+            [r0 + 1e-5 * f, 1e-3],
+        ];
+        let v = [
+            [0.0, -1.0],
+            [0.3 - 0.05 * f, -0.7],
+            [0.2, 0.4 + 0.1 * f],
+            [0.01 * f, 0.5],
+        ];
+        let mut st = QuadState::default();
+        st.points[0].stress = [3e8 + 1e7 * f, -2e8, 1e8, 5e7 * (f - 2.0), 0.0, 0.0];
+        st.points[0].eps_p = 1e-3 * f;
+        st.hourglass = [1.0 + f, -2.0];
+        st.internal_energy = 1e-3;
+        (x, v, st)
+    }
+
+    struct Check;
+    impl LaneKernel for Check {
+        type Output = ();
+        fn run<const W: usize>(self, isa: LaneIsa<W>) {
+            let mat = J2Material::new(&Material::preset("copper-fe").unwrap(), false);
+            let Law::Bilinear(law) = mat.law else {
+                panic!("copper-fe is bilinear")
+            };
+            let form = QuadFormulation::default();
+            let QuadFormulation::OnePoint { hourglass } = form else {
+                unreachable!()
+            };
+            let mut scalar: [_; W] = std::array::from_fn(quads);
+            let z = isa.splat(0.0);
+            let (mut x, mut v) = ([[z; 2]; 4], [[z; 2]; 4]);
+            for (l, (xl, vl, _)) in scalar.iter().enumerate() {
+                for k in 0..4 {
+                    for c in 0..2 {
+                        x[k][c].0[l] = xl[k][c];
+                        v[k][c].0[l] = vl[k][c];
+                    }
+                }
+            }
+            let mut st = State::gather(isa, std::array::from_fn(|l| &scalar[l].2));
+            for _ in 0..3 {
+                let out = update_one_point(&x, &v, 2e-8, &mat, &law, hourglass, &mut st);
+                for (l, (xl, vl, sl)) in scalar.iter_mut().enumerate() {
+                    let want = update(xl, vl, 2e-8, &mat, form, sl);
+                    assert_eq!(out.lane(l), want, "lane {l}");
+                    let mut got = *sl;
+                    st.scatter(l, &mut got);
+                    assert_eq!(got, *sl, "lane {l}");
+                }
+            }
+            assert!(
+                scalar.iter().any(|q| q.2.plastic_work > 0.0),
+                "no lane yielded"
+            );
+        }
+    }
+
+    #[test]
+    fn every_lane_path_gives_the_scalar_update_s_bits() {
+        Portable.vectorize(Check);
+        if let Some(t) = Avx2::detect() {
+            t.vectorize(Check);
+        }
+        if let Some(t) = Avx512::detect() {
+            t.vectorize(Check);
+        }
+    }
+}
