@@ -216,7 +216,7 @@ pub fn run_ladder(
 }
 
 /// `e` with its message prefixed by the ladder level (field errors already name theirs).
-fn at_level(e: Error, level: i32) -> Error {
+pub(crate) fn at_level(e: Error, level: i32) -> Error {
     let tag = |m: String| format!("mesh level {level}: {m}");
     match e {
         Error::Numerical(m) => Error::Numerical(tag(m)),

@@ -2,7 +2,7 @@
 //! differences, written as results.json and history.csv.
 
 use super::converged_scene::run_scene_converged;
-use super::error_estimate::{mesh_sizes, run_ladder, scene_at_level, ErrorEstimate, LadderPlan};
+use super::error_estimate::{at_level, mesh_sizes, run_ladder, scene_at_level, ErrorEstimate, LadderPlan};
 use super::error_estimate::{EstimateMethod, LevelOutcome, PhaseSummary};
 use super::law_compare::{compare_laws, law_table, LawOutcome};
 use super::number::sci;
@@ -276,11 +276,29 @@ pub fn run_scene_with_estimate(
     }
     let start = Instant::now();
     let mut finest: Option<RunReport> = None;
-    let estimate = run_ladder(plan, |level| {
-        let (out, report) = run_level(scene, level, opts)?;
+    let estimate = if matches!(plan, LadderPlan::TwoLevels) {
+        // The two levels are independent runs: side by side, the coarse one quiet (no
+        // progress, no snapshots), so it costs the wall time its members leave idle.
+        let quiet = RunOptions {
+            history_rows: opts.history_rows,
+            ..RunOptions::default()
+        };
+        let token = super::interrupt::current();
+        let within = |level: i32, o: &RunOptions| {
+            super::interrupt::within(token.as_ref(), || run_level(scene, level, o))
+                .map_err(|e| at_level(e, level))
+        };
+        let (coarse, fine) = rayon::join(|| within(-1, &quiet), || within(0, opts));
+        let (fine, report) = fine?;
         finest = Some(report);
-        Ok(out)
-    })?;
+        ErrorEstimate::from_runs(vec![coarse?.0, fine], None)?
+    } else {
+        run_ladder(plan, |level| {
+            let (out, report) = run_level(scene, level, opts)?;
+            finest = Some(report);
+            Ok(out)
+        })?
+    };
     let mut report =
         finest.ok_or_else(|| Error::Numerical("error estimate: the ladder ran no mesh".into()))?;
     if let Some(level) = estimate.meshes.last().filter(|m| m.phase.is_some()) {
