@@ -2,7 +2,9 @@
 //! differences, written as results.json and history.csv.
 
 use super::converged_scene::run_scene_converged;
-use super::error_estimate::{at_level, mesh_sizes, run_ladder, scene_at_level, ErrorEstimate, LadderPlan};
+use super::error_estimate::{
+    at_level, mesh_sizes, run_ladder, scene_at_level, ErrorEstimate, LadderPlan,
+};
 use super::error_estimate::{EstimateMethod, LevelOutcome, PhaseSummary};
 use super::law_compare::{compare_laws, law_table, LawOutcome};
 use super::number::sci;
