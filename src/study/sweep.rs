@@ -318,7 +318,7 @@ pub fn case_costs(spec: &SweepSpec, cases: &[&Case]) -> Vec<f64> {
             // Scaled from its twin's run: the analytical model only.
             Some(_) => super::cost::CASE_OVERHEAD,
             None => estimator
-                .estimate(&c.scene, fe)
+                .estimate_to(&c.scene, fe, spec.tolerance)
                 .map_or(super::cost::CASE_OVERHEAD, |e| e.element_steps()),
         })
         .collect()
