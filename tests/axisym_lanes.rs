@@ -1,8 +1,10 @@
-//! The one-point quads on their lane paths (`fe::axisym::quad_lanes`) against the scalar
-//! update of each quad: whole impacts give the same bits on every path, for one material
-//! (the default scene's mirror ball, on a coarser pole) and for two (steel on aluminium, both meshed, whose lane
-//! groups break at the material change), single rate and subcycled.
+//! The quads on their lane paths (`fe::axisym::quad_lanes`) against the scalar update of
+//! each quad: whole impacts give the same bits on every path, for one material (the default
+//! scene's mirror ball, on a coarser pole; one point and B-bar) and for two (steel on
+//! aluminium, both meshed, whose lane groups break at the material change), single rate and
+//! subcycled.
 
+use twoball::fe::axisym::element::QuadFormulation;
 use twoball::fe::axisym::impact::{HeadOn, ImpactResult, OtherBall, Target};
 use twoball::fe::axisym::subcycle::Integration;
 use twoball::fe::simd::KernelPath;
@@ -23,11 +25,13 @@ fn run(
     material: &str,
     integration: Integration,
     kernel: Option<KernelPath>,
+    formulation: QuadFormulation,
 ) -> ImpactResult {
     let d = 0.02;
     let mut h = HeadOn::new(mesh(d), Material::preset(material).unwrap(), 1.0, target);
     h.integration = integration;
     h.kernel = kernel;
+    h.formulation = formulation;
     h.run().unwrap()
 }
 
@@ -38,7 +42,7 @@ fn bits(r: &ImpactResult) -> String {
     format!("{r:?}")
 }
 
-fn same_on_every_path(target: impl Fn() -> Target, material: &str) {
+fn same_on_every_path(target: impl Fn() -> Target, material: &str, form: QuadFormulation) {
     let sub = Integration::subcycled();
     let single = Integration::SingleRate;
     for (integration, paths) in [
@@ -48,10 +52,10 @@ fn same_on_every_path(target: impl Fn() -> Target, material: &str) {
         ),
         (single, &[KernelPath::Avx512][..]),
     ] {
-        let scalar = run(target(), material, integration, None);
+        let scalar = run(target(), material, integration, None, form);
         assert!(scalar.plastic > 0.0 && scalar.e > 0.0 && scalar.e < 1.0);
         for &path in paths {
-            let lanes = run(target(), material, integration, Some(path));
+            let lanes = run(target(), material, integration, Some(path), form);
             assert_eq!(bits(&lanes), bits(&scalar), "{path:?}, {integration:?}");
         }
     }
@@ -59,7 +63,20 @@ fn same_on_every_path(target: impl Fn() -> Target, material: &str) {
 
 #[test]
 fn the_mirror_ball_gives_the_scalar_bits_on_every_lane_path() {
-    same_on_every_path(|| Target::MirrorBall, "copper-fe");
+    same_on_every_path(
+        || Target::MirrorBall,
+        "copper-fe",
+        QuadFormulation::default(),
+    );
+}
+
+#[test]
+fn b_bar_quads_give_the_scalar_bits_on_every_lane_path() {
+    same_on_every_path(
+        || Target::MirrorBall,
+        "copper-fe",
+        QuadFormulation::SelectiveReduced,
+    );
 }
 
 #[test]
@@ -72,5 +89,5 @@ fn two_materials_give_the_scalar_bits_on_every_lane_path() {
             speed: 1.0,
         }))
     };
-    same_on_every_path(other, "steel");
+    same_on_every_path(other, "steel", QuadFormulation::default());
 }

@@ -124,7 +124,7 @@ pub struct HeadOn {
     /// Mass-scaling budget: the added mass over the model's mass that may raise the
     /// smallest quads' steps ([`super::mass_scaling`]; 0, the default: none).
     pub mass_scaling: f64,
-    /// The widest lane path of the one-point quads, `None` for scalar updates (the same
+    /// The widest lane path of the quads, `None` for scalar updates (the same
     /// bits either way; [`super::section::SectionModel::kernel`]).
     pub kernel: Option<KernelPath>,
 }

@@ -6,7 +6,7 @@
 //!   volume-averaged operator, hourglass vector, characteristic length);
 //! - [`element`]: its update in two formulations (one point with hourglass control, and
 //!   selectively reduced B-bar), through the 3D objective rate and material seam;
-//! - [`quad_lanes`]: the one-point update on W quads at once (SIMD lanes), the same bits;
+//! - [`quad_lanes`]: both updates on W quads at once (SIMD lanes), the same bits;
 //! - [`mass`]: lumped ring masses;
 //! - [`mass_scaling`]: raised densities of the smallest quads within an added-mass budget;
 //! - [`section`]: the model and the explicit loop (Box 6.1), with energy accounting;
@@ -21,9 +21,8 @@
 //!   (e, δ_max, contact duration, peak force,
 //!   energies, history).
 //!
-//! The one-point quads run on the lane paths of [`crate::fe::simd`] (eight lanes with
-//! AVX-512, four otherwise), W quads of one material and one step at a time; the B-bar quads
-//! and the contacts are scalar.
+//! The quads run on the lane paths of [`crate::fe::simd`] (eight lanes with AVX-512, four
+//! otherwise), W quads of one material and one step at a time; the contacts are scalar.
 
 pub mod element;
 pub mod impact;

@@ -1,10 +1,10 @@
-//! The one-point quad of [`super::element`] on W elements at once (SIMD lanes).
+//! The quad of [`super::element`], in both formulations, on W elements at once (SIMD lanes).
 //!
 //! Each lane runs the scalar update's operations in the scalar update's order, with only
 //! the terms dropped that are zero on the section (the out-of-plane shear and spin of the
 //! 3D tensors: x + 0 = x and x · 0 = 0 exactly). So a quad gets the same bits from this
-//! kernel, on every kernel path, as from [`super::element::update`]: the scalar update stays
-//! the reference and the B-bar form's only implementation.
+//! kernel, on every kernel path, as from [`super::element::update`], which stays the
+//! reference.
 
 use super::element::{PointState, QuadOutput, QuadState};
 use super::quad::{GAUSS_2X2, HOURGLASS_BASE, NODE_XI};
@@ -31,13 +31,14 @@ struct Gradient<const W: usize> {
     volume: Lanes<W>,
 }
 
-/// The state of W one-point quads, lane-wise (the scalar [`QuadState`]'s first point).
+/// The state of W quads, lane-wise (the scalar [`QuadState`]; the one-point form uses the
+/// first point only).
 #[derive(Clone, Copy)]
 pub struct State<const W: usize> {
-    /// Cauchy stress [rr, zz, θθ, rz], Pa.
-    pub stress: [Lanes<W>; 4],
-    /// Equivalent plastic strain.
-    pub eps_p: Lanes<W>,
+    /// Cauchy stress [rr, zz, θθ, rz] of each point, Pa.
+    pub stress: [[Lanes<W>; 4]; 4],
+    /// Equivalent plastic strain of each point.
+    pub eps_p: [Lanes<W>; 4],
     /// Hourglass generalised force (r, z), N.
     pub hourglass: [Lanes<W>; 2],
     /// ∫ V σ:D dt, J.
@@ -49,24 +50,26 @@ pub struct State<const W: usize> {
 }
 
 impl<const W: usize> State<W> {
-    /// Lane l from `states[l]`.
+    /// Lane l from `states[l]`, its first `points` points (1 or 4).
     #[inline(always)]
-    pub fn gather(isa: LaneIsa<W>, states: [&QuadState; W]) -> Self {
+    pub fn gather(isa: LaneIsa<W>, states: [&QuadState; W], points: usize) -> Self {
         let z = isa.splat(0.0);
         let mut g = State {
-            stress: [z; 4],
-            eps_p: z,
+            stress: [[z; 4]; 4],
+            eps_p: [z; 4],
             hourglass: [z; 2],
             internal_energy: z,
             plastic_work: z,
             hourglass_energy: z,
         };
         for (l, st) in states.iter().enumerate() {
-            let p = &st.points[0];
-            for k in 0..4 {
-                g.stress[k].0[l] = p.stress[k];
+            for k in 0..points {
+                let p = &st.points[k];
+                for c in 0..4 {
+                    g.stress[k][c].0[l] = p.stress[c];
+                }
+                g.eps_p[k].0[l] = p.eps_p;
             }
-            g.eps_p.0[l] = p.eps_p;
             g.hourglass[0].0[l] = st.hourglass[0];
             g.hourglass[1].0[l] = st.hourglass[1];
             g.internal_energy.0[l] = st.internal_energy;
@@ -76,14 +79,17 @@ impl<const W: usize> State<W> {
         g
     }
 
-    /// Writes lane `l` into `st` (the stress's out-of-plane slots stay as they are: zero).
+    /// Writes lane `l`'s first `points` points and the rest into `st` (the stress's
+    /// out-of-plane slots stay as they are: zero).
     #[inline(always)]
-    pub fn scatter(&self, l: usize, st: &mut QuadState) {
-        let p: &mut PointState = &mut st.points[0];
-        for k in 0..4 {
-            p.stress[k] = self.stress[k].0[l];
+    pub fn scatter(&self, l: usize, st: &mut QuadState, points: usize) {
+        for k in 0..points {
+            let p: &mut PointState = &mut st.points[k];
+            for c in 0..4 {
+                p.stress[c] = self.stress[k][c].0[l];
+            }
+            p.eps_p = self.eps_p[k].0[l];
         }
-        p.eps_p = self.eps_p.0[l];
         st.hourglass = [self.hourglass[0].0[l], self.hourglass[1].0[l]];
         st.internal_energy = self.internal_energy.0[l];
         st.plastic_work = self.plastic_work.0[l];
@@ -241,7 +247,174 @@ pub fn update_one_point<H: Hardening, const W: usize>(
         zero,
     ];
     let r = rotation(&l, dt);
-    let s = st.stress;
+    advance_point(mat, law, &r, &d, dt, gm.volume, 0, st);
+    // Forces V B̄ᵀσ on x^{n+1} (quad::add_stress_forces onto zero).
+    let mut force = [[zero; 2]; 4];
+    add_stress_forces(&mut force, &st.stress[0], &g1);
+    if hourglass > 0.0 {
+        hourglass_forces(x1, v, &g1, mat, hourglass, [r[0], r[2]], dt, st, &mut force);
+    }
+    Output {
+        force,
+        volume: g1.volume,
+        min_jacobian: min_j,
+        dt_crit: characteristic_length(x1) / mat.wave_speed,
+    }
+}
+
+/// One 2x2 Gauss point of W quads: its operator (ring-volume weight 2π r det J) and det J.
+#[derive(Clone, Copy)]
+struct Point<const W: usize> {
+    grad: Gradient<W>,
+    det_j: Lanes<W>,
+}
+
+/// [`super::quad::gauss_points`] of W quads.
+#[inline(always)]
+fn gauss_points<const W: usize>(x: &Nodes<W>) -> [Point<W>; 4] {
+    let z = x[0][0].splat_like(0.0);
+    let mut pts = [Point {
+        grad: Gradient {
+            b: [[z; 2]; 4],
+            hoop: [z; 4],
+            volume: z,
+        },
+        det_j: z,
+    }; 4];
+    for (p, (n, d)) in pts.iter_mut().zip(&GAUSS_SHAPE) {
+        let mut r = z;
+        let mut jac = [[z; 2]; 2];
+        for i in 0..4 {
+            r += n[i] * x[i][0];
+            for a in 0..2 {
+                for c in 0..2 {
+                    jac[a][c] += d[i][c] * x[i][a];
+                }
+            }
+        }
+        let det_j = jac[0][0] * jac[1][1] - jac[0][1] * jac[1][0];
+        let inv = det_j.recip();
+        for i in 0..4 {
+            p.grad.b[i] = [
+                (d[i][0] * jac[1][1] - d[i][1] * jac[1][0]) * inv,
+                (d[i][1] * jac[0][0] - d[i][0] * jac[0][1]) * inv,
+            ];
+            p.grad.hoop[i] = r.splat_like(n[i]) / r;
+        }
+        p.grad.volume = 2.0 * PI * r * det_j * 1.0;
+        p.det_j = det_j;
+    }
+    pts
+}
+
+/// [`super::quad::mean_of`] of W quads: the volume-weighted mean operator and the smallest
+/// Jacobian.
+#[inline(always)]
+fn mean_of<const W: usize>(pts: &[Point<W>; 4]) -> (Gradient<W>, Lanes<W>) {
+    let z = pts[0].det_j.splat_like(0.0);
+    let mut g = Gradient {
+        b: [[z; 2]; 4],
+        hoop: [z; 4],
+        volume: z,
+    };
+    let mut min_j = z.splat_like(f64::INFINITY);
+    for p in pts {
+        let w = p.grad.volume;
+        g.volume += w;
+        min_j = min_j.min(p.det_j);
+        for i in 0..4 {
+            g.b[i][0] += w * p.grad.b[i][0];
+            g.b[i][1] += w * p.grad.b[i][1];
+            g.hoop[i] += w * p.grad.hoop[i];
+        }
+    }
+    let inv = g.volume.recip();
+    for i in 0..4 {
+        g.b[i][0] = g.b[i][0] * inv;
+        g.b[i][1] = g.b[i][1] * inv;
+        g.hoop[i] = g.hoop[i] * inv;
+    }
+    (g, min_j)
+}
+
+/// Selectively reduced (B-bar) update of W quads, as [`super::element::update`] with
+/// `QuadFormulation::SelectiveReduced`: four Gauss points for the deviator, the element's
+/// mean dilatation for the volume; arguments as [`update_one_point`].
+#[inline(always)]
+pub fn update_selective_reduced<H: Hardening, const W: usize>(
+    x1: &Nodes<W>,
+    v: &Nodes<W>,
+    dt: f64,
+    mat: &J2Material,
+    law: &H,
+    st: &mut State<W>,
+) -> Output<W> {
+    let zero = x1[0][0].splat_like(0.0);
+    let half = 0.5 * dt;
+    let mut xm = [[zero; 2]; 4];
+    for i in 0..4 {
+        for c in 0..2 {
+            xm[i][c] = x1[i][c] - half * v[i][c];
+        }
+    }
+    let pm = gauss_points(&xm);
+    let (gm, _) = mean_of(&pm);
+    let p1 = gauss_points(x1);
+    let (g1, min_j) = mean_of(&p1);
+    let lbar = velocity_gradient(v, &gm);
+    let vol_bar = lbar[0] + lbar[3] + lbar[4];
+    for (k, p) in pm.iter().enumerate() {
+        let l = velocity_gradient(v, &p.grad);
+        let shift = (vol_bar - (l[0] + l[3] + l[4])) / 3.0;
+        let d = [
+            (l[0] + shift) * dt,
+            (l[3] + shift) * dt,
+            (l[4] + shift) * dt,
+            (0.5 * (l[1] + l[2])) * dt,
+            zero,
+            zero,
+        ];
+        let r = rotation(&l, dt);
+        advance_point(mat, law, &r, &d, dt, p.grad.volume, k, st);
+    }
+    let mut force = [[zero; 2]; 4];
+    for (k, p) in p1.iter().enumerate() {
+        // element::bbar_forces: W_g (B_gᵀσ + p (B̄_vol − B_g,vol)).
+        let s = st.stress[k];
+        add_stress_forces(&mut force, &s, &p.grad);
+        let pressure = (s[0] + s[1] + s[2]) / 3.0;
+        for i in 0..4 {
+            let dr = (g1.b[i][0] + g1.hoop[i]) - (p.grad.b[i][0] + p.grad.hoop[i]);
+            let dz = g1.b[i][1] - p.grad.b[i][1];
+            force[i][0] += p.grad.volume * pressure * dr;
+            force[i][1] += p.grad.volume * pressure * dz;
+        }
+    }
+    Output {
+        force,
+        volume: g1.volume,
+        min_jacobian: min_j,
+        dt_crit: characteristic_length(x1) / mat.wave_speed,
+    }
+}
+
+/// Rotates point `k`'s stress by `r` (the in-plane rotation of [`rotation`]), advances it by
+/// the strain increment `d` through the material, and accounts its energies over the ring
+/// volume `volume` (element::advance_point).
+#[allow(clippy::too_many_arguments)]
+#[inline(always)]
+fn advance_point<H: Hardening, const W: usize>(
+    mat: &J2Material,
+    law: &H,
+    r: &[Lanes<W>; 4],
+    d: &[Lanes<W>; 6],
+    dt: f64,
+    volume: Lanes<W>,
+    k: usize,
+    st: &mut State<W>,
+) {
+    let s = st.stress[k];
+    let zero = s[0].splat_like(0.0);
     let t = [
         [r[0] * s[0] + r[1] * s[3], r[0] * s[3] + r[1] * s[1]],
         [r[2] * s[0] + r[3] * s[3], r[2] * s[3] + r[3] * s[1]],
@@ -255,26 +428,24 @@ pub fn update_one_point<H: Hardening, const W: usize>(
         zero,
     ];
     let before = stress;
-    let dwp = update_lanes(mat, law, &mut stress, &mut st.eps_p, &d, dt);
-    st.internal_energy += 0.5 * gm.volume * (ddot_lanes(&before, &d) + ddot_lanes(&stress, &d));
-    st.plastic_work += dwp * gm.volume;
-    st.stress = [stress[0], stress[1], stress[2], stress[3]];
-    // Forces V B̄ᵀσ on x^{n+1} (quad::add_stress_forces onto zero).
-    let s = st.stress;
-    let mut force = [[zero; 2]; 4];
+    let dwp = update_lanes(mat, law, &mut stress, &mut st.eps_p[k], d, dt);
+    st.internal_energy += 0.5 * volume * (ddot_lanes(&before, d) + ddot_lanes(&stress, d));
+    st.plastic_work += dwp * volume;
+    st.stress[k] = [stress[0], stress[1], stress[2], stress[3]];
+}
+
+/// Adds V Bᵀσ of the stress `s` = [rr, zz, θθ, rz] through the operator `g` to `f`
+/// (quad::add_stress_forces).
+#[inline(always)]
+fn add_stress_forces<const W: usize>(
+    f: &mut [[Lanes<W>; 2]; 4],
+    s: &[Lanes<W>; 4],
+    g: &Gradient<W>,
+) {
     for i in 0..4 {
-        let b = g1.b[i];
-        force[i][0] = g1.volume * (s[0] * b[0] + s[3] * b[1] + s[2] * g1.hoop[i]);
-        force[i][1] = g1.volume * (s[3] * b[0] + s[1] * b[1]);
-    }
-    if hourglass > 0.0 {
-        hourglass_forces(x1, v, &g1, mat, hourglass, [r[0], r[2]], dt, st, &mut force);
-    }
-    Output {
-        force,
-        volume: g1.volume,
-        min_jacobian: min_j,
-        dt_crit: characteristic_length(x1) / mat.wave_speed,
+        let b = g.b[i];
+        f[i][0] += g.volume * (s[0] * b[0] + s[3] * b[1] + s[2] * g.hoop[i]);
+        f[i][1] += g.volume * (s[3] * b[0] + s[1] * b[1]);
     }
 }
 
@@ -378,7 +549,7 @@ mod tests {
         (x, v, st)
     }
 
-    struct Check;
+    struct Check(QuadFormulation);
     impl LaneKernel for Check {
         type Output = ();
         fn run<const W: usize>(self, isa: LaneIsa<W>) {
@@ -386,11 +557,21 @@ mod tests {
             let Law::Bilinear(law) = mat.law else {
                 panic!("copper-fe is bilinear")
             };
-            let form = QuadFormulation::default();
-            let QuadFormulation::OnePoint { hourglass } = form else {
-                unreachable!()
+            let form = self.0;
+            let points = match form {
+                QuadFormulation::OnePoint { .. } => 1,
+                QuadFormulation::SelectiveReduced => 4,
             };
             let mut scalar: [_; W] = std::array::from_fn(quads);
+            if points == 4 {
+                for (_, _, st) in &mut scalar {
+                    let first = st.points[0];
+                    for (k, p) in st.points.iter_mut().enumerate() {
+                        *p = first;
+                        p.stress[3] *= 1.0 + 0.1 * k as f64;
+                    }
+                }
+            }
             let z = isa.splat(0.0);
             let (mut x, mut v) = ([[z; 2]; 4], [[z; 2]; 4]);
             for (l, (xl, vl, _)) in scalar.iter().enumerate() {
@@ -401,14 +582,21 @@ mod tests {
                     }
                 }
             }
-            let mut st = State::gather(isa, std::array::from_fn(|l| &scalar[l].2));
+            let mut st = State::gather(isa, std::array::from_fn(|l| &scalar[l].2), points);
             for _ in 0..3 {
-                let out = update_one_point(&x, &v, 2e-8, &mat, &law, hourglass, &mut st);
+                let out = match form {
+                    QuadFormulation::OnePoint { hourglass } => {
+                        update_one_point(&x, &v, 2e-8, &mat, &law, hourglass, &mut st)
+                    }
+                    QuadFormulation::SelectiveReduced => {
+                        update_selective_reduced(&x, &v, 2e-8, &mat, &law, &mut st)
+                    }
+                };
                 for (l, (xl, vl, sl)) in scalar.iter_mut().enumerate() {
                     let want = update(xl, vl, 2e-8, &mat, form, sl);
                     assert_eq!(out.lane(l), want, "lane {l}");
                     let mut got = *sl;
-                    st.scatter(l, &mut got);
+                    st.scatter(l, &mut got, points);
                     assert_eq!(got, *sl, "lane {l}");
                 }
             }
@@ -421,12 +609,17 @@ mod tests {
 
     #[test]
     fn every_lane_path_gives_the_scalar_update_s_bits() {
-        Portable.vectorize(Check);
-        if let Some(t) = Avx2::detect() {
-            t.vectorize(Check);
-        }
-        if let Some(t) = Avx512::detect() {
-            t.vectorize(Check);
+        for form in [
+            QuadFormulation::default(),
+            QuadFormulation::SelectiveReduced,
+        ] {
+            Portable.vectorize(Check(form));
+            if let Some(t) = Avx2::detect() {
+                t.vectorize(Check(form));
+            }
+            if let Some(t) = Avx512::detect() {
+                t.vectorize(Check(form));
+            }
         }
     }
 }

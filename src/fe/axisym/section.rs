@@ -94,8 +94,8 @@ pub struct SectionModel {
     pub integration: Integration,
     /// Density factor of each quad (≥ 1, [`super::mass_scaling`]); empty: none.
     pub density_scale: Vec<f64>,
-    /// The widest lane path the one-point quads may run on ([`super::quad_lanes`]; the
-    /// same bits on every path), or `None` for the scalar update of each quad.
+    /// The widest lane path the quads may run on ([`super::quad_lanes`]; the same bits on
+    /// every path), or `None` for the scalar update of each quad.
     pub kernel: Option<KernelPath>,
 }
 
@@ -235,7 +235,7 @@ pub struct SectionSolver {
     pub(super) schedule: Schedule,
     /// Every quad's index, in order (the single-rate step's element list).
     all_quads: Vec<u32>,
-    /// The lane path of the one-point quads, `None`: scalar updates.
+    /// The lane path of the quads, `None`: scalar updates.
     kernel: Option<Kernel>,
     pub(super) synced_energy: SectionEnergy,
     pub(super) element_updates: u64,
@@ -401,21 +401,20 @@ impl SectionSolver {
 
     /// Updates the quads `list` in order, quad e over `dt` (s) times 2^`level[e]` (`level`
     /// empty: all over `dt`), adding their forces into `f_int`; returns the smallest Courant
-    /// step (s). One-point quads of one material and step run W at a time on the lane path
+    /// step (s). Quads of one material and step run W at a time on the lane path
     /// ([`super::quad_lanes`]), with the same bits as one by one.
     pub(super) fn update_elements(&mut self, list: &[u32], level: &[u8], dt: f64) -> Result<f64> {
         let step = |e: u32| match level.get(e as usize) {
             Some(&l) => f64::from(1u32 << l) * dt,
             None => dt,
         };
-        match (self.kernel, self.model.formulation) {
-            (Some(kernel), QuadFormulation::OnePoint { hourglass }) => kernel.run(QuadLoop {
+        match self.kernel {
+            Some(kernel) => kernel.run(QuadLoop {
                 s: self,
                 list,
                 step: &step,
-                hourglass,
             }),
-            _ => {
+            None => {
                 let mut dt_min = f64::INFINITY;
                 for &e in list {
                     dt_min = dt_min.min(self.update_element(e as usize, step(e))?);
@@ -683,14 +682,13 @@ impl SectionSolver {
     }
 }
 
-/// The one-point quads of a list, W at a time: runs of consecutive quads with one material
+/// The quads of a list, W at a time: runs of consecutive quads with one material
 /// and one step fill the lanes (a short run repeats its first quad in the spare lanes,
 /// whose results are dropped); forces are added quad by quad in list order.
 struct QuadLoop<'a, F: Fn(u32) -> f64> {
     s: &'a mut SectionSolver,
     list: &'a [u32],
     step: &'a F,
-    hourglass: f64,
 }
 
 impl<F: Fn(u32) -> f64> LaneKernel for QuadLoop<'_, F> {
@@ -718,7 +716,6 @@ impl<F: Fn(u32) -> f64> LaneKernel for QuadLoop<'_, F> {
                 quads: &self.list[start..end],
                 dt,
                 mat: &mat,
-                hourglass: self.hourglass,
             };
             dt_min = dt_min.min(mat.law.with(group)?);
             start = end;
@@ -734,7 +731,6 @@ struct Group<'a, const W: usize> {
     quads: &'a [u32],
     dt: f64,
     mat: &'a J2Material,
-    hourglass: f64,
 }
 
 impl<const W: usize> LawVisitor for Group<'_, W> {
@@ -756,12 +752,23 @@ impl<const W: usize> LawVisitor for Group<'_, W> {
                 }
             }
         }
-        let mut st = quad_lanes::State::gather(self.isa, build(|l| &s.states[lane_quad(l)]));
-        let out =
-            quad_lanes::update_one_point(&x, &v, self.dt, self.mat, law, self.hourglass, &mut st);
+        let points = match s.model.formulation {
+            QuadFormulation::OnePoint { .. } => 1,
+            QuadFormulation::SelectiveReduced => 4,
+        };
+        let states = build(|l| &s.states[lane_quad(l)]);
+        let mut st = quad_lanes::State::gather(self.isa, states, points);
+        let out = match s.model.formulation {
+            QuadFormulation::OnePoint { hourglass } => {
+                quad_lanes::update_one_point(&x, &v, self.dt, self.mat, law, hourglass, &mut st)
+            }
+            QuadFormulation::SelectiveReduced => {
+                quad_lanes::update_selective_reduced(&x, &v, self.dt, self.mat, law, &mut st)
+            }
+        };
         let mut dt_min = f64::INFINITY;
         for (l, &e) in self.quads.iter().enumerate() {
-            st.scatter(l, &mut s.states[e as usize]);
+            st.scatter(l, &mut s.states[e as usize], points);
             dt_min = dt_min.min(s.finish_element(e as usize, &out.lane(l))?);
         }
         Ok(dt_min)
