@@ -69,7 +69,7 @@ pub fn point(x: &[[f64; 2]; 4], xi: [f64; 2], w: f64) -> Point {
 
 /// Shape functions and natural derivatives at the four 2x2 Gauss points (the values of
 /// [`shape`], computed once).
-const GAUSS_SHAPE: [([f64; 4], [[f64; 2]; 4]); 4] = {
+pub(super) const GAUSS_SHAPE: [([f64; 4], [[f64; 2]; 4]); 4] = {
     let mut t = [([0.0; 4], [[0.0; 2]; 4]); 4];
     let mut g = 0;
     while g < 4 {

@@ -7,7 +7,7 @@
 //! reference.
 
 use super::element::{PointState, QuadOutput, QuadState};
-use super::quad::{GAUSS_2X2, HOURGLASS_BASE, NODE_XI};
+use super::quad::{GAUSS_SHAPE, HOURGLASS_BASE};
 #[cfg(test)]
 use crate::fe::materials::Law;
 use crate::fe::materials::{
@@ -127,26 +127,27 @@ impl<const W: usize> Output<W> {
     }
 }
 
-/// Shape values and natural derivatives at the 2x2 Gauss points (as the scalar table).
-const GAUSS_SHAPE: [([f64; 4], [[f64; 2]; 4]); 4] = {
-    let mut t = [([0.0; 4], [[0.0; 2]; 4]); 4];
-    let mut g = 0;
-    while g < 4 {
-        let xi = GAUSS_2X2[g];
-        let mut i = 0;
-        while i < 4 {
-            let p = NODE_XI[i];
-            t[g].0[i] = 0.25 * (1.0 + p[0] * xi[0]) * (1.0 + p[1] * xi[1]);
-            t[g].1[i] = [
-                0.25 * p[0] * (1.0 + p[1] * xi[1]),
-                0.25 * p[1] * (1.0 + p[0] * xi[0]),
-            ];
-            i += 1;
+/// The radius r (m) and the Jacobian jac[a][c] = ∂x_a/∂ξ_c (m) of W quads `x` at the point
+/// with shape values `n` and natural derivatives `d` (quad::radius_and_jacobian).
+#[inline(always)]
+fn radius_and_jacobian<const W: usize>(
+    x: &Nodes<W>,
+    n: &[f64; 4],
+    d: &[[f64; 2]; 4],
+) -> (Lanes<W>, [[Lanes<W>; 2]; 2]) {
+    let z = x[0][0].splat_like(0.0);
+    let mut r = z;
+    let mut jac = [[z; 2]; 2];
+    for i in 0..4 {
+        r += n[i] * x[i][0];
+        for a in 0..2 {
+            for c in 0..2 {
+                jac[a][c] += d[i][c] * x[i][a];
+            }
         }
-        g += 1;
     }
-    t
-};
+    (r, jac)
+}
 
 /// [`super::quad::mean_gradient`] of W quads: the operator and the smallest Jacobian.
 #[inline(always)]
@@ -157,16 +158,7 @@ fn mean_gradient<const W: usize>(x: &Nodes<W>) -> (Gradient<W>, Lanes<W>) {
     let mut sum = z;
     let mut min_j = z.splat_like(f64::INFINITY);
     for (n, d) in &GAUSS_SHAPE {
-        let mut r = z;
-        let mut jac = [[z; 2]; 2];
-        for i in 0..4 {
-            r += n[i] * x[i][0];
-            for a in 0..2 {
-                for c in 0..2 {
-                    jac[a][c] += d[i][c] * x[i][a];
-                }
-            }
-        }
+        let (r, jac) = radius_and_jacobian(x, n, d);
         let det_j = jac[0][0] * jac[1][1] - jac[0][1] * jac[1][0];
         min_j = min_j.min(det_j);
         sum += r * det_j;
@@ -184,6 +176,20 @@ fn mean_gradient<const W: usize>(x: &Nodes<W>) -> (Gradient<W>, Lanes<W>) {
     }
     let volume = 2.0 * PI * sum;
     (Gradient { b, hoop, volume }, min_j)
+}
+
+/// The mid-step nodes x^{n+1/2} = x^{n+1} − Δt/2 v^{n+1/2} of W quads (m), from `x1` (m),
+/// `v` (m/s) and `dt` (s).
+#[inline(always)]
+fn mid_step<const W: usize>(x1: &Nodes<W>, v: &Nodes<W>, dt: f64) -> Nodes<W> {
+    let half = 0.5 * dt;
+    let mut xm = *x1;
+    for i in 0..4 {
+        for c in 0..2 {
+            xm[i][c] = x1[i][c] - half * v[i][c];
+        }
+    }
+    xm
 }
 
 /// The section's velocity gradient of W quads: (L_rr, L_rz, L_zr, L_zz, L_θθ), 1/s.
@@ -227,13 +233,7 @@ pub fn update_one_point<H: Hardening, const W: usize>(
     st: &mut State<W>,
 ) -> Output<W> {
     let zero = x1[0][0].splat_like(0.0);
-    let half = 0.5 * dt;
-    let mut xm = [[zero; 2]; 4];
-    for i in 0..4 {
-        for c in 0..2 {
-            xm[i][c] = x1[i][c] - half * v[i][c];
-        }
-    }
+    let xm = mid_step(x1, v, dt);
     let (gm, _) = mean_gradient(&xm);
     let (g1, min_j) = mean_gradient(x1);
     let l = velocity_gradient(v, &gm);
@@ -282,16 +282,7 @@ fn gauss_points<const W: usize>(x: &Nodes<W>) -> [Point<W>; 4] {
         det_j: z,
     }; 4];
     for (p, (n, d)) in pts.iter_mut().zip(&GAUSS_SHAPE) {
-        let mut r = z;
-        let mut jac = [[z; 2]; 2];
-        for i in 0..4 {
-            r += n[i] * x[i][0];
-            for a in 0..2 {
-                for c in 0..2 {
-                    jac[a][c] += d[i][c] * x[i][a];
-                }
-            }
-        }
+        let (r, jac) = radius_and_jacobian(x, n, d);
         let det_j = jac[0][0] * jac[1][1] - jac[0][1] * jac[1][0];
         let inv = det_j.recip();
         for i in 0..4 {
@@ -350,13 +341,7 @@ pub fn update_selective_reduced<H: Hardening, const W: usize>(
     st: &mut State<W>,
 ) -> Output<W> {
     let zero = x1[0][0].splat_like(0.0);
-    let half = 0.5 * dt;
-    let mut xm = [[zero; 2]; 4];
-    for i in 0..4 {
-        for c in 0..2 {
-            xm[i][c] = x1[i][c] - half * v[i][c];
-        }
-    }
+    let xm = mid_step(x1, v, dt);
     let pm = gauss_points(&xm);
     let (gm, _) = mean_of(&pm);
     let p1 = gauss_points(x1);
