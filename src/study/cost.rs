@@ -194,20 +194,20 @@ impl Estimator {
         fe: bool,
         tolerance: Option<f64>,
     ) -> Result<CostEstimate> {
+        // The family's cost does not depend on the scene's own mesh: it is not meshed.
+        if let (true, Some(t)) = (fe, tolerance) {
+            let budget = super::converged_scene::mass_scaling_for(t);
+            if let Ok(case) = super::converged_scene::head_on_case(scene, budget)? {
+                if let Approach::Impact(touch) = approach(scene)? {
+                    let (outcome, _) = analytic_outcome(scene, &touch)?;
+                    let simulated = simulated_time(scene, outcome.contact_duration);
+                    return self.banded_family(&case, simulated, outcome.delta_max);
+                }
+            }
+        }
         let own = self.estimate(scene, fe)?;
         if !fe || own.elements == 0 {
             return Ok(own);
-        }
-        if let Some(t) = tolerance {
-            let budget = super::converged_scene::mass_scaling_for(t);
-            if let Ok(case) = super::converged_scene::head_on_case(scene, budget)? {
-                let Approach::Impact(touch) = approach(scene)? else {
-                    return Ok(own);
-                };
-                let (outcome, _) = analytic_outcome(scene, &touch)?;
-                let simulated = simulated_time(scene, outcome.contact_duration);
-                return self.banded_family(&case, simulated, outcome.delta_max);
-            }
         }
         match super::single::default_plan(scene)? {
             Some(_) => Ok(CostEstimate {
