@@ -13,9 +13,12 @@
 //! runs the banded family instead (`study::phase_band`: the surface rings at the contact edge
 //! of a level-0 run split SPLIT-fold; LEVEL ≥ 1). `PHASE_MASS_SCALING=BUDGET` mass-scales
 //! every run within BUDGET (added mass over the section's; `fe::axisym::mass_scaling`).
+//! `PHASE_SUBCYCLE_MAX_LEVEL=K` caps the subcycling at level K instead of the section's
+//! default 2 (`twoball run --tolerance` runs its family with K = 3).
 
 use twoball::fe::axisym::element::QuadFormulation;
 use twoball::fe::axisym::impact::PlaneContact;
+use twoball::fe::axisym::subcycle::Integration;
 use twoball::material::Material;
 use twoball::study::phase_ensemble::{
     converged_head_on, ensemble_at, ensemble_at_radius, HeadOnCase, HeadOnTarget, PhaseEnsemble,
@@ -84,6 +87,14 @@ fn run(args: &[String]) -> Result<(), String> {
                 .parse()
                 .map_err(|_| format!("PHASE_MASS_SCALING: {b:?} is not a budget"))?,
             Err(_) => 0.0,
+        },
+        integration: match std::env::var("PHASE_SUBCYCLE_MAX_LEVEL") {
+            Ok(k) => Integration::Subcycled {
+                max_level: k
+                    .parse()
+                    .map_err(|_| format!("PHASE_SUBCYCLE_MAX_LEVEL: {k:?} is not a level"))?,
+            },
+            Err(_) => Integration::subcycled(),
         },
     };
     if std::env::var("PHASE_ONLY").as_deref() == Ok("1") {

@@ -101,3 +101,57 @@ fn a_ball_on_a_rigid_wall_converges_as_the_pair_and_a_sweep_case_carries_its_bar
     // The ball leaves the wall at e times its speed.
     assert!((s.outcome.v1_after[0] + 5.0 * s.outcome.e).abs() < 1e-9);
 }
+
+/// A tolerance of 2 % or looser that the scene's own levels −1 and 0 meet takes their
+/// answer (a fraction of a second, the same as the default run) and says so; one below 2 %
+/// does not, even where their bar would claim it.
+#[test]
+fn a_loose_tolerance_that_the_default_levels_meet_takes_their_answer() {
+    use twoball::study::single::{run_scene_default, LEVELS_MET_TOLERANCE, LEVELS_TOLERANCE_FLOOR};
+    let opts = RunOptions {
+        history_rows: 100,
+        ..RunOptions::default()
+    };
+    let s = scene(&[]);
+    let default = run_scene_default(&s, &opts).unwrap();
+    let bar = default
+        .error_estimate
+        .as_ref()
+        .unwrap()
+        .e
+        .relative_error
+        .unwrap();
+    // The default scene's levels −1 and 0 give a bar of about 2.1 %.
+    assert!(bar > LEVELS_TOLERANCE_FLOOR && bar < 0.05, "{bar}");
+    let loose = LadderPlan::Tolerance {
+        tolerance: 0.05,
+        max_refinements: 0,
+    };
+    let r = run_scene_with_estimate(&s, &opts, loose).unwrap();
+    let est = r.error_estimate.as_ref().unwrap();
+    let EstimateMethod::SceneLadder { why_not_banded } = &est.method else {
+        panic!("{:?}", est.method);
+    };
+    assert_eq!(why_not_banded.as_deref(), Some(LEVELS_MET_TOLERANCE));
+    assert_eq!((est.tolerance, est.tolerance_met), (Some(0.05), Some(true)));
+    assert_eq!(r.e, default.e);
+    assert_eq!(est.e, default.error_estimate.as_ref().unwrap().e);
+    let levels: Vec<i32> = est.meshes.iter().map(|m| m.level).collect();
+    assert_eq!(levels, [-1, 0]);
+    // At ±1.25 m/s the levels' bar is about 1.1 %: within a tolerance of 1.5 %, but that is
+    // below the floor, so the banded family answers.
+    let faster = scene(&["ball1.velocity=[1.25,0,0]", "ball2.velocity=[-1.25,0,0]"]);
+    let own = run_scene_default(&faster, &opts).unwrap();
+    let own_bar = own.error_estimate.unwrap().e.relative_error.unwrap();
+    assert!(own_bar < 0.015, "{own_bar}");
+    let tight = LadderPlan::Tolerance {
+        tolerance: 0.015,
+        max_refinements: 0,
+    };
+    let r = run_scene_with_estimate(&faster, &opts, tight).unwrap();
+    let method = r.error_estimate.unwrap().method;
+    assert!(
+        matches!(method, EstimateMethod::BandedFamily { .. }),
+        "{method:?}"
+    );
+}

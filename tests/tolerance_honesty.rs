@@ -11,8 +11,9 @@
 //! `cargo test --release --test tolerance_honesty -- --ignored --nocapture` (about 20 min on
 //! 2 cores); `HONESTY_MATERIALS=steel` and `HONESTY_SPEEDS=1,5` (m/s per ball) shrink it.
 
+use twoball::fe::axisym::subcycle::Integration;
 use twoball::material::Material;
-use twoball::study::converged_scene::{mass_scaling_for, plan};
+use twoball::study::converged_scene::{mass_scaling_for, plan, SUBCYCLE_MAX_LEVEL};
 use twoball::study::phase_band::banded_ensemble_at;
 use twoball::study::phase_ensemble::{converged_head_on, HeadOnCase, HeadOnTarget};
 
@@ -36,6 +37,9 @@ fn the_tolerance_bar_holds_in_nine_cases_of_ten() {
                 relative_speed: 2.0 * v,
                 target: HeadOnTarget::IdenticalBall,
                 mass_scaling: mass_scaling_for(0.005),
+                integration: Integration::Subcycled {
+                    max_level: SUBCYCLE_MAX_LEVEL,
+                },
                 ..HeadOnCase::default_scene()
             };
             let start = std::time::Instant::now();

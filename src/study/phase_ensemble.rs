@@ -23,6 +23,7 @@ use crate::analytic::hertz::HertzPair;
 use crate::error::{Error, Result};
 use crate::fe::axisym::element::QuadFormulation;
 use crate::fe::axisym::impact::{HeadOn, ImpactResult, PlaneContact, Target};
+use crate::fe::axisym::subcycle::Integration;
 use crate::material::Material;
 use crate::mesh::meridian::{ladder_ball, MeridianMesh};
 use rayon::prelude::*;
@@ -202,6 +203,8 @@ pub struct HeadOnCase {
     /// [`crate::fe::axisym::mass_scaling`]); its bias bound joins every bar
     /// ([`MASS_SCALING_BIAS`]).
     pub mass_scaling: f64,
+    /// Time integration of every run (by default [`Integration::subcycled`]).
+    pub integration: Integration,
 }
 
 impl HeadOnCase {
@@ -216,6 +219,7 @@ impl HeadOnCase {
             formulation: QuadFormulation::default(),
             plane: PlaneContact::Kinematic,
             mass_scaling: 0.0,
+            integration: Integration::subcycled(),
         }
     }
 }
@@ -464,6 +468,7 @@ pub(super) fn head_on(case: &HeadOnCase, mesh: MeridianMesh) -> HeadOn {
     h.formulation = case.formulation;
     h.plane_contact = case.plane;
     h.mass_scaling = case.mass_scaling;
+    h.integration = case.integration;
     h
 }
 
