@@ -8,7 +8,7 @@
 //! order the section's e shows). Two refinements finer (level 3) would cost about 16 times
 //! level 2.
 //!
-//! `cargo test --release --test tolerance_honesty -- --ignored --nocapture` (about 20 min on
+//! `cargo test --release --test tolerance_honesty -- --ignored --nocapture` (about 12 min on
 //! 2 cores); `HONESTY_MATERIALS=steel` and `HONESTY_SPEEDS=1,5` (m/s per ball) shrink it.
 
 use twoball::fe::axisym::subcycle::Integration;
