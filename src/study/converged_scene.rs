@@ -1,13 +1,14 @@
 //! `--tolerance` on a head-on scene of the meridian section: the scene as a [`HeadOnCase`]
 //! converged by [`converged_head_on`] on the banded, mass-scaled family (the plan of the law
-//! bench, docs/contact-laws.md), its bars the run's error estimate.
+//! bench, docs/contact-laws.md, subcycled to [`SUBCYCLE_MAX_LEVEL`]), its bars the run's
+//! error estimate.
 //!
 //! A section run's plastic e is a sawtooth over the ring spacing at the contact edge, so the
 //! scene's own ladder (pole and bulk sizes halved per level) converges slowly and its bar is
 //! loose (docs/contact-penalty.md, "Why the section's e scatters"). The banded family splits
 //! the rings at the contact edge five-fold, mass scaling lifts the step of the smallest
 //! quads, and two members per level average the sawtooth: on the default scene e comes to
-//! within 0.2 % of the converged 0.3184 with a bar of 0.4 % in about 5 s on 2 cores
+//! within 0.2 % of the converged 0.3184 with a bar of 0.4 % in about 4 s on 2 cores
 //! (docs/contact-penalty.md, "Mass scaling of the contact region"). The family is sized from
 //! the physics (Hertz's contact radius, then the contact edge of a level-0 run), not from the
 //! scene's mesh settings.
@@ -49,8 +50,9 @@ pub const MAX_MASS_SCALING: f64 = 1e-4;
 /// ([`crate::fe::axisym::subcycle::DEFAULT_MAX_LEVEL`]). Mass scaling has lifted the step of
 /// the smallest quads, so the levels' pseudo-energy stays small: on levels 0 and 1 of the
 /// default scene, steel at 1 m/s, aluminum at 10 m/s and copper-fe at 0.2 m/s the energy
-/// error is 2e-5 to 6e-5 of KE₀ (3e-6 to 1.3e-5 at the default cap), e moves by at most 3e-5 and the
-/// family's CPU time falls by 15-30 % (docs/design.md, "Subcycling of the section").
+/// error is 2e-5 to 6e-5 of KE₀ (3e-6 to 1.3e-5 at the default cap), e moves by at most
+/// 3e-5 and the family's CPU time falls by 15-30 % (docs/design.md, "Subcycling of the
+/// section").
 pub const SUBCYCLE_MAX_LEVEL: u8 = 3;
 
 /// The share of the tolerance that the mass-scaling bias bound may take.

@@ -184,9 +184,9 @@ impl Estimator {
     /// its mesh once. With a tolerance that the banded family covers, the family's runs
     /// ([`Estimator::banded_family`]; for a tolerance of 2 % or looser an upper bound, since
     /// the scene's own levels −1 and 0, about a thirtieth of it, may meet it first and end
-    /// the case: [`super::single::run_to_tolerance`]); otherwise its default ladder, levels −1 and 0 of
-    /// [`super::single::SCENE_PHASE_MESHES`] meshes each (a level −1 mesh has a quarter of
-    /// the quads and twice the step: an eighth of the cost). Any other case as
+    /// the case: [`super::single::run_to_tolerance`]); otherwise its default ladder, levels
+    /// −1 and 0 of [`super::single::SCENE_PHASE_MESHES`] meshes each (a level −1 mesh has a
+    /// quarter of the quads and twice the step: an eighth of the cost). Any other case as
     /// [`Estimator::estimate`].
     ///
     /// Errors: as [`Estimator::estimate`].
