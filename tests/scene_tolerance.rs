@@ -165,4 +165,19 @@ fn a_loose_tolerance_that_the_default_levels_meet_takes_their_answer() {
         matches!(method, EstimateMethod::BandedFamily { .. }),
         "{method:?}"
     );
+    // A bulk of 6 mm has no coarser level (12 mm is above a quarter of the diameter): there
+    // are no default levels to try, so even a loose tolerance runs the family.
+    let coarse = scene(&[
+        "ball1.velocity=[2.5,0,0]",
+        "ball2.velocity=[-2.5,0,0]",
+        "ball1.mesh.size=0.006",
+        "ball2.mesh.size=0.006",
+    ]);
+    assert!(twoball::study::error_estimate::scene_at_level(&coarse, -1).is_err());
+    let r = run_scene_with_estimate(&coarse, &opts, loose).unwrap();
+    let method = r.error_estimate.unwrap().method;
+    assert!(
+        matches!(method, EstimateMethod::BandedFamily { .. }),
+        "{method:?}"
+    );
 }

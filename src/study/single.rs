@@ -307,9 +307,9 @@ pub fn run_scene_with_estimate(
 
 /// `--tolerance` on a head-on section scene whose banded family is `case`, cheapest first:
 /// for a tolerance of [`LEVELS_TOLERANCE_FLOOR`] or looser the scene's default levels −1
-/// and 0 ([`two_levels`], a fraction of a second) answer when their bar on e, raised to at
-/// least that floor, is within it; otherwise the family converges the scene
-/// ([`converge_report`]), the scene's own run its report.
+/// and 0 ([`two_levels`], a fraction of a second; when its mesh has a coarser level) answer
+/// when their bar on e, raised to at least that floor, is within it; otherwise the family
+/// converges the scene ([`converge_report`]), the scene's own run its report.
 ///
 /// Errors: those of the runs.
 pub fn run_to_tolerance(
@@ -319,7 +319,8 @@ pub fn run_to_tolerance(
     tolerance: f64,
     max_refinements: u32,
 ) -> Result<RunReport> {
-    if tolerance < LEVELS_TOLERANCE_FLOOR {
+    // A mesh with no coarser level (bulk above a quarter of the diameter) has no default levels.
+    if tolerance < LEVELS_TOLERANCE_FLOOR || scene_at_level(scene, -1).is_err() {
         let report = run_scene(scene, opts)?;
         return converge_report(case, report, tolerance, max_refinements);
     }
