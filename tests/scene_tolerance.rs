@@ -181,3 +181,71 @@ fn a_loose_tolerance_that_the_default_levels_meet_takes_their_answer() {
         "{method:?}"
     );
 }
+
+/// The level-2 means of the banded family (two meshes, mass scaling 1e-4, subcycled to
+/// level 3) for D = 20 mm identical balls: (material, speed of each ball m/s, e). From
+/// `cargo test --release --test tolerance_honesty -- --ignored --nocapture`
+/// (docs/contact-penalty.md, "Is the banded bar honest?").
+const LEVEL_2: [(&str, f64, f64); 21] = [
+    ("copper-fe", 5.0, 0.21808),
+    ("copper-fe", 2.5, 0.25956),
+    ("copper-fe", 1.0, 0.31839),
+    ("copper-fe", 0.5, 0.36733),
+    ("copper-fe", 0.25, 0.42283),
+    ("copper-fe", 0.1, 0.50039),
+    ("copper-fe", 0.05, 0.56335),
+    ("steel", 5.0, 0.25904),
+    ("steel", 2.5, 0.30667),
+    ("steel", 1.0, 0.37488),
+    ("steel", 0.5, 0.42940),
+    ("steel", 0.25, 0.48846),
+    ("steel", 0.1, 0.57040),
+    ("steel", 0.05, 0.63708),
+    ("aluminum", 5.0, 0.49848),
+    ("aluminum", 2.5, 0.57511),
+    ("aluminum", 1.0, 0.67572),
+    ("aluminum", 0.5, 0.75043),
+    ("aluminum", 0.25, 0.82468),
+    ("aluminum", 0.1, 0.91635),
+    ("aluminum", 0.05, 0.97244),
+];
+
+/// The floor under the default levels' answer to a tolerance holds: over three metals and
+/// 0.05-5 m/s per ball, `twoball run`'s e (levels −1 and 0, four meshes each) lies within
+/// 2 % of the banded family's level-2 mean, whatever its own bar says (docs/contact-
+/// penalty.md, "The default levels against the floor").
+#[test]
+fn the_default_levels_stay_within_the_floor() {
+    use twoball::study::single::{run_scene_default, LEVELS_TOLERANCE_FLOOR};
+    let opts = RunOptions {
+        history_rows: 10,
+        ..RunOptions::default()
+    };
+    let mut worst: f64 = 0.0;
+    for (m, v, e2) in LEVEL_2 {
+        let s = scene(&[
+            &format!("ball1.material=\"{m}\""),
+            &format!("ball2.material=\"{m}\""),
+            &format!("ball1.velocity=[{v},0,0]"),
+            &format!("ball2.velocity=[-{v},0,0]"),
+        ]);
+        let r = run_scene_default(&s, &opts).unwrap();
+        let (e, bar) = (
+            r.e.unwrap(),
+            r.error_estimate.unwrap().e.relative_error.unwrap(),
+        );
+        let error = e / e2 - 1.0;
+        println!(
+            "{m} {v} m/s: e {e:.5} bar {:.2} % level 2 {e2:.5} error {:+.2} %",
+            100.0 * bar,
+            100.0 * error
+        );
+        assert!(
+            error.abs() <= LEVELS_TOLERANCE_FLOOR,
+            "{m} at {v} m/s: {error:+.4}"
+        );
+        worst = worst.max(error.abs());
+    }
+    // The floor is not loose by an order of magnitude either.
+    assert!(worst > 0.25 * LEVELS_TOLERANCE_FLOOR, "{worst}");
+}
