@@ -209,7 +209,8 @@ def run(
     far and the expected end, s, called from the calling thread a few times a second.
     tolerance: refine until the relative error estimate of e is at most this fraction, as
     ``twoball run --tolerance`` (a head-on scene of identical balls or of a ball on a rigid
-    wall runs the section's banded mesh family, about 5 s for the default scene at 0.005),
+    wall runs the section's banded mesh family, about 4 s for the default scene at 0.005,
+    unless the tolerance is 0.02 or looser and the scene's default levels meet it),
     with at most ``max_refinements`` levels beyond the first; the estimate is
     ``results["error_estimate"]``.
 
