@@ -1,7 +1,8 @@
 //! Is the bar of `twoball run --tolerance` honest? (docs/contact-penalty.md, "Is the
-//! banded bar honest?") Each case is run as the tolerance path runs a head-on section scene:
-//! the banded family (`study::converged_scene::plan`, five-fold band, two meshes per level,
-//! mass scaling `mass_scaling_for(0.5 %)`), levels 0 and 1, whose bar on e is the claim. The
+//! banded bar honest?") Each case is the default scene's pair of another metal and speed,
+//! cased as `--tolerance 0.5%` cases it (`study::converged_scene::family_case`) and run on
+//! the banded family (`study::converged_scene::plan`, five-fold band, two meshes per level),
+//! levels 0 and 1, whose bar on e is the claim. The
 //! reference is the same family one level finer (level 2, two meshes): the claim is kept
 //! when level 1's mean lies within its bar of level 2's mean, and kept strictly when it also
 //! lies within its bar of 2 e₂ − e₁ (the level-2 mean extrapolated at first order, the slowest
@@ -11,11 +12,11 @@
 //! `cargo test --release --test tolerance_honesty -- --ignored --nocapture` (about 12 min on
 //! 2 cores); `HONESTY_MATERIALS=steel` and `HONESTY_SPEEDS=1,5` (m/s per ball) shrink it.
 
-use twoball::fe::axisym::subcycle::Integration;
-use twoball::material::Material;
-use twoball::study::converged_scene::{mass_scaling_for, plan, SUBCYCLE_MAX_LEVEL};
+use std::path::Path;
+use twoball::scene::{Override, Scene, DEFAULT_SCENE};
+use twoball::study::converged_scene::{family_case, plan};
 use twoball::study::phase_band::banded_ensemble_at;
-use twoball::study::phase_ensemble::{converged_head_on, HeadOnCase, HeadOnTarget};
+use twoball::study::phase_ensemble::converged_head_on;
 
 #[test]
 #[ignore]
@@ -31,17 +32,18 @@ fn the_tolerance_bar_holds_in_nine_cases_of_ten() {
     println!("|---|---|---|---|---|---|---|---|---|");
     for m in &materials {
         for &v in &speeds {
-            let case = HeadOnCase {
-                diameter: 0.02,
-                material: Material::preset(m).unwrap(),
-                relative_speed: 2.0 * v,
-                target: HeadOnTarget::IdenticalBall,
-                mass_scaling: mass_scaling_for(0.005),
-                integration: Integration::Subcycled {
-                    max_level: SUBCYCLE_MAX_LEVEL,
-                },
-                ..HeadOnCase::default_scene()
-            };
+            // The default scene (D = 20 mm) of metal `m` at ±v, as `--tolerance 0.5%` cases it.
+            let sets: Vec<Override> = [
+                format!("ball1.material=\"{m}\""),
+                format!("ball2.material=\"{m}\""),
+                format!("ball1.velocity=[{v},0,0]"),
+                format!("ball2.velocity=[-{v},0,0]"),
+            ]
+            .iter()
+            .map(|s| Override::parse(s).unwrap())
+            .collect();
+            let scene = Scene::from_toml(DEFAULT_SCENE, Path::new("."), &sets).unwrap();
+            let case = family_case(&scene, 0.005).unwrap().unwrap();
             let start = std::time::Instant::now();
             // The claim: levels 0 and 1, as `--tolerance` runs them before any refinement.
             let mut claim_plan = plan(0.005, 0);

@@ -277,10 +277,11 @@ fn estimate_from_bar(bar: &Bar) -> super::convergence::Estimate {
         extrapolated: bar.extrapolated,
         observed_order: None,
         order_used: Some(ASSUMED_ORDER),
-        error: bar.error,
-        relative_error: (bar.extrapolated != 0.0).then(|| bar.error / bar.extrapolated.abs()),
+        error: 0.0,
+        relative_error: None,
         behaviour: Behaviour::TwoLevels,
     }
+    .with_error(bar.error)
 }
 
 /// The lengths (m) of the contact surface's segment at the pole (on the axis) and of its

@@ -90,6 +90,18 @@ pub struct Estimate {
     pub behaviour: Behaviour,
 }
 
+impl Estimate {
+    /// The same estimate with its error set to `error` (the quantity's unit, ≥ 0) and the
+    /// relative error recomputed against |extrapolated| (None when that is 0).
+    pub fn with_error(self, error: f64) -> Estimate {
+        Estimate {
+            error,
+            relative_error: (self.extrapolated != 0.0).then(|| error / self.extrapolated.abs()),
+            ..self
+        }
+    }
+}
+
 /// The estimate for `values` (coarse to fine, at least two, all finite) on a ladder of
 /// refinement ratio `ratio` (> 1). Uses the three finest values. None for fewer than two
 /// values, a non-finite value or a ratio not above 1.

@@ -110,8 +110,7 @@ impl ErrorEstimate {
         let mut e = of(|m| m.e, "e")?;
         if let Some(p) = meshes.last().and_then(|m| m.phase) {
             // The ensemble's mean still carries its sampling error.
-            e.error += p.e_sampling_error;
-            e.relative_error = (e.extrapolated != 0.0).then(|| e.error / e.extrapolated.abs());
+            e = e.with_error(e.error + p.e_sampling_error);
         }
         let tolerance_met = tolerance.map(|t| meets(&e, t));
         Ok(ErrorEstimate {

@@ -320,16 +320,16 @@ pub fn run_to_tolerance(
     max_refinements: u32,
 ) -> Result<RunReport> {
     // A mesh with no coarser level (bulk above a quarter of the diameter) has no default levels.
-    if tolerance < LEVELS_TOLERANCE_FLOOR || scene_at_level(scene, -1).is_err() {
+    let levels = default_plan(scene)? == Some(LadderPlan::TwoLevels);
+    if tolerance < LEVELS_TOLERANCE_FLOOR || !levels {
         let report = run_scene(scene, opts)?;
         return converge_report(case, report, tolerance, max_refinements);
     }
     let (mut estimate, report) = two_levels(scene, opts)?;
     // Their bar may understate their error by chance (below): it is at least the floor.
-    let e = &mut estimate.e;
-    e.error = e.error.max(LEVELS_TOLERANCE_FLOOR * e.extrapolated.abs());
-    e.relative_error = (e.extrapolated != 0.0).then(|| e.error / e.extrapolated.abs());
-    let met = e.relative_error.is_some_and(|r| r <= tolerance);
+    let e = estimate.e;
+    estimate.e = e.with_error(e.error.max(LEVELS_TOLERANCE_FLOOR * e.extrapolated.abs()));
+    let met = estimate.e.relative_error.is_some_and(|r| r <= tolerance);
     if !met {
         return converge_report(case, report, tolerance, max_refinements);
     }
