@@ -50,6 +50,7 @@ pub const SPEC: NormalSpec = NormalSpec {
     title: "example: power-law loading k delta^n, unloading returning e^2 of the work",
     source: "examples/custom_law.rs",
     dem_codes: "none",
+    validity: twoball::analytic::laws::validity::UNSTATED,
     params: &[
         ParamSpec {
             key: "k",

@@ -15,6 +15,7 @@ pub mod analytic;
 pub mod atomic;
 pub mod cli;
 pub mod damper;
+pub mod dem;
 pub mod error;
 pub mod fe;
 pub mod material;

@@ -511,9 +511,49 @@ pub fn materials_json() -> Result<Value> {
         "presets": PRESET_NAMES.iter().filter_map(|n| Material::preset(n).ok().map(|m| json!({
             "name": n, "E": m.youngs, "nu": m.nu, "rho": m.rho, "yield": m.yield_strength,
             "tangent": m.tangent, "mu": m.mu, "mu_static": m.mu_static,
+            "hardening": hardening_text(&m),
             "zeta": num(damping_index(&m, TABLE1_SPEEDS.0, TABLE1_SPEEDS.1)),
         }))).collect::<Vec<_>>(),
     }))
+}
+
+/// The hardening of a preset in one line (SI units).
+pub fn hardening_text(m: &Material) -> String {
+    use crate::fe::materials::Law;
+    match m.hardening {
+        Some(Law::JohnsonCook(j)) => format!(
+            "Johnson-Cook: sigma = (A + B eps_p^n)(1 + C ln(rate/rate0)), A = {:.4e} Pa, B = {:.4e} Pa, n = {}, C = {}, rate0 = {} 1/s",
+            j.a, j.b, j.n, j.c, j.rate0
+        ),
+        Some(other) => format!("{other:?}"),
+        None => format!(
+            "bilinear: yield {:.4e} Pa, tangent modulus E_t = {:.4e} Pa",
+            m.yield_strength, m.tangent
+        ),
+    }
+}
+
+/// Every preset a scene accepts (`material = "NAME"`), with its properties and hardening.
+fn print_presets() {
+    println!("\nPresets a scene accepts (material = \"NAME\"; SI units):");
+    println!(
+        "{:<12} {:>11} {:>5} {:>7} {:>11} {:>5}  hardening",
+        "name", "E [Pa]", "nu", "rho", "yield [Pa]", "mu"
+    );
+    for name in PRESET_NAMES {
+        if let Ok(m) = Material::preset(name) {
+            println!(
+                "{:<12} {:>11.4e} {:>5} {:>7} {:>11.4e} {:>5}  {}",
+                name,
+                m.youngs,
+                m.nu,
+                m.rho,
+                m.yield_strength,
+                m.mu,
+                hardening_text(&m)
+            );
+        }
+    }
 }
 
 /// `twoball materials`.
@@ -566,6 +606,7 @@ pub fn run_materials(a: MaterialsArgs) -> Result<()> {
         bad.join(", ")
     );
     println!("ok: yes = agrees to the printed digits, ~5% = within 5 % only, NO = neither");
+    print_presets();
     println!("eta readings tried (rows to printed digits / within 5 % / median |rel diff|):");
     for (r, s) in &readings {
         println!(

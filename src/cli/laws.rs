@@ -16,7 +16,7 @@ use serde_json::{json, Map, Value};
 /// Arguments of `twoball laws`.
 #[derive(Debug, Args)]
 pub struct LawsArgs {
-    /// What to do (none: list the laws with their parameters and sources).
+    /// What to do (none: as `list`).
     #[command(subcommand)]
     pub command: Option<LawsCommand>,
 }
@@ -24,12 +24,18 @@ pub struct LawsArgs {
 /// The `laws` subcommands.
 #[derive(Debug, Subcommand)]
 pub enum LawsCommand {
+    /// Every law with its parameters, source, validity range and the DEM codes it exports to.
+    List,
     /// One impact under a normal and a tangential contact law, integrated with error control.
     Run(LawRunArgs),
     /// Fit a law's parameters to e and delta_max over a speed range; write e(v) and DEM input.
     Fit(super::laws_fit::LawFitArgs),
     /// Every law against cached FE over a matrix of metals, speeds and diameters; REPORT.md.
     Bench(LawBenchArgs),
+    /// A law with given parameters as a two-ball deck for LIGGGHTS, LAMMPS, Yade, MercuryDPM.
+    Export(super::laws_export::LawExportArgs),
+    /// Run a deck from `laws fit` or `laws export` in its DEM code, compare with `laws run`.
+    Dem(super::laws_export::LawDemArgs),
 }
 
 /// Arguments of `twoball laws bench`.
@@ -392,12 +398,15 @@ fn print_spec(
     name: &str,
     title: &str,
     source: &str,
-    dem_codes: &str,
+    (dem_codes, validity): (&str, Option<&str>),
     params: &[ParamSpec],
     pair: &ContactPair,
 ) {
     println!("\n  {name:<20} {title}");
     println!("  {:<20} source: {source}", "");
+    if let Some(v) = validity {
+        println!("  {:<20} holds for: {v}", "");
+    }
     println!("  {:<20} DEM codes: {dem_codes}", "");
     for p in params {
         println!(
@@ -414,6 +423,9 @@ fn print_spec(
 /// `twoball laws run` with `registry`.
 pub fn run_with(a: LawRunArgs, registry: &Registry) -> Result<()> {
     let r = run_law(&a, registry)?;
+    if let Some(w) = validity_warning(&a, &r, registry) {
+        eprintln!("warning: {w}");
+    }
     if let (Some(path), Some(i)) = (&a.ball.curve, &r.impact) {
         crate::study::curves::write_law_curve(i, path)?;
     }
@@ -426,6 +438,17 @@ pub fn run_with(a: LawRunArgs, registry: &Registry) -> Result<()> {
         }
     }
     Ok(())
+}
+
+/// The one-line warning when the impact of `r` lies outside the validity range of the law
+/// of `a` (see `twoball laws list`).
+pub fn validity_warning(a: &LawRunArgs, r: &LawRun, registry: &Registry) -> Option<String> {
+    let i = r.impact.as_ref()?;
+    let spec = registry.normal(&a.law).ok()?;
+    let (b1, b2) = &r.bodies;
+    let pair = ContactPair::between(b1, b2, r.mu);
+    spec.validity
+        .warning(spec.name, &pair, &r.params.0, i.delta_max, i.approach_speed)
 }
 
 /// One law of the list as JSON: name, title, source, DEM codes, and each parameter with its
@@ -460,7 +483,11 @@ pub fn list_json(registry: &Registry) -> Result<Value> {
     let pair = ContactPair::between(&b, &b, m.mu);
     Ok(json!({
         "defaults_for": "two copper-fe balls, D = 0.02 m",
-        "normal": registry.normal.iter().map(|s| spec_json(s.name, s.title, s.source, s.dem_codes, s.params, &pair)).collect::<Vec<_>>(),
+        "normal": registry.normal.iter().map(|s| {
+            let mut j = spec_json(s.name, s.title, s.source, s.dem_codes, s.params, &pair);
+            j["validity"] = json!(s.validity.range);
+            j
+        }).collect::<Vec<_>>(),
         "tangential": registry.tangential.iter().map(|s| spec_json(s.name, s.title, s.source, s.dem_codes, s.params, &pair)).collect::<Vec<_>>(),
     }))
 }
@@ -481,24 +508,45 @@ fn list(registry: &Registry) -> Result<()> {
     println!("Contact laws (defaults shown for two copper-fe balls, D = 20 mm)");
     println!("\nNormal laws (--law NAME, --param KEY=VALUE):");
     for s in &registry.normal {
-        print_spec(s.name, s.title, s.source, s.dem_codes, s.params, &pair);
+        print_spec(
+            s.name,
+            s.title,
+            s.source,
+            (s.dem_codes, Some(s.validity.range)),
+            s.params,
+            &pair,
+        );
     }
     println!("\nTangential laws (--tangential NAME, --tparam KEY=VALUE):");
     for s in &registry.tangential {
-        print_spec(s.name, s.title, s.source, s.dem_codes, s.params, &pair);
+        print_spec(
+            s.name,
+            s.title,
+            s.source,
+            (s.dem_codes, None),
+            s.params,
+            &pair,
+        );
     }
     Ok(())
+}
+
+/// Runs one `laws` subcommand against `registry`.
+fn dispatch(command: Option<LawsCommand>, registry: &Registry) -> Result<()> {
+    match command {
+        None | Some(LawsCommand::List) => list(registry),
+        Some(LawsCommand::Run(r)) => run_with(r, registry),
+        Some(LawsCommand::Fit(f)) => super::laws_fit::run(f, registry),
+        Some(LawsCommand::Bench(b)) => bench_with(b, registry),
+        Some(LawsCommand::Export(e)) => super::laws_export::export(e, registry),
+        Some(LawsCommand::Dem(d)) => super::laws_export::dem(d, registry),
+    }
 }
 
 /// `twoball laws …`.
 pub fn run(a: LawsArgs) -> Result<()> {
     let registry = Registry::builtin();
-    match a.command {
-        None => list(&registry),
-        Some(LawsCommand::Run(r)) => run_with(r, &registry),
-        Some(LawsCommand::Fit(f)) => super::laws_fit::run(f, &registry),
-        Some(LawsCommand::Bench(b)) => bench_with(b, &registry),
-    }
+    dispatch(a.command, &registry)
 }
 
 /// Command line of `twoball laws …` alone (for programs that add laws).
@@ -525,12 +573,7 @@ where
             return e.exit_code();
         }
     };
-    let result = match cli.laws.command {
-        None => list(registry),
-        Some(LawsCommand::Run(r)) => run_with(r, registry),
-        Some(LawsCommand::Fit(f)) => super::laws_fit::run(f, registry),
-        Some(LawsCommand::Bench(b)) => bench_with(b, registry),
-    };
+    let result = dispatch(cli.laws.command, registry);
     match result {
         Ok(()) => 0,
         Err(e) => {

@@ -103,7 +103,7 @@ pub fn run(a: LawFitArgs, registry: &Registry) -> Result<()> {
     };
     let fixed = parse_params("--param", &a.param)?;
     let f = fit(&spec, &pair, &b, &b, &obs, &free, &fixed)?;
-    let exports = write_fit_files(
+    let decks = write_fit_files(
         &a.out,
         &FitSetting {
             spec: &spec,
@@ -144,9 +144,17 @@ pub fn run(a: LawFitArgs, registry: &Registry) -> Result<()> {
         );
     }
     println!(
-        "wrote {}/fit.json, e_of_v.csv{}",
+        "wrote {}/fit.json, e_of_v.csv{} (DEM decks default to v_r = {} m/s)",
         a.out.display(),
-        exports.iter().map(|n| format!(", {n}")).collect::<String>()
+        decks
+            .written
+            .iter()
+            .map(|n| format!(", {n}"))
+            .collect::<String>(),
+        decks.reference_speed
     );
+    for r in &decks.refused {
+        println!("  no deck: {r}");
+    }
     Ok(())
 }

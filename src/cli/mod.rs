@@ -12,6 +12,7 @@ mod bench_profile;
 mod bench_study;
 mod damper;
 mod laws;
+mod laws_export;
 mod laws_fit;
 mod mesh;
 mod report;
@@ -110,7 +111,9 @@ where
     match cli.command {
         Command::Analytic(a) => analytic::analytic_json(&a),
         Command::Materials(_) => analytic::materials_json(),
-        Command::Laws(laws::LawsArgs { command: None }) => laws::list_json(&registry),
+        Command::Laws(laws::LawsArgs {
+            command: None | Some(laws::LawsCommand::List),
+        }) => laws::list_json(&registry),
         Command::Laws(laws::LawsArgs {
             command: Some(laws::LawsCommand::Run(r)),
         }) => laws::law_run_json(&r, &registry),

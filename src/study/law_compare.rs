@@ -28,6 +28,9 @@ pub struct LawOutcome {
     pub contact_duration: f64,
     /// Peak normal force, N.
     pub peak_force: f64,
+    /// One line when the impact lies outside the law's validity range (`twoball laws list`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub warning: Option<String>,
 }
 
 /// Integrates every law of `scene.laws` on the balls of `scene` with the velocities (normal,
@@ -70,7 +73,12 @@ pub fn compare_laws(scene: &Scene, touch: &Touch) -> Result<Vec<LawOutcome>> {
             .ok_or_else(|| {
                 Error::Numerical(format!("law {}: the balls do not approach", l.name))
             })?;
+            let spec = registry.normal(&l.name)?;
+            let warning =
+                spec.validity
+                    .warning(spec.name, &pair, &p, i.delta_max, i.approach_speed);
             Ok(LawOutcome {
+                warning,
                 law: l.name.clone(),
                 tangential_law: tangential.clone(),
                 params: p.iter().map(|(k, v)| (k.to_string(), v)).collect(),
@@ -101,6 +109,9 @@ pub fn law_table(laws: &[LawOutcome]) -> String {
             sci(l.contact_duration, 6),
             sci(l.peak_force, 6)
         ));
+    }
+    for w in laws.iter().filter_map(|l| l.warning.as_ref()) {
+        s.push_str(&format!("warning: {w}\n"));
     }
     s
 }

@@ -1,5 +1,6 @@
 #![allow(dead_code)]
-//! External programs the tests drive (gmsh, python3 with meshio and numpy, CalculiX `ccx`).
+//! External programs the tests drive (gmsh, python3 with meshio and numpy, CalculiX `ccx`,
+//! the DEM codes LIGGGHTS `liggghts`, LAMMPS `lmp` and Yade `yade`).
 //! Under CI (`CI=true`, as `.ci/run` is run) a missing program fails the test that needs it;
 //! locally the test is skipped with a line saying what is missing and how to install it.
 
@@ -32,6 +33,16 @@ pub fn gmsh() -> bool {
 /// `ccx` (CalculiX) is installed.
 pub fn ccx() -> bool {
     starts("ccx", &["-v"])
+}
+
+/// The DEM code whose decks are run by `program` (`liggghts`, `lmp`, `yade`) is installed.
+pub fn dem_code(program: &str) -> bool {
+    match program {
+        "yade" => succeeds("yade", &["--version"]),
+        "lmp" => succeeds("lmp", &["-h"]),
+        // LIGGGHTS prints its help and exits 1 (`-log none`: no log.liggghts left behind).
+        p => starts(p, &["-log", "none", "-h"]),
+    }
 }
 
 /// python3 imports every module of `modules` (comma-separated, e.g. "meshio, numpy").

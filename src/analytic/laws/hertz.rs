@@ -53,7 +53,8 @@ pub const SPEC: NormalSpec = NormalSpec {
     name: "hertz",
     title: "Hertz elastic contact, F = (4/3) E* sqrt(R*) delta^(3/2), e = 1",
     source: "H. Hertz, J. reine angew. Math. 92 (1882) 156-171",
-    dem_codes: "LIGGGHTS (hertz, e = 1), MercuryDPM (Hertzian), EDEM (Hertz-Mindlin), Yade",
+    dem_codes: "exported and run: LIGGGHTS (hertz, e = 1), LAMMPS (granular hertz), Yade (Hertz-Mindlin); MercuryDPM (HertzianViscoelastic, not run); EDEM (Hertz-Mindlin)",
+    validity: super::validity::ELASTIC,
     params: &ELASTIC_PARAMS,
     build: |_pair: &ContactPair, params: &Params| {
         Box::new(Hertz {

@@ -43,7 +43,8 @@ pub const SPEC: NormalSpec = NormalSpec {
     name: "hertz-damped",
     title: "Hertz with restitution-based damping (Tsuji form, as LIGGGHTS hertz and EDEM use it)",
     source: "Y. Tsuji, T. Tanaka, T. Ishida, Powder Technol. 71 (1992) 239-250; damping constant as in the LIGGGHTS hertz documentation",
-    dem_codes: "LIGGGHTS (hertz), EDEM (Hertz-Mindlin), MercuryDPM (HertzianViscoelastic, different damping constant), Yade (HM with betan)",
+    dem_codes: "exported and run: LIGGGHTS (hertz), LAMMPS (granular hertz, tsuji damping at an equivalent coefficient), Yade (Hertz-Mindlin with betan, tension = 0 only); MercuryDPM (HertzianViscoelastic, not run); EDEM (Hertz-Mindlin)",
+    validity: super::validity::FITTED,
     params: &[ELASTIC_PARAMS[0], ELASTIC_PARAMS[1], RESTITUTION, TENSION],
     build: |pair: &ContactPair, p: &Params| {
         let l = p.get("e").ln();

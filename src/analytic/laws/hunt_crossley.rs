@@ -69,7 +69,8 @@ pub const SPEC: NormalSpec = NormalSpec {
     name: "hunt-crossley",
     title: "Hunt-Crossley, F = K delta^(3/2) (1 + 3(1 - e)/2 delta_dot/v_r)",
     source: "K. H. Hunt, F. R. E. Crossley, J. Appl. Mech. 42 (1975) 440-445",
-    dem_codes: "none of LIGGGHTS, MercuryDPM, EDEM, Yade (multibody codes: Adams, Chrono)",
+    dem_codes: "none of LIGGGHTS, LAMMPS, Yade, MercuryDPM (multibody codes: Adams, Chrono)",
+    validity: super::validity::NEAR_ELASTIC,
     params: &[ELASTIC_PARAMS[0], ELASTIC_PARAMS[1], RESTITUTION],
     build: |_pair: &ContactPair, p: &Params| {
         Box::new(HuntCrossley {

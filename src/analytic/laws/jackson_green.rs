@@ -94,7 +94,8 @@ pub const SPEC: NormalSpec = NormalSpec {
     name: "jackson-green",
     title: "Jackson-Green elastic-plastic FE fit, Jackson-Green-Marghitu unloading",
     source: "R. L. Jackson, I. Green, J. Tribol. 127 (2005) 343-354; R. L. Jackson, I. Green, D. B. Marghitu, Nonlinear Dyn. 60 (2010) 217-229",
-    dem_codes: "none of LIGGGHTS, MercuryDPM, EDEM, Yade",
+    dem_codes: "none of LIGGGHTS, LAMMPS, Yade, MercuryDPM",
+    validity: super::validity::JACKSON_GREEN,
     params: &[
         ParamSpec {
             key: "S_y",

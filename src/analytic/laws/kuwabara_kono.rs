@@ -36,7 +36,8 @@ pub const SPEC: NormalSpec = NormalSpec {
     name: "kuwabara-kono",
     title: "viscoelastic Hertz, F = K (delta^(3/2) + 3/2 A sqrt(delta) delta_dot)",
     source: "G. Kuwabara, K. Kono, Jpn. J. Appl. Phys. 26 (1987) 1230; N. V. Brilliantov et al., Phys. Rev. E 53 (1996) 5382",
-    dem_codes: "MercuryDPM (HertzianViscoelastic with a dissipation set per contact), Yade (ViscElPhys-type, via user damping)",
+    dem_codes: "exported and run: LAMMPS (granular hertz, viscoelastic damping); not LIGGGHTS-PUBLIC or Yade (Hertz-Mindlin damping scales as delta^1/4)",
+    validity: super::validity::VISCOELASTIC,
     params: &[
         ELASTIC_PARAMS[0],
         ELASTIC_PARAMS[1],

@@ -12,7 +12,8 @@ pub const SPEC: NormalSpec = NormalSpec {
     name: "lankarani-nikravesh",
     title: "Lankarani-Nikravesh, F = K delta^(3/2) (1 + 3(1 - e^2)/4 delta_dot/v_r)",
     source: "H. M. Lankarani, P. E. Nikravesh, J. Mech. Des. 112 (1990) 369-376",
-    dem_codes: "none of LIGGGHTS, MercuryDPM, EDEM, Yade (multibody codes: Adams, Chrono)",
+    dem_codes: "none of LIGGGHTS, LAMMPS, Yade, MercuryDPM (multibody codes: Adams, Chrono)",
+    validity: super::validity::NEAR_ELASTIC,
     params: &[ELASTIC_PARAMS[0], ELASTIC_PARAMS[1], RESTITUTION],
     build: |_pair: &ContactPair, p: &Params| {
         let e = p.get("e");

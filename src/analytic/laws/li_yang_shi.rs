@@ -56,7 +56,8 @@ pub const SPEC: NormalSpec = NormalSpec {
     name: "li-yang-shi",
     title: "three-phase model: Hertz, elastoplastic (slope pi R sigma_p), shifted Hertz recovery",
     source: "Li, Yang & Shi, Shock and Vibration 2019, eqs. 5-30",
-    dem_codes: "none of LIGGGHTS, MercuryDPM, EDEM, Yade",
+    dem_codes: "none of LIGGGHTS, LAMMPS, Yade, MercuryDPM",
+    validity: super::validity::UNSTATED,
     params: &[LIMIT_PRESSURE],
     build: |pair: &ContactPair, p: &Params| {
         Box::new(LiYangShi {

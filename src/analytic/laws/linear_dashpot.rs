@@ -58,7 +58,8 @@ pub const SPEC: NormalSpec = NormalSpec {
     name: "linear-dashpot",
     title: "linear spring-dashpot, F = k delta + c delta_dot, c from e",
     source: "P. A. Cundall, O. D. L. Strack, Geotechnique 29 (1979) 47-65",
-    dem_codes: "LIGGGHTS (hooke), MercuryDPM (LinearViscoelastic), EDEM (linear spring), Yade",
+    dem_codes: "exported and run: LIGGGHTS (hooke/stiffness), LAMMPS (granular hooke, velocity damping), Yade (ViscEl, tension = 0 only); MercuryDPM (LinearViscoelastic, tension = 1, not run); EDEM (linear spring)",
+    validity: super::validity::FITTED,
     params: &[LINEAR_STIFFNESS, RESTITUTION, TENSION],
     build: |pair: &ContactPair, p: &Params| {
         Box::new(LinearDashpot {

@@ -26,11 +26,13 @@ mod registry;
 pub mod tabor_hardening;
 pub mod thornton;
 pub mod thornton_yin;
+pub mod validity;
 pub mod walton_braun;
 
 pub use pair::ContactPair;
 pub use params::{ParamSpec, Params};
 pub use registry::{NormalSpec, Registry, TangentialSpec};
+pub use validity::Validity;
 
 /// The state of the contact at the last maximum of approach (where loading turned into
 /// unloading): the history every hysteretic law needs, with the law's permanent approach

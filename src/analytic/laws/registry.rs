@@ -3,6 +3,7 @@
 
 use super::pair::ContactPair;
 use super::params::{ParamSpec, Params};
+use super::validity::Validity;
 use super::{NormalLaw, TangentialLaw};
 use crate::error::{Error, Result};
 
@@ -17,6 +18,8 @@ pub struct NormalSpec {
     pub source: &'static str,
     /// DEM codes that ship the law (as documented by them), or `none`.
     pub dem_codes: &'static str,
+    /// Where the law holds (range, material class, source) and its check.
+    pub validity: Validity,
     /// Parameters with units, ranges and defaults.
     pub params: &'static [ParamSpec],
     /// Builds the law for a pair from resolved parameters.

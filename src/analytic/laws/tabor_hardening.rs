@@ -106,7 +106,8 @@ pub const SPEC: NormalSpec = NormalSpec {
     name: "tabor-hardening",
     title: "Thornton-type elastic-plastic law with linear strain hardening at Tabor's representative strain 0.2 a/R",
     source: "K. L. Johnson, Contact Mechanics (CUP 1985) sec. 6.2; D. Tabor, The Hardness of Metals (1951); unloading C. Thornton, J. Appl. Mech. 64 (1997) 383",
-    dem_codes: "none of LIGGGHTS, MercuryDPM, EDEM, Yade",
+    dem_codes: "none of LIGGGHTS, LAMMPS, Yade, MercuryDPM",
+    validity: super::validity::UNSTATED,
     params: &[
         ParamSpec {
             key: "c",

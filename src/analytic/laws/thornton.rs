@@ -108,7 +108,8 @@ pub const SPEC: NormalSpec = NormalSpec {
     name: "thornton",
     title: "Thornton elastic-perfectly plastic: Hertz, linear plastic loading at p_y, Hertz unloading with enlarged radius",
     source: "C. Thornton, J. Appl. Mech. 64 (1997) 383-386",
-    dem_codes: "LIGGGHTS (thornton_ning without adhesion), MFIX-DEM variants; not EDEM, MercuryDPM, Yade",
+    dem_codes: "not exported: LIGGGHTS thornton_ning without adhesion unloads with the original radius, not R_p; not LAMMPS, Yade, MercuryDPM",
+    validity: super::validity::PERFECTLY_PLASTIC,
     params: &[LIMIT_PRESSURE],
     build: |pair: &ContactPair, p: &Params| {
         Box::new(Thornton {

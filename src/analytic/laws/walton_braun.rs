@@ -39,7 +39,8 @@ pub const SPEC: NormalSpec = NormalSpec {
     name: "walton-braun",
     title: "hysteretic linear spring, k1 loading, k2 = k1/e^2 unloading",
     source: "O. R. Walton, R. L. Braun, J. Rheol. 30 (1986) 949-980",
-    dem_codes: "LIGGGHTS (hooke/hysteresis), MercuryDPM (LinearPlasticViscoelastic), EDEM (hysteretic spring)",
+    dem_codes: "exported and run: LIGGGHTS (hooke/hysteresis, at one speed only: its unloading stiffness grows with delta_max); MercuryDPM (LinearPlasticViscoelastic, one speed, not run); not LAMMPS or Yade",
+    validity: super::validity::FITTED,
     params: &[LINEAR_STIFFNESS, RESTITUTION],
     build: |_pair: &ContactPair, p: &Params| {
         let k1 = p.get("k");

@@ -27,6 +27,8 @@ pub struct LawPoint {
     pub peak_force: f64,
     /// Contact history, rows [t (s), δ (m), F (N)], at most [`CURVE_ROWS`].
     pub curve: Vec<[f64; 3]>,
+    /// Why the point lies outside the law's validity range (`twoball laws list`), if it does.
+    pub outside: Option<String>,
 }
 
 /// One tangential law's answer for one oblique point.
@@ -96,6 +98,11 @@ pub fn laws_on_point(registry: &Registry, p: &HeadOnPoint) -> Result<Vec<LawPoin
         .iter()
         .map(|s| {
             let i = head_on_law(registry, s.name, p, p.speed)?;
+            let (_, pair) = pair_of(p.material, p.diameter)?;
+            let params = crate::analytic::laws::Params::resolve(s.name, s.params, &[], &pair)?;
+            let outside = s
+                .validity
+                .warning(s.name, &pair, &params, i.delta_max, p.speed);
             let rows: Vec<[f64; 3]> = i.history.iter().map(|h| [h.t, h.delta, h.force]).collect();
             Ok(LawPoint {
                 law: s.name.to_string(),
@@ -104,6 +111,7 @@ pub fn laws_on_point(registry: &Registry, p: &HeadOnPoint) -> Result<Vec<LawPoin
                 contact_duration: i.contact_duration,
                 peak_force: i.peak_force,
                 curve: thin(&rows, CURVE_ROWS),
+                outside,
             })
         })
         .collect()

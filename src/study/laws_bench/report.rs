@@ -343,7 +343,9 @@ fn errors_section(s: &mut String, r: &BenchResults) {
     let _ = writeln!(s, "## Errors over speed\n");
     let _ = writeln!(
         s,
-        "(law − FE)/FE in per cent, per metal and diameter, columns the relative speeds (m/s).\n"
+        "(law − FE)/FE in per cent, per metal and diameter, columns the relative speeds (m/s); \
+         † marks a point outside the law's validity range (`twoball laws list`; section \"Laws outside \
+         their range\").\n"
     );
     for metal in &r.matrix.metals {
         for &d in &r.matrix.diameters {
@@ -363,7 +365,12 @@ fn errors_section(s: &mut String, r: &BenchResults) {
                     let _ = write!(s, "| {law} |");
                     for h in &pts {
                         let e = relative_errors(h, k).map_or(f64::NAN, |x| x[q]);
-                        let _ = write!(s, " {} |", pct(e));
+                        let mark = if h.laws.get(k).is_some_and(|l| l.outside.is_some()) {
+                            " †"
+                        } else {
+                            ""
+                        };
+                        let _ = write!(s, " {}{mark} |", pct(e));
                     }
                     let _ = writeln!(s);
                 }
@@ -371,6 +378,41 @@ fn errors_section(s: &mut String, r: &BenchResults) {
             }
         }
     }
+}
+
+/// Per law, the head-on points outside its validity range: how many, and the warning at
+/// the fastest of them.
+fn validity_section(s: &mut String, r: &BenchResults) {
+    let _ = writeln!(s, "## Laws outside their range\n");
+    let _ = writeln!(
+        s,
+        "Each law's validity range as its source states it (`twoball laws list`); a point outside \
+         it is marked † in the error tables.\n"
+    );
+    let _ = writeln!(
+        s,
+        "| law | points outside / all | at the fastest such point |"
+    );
+    let _ = writeln!(s, "|---|---|---|");
+    for (k, law) in r.normal_laws.iter().enumerate() {
+        let mut flagged: Vec<(f64, &str)> = r
+            .head_on
+            .iter()
+            .filter_map(|h| {
+                let o = h.laws.get(k)?.outside.as_deref()?;
+                Some((h.point.speed, o))
+            })
+            .collect();
+        flagged.sort_by(|a, b| a.0.total_cmp(&b.0));
+        let last = flagged.last().map_or("-", |x| x.1);
+        let _ = writeln!(
+            s,
+            "| {law} | {} / {} | {last} |",
+            flagged.len(),
+            r.head_on.len()
+        );
+    }
+    let _ = writeln!(s);
 }
 
 /// The speeds (m/s) of `pts` at which law `k` holds e within [`HOLDS_E`], as ranges.
@@ -789,6 +831,7 @@ pub fn report_text(
     matrix_section(&mut s, r);
     bars_section(&mut s, r);
     ranking_section(&mut s, rank);
+    validity_section(&mut s, r);
     failures_section(&mut s, r);
     diameter_section(&mut s, r);
     oblique_section(&mut s, r);

@@ -1,0 +1,92 @@
+//! Running a deck in the installed DEM code and comparing its collision with the law's own
+//! (`twoball laws run` of the same law and parameters).
+
+use super::trace::{read, DemOutcome};
+use super::Code;
+use crate::analytic::law_fit::predict;
+use crate::analytic::laws::{NormalSpec, Params};
+use crate::analytic::Body;
+use crate::error::{Error, Result};
+use crate::material::Material;
+use std::path::Path;
+use std::process::Command;
+
+/// The program that runs `code`'s decks.
+pub fn program(code: Code) -> Option<&'static str> {
+    match code {
+        Code::Liggghts => Some("liggghts"),
+        Code::Lammps => Some("lmp"),
+        Code::Yade => Some("yade"),
+        Code::MercuryDpm => None,
+    }
+}
+
+/// Runs the deck `dir/<code file>` unedited at relative speed `speed` (m/s), inside `dir`
+/// (the deck writes `dir/trace.txt`), and reads the trace for balls of diameter `d` (m).
+///
+/// Errors: MercuryDPM (not run here), a program that cannot be started or exits non-zero
+/// (its last output lines in the message), a trace that cannot be read.
+pub fn run_deck(code: Code, dir: &Path, d: f64, speed: f64, tensile: bool) -> Result<DemOutcome> {
+    let exe = program(code).ok_or_else(|| {
+        Error::External(format!(
+            "{} decks are not run here (no installed program)",
+            code.name()
+        ))
+    })?;
+    let v = format!("{speed:.12e}");
+    let mut cmd = Command::new(exe);
+    match code {
+        Code::Liggghts => cmd.args(["-in", code.file(), "-var", "vr", &v, "-log", "none"]),
+        Code::Lammps => cmd.args(["-in", code.file(), "-var", "vr", &v, "-log", "none"]),
+        _ => cmd.args(["-n", "-x", code.file(), &v]),
+    };
+    let trace = dir.join("trace.txt");
+    let _ = std::fs::remove_file(&trace);
+    let out = cmd.current_dir(dir).output().map_err(|e| {
+        Error::External(format!(
+            "{exe}: cannot start ({e}); scripts/setup.sh installs it"
+        ))
+    })?;
+    if !out.status.success() || !trace.exists() {
+        let text = String::from_utf8_lossy(&out.stdout).into_owned()
+            + &String::from_utf8_lossy(&out.stderr);
+        let tail: Vec<&str> = text
+            .lines()
+            .filter(|l| !l.contains("mca_base_component"))
+            .rev()
+            .take(4)
+            .collect();
+        return Err(Error::External(format!(
+            "{exe} on {}: exit {:?}: {}",
+            dir.join(code.file()).display(),
+            out.status.code(),
+            tail.into_iter().rev().collect::<Vec<_>>().join(" | ")
+        )));
+    }
+    let text = std::fs::read_to_string(&trace).map_err(|e| Error::io(&trace, e))?;
+    read(&text, &trace.display().to_string(), d, speed, tensile)
+}
+
+/// e, δ_max (m) and contact duration (s) of `twoball laws run` for `spec` with `params` on
+/// two balls of `material` and diameter `d` (m) at relative speed `speed` (m/s).
+pub fn law_outcome(
+    spec: &NormalSpec,
+    params: &Params,
+    material: &Material,
+    d: f64,
+    speed: f64,
+) -> Result<DemOutcome> {
+    let b = Body::ball(*material, d, "ball")?;
+    let pair = crate::analytic::laws::ContactPair::between(&b, &b, material.mu);
+    let (e, delta_max, contact_duration) = predict(spec, &pair, params, &b, &b, speed)?;
+    Ok(DemOutcome {
+        e,
+        delta_max,
+        contact_duration,
+    })
+}
+
+/// Whether a law with `params` may pull (its contact then ends at zero overlap).
+pub fn tensile(spec: &NormalSpec, params: &Params) -> bool {
+    spec.params.iter().any(|p| p.key == "tension") && params.get("tension") >= 0.5
+}
