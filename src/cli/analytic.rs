@@ -203,8 +203,12 @@ pub(super) fn bodies(a: &AnalyticArgs) -> Result<(Body, Body)> {
         ("--diameter2", a.diameter2),
     ] {
         if let Some(d) = d {
-            if !(d.is_finite() && d > 0.0) {
-                return Err(Error::invalid(flag, d, "> 0 m, finite"));
+            if !crate::scene::DIAMETER_RANGE.contains(&d) {
+                return Err(Error::invalid(
+                    flag,
+                    d,
+                    "1e-4 <= diameter <= 1 m, as in a scene",
+                ));
             }
         }
     }
@@ -396,8 +400,12 @@ fn collide_args(a: &AnalyticArgs) -> Result<(Collision, Body, Body)> {
         ("--v1t", a.v1t),
         ("--v2t", a.v2t),
     ] {
-        if !v.is_finite() {
-            return Err(Error::invalid(flag, v, "a finite speed in m/s"));
+        if !(v.abs() <= crate::scene::SPEED_MAX) {
+            return Err(Error::invalid(
+                flag,
+                v,
+                "|speed| <= 1000 m/s, as in a scene",
+            ));
         }
     }
     let mu = match a.mu {

@@ -40,6 +40,7 @@ pub mod damper_plots;
 pub mod error_estimate;
 pub mod error_honesty;
 pub mod figures;
+pub mod ignored;
 pub mod interrupt;
 pub mod law_compare;
 pub mod law_fit_files;

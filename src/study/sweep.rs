@@ -996,6 +996,9 @@ fn run_cases(
         other => other,
     })?;
     progress.finish();
+    // Markers are gone with their cases: an empty folder of them says nothing (another
+    // shard's live markers keep it).
+    let _ = std::fs::remove_dir(opts.out.join("running"));
     // One writer only: shards of an array leave the CSV to an unsharded run or the report.
     let (in_csv, failed) = if opts.shard.count == 1 {
         write_csv(&opts.out, cases)?
