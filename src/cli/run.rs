@@ -4,11 +4,10 @@
 
 use crate::error::{Error, Result};
 use crate::scene::{Override, Scene, DEFAULT_SCENE};
-use crate::study::error_estimate::{LadderPlan, DEFAULT_MAX_REFINEMENTS};
+use crate::study::ladder::{LadderPlan, DEFAULT_MAX_REFINEMENTS};
+use crate::study::scene_estimate::{default_plan, run_scene_alone, run_scene_with_estimate};
 use crate::study::simulate::RunOptions;
-use crate::study::single::{
-    default_plan, run_scene_alone, run_scene_with_estimate, side_by_side, write_outputs,
-};
+use crate::study::single::{side_by_side, write_outputs};
 use clap::Args;
 use std::collections::HashMap;
 use std::ffi::OsString;

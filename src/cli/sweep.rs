@@ -1,6 +1,6 @@
 //! `twoball sweep FILE --out DIR [--jobs N] [--shard I/N]`: a parameter sweep such as the
 //! paper's ANSYS study, resumable and shardable; each impacting case runs the FE model
-//! ([`crate::study::single::sweep_case`]) beside the analytical one. `--slurm` writes the
+//! ([`crate::study::scene_estimate::sweep_case`]) beside the analytical one. `--slurm` writes the
 //! sweep as a Slurm job array instead; `twoball sweep status DIR` tells where a sweep stands.
 
 use crate::error::{Error, Result};
@@ -145,7 +145,8 @@ pub fn run(a: SweepArgs) -> Result<()> {
         mesh: a.mesh.clone(),
     };
     let tolerance = spec.tolerance;
-    let runner = move |s: &crate::scene::Scene| crate::study::single::sweep_case_to(s, tolerance);
+    let runner =
+        move |s: &crate::scene::Scene| crate::study::scene_estimate::sweep_case_to(s, tolerance);
     let fe: crate::study::sweep::FeRunner<'_> = &runner;
     let s = run_sweep(&spec, &opts, Some(fe))?;
     let csv = if s.csv_written {

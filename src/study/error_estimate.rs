@@ -1,22 +1,13 @@
-//! A run's own error bar: the same scene on a ladder of meshes (each level halves the pole and
-//! the bulk element size of the one before), and the error estimate of e, δ_max and the
-//! contact duration from it ([`super::convergence`]).
-//!
-//! The ladder is model-agnostic: [`run_ladder`] takes a closure `run(level)` that runs the
-//! scene on mesh level `level` (0 the scene's own mesh, −1 the next coarser, +1 the next finer)
-//! and returns its [`LevelOutcome`]; the 3D model's closure is [`scene_at_level`] followed by
-//! a run, and any other model plugs in the same way.
+//! A run's own error bar, as results.json writes it: the estimate of e, δ_max and the contact
+//! duration from the runs of a mesh ladder ([`crate::study::convergence`]; the ladder itself is
+//! [`crate::study::ladder`]), the levels that ran and how the estimate was obtained.
 
-pub use super::converged_scene::EstimateMethod;
-use super::convergence::{estimate, Estimate};
 use crate::error::{Error, Result};
-use crate::scene::{MeshSettings, Scene};
+use crate::study::convergence::{estimate, Estimate};
 use serde::Serialize;
 
 /// The refinement ratio of the ladder: each level halves the element sizes.
 pub const LADDER_RATIO: f64 = 2.0;
-/// The default cap on levels finer than the scene's own mesh with `--tolerance`.
-pub const DEFAULT_MAX_REFINEMENTS: u32 = 2;
 
 /// What one mesh level of the ladder produced.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
@@ -41,7 +32,7 @@ pub struct LevelOutcome {
     pub phase: Option<PhaseSummary>,
 }
 
-/// What a level's phase ensemble adds ([`super::phase_ensemble`]).
+/// What a level's phase ensemble adds ([`crate::study::phase_ensemble`]).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct PhaseSummary {
     /// Meshes of the ensemble (the scene's own and M − 1 with scaled pole sizes).
@@ -54,24 +45,6 @@ pub struct PhaseSummary {
     pub e_min: f64,
     /// Largest e of the members, -.
     pub e_max: f64,
-}
-
-/// Which levels to run.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
-#[serde(rename_all = "snake_case", tag = "kind")]
-pub enum LadderPlan {
-    /// Levels −1 and 0: the order assumed (twice the cost of one run in 3D, less in 2D).
-    TwoLevels,
-    /// Levels −2, −1 and 0: the observed order.
-    ThreeLevels,
-    /// Levels −1, 0, then +1, +2, … until the relative estimate of e is at most `tolerance`,
-    /// or `max_refinements` levels beyond 0 have run.
-    Tolerance {
-        /// Target relative error estimate of e, -.
-        tolerance: f64,
-        /// Cap on levels finer than 0.
-        max_refinements: u32,
-    },
 }
 
 /// The error estimate written as results.json's `error_estimate`.
@@ -182,176 +155,37 @@ impl ErrorEstimate {
     }
 }
 
+/// How a run's error estimate was obtained (results.json `error_estimate.method`).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+#[serde(rename_all = "snake_case", tag = "kind")]
+pub enum EstimateMethod {
+    /// The scene's own mesh ladder: each level halves its pole and bulk sizes.
+    SceneLadder {
+        /// Why the banded family did not run with `--tolerance`: the scene is one it does
+        /// not cover, or the scene's own levels −1 and 0 already met a tolerance of 2 % or
+        /// looser; None when it was not asked for.
+        #[serde(skip_serializing_if = "Option::is_none")]
+        why_not_banded: Option<String>,
+    },
+    /// The banded, mass-scaled family of [`crate::study::phase_ensemble::converged_head_on`], sized
+    /// from the physics.
+    BandedFamily {
+        /// Surface rings at the contact edge split this many times, -.
+        band_split: usize,
+        /// The contact edge the band is centred on, m.
+        band_edge_m: f64,
+        /// Meshes per level (phases of the rings), -.
+        meshes_per_level: usize,
+        /// Mass-scaling budget of every run (added mass over the section's), -.
+        mass_scaling: f64,
+        /// The bias bound of that budget, relative, in every bar, -.
+        mass_scaling_bias: f64,
+        /// CPU time of all the family's runs, s.
+        cpu_time_s: f64,
+    },
+}
+
 /// True when the relative estimate of `e` is at most `tolerance`.
 fn meets(e: &Estimate, tolerance: f64) -> bool {
     e.relative_error.is_some_and(|r| r <= tolerance)
-}
-
-/// Runs the ladder `plan` with `run(level)` and returns the estimate; the last run is the
-/// finest. Errors of `run` pass through (with the level named).
-pub fn run_ladder(
-    plan: LadderPlan,
-    mut run: impl FnMut(i32) -> Result<LevelOutcome>,
-) -> Result<ErrorEstimate> {
-    let mut at = |level: i32| run(level).map_err(|e| at_level(e, level));
-    match plan {
-        LadderPlan::TwoLevels => ErrorEstimate::from_runs(vec![at(-1)?, at(0)?], None),
-        LadderPlan::ThreeLevels => ErrorEstimate::from_runs(vec![at(-2)?, at(-1)?, at(0)?], None),
-        LadderPlan::Tolerance {
-            tolerance,
-            max_refinements,
-        } => {
-            let mut runs = vec![at(-1)?, at(0)?];
-            loop {
-                let est = ErrorEstimate::from_runs(runs.clone(), Some(tolerance))?;
-                let finest = runs.last().map_or(0, |r| r.level);
-                if est.tolerance_met == Some(true) || finest >= max_refinements as i32 {
-                    return Ok(est);
-                }
-                runs.push(at(finest + 1)?);
-            }
-        }
-    }
-}
-
-/// `e` with its message prefixed by the ladder level (field errors already name theirs).
-pub(crate) fn at_level(e: Error, level: i32) -> Error {
-    let tag = |m: String| format!("mesh level {level}: {m}");
-    match e {
-        Error::Numerical(m) => Error::Numerical(tag(m)),
-        Error::Parse(m) => Error::Parse(tag(m)),
-        Error::External(m) => Error::External(tag(m)),
-        other => other,
-    }
-}
-
-/// The scene with every built-in mesh scaled to ladder level `level`: pole and bulk sizes
-/// times 2^−level. Fails for a mesh read from a file, or when a coarser level's bulk size
-/// would exceed the ball's radius (the mesher's limit).
-pub fn scene_at_level(scene: &Scene, level: i32) -> Result<Scene> {
-    let scale = LADDER_RATIO.powi(-level);
-    let mut s = scene.clone();
-    for (name, ball) in [("ball1", &mut s.ball1), ("ball2", &mut s.ball2)] {
-        match &mut ball.mesh {
-            MeshSettings::File { .. } => {
-                return Err(Error::Parse(format!(
-                    "{name}.mesh.file is set: an error estimate needs the built-in mesher, \
-                     whose sizes the mesh ladder scales"
-                )))
-            }
-            MeshSettings::Builtin { size, pole_size } => {
-                *size *= scale;
-                *pole_size *= scale;
-                if *size > ball.diameter / 2.0 {
-                    return Err(Error::invalid(
-                        format!("{name}.mesh.size at mesh level {level}"),
-                        *size,
-                        format!(
-                            "<= radius {} m: this mesh has no coarser level; use a finer \
-                             ball mesh or --tolerance (which refines)",
-                            ball.diameter / 2.0
-                        ),
-                    ));
-                }
-            }
-        }
-    }
-    Ok(s)
-}
-
-/// Ball 1's (pole, bulk) sizes of a scene's built-in mesh, m (zeros for a mesh file).
-pub fn mesh_sizes(scene: &Scene) -> (f64, f64) {
-    match scene.ball1.mesh {
-        MeshSettings::Builtin { size, pole_size } => (pole_size, size),
-        MeshSettings::File { .. } => (0.0, 0.0),
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    /// A manufactured model: f(h) = f0 (1 + c h²) with h = 2^−level.
-    fn model(level: i32) -> Result<LevelOutcome> {
-        let h = 2f64.powi(-level);
-        let f = |f0: f64, c: f64| f0 * (1.0 + c * h * h);
-        Ok(LevelOutcome {
-            level,
-            pole_size: 1e-4 * h,
-            size: 3e-3 * h,
-            e: f(0.3190, 0.02),
-            delta_max: f(1.74e-5, -0.03),
-            contact_duration: f(5.9e-5, 0.01),
-            wall_time_s: 0.0,
-            phase: None,
-        })
-    }
-
-    #[test]
-    fn two_levels_run_the_scene_mesh_and_the_next_coarser() {
-        let mut asked = Vec::new();
-        let est = run_ladder(LadderPlan::TwoLevels, |l| {
-            asked.push(l);
-            model(l)
-        })
-        .unwrap();
-        assert_eq!(asked, [-1, 0]);
-        // Order 2 assumed and true: the extrapolation is exact.
-        assert!((est.e.extrapolated - 0.3190).abs() < 1e-14);
-        assert!((est.delta_max.extrapolated - 1.74e-5).abs() < 1e-19);
-        assert_eq!(est.meshes.len(), 2);
-        assert!(est.summary().contains("p = 2 assumed"));
-    }
-
-    #[test]
-    fn three_levels_observe_the_order() {
-        let est = run_ladder(LadderPlan::ThreeLevels, model).unwrap();
-        for q in [&est.e, &est.delta_max, &est.contact_duration] {
-            assert!((q.observed_order.unwrap() - 2.0).abs() < 1e-6, "{q:?}");
-        }
-    }
-
-    #[test]
-    fn a_tolerance_refines_until_met_or_capped() {
-        // e = f0 (1 + 0.02·4^−l): the GCI of levels (l−2, l−1, l) is 1.25·0.015·4^{1−l}/3 of
-        // f0, 0.625 %, 0.156 %, 0.039 % for l = 1, 2, 3: 0.1 % is met at level 3.
-        let plan = |tolerance, max_refinements| LadderPlan::Tolerance {
-            tolerance,
-            max_refinements,
-        };
-        let est = run_ladder(plan(1e-3, 5), model).unwrap();
-        let levels: Vec<i32> = est.meshes.iter().map(|m| m.level).collect();
-        assert_eq!(levels, [-1, 0, 1, 2, 3]);
-        assert_eq!(est.tolerance_met, Some(true));
-        assert!(est.e.relative_error.unwrap() <= 1e-3);
-        let est = run_ladder(plan(1e-5, 1), model).unwrap();
-        assert_eq!(est.meshes.last().unwrap().level, 1);
-        assert_eq!(est.tolerance_met, Some(false));
-        assert!(est.summary().contains("NOT met"));
-    }
-
-    #[test]
-    fn a_failing_level_is_named() {
-        let err = run_ladder(LadderPlan::TwoLevels, |l| {
-            if l < 0 {
-                Err(Error::Numerical("boom".into()))
-            } else {
-                model(l)
-            }
-        })
-        .unwrap_err();
-        assert!(err.to_string().contains("mesh level -1"), "{err}");
-    }
-
-    #[test]
-    fn levels_scale_both_sizes_and_stop_at_the_radius() {
-        let s = Scene::default();
-        let (p0, h0) = mesh_sizes(&s);
-        let (p, h) = mesh_sizes(&scene_at_level(&s, 1).unwrap());
-        assert_eq!((p, h), (p0 / 2.0, h0 / 2.0));
-        let (p, h) = mesh_sizes(&scene_at_level(&s, -1).unwrap());
-        assert_eq!((p, h), (p0 * 2.0, h0 * 2.0));
-        let err = scene_at_level(&s, -2).unwrap_err().to_string();
-        assert!(err.contains("ball1.mesh.size at mesh level -2"), "{err}");
-    }
 }

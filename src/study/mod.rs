@@ -1,6 +1,7 @@
 //! The two-ball study: FE beside the analytical model for one scene or for a whole sweep.
 //!
 //! - [`outcome`]: the quantities both models produce, and the analytical answer for a scene;
+//! - [`case`]: a finished FE run as sweep and bench records hold it;
 //! - [`phase_ensemble`]: the section model's converged head-on answer, a mean over ring phases;
 //! - [`bench`]: run time against error on a mesh/element/time-step ladder;
 //! - [`bench_kernel`]: the explicit step's cost per element, threads, determinism;
@@ -32,6 +33,7 @@ pub mod bench;
 pub mod bench_kernel;
 pub mod bench_machine;
 pub mod bench_profile;
+pub mod case;
 pub mod converged_scene;
 pub mod convergence;
 pub mod cost;
@@ -41,6 +43,7 @@ pub mod error_estimate;
 pub mod error_honesty;
 pub mod figures;
 pub mod interrupt;
+pub mod ladder;
 pub mod law_compare;
 pub mod law_fit_files;
 pub mod laws_bench;
@@ -51,6 +54,7 @@ pub mod phase_ensemble;
 pub mod plots;
 pub mod progress;
 pub mod report;
+pub mod scene_estimate;
 pub mod similarity;
 pub mod simulate;
 pub mod simulate_section;

@@ -1,10 +1,10 @@
 //! The verification report: tables and the paper's Figures 6-10 regenerated from a finished
 //! sweep folder, written as Markdown with its CSV and SVG files beside it.
 
-use super::plots::{Chart, Series, Style};
-use super::sweep::{read_records, CaseRecord, Status, SweepSpec};
 use crate::atomic::{ensure_dir, write_atomic};
 use crate::error::{Error, Result};
+use crate::study::plots::{Chart, Series, Style};
+use crate::study::sweep::{read_records, CaseRecord, Status, SweepSpec};
 use std::fmt::Write as _;
 use std::path::Path;
 
@@ -148,7 +148,7 @@ pub fn write_report(
     ensure_dir(&fig_dir)?;
     let mut figures: Vec<String> = Vec::new();
     // The CSV from the finished case files (also while a sweep is running or after a kill).
-    let (csv, _, _) = super::sweep::csv_text(dir, &cases);
+    let (csv, _, _) = crate::study::sweep::csv_text(dir, &cases);
     write_atomic(fig_dir.join("sweep.csv"), csv.as_bytes())?;
 
     let mut md = String::new();
@@ -188,9 +188,9 @@ pub fn write_report(
         n_none,
         n_fail
     );
-    let size = |s: super::sweep::Size| match s {
-        super::sweep::Size::Absolute(m) => format!("{} mm", m * 1000.0),
-        super::sweep::Size::PerDiameter(f) => format!("D/{}", (1.0 / f).round()),
+    let size = |s: crate::study::sweep::Size| match s {
+        crate::study::sweep::Size::Absolute(m) => format!("{} mm", m * 1000.0),
+        crate::study::sweep::Size::PerDiameter(f) => format!("D/{}", (1.0 / f).round()),
     };
     let _ = writeln!(
         w,

@@ -6,12 +6,6 @@
 //! Frames: the section's axis z is the contact frame's x (the line of centres, from ball 1
 //! towards ball 2), and the run is in the pair's centre-of-mass frame, like the 3D models.
 
-use super::outcome::{dissipation_factor, Outcome};
-use super::progress::{Bar, Mode};
-use super::simulate::{
-    HistoryRow, Kinematics, Reduction, RunOptions, Savings, Simulation, DEFAULT_HOLD_FRACTION,
-};
-use super::snapshots::Snapshots;
 use crate::error::{Error, Result};
 use crate::fe::axisym::element::QuadFormulation;
 use crate::fe::axisym::impact::{HeadOn, ImpactRow, OtherBall, PlaneContact, Target, WallBlock};
@@ -20,6 +14,12 @@ use crate::fe::solver::subcycle::{SubcycleReport, Subcycling};
 use crate::fe::Formulation;
 use crate::mesh::meridian::{ball, block, BlockSpec, MeridianMesh, SectionSpec};
 use crate::scene::{BallScene, MeshSettings, PlaneEnforcement, Scene, Switch, Touch};
+use crate::study::outcome::{dissipation_factor, Outcome};
+use crate::study::progress::{Bar, Mode};
+use crate::study::simulate::{
+    HistoryRow, Kinematics, Reduction, RunOptions, Savings, Simulation, DEFAULT_HOLD_FRACTION,
+};
+use crate::study::snapshots::Snapshots;
 use std::time::Instant;
 
 /// What the section run needs beyond the scene: the kinematics at touch, the analytical
@@ -232,7 +232,7 @@ pub(super) fn simulate_section(run: SectionRun<'_>, opts: &RunOptions) -> Result
     };
     let result = h.run_observed(&mut |solver, last| {
         let t = solver.time();
-        if super::interrupt::requested() {
+        if crate::study::interrupt::requested() {
             return Err(Error::Interrupted(format!(
                 "at t = {t:.3e} s of about {expected_end:.3e} s"
             )));
@@ -244,7 +244,7 @@ pub(super) fn simulate_section(run: SectionRun<'_>, opts: &RunOptions) -> Result
         Ok(())
     });
     bar.finish();
-    let r = result.map_err(super::simulate::advice)?;
+    let r = result.map_err(crate::study::simulate::advice)?;
     let history: Vec<HistoryRow> = r.history.iter().map(|row| history_row(row, &run)).collect();
     let frame = run.touch.frame;
     let v_cm = run.kin.v_cm;
