@@ -8,8 +8,10 @@
 
 use twoball::fe::axisym::impact::{HeadOn, Target};
 use twoball::mesh::meridian::{ladder_ball, MeridianMesh};
-use twoball::study::phase_band::{banded_mesh, contact_edge, SIZING_PER_EDGE};
-use twoball::study::phase_ensemble::{converged_head_on, ring_ratio, HeadOnCase, PhasePlan};
+use twoball::study::convergence::phase_band::{banded_mesh, contact_edge, SIZING_PER_EDGE};
+use twoball::study::convergence::phase_ensemble::{
+    converged_head_on, ring_ratio, HeadOnCase, PhasePlan,
+};
 
 const D: f64 = 0.02;
 

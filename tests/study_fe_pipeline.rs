@@ -9,7 +9,7 @@ mod hertz;
 use std::path::Path;
 use twoball::analytic::{Body, HertzPair};
 use twoball::scene::{approach, Approach, Override, Scene, DEFAULT_SCENE};
-use twoball::study::simulate::{simulate, Reduction, RunOptions, Simulation};
+use twoball::study::run::simulate::{simulate, Reduction, RunOptions, Simulation};
 
 /// The default scene on the 3D model (`auto-3d`) with dotted-path overrides.
 fn scene(sets: &[&str]) -> Scene {
@@ -24,7 +24,7 @@ fn run(s: &Scene) -> Simulation {
     let Approach::Impact(t) = approach(s).unwrap() else {
         panic!("no impact")
     };
-    let (an, _) = twoball::study::outcome::analytic_outcome(s, &t).unwrap();
+    let (an, _) = twoball::study::records::outcome::analytic_outcome(s, &t).unwrap();
     simulate(
         s,
         &t,
@@ -210,7 +210,7 @@ fn phase_totals_belong_to_the_run() {
     let Approach::Impact(t) = approach(&s).unwrap() else {
         panic!("no impact")
     };
-    let (an, _) = twoball::study::outcome::analytic_outcome(&s, &t).unwrap();
+    let (an, _) = twoball::study::records::outcome::analytic_outcome(&s, &t).unwrap();
     let profiled = || {
         simulate(
             &s,

@@ -14,9 +14,9 @@
 
 use std::path::Path;
 use twoball::scene::{Override, Scene, DEFAULT_SCENE};
-use twoball::study::converged_scene::{family_case, plan};
-use twoball::study::phase_band::banded_ensemble_at;
-use twoball::study::phase_ensemble::converged_head_on;
+use twoball::study::convergence::converged_scene::{family_case, plan};
+use twoball::study::convergence::phase_band::banded_ensemble_at;
+use twoball::study::convergence::phase_ensemble::converged_head_on;
 
 #[test]
 #[ignore]

@@ -11,7 +11,7 @@ use crate::atomic::write_atomic;
 use crate::damper::decay::{cycle_ratios, envelope_fit, peaks};
 use crate::damper::run::CaseOutcome;
 use crate::error::Result;
-use crate::study::plots::{Chart, Series, Style};
+use crate::study::common::plots::{Chart, Series, Style};
 use std::f64::consts::PI;
 use std::path::Path;
 

@@ -1,16 +1,20 @@
 //! A scene's run with its error bar: the default ladder of a head-on section scene (levels −1
 //! and 0, each a phase ensemble), a ladder plan, or `--tolerance` (the scene's own levels when
-//! they meet it, else the banded family of [`crate::study::converged_scene`]); and a sweep case's FE
+//! they meet it, else the banded family of [`crate::study::convergence::converged_scene`]); and a sweep case's FE
 //! run the way `twoball run` runs it.
 
 use crate::error::{Error, Result};
 use crate::scene::{approach, Approach, MeshSettings, Scene};
-use crate::study::converged_scene::{converge_report, family_case};
-use crate::study::error_estimate::{ErrorEstimate, EstimateMethod, LevelOutcome, PhaseSummary};
-use crate::study::ladder::{at_level, mesh_sizes, run_ladder, scene_at_level, LadderPlan};
-use crate::study::phase_ensemble::{ring_ratio, HeadOnCase, PhaseMean};
-use crate::study::simulate::{choose_reduction, Reduction, RunOptions};
-use crate::study::single::{run_scene, take_phase_mean, RunReport};
+use crate::study::convergence::converged_scene::{converge_report, family_case};
+use crate::study::convergence::ladder::{
+    at_level, mesh_sizes, run_ladder, scene_at_level, LadderPlan,
+};
+use crate::study::convergence::phase_ensemble::{ring_ratio, HeadOnCase, PhaseMean};
+use crate::study::records::error_estimate::{
+    ErrorEstimate, EstimateMethod, LevelOutcome, PhaseSummary,
+};
+use crate::study::run::scene::{run_scene, take_phase_mean, RunReport};
+use crate::study::run::simulate::{choose_reduction, Reduction, RunOptions};
 use std::time::Instant;
 
 /// The ladder a run of `scene` gets by default: the axisymmetric model's runs are cheap, so a
@@ -50,7 +54,9 @@ pub fn run_scene_alone(scene: &Scene, opts: &RunOptions) -> Result<RunReport> {
     if let (true, Some((plastic, kinetic))) = (section, energies) {
         report
             .warnings
-            .extend(crate::study::warnings::single_ring_phase(plastic, kinetic));
+            .extend(crate::study::records::warnings::single_ring_phase(
+                plastic, kinetic,
+            ));
     }
     Ok(report)
 }
@@ -58,17 +64,20 @@ pub fn run_scene_alone(scene: &Scene, opts: &RunOptions) -> Result<RunReport> {
 /// The FE runner of a sweep case: a head-on case on the section as `twoball run` runs it
 /// (its default ladder, or with `tolerance` as `--tolerance` does; the result the finest
 /// level's phase mean, the wall time the whole estimate's, `e_error` its bar), any other
-/// case as one run ([`crate::study::simulate::sweep_case`]).
+/// case as one run ([`crate::study::run::simulate::sweep_case`]).
 ///
-/// Errors: as [`run_scene_with_estimate`] and [`crate::study::simulate::sweep_case`].
-pub fn sweep_case_to(scene: &Scene, tolerance: Option<f64>) -> Result<crate::study::case::FeCase> {
+/// Errors: as [`run_scene_with_estimate`] and [`crate::study::run::simulate::sweep_case`].
+pub fn sweep_case_to(
+    scene: &Scene,
+    tolerance: Option<f64>,
+) -> Result<crate::study::records::case::FeCase> {
     let Some(plan) = default_plan(scene)? else {
-        return crate::study::simulate::sweep_case(scene);
+        return crate::study::run::simulate::sweep_case(scene);
     };
     let plan = match tolerance {
         Some(tolerance) => LadderPlan::Tolerance {
             tolerance,
-            max_refinements: crate::study::ladder::DEFAULT_MAX_REFINEMENTS,
+            max_refinements: crate::study::convergence::ladder::DEFAULT_MAX_REFINEMENTS,
         },
         None => plan,
     };
@@ -90,7 +99,7 @@ pub fn sweep_case_to(scene: &Scene, tolerance: Option<f64>) -> Result<crate::stu
 /// [`sweep_case_to`] with the default bar (no tolerance).
 ///
 /// Errors: as [`sweep_case_to`].
-pub fn sweep_case(scene: &Scene) -> Result<crate::study::case::FeCase> {
+pub fn sweep_case(scene: &Scene) -> Result<crate::study::records::case::FeCase> {
     sweep_case_to(scene, None)
 }
 
@@ -212,9 +221,9 @@ fn two_levels(scene: &Scene, opts: &RunOptions) -> Result<(ErrorEstimate, RunRep
         history_rows: opts.history_rows,
         ..RunOptions::default()
     };
-    let token = crate::study::interrupt::current();
+    let token = crate::study::common::interrupt::current();
     let within = |level: i32, o: &RunOptions| {
-        crate::study::interrupt::within(token.as_ref(), || run_level(scene, level, o))
+        crate::study::common::interrupt::within(token.as_ref(), || run_level(scene, level, o))
             .map_err(|e| at_level(e, level))
     };
     let (coarse, fine) = rayon::join(|| within(-1, &quiet), || within(0, opts));
@@ -275,7 +284,7 @@ pub fn run_level(
 pub const SCENE_PHASE_MESHES: usize = 4;
 
 /// The section scene `s`'s level `out` (its own run, largest contact radius `radius`, m) as
-/// the mean of a phase ensemble ([`crate::study::phase_ensemble`]): the scene with both balls'
+/// the mean of a phase ensemble ([`crate::study::convergence::phase_ensemble`]): the scene with both balls'
 /// pole sizes times q^{j/M}, j = 1..M−1, q the ring ratio at `radius`, run in parallel.
 fn phase_level(
     s: &Scene,
@@ -284,7 +293,7 @@ fn phase_level(
     opts: &RunOptions,
 ) -> Result<LevelOutcome> {
     use rayon::prelude::*;
-    let mesh = crate::study::simulate_section::section_mesh("ball1", &s.ball1)?;
+    let mesh = crate::study::run::section::section_mesh("ball1", &s.ball1)?;
     let q = ring_ratio(&mesh, radius)?;
     let m = SCENE_PHASE_MESHES;
     let quiet = RunOptions {

@@ -15,7 +15,7 @@
 //! ([`ring_ratio`]), then the other M − 1 meshes in parallel (rayon). [`converged_head_on`]
 //! runs one ensemble on ladder level L and one on the next coarser mesh and combines them
 //! into an error bar ([`Bar`]): the two-level Richardson estimate of
-//! [`crate::study::convergence`] (the coarse-to-fine difference, an honest bound for order ≥ 1)
+//! [`crate::study::records::estimate`] (the coarse-to-fine difference, an honest bound for order ≥ 1)
 //! plus the sampling error of the fine mean.
 
 use crate::analytic::hertz::HertzPair;
@@ -25,7 +25,7 @@ use crate::fe::axisym::impact::{HeadOn, ImpactResult, PlaneContact, Target};
 use crate::fe::axisym::subcycle::Integration;
 use crate::material::Material;
 use crate::mesh::meridian::{ladder_ball, MeridianMesh};
-use crate::study::convergence::{estimate, Estimate};
+use crate::study::records::estimate::{estimate, Estimate};
 use rayon::prelude::*;
 use serde::Serialize;
 use std::f64::consts::PI;
@@ -233,7 +233,7 @@ pub struct PhasePlan {
     pub level: i32,
     /// Meshes per ensemble (even, ≥ 2).
     pub meshes: usize,
-    /// With `Some(split)`, the banded family ([`crate::study::phase_band`]): the ladder around the
+    /// With `Some(split)`, the banded family ([`crate::study::convergence::phase_band`]): the ladder around the
     /// contact edge with the rings there split `split`-fold (1..=16); the fine level is then
     /// ≥ 1 (its coarse level ≥ 0).
     pub band: Option<usize>,
@@ -354,11 +354,11 @@ pub fn run_ensemble(
     let pilot_mesh = mesh_at(1.0)?;
     let pilot = run(pilot_mesh.clone())?;
     let q = ring_ratio(&pilot_mesh, pilot.contact_radius_max)?;
-    let token = crate::study::interrupt::current();
+    let token = crate::study::common::interrupt::current();
     let rest: Vec<PhaseRun> = (1..meshes)
         .into_par_iter()
         .map(|j| {
-            crate::study::interrupt::within(token.as_ref(), || {
+            crate::study::common::interrupt::within(token.as_ref(), || {
                 let s = q.powf(j as f64 / meshes as f64);
                 Ok(member(s, &run(mesh_at(s)?)?))
             })
@@ -417,7 +417,7 @@ fn check(case: &HeadOnCase, plan: &PhasePlan) -> Result<()> {
         ));
     }
     if let Some(split) = plan.band {
-        crate::study::phase_band::check_split(split)?;
+        crate::study::convergence::phase_band::check_split(split)?;
         if plan.level < 1 {
             return Err(Error::invalid(
                 "level",
@@ -478,7 +478,7 @@ pub(super) fn head_on(case: &HeadOnCase, mesh: MeridianMesh) -> HeadOn {
 /// Errors: those of the run; [`Error::Interrupted`] on an interrupt.
 pub(super) fn run_head_on(case: &HeadOnCase, mesh: MeridianMesh) -> Result<ImpactResult> {
     head_on(case, mesh).run_observed(&mut |solver, _| {
-        if crate::study::interrupt::requested() {
+        if crate::study::common::interrupt::requested() {
             return Err(Error::Interrupted(format!(
                 "at t = {:.3e} s of a head-on run",
                 solver.time()
@@ -543,11 +543,11 @@ pub fn ensemble_over(
         return Err(Error::invalid("ring_ratio", q, "> 1, finite"));
     }
     check_meshes(meshes)?;
-    let token = crate::study::interrupt::current();
+    let token = crate::study::common::interrupt::current();
     let mut results: Vec<(PhaseRun, ImpactResult)> = (0..meshes)
         .into_par_iter()
         .map(|j| {
-            crate::study::interrupt::within(token.as_ref(), || {
+            crate::study::common::interrupt::within(token.as_ref(), || {
                 let s = q.powf(j as f64 / meshes as f64);
                 let r = run(mesh_at(s)?)?;
                 Ok((member(s, &r), r))
@@ -563,7 +563,7 @@ pub fn ensemble_over(
 /// bars: an ensemble of `plan.meshes` meshes on family level `plan.level` (sized from
 /// Hertz's contact radius a; [`family_mesh`]) and one on the next coarser level; with
 /// `plan.band`, on the banded family around the contact edge of a level-0 run
-/// ([`crate::study::phase_band`]). With `plan.tolerance`, while e's relative bar exceeds it the
+/// ([`crate::study::convergence::phase_band`]). With `plan.tolerance`, while e's relative bar exceeds it the
 /// next finer level runs and the fine ensemble becomes the coarse one, at most
 /// `plan.max_refinements` times ([`HeadOnAnswer::fine_level`] says where it stopped).
 ///
@@ -571,7 +571,7 @@ pub fn ensemble_over(
 /// a tolerance that is not finite and positive, or refinements past the ladder's level 7.
 pub fn converged_head_on(case: &HeadOnCase, plan: &PhasePlan) -> Result<HeadOnAnswer> {
     check(case, plan)?;
-    use crate::study::phase_band::{banded_ensemble_at, contact_edge};
+    use crate::study::convergence::phase_band::{banded_ensemble_at, contact_edge};
     let edge = match plan.band {
         Some(_) => Some(contact_edge(case)?),
         None => None,
@@ -588,8 +588,9 @@ pub fn converged_head_on(case: &HeadOnCase, plan: &PhasePlan) -> Result<HeadOnAn
     let (coarse, fine) = match plan.band {
         // The banded ring ratio is read at the edge: both levels' members run at once.
         Some(_) => {
-            let token = crate::study::interrupt::current();
-            let within = |level: i32| crate::study::interrupt::within(token.as_ref(), || at(level));
+            let token = crate::study::common::interrupt::current();
+            let within =
+                |level: i32| crate::study::common::interrupt::within(token.as_ref(), || at(level));
             rayon::join(|| within(plan.level - 1), || within(plan.level))
         }
         None => (at(plan.level - 1), at(plan.level)),
@@ -672,7 +673,7 @@ mod tests {
     /// pool's threads) at their first observation.
     #[test]
     fn a_cancelled_job_stops_the_ensembles() {
-        use crate::study::interrupt::{within, CancelToken};
+        use crate::study::common::interrupt::{within, CancelToken};
         let token = CancelToken::new();
         token.cancel();
         let plan = PhasePlan {

@@ -14,7 +14,7 @@
 use crate::fe::materials::law::Law;
 use crate::material::Material;
 use crate::scene::{BallScene, MeshSettings, OutputSettings, Scene, SolverSettings};
-use crate::study::case::FeCase;
+use crate::study::records::case::FeCase;
 use serde_json::Value;
 
 /// Relative tolerance of the comparison of two scaled scenes' numbers (per-diameter sizes

@@ -1,9 +1,14 @@
 //! The verification report: tables and the paper's Figures 6-10 regenerated from a finished
 //! sweep folder, written as Markdown with its CSV and SVG files beside it.
 
+pub mod curves;
+pub mod damper_plots;
+pub mod figures;
+pub mod law_fit_files;
+
 use crate::atomic::{ensure_dir, write_atomic};
 use crate::error::{Error, Result};
-use crate::study::plots::{Chart, Series, Style};
+use crate::study::common::plots::{Chart, Series, Style};
 use crate::study::sweep::{read_records, CaseRecord, Status, SweepSpec};
 use std::fmt::Write as _;
 use std::path::Path;
@@ -26,7 +31,7 @@ fn stats(v: &[f64]) -> String {
     format!("{:.1} / {:.1}", 100.0 * mean, 100.0 * max)
 }
 
-type Getter = fn(&crate::study::outcome::Outcome) -> f64;
+type Getter = fn(&crate::study::records::outcome::Outcome) -> f64;
 
 const QUANTITIES: [(&str, Getter); 5] = [
     ("e", |o| o.e),
@@ -286,7 +291,7 @@ pub fn write_report(
             let sel = |r: &&CaseRecord| {
                 r.params.mesh == m.name && r.params.v1t == 0.0 && r.params.v2t == 0.0
             };
-            let speed = |o: &crate::study::outcome::Outcome| {
+            let speed = |o: &crate::study::records::outcome::Outcome| {
                 if getter == 0 {
                     o.v1_after[0]
                 } else {

@@ -1,9 +1,9 @@
 //! A run's own error bar, as results.json writes it: the estimate of e, δ_max and the contact
-//! duration from the runs of a mesh ladder ([`crate::study::convergence`]; the ladder itself is
-//! [`crate::study::ladder`]), the levels that ran and how the estimate was obtained.
+//! duration from the runs of a mesh ladder ([`crate::study::records::estimate`]; the ladder itself is
+//! [`crate::study::convergence::ladder`]), the levels that ran and how the estimate was obtained.
 
 use crate::error::{Error, Result};
-use crate::study::convergence::{estimate, Estimate};
+use crate::study::records::estimate::{estimate, Estimate};
 use serde::Serialize;
 
 /// The refinement ratio of the ladder: each level halves the element sizes.
@@ -32,7 +32,7 @@ pub struct LevelOutcome {
     pub phase: Option<PhaseSummary>,
 }
 
-/// What a level's phase ensemble adds ([`crate::study::phase_ensemble`]).
+/// What a level's phase ensemble adds ([`crate::study::convergence::phase_ensemble`]).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct PhaseSummary {
     /// Meshes of the ensemble (the scene's own and M − 1 with scaled pole sizes).
@@ -167,7 +167,7 @@ pub enum EstimateMethod {
         #[serde(skip_serializing_if = "Option::is_none")]
         why_not_banded: Option<String>,
     },
-    /// The banded, mass-scaled family of [`crate::study::phase_ensemble::converged_head_on`], sized
+    /// The banded, mass-scaled family of [`crate::study::convergence::phase_ensemble::converged_head_on`], sized
     /// from the physics.
     BandedFamily {
         /// Surface rings at the contact edge split this many times, -.

@@ -4,14 +4,14 @@
 use crate::atomic::{ensure_dir, write_atomic};
 use crate::error::{Error, Result};
 use crate::scene::{approach, Approach, MeshSettings, Scene};
-use crate::study::error_estimate::{ErrorEstimate, LevelOutcome};
-use crate::study::law_compare::{compare_laws, law_table, LawOutcome};
-use crate::study::number::sci;
-use crate::study::outcome::{
+use crate::study::records::error_estimate::{ErrorEstimate, LevelOutcome};
+use crate::study::records::number::sci;
+use crate::study::records::outcome::{
     analytic_outcome, ball_inertia, dissipation_factor, relative_difference, Outcome,
 };
-use crate::study::simulate::{simulate, RunOptions, Simulation, HISTORY_HEADER};
-use crate::study::warnings::{analytic_warnings, fe_warnings, FeFigures, Warning};
+use crate::study::records::warnings::{analytic_warnings, fe_warnings, FeFigures, Warning};
+use crate::study::run::law_compare::{compare_laws, law_table, LawOutcome};
+use crate::study::run::simulate::{simulate, RunOptions, Simulation, HISTORY_HEADER};
 use serde::Serialize;
 use std::path::Path;
 use std::time::Instant;
@@ -164,7 +164,7 @@ pub fn run_scene(scene: &Scene, opts: &RunOptions) -> Result<RunReport> {
 
 /// Makes `report` (the run of a section scene's finest level) that level's answer: e,
 /// δ_max and the contact duration become the means of its phase ensemble `level`, since one
-/// ring phase alone scatters by about ±2 % in e ([`crate::study::phase_ensemble`]). The after-impact
+/// ring phase alone scatters by about ±2 % in e ([`crate::study::convergence::phase_ensemble`]). The after-impact
 /// velocities are the run's with their normal parts about the fixed one (the centre of mass,
 /// or the wall) scaled to the mean e, which keeps momentum and the head-on direction; η and
 /// the differences from the analytical model and `fe.outcome` follow; the rest of `fe`
@@ -243,7 +243,7 @@ fn pole_size(scene: &Scene) -> Option<f64> {
 
 /// The figures the FE warnings check, from a finished run.
 fn fe_figures(scene: &Scene, sim: &Simulation, r_star: f64) -> FeFigures {
-    let peak = |f: fn(&crate::study::simulate::HistoryRow) -> f64| {
+    let peak = |f: fn(&crate::study::run::simulate::HistoryRow) -> f64| {
         sim.history.iter().map(f).fold(0.0, f64::max)
     };
     FeFigures {

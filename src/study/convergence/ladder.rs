@@ -9,7 +9,7 @@
 
 use crate::error::{Error, Result};
 use crate::scene::{MeshSettings, Scene};
-use crate::study::error_estimate::{ErrorEstimate, LevelOutcome, LADDER_RATIO};
+use crate::study::records::error_estimate::{ErrorEstimate, LevelOutcome, LADDER_RATIO};
 use serde::Serialize;
 
 /// The default cap on levels finer than the scene's own mesh with `--tolerance`.

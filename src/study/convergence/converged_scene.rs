@@ -22,17 +22,17 @@ use crate::fe::axisym::subcycle::Integration;
 use crate::fe::subcycle::Subcycling;
 use crate::mesh::meridian::MeridianMesh;
 use crate::scene::{approach, Approach, PlaneEnforcement, Scene, Switch, WallKind};
-use crate::study::error_estimate::{
-    ErrorEstimate, EstimateMethod, LevelOutcome, PhaseSummary, LADDER_RATIO,
-};
-use crate::study::phase_band::banded_mesh;
-use crate::study::phase_ensemble::{
+use crate::study::convergence::phase_band::banded_mesh;
+use crate::study::convergence::phase_ensemble::{
     converged_head_on, Bar, HeadOnAnswer, HeadOnCase, HeadOnTarget, PhaseEnsemble, PhasePlan,
     MASS_SCALING_BIAS,
 };
-use crate::study::simulate::{choose_reduction, Reduction};
-use crate::study::simulate_section::{formulation, plane_contact};
-use crate::study::single::{take_phase_mean, RunReport};
+use crate::study::records::error_estimate::{
+    ErrorEstimate, EstimateMethod, LevelOutcome, PhaseSummary, LADDER_RATIO,
+};
+use crate::study::run::scene::{take_phase_mean, RunReport};
+use crate::study::run::section::{formulation, plane_contact};
+use crate::study::run::simulate::{choose_reduction, Reduction};
 use serde::Serialize;
 
 /// The band's split: each surface ring at the contact edge split five-fold, its shells
@@ -243,8 +243,8 @@ fn estimate_of(case: &HeadOnCase, answer: &HeadOnAnswer, tolerance: f64) -> Resu
 
 /// A bar of [`converged_head_on`] as a two-level estimate: the fine mean, the extrapolated
 /// value (order 2 assumed) and the bar (level difference, sampling error, mass-scaling bias).
-fn estimate_from_bar(bar: &Bar) -> crate::study::convergence::Estimate {
-    use crate::study::convergence::{Behaviour, Estimate, ASSUMED_ORDER};
+fn estimate_from_bar(bar: &Bar) -> crate::study::records::estimate::Estimate {
+    use crate::study::records::estimate::{Behaviour, Estimate, ASSUMED_ORDER};
     Estimate {
         finest: bar.value,
         extrapolated: bar.extrapolated,
@@ -315,8 +315,8 @@ mod tests {
         assert_eq!(wall.relative_speed, 1.0);
         let mesh = || crate::mesh::meridian::ladder_ball(0.02, 5e-4, 0).unwrap();
         let (a, b) = (
-            crate::study::phase_ensemble::head_on(&pair, mesh()),
-            crate::study::phase_ensemble::head_on(&wall, mesh()),
+            crate::study::convergence::phase_ensemble::head_on(&pair, mesh()),
+            crate::study::convergence::phase_ensemble::head_on(&wall, mesh()),
         );
         assert_eq!(a.speed, b.speed);
         assert_eq!(a.speed, 1.0);

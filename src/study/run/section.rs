@@ -14,12 +14,12 @@ use crate::fe::solver::subcycle::{SubcycleReport, Subcycling};
 use crate::fe::Formulation;
 use crate::mesh::meridian::{ball, block, BlockSpec, MeridianMesh, SectionSpec};
 use crate::scene::{BallScene, MeshSettings, PlaneEnforcement, Scene, Switch, Touch};
-use crate::study::outcome::{dissipation_factor, Outcome};
-use crate::study::progress::{Bar, Mode};
-use crate::study::simulate::{
+use crate::study::common::progress::{Bar, Mode};
+use crate::study::records::outcome::{dissipation_factor, Outcome};
+use crate::study::run::simulate::{
     HistoryRow, Kinematics, Reduction, RunOptions, Savings, Simulation, DEFAULT_HOLD_FRACTION,
 };
-use crate::study::snapshots::Snapshots;
+use crate::study::run::snapshots::Snapshots;
 use std::time::Instant;
 
 /// What the section run needs beyond the scene: the kinematics at touch, the analytical
@@ -103,7 +103,7 @@ pub fn wall_block(scene: &Scene) -> Result<Option<WallBlock>> {
 
 /// The section element of the scene's 3D element choice: one point with hourglass control
 /// for the one-point hexahedron, selectively reduced (B-bar) for B-bar.
-pub(super) fn formulation(scene: &Scene) -> QuadFormulation {
+pub(crate) fn formulation(scene: &Scene) -> QuadFormulation {
     match scene.solver.element {
         Formulation::OnePoint => QuadFormulation::default(),
         Formulation::BBar => QuadFormulation::SelectiveReduced,
@@ -111,7 +111,7 @@ pub(super) fn formulation(scene: &Scene) -> QuadFormulation {
 }
 
 /// How the section enforces its rigid plane for the scene's `contact.plane`.
-pub(super) fn plane_contact(scene: &Scene) -> PlaneContact {
+pub(crate) fn plane_contact(scene: &Scene) -> PlaneContact {
     match scene.contact.plane {
         PlaneEnforcement::Kinematic => PlaneContact::Kinematic,
         PlaneEnforcement::Penalty => PlaneContact::Nodal,
@@ -232,7 +232,7 @@ pub(super) fn simulate_section(run: SectionRun<'_>, opts: &RunOptions) -> Result
     };
     let result = h.run_observed(&mut |solver, last| {
         let t = solver.time();
-        if crate::study::interrupt::requested() {
+        if crate::study::common::interrupt::requested() {
             return Err(Error::Interrupted(format!(
                 "at t = {t:.3e} s of about {expected_end:.3e} s"
             )));
@@ -244,7 +244,7 @@ pub(super) fn simulate_section(run: SectionRun<'_>, opts: &RunOptions) -> Result
         Ok(())
     });
     bar.finish();
-    let r = result.map_err(crate::study::simulate::advice)?;
+    let r = result.map_err(crate::study::run::simulate::advice)?;
     let history: Vec<HistoryRow> = r.history.iter().map(|row| history_row(row, &run)).collect();
     let frame = run.touch.frame;
     let v_cm = run.kin.v_cm;

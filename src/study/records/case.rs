@@ -1,7 +1,7 @@
 //! A finished FE run as the case records of sweeps and benches hold it: the outcome, its cost
 //! and error bar, and the δ(t) history.
 
-use crate::study::outcome::Outcome;
+use crate::study::records::outcome::Outcome;
 use serde::{Deserialize, Serialize};
 
 /// The FE part of a case result.
@@ -24,7 +24,7 @@ pub struct FeSummary {
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub e_error: Option<f64>,
     /// The case whose FE run this is, scaled by dimensional similarity
-    /// ([`crate::study::similarity`]); None when the case ran its own.
+    /// ([`crate::study::sweep::similarity`]); None when the case ran its own.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub scaled_from: Option<String>,
 }

@@ -1,5 +1,5 @@
 //! Is the error estimate honest? Over a set of head-on cases, the estimate of each run
-//! (mesh levels −1 and 0, [`crate::study::error_estimate`]) against its true error, taken as the
+//! (mesh levels −1 and 0, [`crate::study::records::error_estimate`]) against its true error, taken as the
 //! difference from the same case two refinements finer (level +2).
 //!
 //! The study takes a runner closure `run(scene, level)`, so the 3D model and any other model
@@ -7,8 +7,8 @@
 
 use crate::error::Result;
 use crate::scene::{Override, Scene, DEFAULT_SCENE};
-use crate::study::convergence::Estimate;
-use crate::study::error_estimate::{ErrorEstimate, LevelOutcome};
+use crate::study::records::error_estimate::{ErrorEstimate, LevelOutcome};
+use crate::study::records::estimate::Estimate;
 use std::path::Path;
 
 /// The materials of the default check (three presets: soft, medium and stiff-and-light).
