@@ -1,6 +1,6 @@
 //! What mass scaling (`fe::axisym::mass_scaling`) saves and costs on a head-on section: per
 //! mesh and budget, the steps, the initial stable step, the wall time and e, δ_max, the
-//! contact duration and the peak force; the table of docs/contact-penalty.md ("Mass scaling
+//! contact duration and the peak force; the table of verification/contact-penalty.md ("Mass scaling
 //! of the contact region").
 //!
 //! `cargo run --release --example mass_scaling -- V_REL MESHES BUDGETS [MATERIAL]`: two

@@ -1,6 +1,6 @@
 //! The section model's converged head-on answer (`study::convergence::phase_ensemble::converged_head_on`)
 //! for two identical balls: the ensembles of family levels LEVEL − 1 and LEVEL, member by
-//! member, and the answer with its error bars (docs/contact-penalty.md, "The section's
+//! member, and the answer with its error bars (verification/contact-penalty.md, "The section's
 //! converged answer").
 //!
 //! `cargo run --release --example phase_ensemble -- LEVEL MESHES V_REL [MATERIAL] [one-point|b-bar] [D]`

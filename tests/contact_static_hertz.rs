@@ -48,7 +48,7 @@ fn static_hertz_pressure_profile_and_contact_radius() {
 ///
 /// What must hold: the excess grows with a/R, in proportion to it, and the ball is stiffer
 /// than the half-space (the direction of the dynamic excess). Measured (2026-11-23): +1.45,
-/// +2.68, +5.35 % at a/R = 0.022, 0.045, 0.089 (docs/contact-penalty.md).
+/// +2.68, +5.35 % at a/R = 0.022, 0.045, 0.089 (verification/contact-penalty.md).
 /// `cargo test --release --test contact_static_hertz static_force -- --ignored --nocapture`
 #[test]
 #[ignore]

@@ -10,7 +10,7 @@ use twoball::study::records::error_estimate::EstimateMethod;
 use twoball::study::run::simulate::RunOptions;
 
 /// The default scene's converged e: the four-fold banded level-2 answer 0.31847 ± 0.21 %
-/// and the B-bar ladder's extrapolation 0.3184 (docs/contact-penalty.md, "The section's
+/// and the B-bar ladder's extrapolation 0.3184 (verification/contact-penalty.md, "The section's
 /// converged answer").
 const CONVERGED_E: f64 = 0.3184;
 
@@ -189,7 +189,7 @@ fn a_loose_tolerance_that_the_default_levels_meet_takes_their_answer() {
 /// The level-2 means of the banded family (two meshes, mass scaling 1e-4, subcycled to
 /// level 3) for D = 20 mm identical balls: (material, speed of each ball m/s, e). From
 /// `cargo test --release --test tolerance_honesty -- --ignored --nocapture`
-/// (docs/contact-penalty.md, "Is the banded bar honest?").
+/// (verification/contact-penalty.md, "Is the banded bar honest?").
 const LEVEL_2: [(&str, f64, f64); 21] = [
     ("copper-fe", 5.0, 0.21808),
     ("copper-fe", 2.5, 0.25956),

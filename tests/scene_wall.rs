@@ -253,7 +253,7 @@ fn a_rigid_wall_at_twice_the_penalty_is_the_mirror_pair() {
 /// An elastic ball on a rigid half-space (yield out of reach), 0.1 m/s, on the section with
 /// its default mesh (pole from the contact radius, a/R = 0.019): Hertz with E* = E/(1 − ν²),
 /// R* = R, m* = m within 1 % in δ_max and t_c, and the finite-ball reference of
-/// docs/contact-penalty.md (CalculiX's free ball on a rigid plane) within 1 %.
+/// verification/contact-penalty.md (CalculiX's free ball on a rigid plane) within 1 %.
 #[test]
 fn an_elastic_ball_on_a_rigid_wall_matches_hertz() {
     let v = 0.1;

@@ -1,6 +1,6 @@
 //! The section model's mesh ladder (`mesh::meridian::ladder_ball`) on head-on impacts of two
 //! D = 20 mm copper-fe balls (one ball against the symmetry plane): the tables of
-//! docs/contact-penalty.md ("The section model's mesh ladder"), with Richardson extrapolation
+//! verification/contact-penalty.md ("The section model's mesh ladder"), with Richardson extrapolation
 //! and the observed order from `study::records::estimate::estimate`.
 //!
 //! The ladders are `#[ignore]`d (minutes each); rerun one with
@@ -288,7 +288,7 @@ fn plastic_default_scene_ladder() {
 }
 
 /// Acceptance 1 (and 5 at 0.2 m/s: the level-0 δ_max against the converged one) of issue 26:
-/// elastic head-on impacts against the finite-ball reference of docs/contact-penalty.md.
+/// elastic head-on impacts against the finite-ball reference of verification/contact-penalty.md.
 fn elastic_ladder(v: f64) {
     let top = std::env::var("LADDER_TOP")
         .ok()
@@ -434,7 +434,7 @@ fn plastic_phase_average() {
     }
 }
 
-/// Is the phase ensemble's error bar honest (issue 26, acceptance 6; docs/contact-penalty.md,
+/// Is the phase ensemble's error bar honest (issue 26, acceptance 6; verification/contact-penalty.md,
 /// "The section's converged answer")? Over 21 head-on cases (copper-fe, steel, aluminum at
 /// relative speeds 0.02 to 10 m/s), the bar of family level −1 (ensembles on levels −2 and
 /// −1, `study::convergence::phase_ensemble`) against the true error, taken from the ensemble two
@@ -507,7 +507,7 @@ fn phase_honesty() {
     );
 }
 
-/// Issue 26, acceptance 2 (docs/contact-penalty.md, "The B-bar ladder"): the plastic default
+/// Issue 26, acceptance 2 (verification/contact-penalty.md, "The B-bar ladder"): the plastic default
 /// scene's phase means on the B-bar quads converge monotonically in e, δ_max and t_c from
 /// family level 0 to `LADDER_TOP` (default 3, pole D/2156; about 30 min on 2 cores, 7 for
 /// `LADDER_TOP=2`), e also from level −1, and the finest mean, extrapolated at order 2,

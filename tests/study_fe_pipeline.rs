@@ -69,7 +69,7 @@ const COARSE: [&str; 4] = [
 /// −1.4 % (δ_max) and −1.6 % (t_c) at 2 m/s. The same impact in the contact harness
 /// (quarter ball on a frictionless wall, same mesh) is +1.54 % / +1.36 % from the reference
 /// (this pipeline run: +1.08 % / +0.67 %),
-/// the 200 µm mesh +4.3 % / +3.0 %, the 50 µm mesh +0.6 % / +0.5 % (docs/contact-penalty.md,
+/// the 200 µm mesh +4.3 % / +3.0 %, the 50 µm mesh +0.6 % / +0.5 % (verification/contact-penalty.md,
 /// "The free ball"): within 2 % holds this mesh and anything more accurate, and fails the
 /// next coarser mesh. (Name kept from the former Hertz comparison.)
 #[test]

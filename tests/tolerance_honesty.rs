@@ -1,4 +1,4 @@
-//! Is the bar of `twoball run --tolerance` honest? (docs/contact-penalty.md, "Is the
+//! Is the bar of `twoball run --tolerance` honest? (verification/contact-penalty.md, "Is the
 //! banded bar honest?") Each case is the default scene's pair of another metal and speed,
 //! cased as `--tolerance 0.5%` cases it (`study::converged_scene::family_case`) and run on
 //! the banded family (`study::converged_scene::plan`, five-fold band, two meshes per level),

@@ -5,11 +5,11 @@
 //!
 //! A section run's plastic e is a sawtooth over the ring spacing at the contact edge, so the
 //! scene's own ladder (pole and bulk sizes halved per level) converges slowly and its bar is
-//! loose (docs/contact-penalty.md, "Why the section's e scatters"). The banded family splits
+//! loose (verification/contact-penalty.md, "Why the section's e scatters"). The banded family splits
 //! the rings at the contact edge five-fold, mass scaling lifts the step of the smallest
 //! quads, and two members per level average the sawtooth: on the default scene e comes to
 //! within 0.2 % of the converged 0.3184 with a bar of 0.4 % in about 4 s on 2 cores
-//! (docs/contact-penalty.md, "Mass scaling of the contact region"). The family is sized from
+//! (verification/contact-penalty.md, "Mass scaling of the contact region"). The family is sized from
 //! the physics (Hertz's contact radius, then the contact edge of a level-0 run), not from the
 //! scene's mesh settings.
 //!

@@ -6,7 +6,7 @@
 //! sawtooth for a fraction of the cost of refining the whole mesh: on the default scene (two
 //! D = 20 mm copper-fe balls, ±1 m/s) the standard deviation of e over eleven meshes of
 //! level 0 falls from 1.9 % to 0.35 % with a four-fold band, at 4.5 times the run's cost,
-//! where level 1 (seven times the cost) leaves 0.95 % (docs/contact-penalty.md, "An edge
+//! where level 1 (seven times the cost) leaves 0.95 % (verification/contact-penalty.md, "An edge
 //! band of finer rings"). An odd split confines the band's shells to a sixth of the rays below
 //! the surface ([`crate::mesh::meridian_band::SURFACE_DEPTH`]), which the bench's five-fold
 //! band uses: the same answers at about half the cost.

@@ -2,7 +2,7 @@
 //!
 //! On the meridian section every surface node is a ring, so a plastic contact grows ring by
 //! ring and e (with t_c and the peak force) is a sawtooth in the mesh's size: it follows
-//! where the last ring to land before maximum compression sits (docs/contact-penalty.md, "Why
+//! where the last ring to land before maximum compression sits (verification/contact-penalty.md, "Why
 //! the section's e scatters"). Scaling the mesh near the pole by s moves every ring radius to
 //! s·r_k; the outermost ring inside the true contact radius a changes once per factor
 //! q = r_{k+1}/r_k (the ratio of the two rings at a), so the sawtooth is periodic in ln s with
@@ -109,7 +109,7 @@ pub struct PhaseEnsemble {
 /// Measured on copper-fe (banded levels 0 and 1, 0.01 to 10 m/s, budgets 1e-5 to 1e-4) and
 /// on steel, aluminum and the Johnson-Cook copper at one speed each, budget 1e-4: the
 /// largest ratio was 9.1 (e of steel at 1.39 m/s on banded level 0; 4.5 on its level 1;
-/// docs/contact-penalty.md, "Mass scaling of the contact region").
+/// verification/contact-penalty.md, "Mass scaling of the contact region").
 pub const MASS_SCALING_BIAS: f64 = 10.0;
 
 /// A value with its error bar (same unit).

@@ -202,7 +202,7 @@ pub fn run_to_tolerance(
 /// The tightest relative tolerance on e that the scene's default levels −1 and 0 may answer:
 /// their phase means still oscillate by up to about 0.5 % between levels, two means can
 /// agree by chance, and their true error reached 1.6 % where the bar said 0.45 %; over 21
-/// cases of three metals and 0.05-5 m/s it stayed within 1.65 % (docs/contact-penalty.md,
+/// cases of three metals and 0.05-5 m/s it stayed within 1.65 % (verification/contact-penalty.md,
 /// "The default levels against the floor"). So their answer to a tolerance carries a bar
 /// of at least this, and below it the banded family answers.
 pub const LEVELS_TOLERANCE_FLOOR: f64 = 0.02;
