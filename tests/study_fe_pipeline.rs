@@ -71,7 +71,7 @@ const COARSE: [&str; 4] = [
 /// (this pipeline run: +1.08 % / +0.67 %),
 /// the 200 µm mesh +4.3 % / +3.0 %, the 50 µm mesh +0.6 % / +0.5 % (verification/contact-penalty.md,
 /// "The free ball"): within 2 % holds this mesh and anything more accurate, and fails the
-/// next coarser mesh. (Name kept from the former Hertz comparison.)
+/// next coarser mesh. (The name says what the reference stiffens: Hertz.)
 #[test]
 fn elastic_impact_matches_hertz_within_one_percent() {
     let mut sets = vec!["ball1.material.yield=1e11", "ball2.material.yield=1e11"];

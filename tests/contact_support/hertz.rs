@@ -121,9 +121,9 @@ pub fn hertz_pulse(v: f64, delta_max: f64, f_max: f64, n: usize) -> Vec<(f64, f6
 /// `python3 scripts/ccx_static_hertz.py --support free --depths 1.25,5,20 --per-a 20`,
 /// verification/contact-penalty.md). Static, so an estimate of the exact impact good to the
 /// quasi-static error (the pulse lasts about seven periods of the ball's lowest mode), not a
-/// closed form. (Until 2026-11-25 the fit was the hemisphere held at its equator,
-/// −0.26 % + 0.589 a/R: that support carries the whole contact force to the equator, a
-/// softer image of the ball than its own inertia is.)
+/// closed form. (The hemisphere held at its equator gives −0.26 % + 0.589 a/R: that support
+/// carries the whole contact force to the equator, a softer image of the ball than its own
+/// inertia is.)
 pub const FINITE_BALL_S0: f64 = -0.00190;
 /// See [`FINITE_BALL_S0`].
 pub const FINITE_BALL_S1: f64 = 0.955;

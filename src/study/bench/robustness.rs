@@ -1,4 +1,4 @@
-//! Stress matrix (issue 7 item 1): many extreme scenes, each run as a child `twoball run`
+//! The robustness matrix (`twoball stress`): many extreme scenes, each run as a child `twoball run`
 //! process under a wall-time cap, classified as completed (energy error under tolerance),
 //! completed but flagged, stopped with a clear reason, or failed silently (NaN/inf in the
 //! output, panic, timeout, or a physically impossible result without a stop).
