@@ -33,7 +33,6 @@ use crate::study::records::error_estimate::{
 use crate::study::run::scene::{take_phase_mean, RunReport};
 use crate::study::run::section::{formulation, plane_contact};
 use crate::study::run::simulate::{choose_reduction, Reduction};
-use serde::Serialize;
 
 /// The band's split: each surface ring at the contact edge split five-fold, its shells
 /// confined to the surface ([`crate::mesh::meridian_band::SURFACE_DEPTH`]).
