@@ -2,7 +2,7 @@
 //! log under nohup) a plain line every few seconds or every 10 %, with an ETA, so a long run
 //! is never silent.
 //!
-//! - [`Bar`]: the simulated time of one FE run, scaled to the stop rule's end (refined as the
+//! - [`RunProgress`]: the simulated time of one FE run, scaled to the stop rule's end (refined as the
 //!   run learns it);
 //! - [`Cases`]: the cases of a sweep or stress matrix, done and failed.
 //!
@@ -117,7 +117,7 @@ pub fn current() -> Option<Hook> {
 const BAR_UNITS_PER_S: f64 = 1e9;
 
 /// Progress of one FE run through simulated time.
-pub struct Bar {
+pub struct RunProgress {
     mode: Mode,
     bar: Option<ProgressBar>,
     /// Expected end of the run on the solver clock, s.
@@ -131,7 +131,7 @@ pub struct Bar {
     hook: Option<Hook>,
 }
 
-impl Bar {
+impl RunProgress {
     /// Progress of a run from solver time `start` to its expected end `end` (s), shown as
     /// `mode` says.
     pub fn new(mode: Mode, start: f64, end: f64) -> Self {
@@ -141,7 +141,7 @@ impl Bar {
                 "[{bar:40}] {percent:>3}% simulated, {elapsed} wall, ETA {eta}",
             )
         });
-        let b = Bar {
+        let b = RunProgress {
             mode,
             bar,
             end,
@@ -239,7 +239,7 @@ impl Bar {
     }
 }
 
-impl Drop for Bar {
+impl Drop for RunProgress {
     fn drop(&mut self) {
         if let Some(b) = self.bar.take() {
             b.finish_and_clear();

@@ -14,7 +14,7 @@ use crate::fe::solver::subcycle::{SubcycleReport, Subcycling};
 use crate::fe::Formulation;
 use crate::mesh::meridian::{ball, block, BlockSpec, MeridianMesh, SectionSpec};
 use crate::scene::{BallScene, MeshSettings, PlaneEnforcement, Scene, Switch, Touch};
-use crate::study::common::progress::{Bar, Mode};
+use crate::study::common::progress::{Mode, RunProgress};
 use crate::study::records::outcome::{dissipation_factor, Outcome};
 use crate::study::run::simulate::{
     HistoryRow, Kinematics, Reduction, RunOptions, Savings, Simulation, DEFAULT_HOLD_FRACTION,
@@ -223,7 +223,7 @@ pub(super) fn simulate_section(run: SectionRun<'_>, opts: &RunOptions) -> Result
             .unwrap_or(duration / opts.history_rows.max(2) as f64),
     );
     let expected_end = h.end_time.unwrap_or(duration + hold);
-    let mut bar = Bar::new(Mode::detect(opts.progress), 0.0, expected_end);
+    let mut bar = RunProgress::new(Mode::detect(opts.progress), 0.0, expected_end);
     let mut snapshots = match (&opts.snapshot_dir, scene.output.vtu_snapshots) {
         (Some(dir), n) if n > 0 => {
             Some(Snapshots::new(dir.clone(), n, 0.0, duration).ascii(opts.vtu_ascii))

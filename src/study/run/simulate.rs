@@ -883,7 +883,7 @@ pub fn simulate(
         } else {
             end_time
         };
-        let mut bar = crate::study::common::progress::Bar::new(
+        let mut bar = crate::study::common::progress::RunProgress::new(
             crate::study::common::progress::Mode::detect(opts.progress),
             solver.time(),
             expected_end,
