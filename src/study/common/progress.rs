@@ -93,19 +93,7 @@ thread_local! {
 /// Runs `f` on this thread with `hook` (None: as is) receiving the progress of the bars and
 /// case counters made during `f`; the previous hook is restored afterwards.
 pub fn reporting<R>(hook: Option<&Hook>, f: impl FnOnce() -> R) -> R {
-    let Some(hook) = hook else {
-        return f();
-    };
-    let before = HOOK.with(|h| h.replace(Some(hook.clone())));
-    struct Restore(Option<Hook>);
-    impl Drop for Restore {
-        fn drop(&mut self) {
-            let before = self.0.take();
-            HOOK.with(|h| *h.borrow_mut() = before);
-        }
-    }
-    let _restore = Restore(before);
-    f()
+    crate::study::common::scoped::with_value(&HOOK, hook, f)
 }
 
 /// The progress receiver of this thread, if any (to hand on to worker threads).
