@@ -47,17 +47,41 @@ pub fn run_ladder(
             tolerance,
             max_refinements,
         } => {
-            let mut runs = vec![at(-1)?, at(0)?];
-            loop {
-                let est = ErrorEstimate::from_runs(runs.clone(), Some(tolerance))?;
+            let met = |runs: &Vec<LevelOutcome>| {
+                Ok(
+                    ErrorEstimate::from_runs(runs.clone(), Some(tolerance))?.tolerance_met
+                        == Some(true),
+                )
+            };
+            let start = vec![at(-1)?, at(0)?];
+            let finer = |mut runs: Vec<LevelOutcome>| {
                 let finest = runs.last().map_or(0, |r| r.level);
-                if est.tolerance_met == Some(true) || finest >= max_refinements as i32 {
-                    return Ok(est);
-                }
                 runs.push(at(finest + 1)?);
-            }
+                Ok(runs)
+            };
+            let (runs, _) = refine(start, max_refinements, met, finer)?;
+            ErrorEstimate::from_runs(runs, Some(tolerance))
         }
     }
+}
+
+/// The refine loop of every ladder: while `met(&state)` is false and fewer than `max`
+/// refinements have run, `finer(state)` runs the next finer level. Returns the last state and
+/// the number of refinements run.
+///
+/// Errors: those of `met` and `finer`.
+pub fn refine<S>(
+    mut state: S,
+    max: u32,
+    mut met: impl FnMut(&S) -> Result<bool>,
+    mut finer: impl FnMut(S) -> Result<S>,
+) -> Result<(S, u32)> {
+    let mut done = 0;
+    while done < max && !met(&state)? {
+        state = finer(state)?;
+        done += 1;
+    }
+    Ok((state, done))
 }
 
 /// `e` with its message prefixed by the ladder level (field errors already name theirs).

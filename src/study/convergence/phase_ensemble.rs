@@ -25,6 +25,7 @@ use crate::fe::axisym::impact::{HeadOn, ImpactResult, PlaneContact, Target};
 use crate::fe::axisym::subcycle::Integration;
 use crate::material::Material;
 use crate::mesh::meridian::{ladder_ball, MeridianMesh};
+use crate::study::convergence::ladder::refine;
 use crate::study::records::estimate::{estimate, Estimate};
 use rayon::prelude::*;
 use serde::Serialize;
@@ -600,15 +601,22 @@ pub fn converged_head_on(case: &HeadOnCase, plan: &PhasePlan) -> Result<HeadOnAn
     let mut cpu_time_s = edge.as_ref().map_or(0.0, |(_, r)| r.wall_time_s) + cpu_of(&coarse);
     let bar_e = |c: &PhaseEnsemble, f: &PhaseEnsemble| Bar::of(&c.e, &f.e, case.mass_scaling);
     if let Some(tol) = plan.tolerance {
-        while bar_e(&coarse, &fine)?.relative_error() > tol
-            && level < plan.level + plan.max_refinements as i32
-        {
-            cpu_time_s += cpu_of(&fine);
-            level += 1;
-            let (finer, finer_pilot) = at(level)?;
-            coarse = std::mem::replace(&mut fine, finer);
-            pilot = finer_pilot;
-        }
+        // Met unless the relative bar of e exceeds the tolerance (a NaN bar stops refining).
+        let met = |(c, f, ..): &Refined| {
+            let r = bar_e(c, f)?.relative_error();
+            Ok(!matches!(
+                r.partial_cmp(&tol),
+                Some(std::cmp::Ordering::Greater)
+            ))
+        };
+        let finer = |(_, f, _, l, cpu): Refined| -> Result<Refined> {
+            let cpu = cpu + cpu_of(&f);
+            let (finer, finer_pilot) = at(l + 1)?;
+            Ok((f, finer, finer_pilot, l + 1, cpu))
+        };
+        let state = (coarse, fine, pilot, level, cpu_time_s);
+        ((coarse, fine, pilot, level, cpu_time_s), _) =
+            refine(state, plan.max_refinements, met, finer)?;
     }
     cpu_time_s += cpu_of(&fine);
     let ms = case.mass_scaling;
@@ -625,6 +633,10 @@ pub fn converged_head_on(case: &HeadOnCase, plan: &PhasePlan) -> Result<HeadOnAn
         cpu_time_s,
     })
 }
+
+/// The state of the refine loop: coarse and fine ensembles, the fine pilot run, the fine
+/// level and the CPU time so far (s).
+type Refined = (PhaseEnsemble, PhaseEnsemble, ImpactResult, i32, f64);
 
 /// CPU time of an ensemble's runs (the sum of their wall times), s.
 fn cpu_of(en: &PhaseEnsemble) -> f64 {
