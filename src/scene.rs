@@ -295,7 +295,7 @@ const REDUCTION_KEYS: [&str; 4] = [
 
 /// Every key of the scene reference (docs/design.md §6) as a dotted path, `ballN` for either
 /// ball and a table such as `ballN.material.hardening` as one key: the list the check of
-/// ignored settings ([`crate::study::ignored`]) must cover.
+/// ignored settings ([`crate::study::run::ignored`]) must cover.
 pub fn reference_keys() -> Vec<String> {
     let mut keys = Vec::new();
     let mut under = |prefix: &str, names: &[&str]| {

@@ -10,8 +10,8 @@ use crate::analytic::parametric::all_figures;
 use crate::analytic::{collide_with_mu, Body, Collision};
 use crate::error::{Error, Result};
 use crate::material::{Material, MaterialOverrides, PRESET_NAMES};
-use crate::study::number::sci;
-use crate::study::warnings::{analytic_warnings, Warning};
+use crate::study::records::number::sci;
+use crate::study::records::warnings::{analytic_warnings, Warning};
 use clap::{Args, ValueEnum};
 use serde_json::{json, Value};
 use std::path::PathBuf;
@@ -426,7 +426,7 @@ fn collide_args(a: &AnalyticArgs) -> Result<(Collision, Body, Body)> {
     }
     let c = collide_with_mu(&b1, &b2, [a.v1, a.v1t], [v2n, a.v2t], mu)?;
     if let Some(path) = &a.curve {
-        crate::study::curves::write_analytic_curve(&c, path, a.samples)?;
+        crate::study::report::curves::write_analytic_curve(&c, path, a.samples)?;
     }
     Ok((c, b1, b2))
 }
@@ -444,7 +444,7 @@ pub fn analytic_json(a: &AnalyticArgs) -> Result<Value> {
 pub fn run_analytic(a: AnalyticArgs) -> Result<()> {
     let (c, b1, b2) = collide_args(&a)?;
     let warnings = collision_warnings(&c);
-    crate::study::warnings::print(&warnings);
+    crate::study::records::warnings::print(&warnings);
     if a.json {
         let mut v = collision_json(&c, &b1, &b2);
         v["warnings"] = json!(warnings);
@@ -588,7 +588,7 @@ pub fn run_materials(a: MaterialsArgs) -> Result<()> {
 pub fn run_parametric(a: ParametricArgs) -> Result<()> {
     std::fs::create_dir_all(&a.out).map_err(|e| Error::io(&a.out, e))?;
     for f in all_figures()? {
-        crate::study::figures::write(&f, &a.out)?;
+        crate::study::report::figures::write(&f, &a.out)?;
         println!(
             "{}: {} curves x {} points -> {}/{}.csv, .svg",
             f.name,

@@ -163,7 +163,7 @@ where
         cli.command,
         Command::Run(_) | Command::Sweep(_) | Command::Stress(_)
     ) {
-        crate::study::interrupt::install();
+        crate::study::common::interrupt::install();
     }
     let dispatch = move || match cli.command {
         Command::Analytic(a) => analytic::run_analytic(a),
@@ -190,7 +190,7 @@ where
         Ok(()) => 0,
         Err(e @ crate::Error::Interrupted(_)) => {
             eprintln!("{e}");
-            crate::study::interrupt::EXIT_CODE
+            crate::study::common::interrupt::EXIT_CODE
         }
         Err(e) => {
             eprintln!("error: {e}");

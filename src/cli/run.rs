@@ -4,11 +4,12 @@
 
 use crate::error::{Error, Result};
 use crate::scene::{Override, Scene, DEFAULT_SCENE};
-use crate::study::error_estimate::{LadderPlan, DEFAULT_MAX_REFINEMENTS};
-use crate::study::simulate::RunOptions;
-use crate::study::single::{
-    default_plan, run_scene_alone, run_scene_with_estimate, side_by_side, write_outputs,
+use crate::study::convergence::ladder::{LadderPlan, DEFAULT_MAX_REFINEMENTS};
+use crate::study::convergence::scene_estimate::{
+    default_plan, run_scene_alone, run_scene_with_estimate,
 };
+use crate::study::run::scene::{side_by_side, write_outputs};
+use crate::study::run::simulate::RunOptions;
 use clap::Args;
 use std::collections::HashMap;
 use std::ffi::OsString;
@@ -141,7 +142,7 @@ pub fn run(a: RunArgs) -> Result<()> {
     if let Some(est) = &report.error_estimate {
         println!("{}", est.summary());
     }
-    crate::study::warnings::print(&report.warnings);
+    crate::study::records::warnings::print(&report.warnings);
     if let Some(dir) = &a.out {
         write_outputs(&report, dir)?;
         println!(

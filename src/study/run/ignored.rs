@@ -7,9 +7,9 @@
 //! key cannot be added without deciding its rule here.
 
 use super::simulate::Reduction;
-use super::warnings::{Check, Warning};
 use crate::material::Material;
 use crate::scene::{BallScene, ContactSettings, PlaneEnforcement, Scene, Switch, WallKind};
+use crate::study::records::warnings::{Check, Warning};
 
 /// Which models use a setting.
 #[derive(Debug, Clone, Copy)]
