@@ -170,7 +170,7 @@ mod tests {
         assert!((est.e.extrapolated - 0.3190).abs() < 1e-14);
         assert!((est.delta_max.extrapolated - 1.74e-5).abs() < 1e-19);
         assert_eq!(est.meshes.len(), 2);
-        assert!(est.summary().contains("p = 2 assumed"));
+        assert!(est.summary().contains("order 2 assumed"));
     }
 
     #[test]

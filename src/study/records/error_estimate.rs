@@ -100,47 +100,43 @@ impl ErrorEstimate {
         })
     }
 
-    /// One line for the terminal: each quantity with its bar and the ladder's flag.
+    /// Two lines for the terminal: the bar of each quantity of the table (and the meshes it
+    /// comes from), then the values extrapolated to zero element size.
     pub fn summary(&self) -> String {
         let levels: Vec<String> = self.meshes.iter().map(|m| m.level.to_string()).collect();
-        let one = |name: &str, unit: &str, q: &Estimate| {
+        let bar = |name: &str, unit: &str, q: &Estimate| {
             let rel = q
                 .relative_error
-                .map_or("-".into(), |r| format!("{:.2}%", 100.0 * r));
-            let order = match (q.observed_order, q.order_used) {
-                (Some(p), _) => format!("p = {p:.2}"),
-                (None, Some(p)) => format!("p = {p} assumed"),
-                _ => "no order".into(),
-            };
-            format!(
-                "{name} {:.6e}{unit} ± {:.2e} ({rel}; {order}; {})",
-                q.extrapolated,
-                q.error,
-                q.behaviour.name()
-            )
+                .map_or("-".into(), |r| format!("{:.2} %", 100.0 * r));
+            format!("{name} ± {:.2e}{unit} ({rel})", q.error)
         };
+        let value =
+            |name: &str, unit: &str, q: &Estimate| format!("{name} = {:.6e}{unit}", q.extrapolated);
         let family = match &self.method {
-            EstimateMethod::SceneLadder { .. } => "mesh levels".to_string(),
+            EstimateMethod::SceneLadder { .. } => format!(
+                "meshes at levels {} (0: the scene's mesh; each level down doubles the element sizes)",
+                levels.join(", ")
+            ),
             EstimateMethod::BandedFamily {
                 band_split,
                 band_edge_m,
                 mass_scaling,
                 ..
             } => format!(
-                "banded family, rings at {:.0} µm split {band_split}-fold, mass scaling {mass_scaling:.1e}, levels",
+                "the banded mesh family at levels {} (rings at {:.0} µm split {band_split}-fold, mass scaling {mass_scaling:.1e}); the table gives its finest level's phase means, the FE line the scene's own mesh",
+                levels.join(", "),
                 band_edge_m * 1e6
             ),
         };
         let mut s = format!(
-            "error estimate ({family} {}): {}; {}; {}",
-            levels.join(", "),
-            one("e", "", &self.e),
-            one("delta_max", " m", &self.delta_max),
-            one("contact duration", " s", &self.contact_duration)
+            "error bars from {family}: {}, {}, {}",
+            bar("e", "", &self.e),
+            bar("delta_max", " m", &self.delta_max),
+            bar("contact duration", " s", &self.contact_duration)
         );
         if let (Some(t), Some(met)) = (self.tolerance, self.tolerance_met) {
             s.push_str(&format!(
-                "; tolerance {:.3}% on e {}",
+                "; tolerance {:.3} % on e {}",
                 100.0 * t,
                 if met { "met" } else { "NOT met" }
             ));
@@ -151,6 +147,17 @@ impl ErrorEstimate {
         {
             s.push_str(&format!("; the scene's own ladder ran: {why}"));
         }
+        let order = match (self.e.observed_order, self.e.order_used) {
+            (Some(p), _) => format!("observed order {p:.2}"),
+            (None, Some(p)) => format!("order {p} assumed"),
+            _ => "no order".into(),
+        };
+        s.push_str(&format!(
+            "\nextrapolated to zero element size ({order}): {}, {}, {}",
+            value("e", "", &self.e),
+            value("delta_max", " m", &self.delta_max),
+            value("contact duration", " s", &self.contact_duration)
+        ));
         s
     }
 }

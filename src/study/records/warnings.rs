@@ -154,7 +154,7 @@ pub const PLASTIC_SHARE_MIN: f64 = 1e-3;
 pub fn single_ring_phase(plastic: f64, kinetic: f64) -> Option<Warning> {
     (kinetic > 0.0 && plastic > PLASTIC_SHARE_MIN * kinetic).then(|| Warning {
         check: Check::SingleRingPhase,
-        message: "e of a plastic impact on the section from one mesh is one phase of its surface rings (about ±2 % on the default mesh); its error estimate (the default, with mesh.size at most D/8) gives the phase mean and its bar".into(),
+        message: "e of a plastic impact on the section from one mesh alone moves with where its surface nodes (rings) fall against the contact edge (about ±2 % on the default mesh); the default run's error estimate (mesh.size at most D/8) averages over ring positions and gives the bar".into(),
     })
 }
 
