@@ -400,7 +400,7 @@ fn collide_args(a: &AnalyticArgs) -> Result<(Collision, Body, Body)> {
         ("--v1t", a.v1t),
         ("--v2t", a.v2t),
     ] {
-        if !(v.abs() <= crate::scene::SPEED_MAX) {
+        if v.is_nan() || v.abs() > crate::scene::SPEED_MAX {
             return Err(Error::invalid(
                 flag,
                 v,
