@@ -34,7 +34,12 @@ check() {
   for side in old new; do
     local bin=$old
     [ "$side" = new ] && bin=$new
-    RAYON_NUM_THREADS=$threads "$bin" run "$@" --out "$work/$name-$side" >/dev/null 2>&1
+    if ! RAYON_NUM_THREADS=$threads "$bin" run "$@" --out "$work/$name-$side" \
+      >/dev/null 2>"$work/$name-$side.err"; then
+      echo "FAILED: $name ($side binary): $(tail -n 1 "$work/$name-$side.err")"
+      status=1
+      return
+    fi
     untimed "$work/$name-$side/results.json" >"$work/$name-$side/results.untimed.json"
   done
   local differ=""

@@ -6,10 +6,10 @@
 //! answers with their bars are `#[ignore]`d (half a minute and more):
 //! `cargo test --release --test edge_band -- --ignored --nocapture`.
 
-use twoball::fe::axisym::impact::{HeadOn, Target};
 use twoball::mesh::meridian::{ladder_ball, MeridianMesh};
 use twoball::study::phase_band::{banded_mesh, contact_edge, SIZING_PER_EDGE};
 use twoball::study::phase_ensemble::{converged_head_on, ring_ratio, HeadOnCase, PhasePlan};
+use twoball::study::section_impact::{HeadOn, Target};
 
 const D: f64 = 0.02;
 

@@ -17,7 +17,7 @@ use super::phase_ensemble::{family_mesh, hertz_contact_radius, HeadOnCase, HeadO
 use super::simulate::{choose_reduction, Reduction, DEFAULT_HOLD_FRACTION};
 use crate::error::Result;
 use crate::fe::axisym::mass_scaling::within_budget;
-use crate::fe::timestep::characteristic_length;
+use crate::fe::solver::timestep::characteristic_length;
 use crate::mesh::ball::{ball, BallSpec, Cut};
 use crate::mesh::meridian::MeridianMesh;
 use crate::mesh::quality::hex_volume;

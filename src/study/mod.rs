@@ -17,6 +17,8 @@
 //! - [`slurm`]: a sweep as a Slurm job array;
 //! - [`sweep_status`]: cases done, failed, running and missing in a sweep folder;
 //! - [`simulate`]: the FE run (model, reductions, stop rule, reduction to rigid motion);
+//! - [`section_impact`]: the impact driver and stop rule of a head-on run on the meridian
+//!   section (first touch to separation; e, δ_max, duration, peak force, history);
 //! - [`single`]: one scene, both models side by side, results.json and history.csv;
 //! - [`plots`]: SVG charts for the report;
 //! - [`figures`]: CSV and SVG files of the paper's parametric figures;
@@ -51,6 +53,7 @@ pub mod phase_ensemble;
 pub mod plots;
 pub mod progress;
 pub mod report;
+pub mod section_impact;
 pub mod similarity;
 pub mod simulate;
 pub mod simulate_section;

@@ -22,9 +22,9 @@ use super::phase_ensemble::{
     PhaseEnsemble,
 };
 use crate::error::Result;
-use crate::fe::axisym::impact::ImpactResult;
 use crate::mesh::meridian::{ladder_ball_banded, EdgeBand, MeridianMesh};
 pub use crate::mesh::meridian_band::check_split;
+use crate::study::section_impact::ImpactResult;
 
 /// The banded family's sizing radius over the edge: its core reaches 1.5 × 0.45 = 0.675
 /// edges along the surface, inside the band's 0.8 even for an ensemble member scaled by a

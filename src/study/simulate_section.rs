@@ -14,12 +14,12 @@ use super::simulate::{
 use super::snapshots::Snapshots;
 use crate::error::{Error, Result};
 use crate::fe::axisym::element::QuadFormulation;
-use crate::fe::axisym::impact::{HeadOn, ImpactRow, OtherBall, PlaneContact, Target, WallBlock};
 use crate::fe::axisym::subcycle::Integration;
 use crate::fe::solver::subcycle::{SubcycleReport, Subcycling};
 use crate::fe::Formulation;
 use crate::mesh::meridian::{ball, block, BlockSpec, MeridianMesh, SectionSpec};
 use crate::scene::{BallScene, MeshSettings, PlaneEnforcement, Scene, Switch, Touch};
+use crate::study::section_impact::{HeadOn, ImpactRow, OtherBall, PlaneContact, Target, WallBlock};
 use std::time::Instant;
 
 /// What the section run needs beyond the scene: the kinematics at touch, the analytical

@@ -8,12 +8,12 @@ use super::matrix::{HeadOnPoint, ObliquePoint};
 use crate::analytic::{Body, HertzPair};
 use crate::error::{Error, Result};
 use crate::fe::axisym::element::QuadFormulation;
-use crate::fe::axisym::impact::PlaneContact;
 use crate::mesh::meridian_band::depth_for;
 use crate::scene::Scene;
 use crate::study::phase_ensemble::{
     converged_head_on, Bar as EnsembleBar, HeadOnCase, HeadOnTarget, PhasePlan, MIN_LEVEL,
 };
+use crate::study::section_impact::PlaneContact;
 use crate::study::simulate::RunOptions;
 use crate::study::single::run_scene;
 use serde::{Deserialize, Deserializer, Serialize, Serializer};
