@@ -9,7 +9,7 @@ use twoball::fe::axisym::subcycle::Integration;
 use twoball::fe::simd::KernelPath;
 use twoball::material::Material;
 use twoball::mesh::meridian::{ball, MeridianMesh, SectionSpec};
-use twoball::study::section_impact::{HeadOn, ImpactResult, OtherBall, Target};
+use twoball::study::run::section_impact::{HeadOn, ImpactResult, OtherBall, Target};
 
 fn mesh(d: f64) -> MeridianMesh {
     ball(&SectionSpec {

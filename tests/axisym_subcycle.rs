@@ -10,7 +10,7 @@ use twoball::fe::interaction::Interaction;
 use twoball::fe::materials::J2Material;
 use twoball::material::Material;
 use twoball::mesh::meridian::{ball, ladder_ball, MeridianMesh, SectionSpec};
-use twoball::study::section_impact::{HeadOn, ImpactResult, PlaneContact, Target};
+use twoball::study::run::section_impact::{HeadOn, ImpactResult, PlaneContact, Target};
 
 const D: f64 = 0.02;
 

@@ -104,7 +104,7 @@ pub fn run(a: DamperArgs) -> Result<()> {
     }
     let outcomes = run_cases(&cases, &Registry::builtin())?;
     write_outputs(&a.out, &outcomes)?;
-    crate::study::damper_plots::write_plots(&a.out, &outcomes)?;
+    crate::study::report::damper_plots::write_plots(&a.out, &outcomes)?;
     println!(
         "{:<14} {:>9} {:>9} {:>11} {:>11} {:>9} {:>8}",
         "case", "f [Hz]", "f_meas", "zeta [%]", "zeta_meas", "residual", "wall [s]"

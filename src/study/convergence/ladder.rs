@@ -1,60 +1,19 @@
-//! A run's own error bar: the same scene on a ladder of meshes (each level halves the pole and
-//! the bulk element size of the one before), and the error estimate of e, δ_max and the
-//! contact duration from it ([`super::convergence`]).
+//! The mesh ladder of a scene: which levels to run ([`LadderPlan`]), the scene on a level
+//! ([`scene_at_level`]: pole and bulk sizes halved per level) and the loop that runs levels
+//! until a plan is met ([`run_ladder`]), its estimate an [`ErrorEstimate`].
 //!
 //! The ladder is model-agnostic: [`run_ladder`] takes a closure `run(level)` that runs the
 //! scene on mesh level `level` (0 the scene's own mesh, −1 the next coarser, +1 the next finer)
 //! and returns its [`LevelOutcome`]; the 3D model's closure is [`scene_at_level`] followed by
 //! a run, and any other model plugs in the same way.
 
-pub use super::converged_scene::EstimateMethod;
-use super::convergence::{estimate, Estimate};
 use crate::error::{Error, Result};
 use crate::scene::{MeshSettings, Scene};
+use crate::study::records::error_estimate::{ErrorEstimate, LevelOutcome, LADDER_RATIO};
 use serde::Serialize;
 
-/// The refinement ratio of the ladder: each level halves the element sizes.
-pub const LADDER_RATIO: f64 = 2.0;
 /// The default cap on levels finer than the scene's own mesh with `--tolerance`.
 pub const DEFAULT_MAX_REFINEMENTS: u32 = 2;
-
-/// What one mesh level of the ladder produced.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
-pub struct LevelOutcome {
-    /// Ladder level: 0 the scene's mesh, negative coarser, positive finer.
-    pub level: i32,
-    /// Pole element size of ball 1, m.
-    pub pole_size: f64,
-    /// Bulk element size of ball 1, m.
-    pub size: f64,
-    /// Coefficient of restitution e, -.
-    pub e: f64,
-    /// Maximum approach δ_max, m.
-    pub delta_max: f64,
-    /// Contact duration, s.
-    pub contact_duration: f64,
-    /// Wall time of the run, s.
-    pub wall_time_s: f64,
-    /// The section model's phase ensemble behind e, δ_max and the contact duration (means
-    /// over its meshes); None for a single run.
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub phase: Option<PhaseSummary>,
-}
-
-/// What a level's phase ensemble adds ([`super::phase_ensemble`]).
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
-pub struct PhaseSummary {
-    /// Meshes of the ensemble (the scene's own and M − 1 with scaled pole sizes).
-    pub meshes: usize,
-    /// Ring ratio q: the pole sizes run over q^{j/M}, -.
-    pub ring_ratio: f64,
-    /// Sampling error of the mean e (even members against all), -.
-    pub e_sampling_error: f64,
-    /// Smallest e of the members, -.
-    pub e_min: f64,
-    /// Largest e of the members, -.
-    pub e_max: f64,
-}
 
 /// Which levels to run.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
@@ -74,119 +33,6 @@ pub enum LadderPlan {
     },
 }
 
-/// The error estimate written as results.json's `error_estimate`.
-#[derive(Debug, Clone, PartialEq, Serialize)]
-pub struct ErrorEstimate {
-    /// Refinement ratio between levels, -.
-    pub ratio: f64,
-    /// Coefficient of restitution e, -.
-    pub e: Estimate,
-    /// Maximum approach δ_max, m.
-    pub delta_max: Estimate,
-    /// Contact duration, s.
-    pub contact_duration: Estimate,
-    /// The runs of the ladder, coarse to fine (the finest is the reported run).
-    pub meshes: Vec<LevelOutcome>,
-    /// The requested relative tolerance on e, - (with `--tolerance`).
-    pub tolerance: Option<f64>,
-    /// Whether the estimate of e met the tolerance (with `--tolerance`).
-    pub tolerance_met: Option<bool>,
-    /// How the estimate was obtained: the scene's own ladder, or the banded family that
-    /// `--tolerance` runs on a head-on section scene it covers.
-    pub method: EstimateMethod,
-}
-
-impl ErrorEstimate {
-    /// The estimate from ladder runs (coarse to fine, at least two).
-    pub fn from_runs(meshes: Vec<LevelOutcome>, tolerance: Option<f64>) -> Result<ErrorEstimate> {
-        let of = |f: fn(&LevelOutcome) -> f64, what: &str| -> Result<Estimate> {
-            let v: Vec<f64> = meshes.iter().map(f).collect();
-            estimate(&v, LADDER_RATIO).ok_or_else(|| {
-                Error::Numerical(format!(
-                    "error estimate of {what}: needs two or more finite values, got {v:?}"
-                ))
-            })
-        };
-        let mut e = of(|m| m.e, "e")?;
-        if let Some(p) = meshes.last().and_then(|m| m.phase) {
-            // The ensemble's mean still carries its sampling error.
-            e = e.with_error(e.error + p.e_sampling_error);
-        }
-        let tolerance_met = tolerance.map(|t| meets(&e, t));
-        Ok(ErrorEstimate {
-            ratio: LADDER_RATIO,
-            delta_max: of(|m| m.delta_max, "delta_max")?,
-            contact_duration: of(|m| m.contact_duration, "contact_duration")?,
-            e,
-            meshes,
-            tolerance,
-            tolerance_met,
-            method: EstimateMethod::SceneLadder {
-                why_not_banded: None,
-            },
-        })
-    }
-
-    /// One line for the terminal: each quantity with its bar and the ladder's flag.
-    pub fn summary(&self) -> String {
-        let levels: Vec<String> = self.meshes.iter().map(|m| m.level.to_string()).collect();
-        let one = |name: &str, unit: &str, q: &Estimate| {
-            let rel = q
-                .relative_error
-                .map_or("-".into(), |r| format!("{:.2}%", 100.0 * r));
-            let order = match (q.observed_order, q.order_used) {
-                (Some(p), _) => format!("p = {p:.2}"),
-                (None, Some(p)) => format!("p = {p} assumed"),
-                _ => "no order".into(),
-            };
-            format!(
-                "{name} {:.6e}{unit} ± {:.2e} ({rel}; {order}; {})",
-                q.extrapolated,
-                q.error,
-                q.behaviour.name()
-            )
-        };
-        let family = match &self.method {
-            EstimateMethod::SceneLadder { .. } => "mesh levels".to_string(),
-            EstimateMethod::BandedFamily {
-                band_split,
-                band_edge_m,
-                mass_scaling,
-                ..
-            } => format!(
-                "banded family, rings at {:.0} µm split {band_split}-fold, mass scaling {mass_scaling:.1e}, levels",
-                band_edge_m * 1e6
-            ),
-        };
-        let mut s = format!(
-            "error estimate ({family} {}): {}; {}; {}",
-            levels.join(", "),
-            one("e", "", &self.e),
-            one("delta_max", " m", &self.delta_max),
-            one("contact duration", " s", &self.contact_duration)
-        );
-        if let (Some(t), Some(met)) = (self.tolerance, self.tolerance_met) {
-            s.push_str(&format!(
-                "; tolerance {:.3}% on e {}",
-                100.0 * t,
-                if met { "met" } else { "NOT met" }
-            ));
-        }
-        if let EstimateMethod::SceneLadder {
-            why_not_banded: Some(why),
-        } = &self.method
-        {
-            s.push_str(&format!("; the scene's own ladder ran: {why}"));
-        }
-        s
-    }
-}
-
-/// True when the relative estimate of `e` is at most `tolerance`.
-fn meets(e: &Estimate, tolerance: f64) -> bool {
-    e.relative_error.is_some_and(|r| r <= tolerance)
-}
-
 /// Runs the ladder `plan` with `run(level)` and returns the estimate; the last run is the
 /// finest. Errors of `run` pass through (with the level named).
 pub fn run_ladder(
@@ -201,17 +47,41 @@ pub fn run_ladder(
             tolerance,
             max_refinements,
         } => {
-            let mut runs = vec![at(-1)?, at(0)?];
-            loop {
-                let est = ErrorEstimate::from_runs(runs.clone(), Some(tolerance))?;
+            let met = |runs: &Vec<LevelOutcome>| {
+                Ok(
+                    ErrorEstimate::from_runs(runs.clone(), Some(tolerance))?.tolerance_met
+                        == Some(true),
+                )
+            };
+            let start = vec![at(-1)?, at(0)?];
+            let finer = |mut runs: Vec<LevelOutcome>| {
                 let finest = runs.last().map_or(0, |r| r.level);
-                if est.tolerance_met == Some(true) || finest >= max_refinements as i32 {
-                    return Ok(est);
-                }
                 runs.push(at(finest + 1)?);
-            }
+                Ok(runs)
+            };
+            let (runs, _) = refine(start, max_refinements, met, finer)?;
+            ErrorEstimate::from_runs(runs, Some(tolerance))
         }
     }
+}
+
+/// The refine loop of every ladder: while `met(&state)` is false and fewer than `max`
+/// refinements have run, `finer(state)` runs the next finer level. Returns the last state and
+/// the number of refinements run.
+///
+/// Errors: those of `met` and `finer`.
+pub fn refine<S>(
+    mut state: S,
+    max: u32,
+    mut met: impl FnMut(&S) -> Result<bool>,
+    mut finer: impl FnMut(S) -> Result<S>,
+) -> Result<(S, u32)> {
+    let mut done = 0;
+    while done < max && !met(&state)? {
+        state = finer(state)?;
+        done += 1;
+    }
+    Ok((state, done))
 }
 
 /// `e` with its message prefixed by the ladder level (field errors already name theirs).

@@ -7,11 +7,11 @@
 //! ζ_fit = σ/√(σ² + (2π f)²) in the title beside the log decrement's: where the decay is
 //! exponential the peaks lie on it, and where the damping depends on amplitude they leave it.
 
-use super::plots::{Chart, Series, Style};
 use crate::atomic::write_atomic;
 use crate::damper::decay::{cycle_ratios, envelope_fit, peaks};
 use crate::damper::run::CaseOutcome;
 use crate::error::Result;
+use crate::study::common::plots::{Chart, Series, Style};
 use std::f64::consts::PI;
 use std::path::Path;
 

@@ -2,11 +2,11 @@
 //! rings at the contact edge ([`crate::mesh::meridian_band`]).
 //!
 //! A section run's plastic e is a sawtooth over the ring spacing at the contact edge
-//! ([`super::phase_ensemble`]). The band splits that spacing alone, which shrinks the
+//! ([`crate::study::convergence::phase_ensemble`]). The band splits that spacing alone, which shrinks the
 //! sawtooth for a fraction of the cost of refining the whole mesh: on the default scene (two
 //! D = 20 mm copper-fe balls, ±1 m/s) the standard deviation of e over eleven meshes of
 //! level 0 falls from 1.9 % to 0.35 % with a four-fold band, at 4.5 times the run's cost,
-//! where level 1 (seven times the cost) leaves 0.95 % (docs/contact-penalty.md, "An edge
+//! where level 1 (seven times the cost) leaves 0.95 % (verification/contact-penalty.md, "An edge
 //! band of finer rings"). An odd split confines the band's shells to a sixth of the rays below
 //! the surface ([`crate::mesh::meridian_band::SURFACE_DEPTH`]), which the bench's five-fold
 //! band uses: the same answers at about half the cost.
@@ -17,14 +17,14 @@
 //! layers, outside the refined core), with the band [0.8, 1.15] edges split `split`-fold on
 //! every level. Its levels are the ladder's (0, 1, …): a banded plan's fine level is ≥ 1.
 
-use super::phase_ensemble::{
-    ensemble_over, family_mesh, hertz_contact_radius, ring_ratio, run_head_on, HeadOnCase,
-    PhaseEnsemble,
-};
 use crate::error::Result;
 use crate::mesh::meridian::{ladder_ball_banded, EdgeBand, MeridianMesh};
 pub use crate::mesh::meridian_band::check_split;
-use crate::study::section_impact::ImpactResult;
+use crate::study::convergence::phase_ensemble::{
+    ensemble_over, family_mesh, hertz_contact_radius, ring_ratio, run_head_on, HeadOnCase,
+    PhaseEnsemble,
+};
+use crate::study::run::section_impact::ImpactResult;
 
 /// The banded family's sizing radius over the edge: its core reaches 1.5 × 0.45 = 0.675
 /// edges along the surface, inside the band's 0.8 even for an ensemble member scaled by a

@@ -1,7 +1,7 @@
 //! A sweep as a Slurm job array: `DIR/sweep.sbatch`, one array task per shard, each running
 //! `twoball sweep FILE --out DIR --shard $((SLURM_ARRAY_TASK_ID+1))/N` on a filesystem every
 //! node sees. Resubmitting the same script reruns only what is missing: finished cases are
-//! skipped by every task (see [`super::sweep`]).
+//! skipped by every task (see [`crate::study::sweep`]).
 
 use crate::atomic::{ensure_dir, write_atomic};
 use crate::error::{Error, Result};

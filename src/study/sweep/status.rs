@@ -8,9 +8,9 @@
 //! missing; a marker from another host counts as running (its process cannot be checked from
 //! here).
 
-use super::sweep::{read_case, Case, Status};
 use crate::atomic::{ensure_dir, write_atomic};
 use crate::error::Result;
+use crate::study::sweep::{read_case, Case, Status};
 use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
 

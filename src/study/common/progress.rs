@@ -2,7 +2,7 @@
 //! log under nohup) a plain line every few seconds or every 10 %, with an ETA, so a long run
 //! is never silent.
 //!
-//! - [`Bar`]: the simulated time of one FE run, scaled to the stop rule's end (refined as the
+//! - [`RunProgress`]: the simulated time of one FE run, scaled to the stop rule's end (refined as the
 //!   run learns it);
 //! - [`Cases`]: the cases of a sweep or stress matrix, done and failed.
 //!
@@ -93,19 +93,7 @@ thread_local! {
 /// Runs `f` on this thread with `hook` (None: as is) receiving the progress of the bars and
 /// case counters made during `f`; the previous hook is restored afterwards.
 pub fn reporting<R>(hook: Option<&Hook>, f: impl FnOnce() -> R) -> R {
-    let Some(hook) = hook else {
-        return f();
-    };
-    let before = HOOK.with(|h| h.replace(Some(hook.clone())));
-    struct Restore(Option<Hook>);
-    impl Drop for Restore {
-        fn drop(&mut self) {
-            let before = self.0.take();
-            HOOK.with(|h| *h.borrow_mut() = before);
-        }
-    }
-    let _restore = Restore(before);
-    f()
+    crate::study::common::scoped::with_value(&HOOK, hook, f)
 }
 
 /// The progress receiver of this thread, if any (to hand on to worker threads).
@@ -117,7 +105,7 @@ pub fn current() -> Option<Hook> {
 const BAR_UNITS_PER_S: f64 = 1e9;
 
 /// Progress of one FE run through simulated time.
-pub struct Bar {
+pub struct RunProgress {
     mode: Mode,
     bar: Option<ProgressBar>,
     /// Expected end of the run on the solver clock, s.
@@ -131,7 +119,7 @@ pub struct Bar {
     hook: Option<Hook>,
 }
 
-impl Bar {
+impl RunProgress {
     /// Progress of a run from solver time `start` to its expected end `end` (s), shown as
     /// `mode` says.
     pub fn new(mode: Mode, start: f64, end: f64) -> Self {
@@ -141,7 +129,7 @@ impl Bar {
                 "[{bar:40}] {percent:>3}% simulated, {elapsed} wall, ETA {eta}",
             )
         });
-        let b = Bar {
+        let b = RunProgress {
             mode,
             bar,
             end,
@@ -239,7 +227,7 @@ impl Bar {
     }
 }
 
-impl Drop for Bar {
+impl Drop for RunProgress {
     fn drop(&mut self) {
         if let Some(b) = self.bar.take() {
             b.finish_and_clear();

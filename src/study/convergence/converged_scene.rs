@@ -5,11 +5,11 @@
 //!
 //! A section run's plastic e is a sawtooth over the ring spacing at the contact edge, so the
 //! scene's own ladder (pole and bulk sizes halved per level) converges slowly and its bar is
-//! loose (docs/contact-penalty.md, "Why the section's e scatters"). The banded family splits
+//! loose (verification/contact-penalty.md, "Why the section's e scatters"). The banded family splits
 //! the rings at the contact edge five-fold, mass scaling lifts the step of the smallest
 //! quads, and two members per level average the sawtooth: on the default scene e comes to
 //! within 0.2 % of the converged 0.3184 with a bar of 0.4 % in about 4 s on 2 cores
-//! (docs/contact-penalty.md, "Mass scaling of the contact region"). The family is sized from
+//! (verification/contact-penalty.md, "Mass scaling of the contact region"). The family is sized from
 //! the physics (Hertz's contact radius, then the contact edge of a level-0 run), not from the
 //! scene's mesh settings.
 //!
@@ -17,21 +17,22 @@
 //! those the family runs with; any other head-on scene keeps its own ladder, and the
 //! estimate says why ([`EstimateMethod::SceneLadder`]).
 
-use super::error_estimate::{ErrorEstimate, LevelOutcome, PhaseSummary, LADDER_RATIO};
-use super::phase_band::banded_mesh;
-use super::phase_ensemble::{
-    converged_head_on, Bar, HeadOnAnswer, HeadOnCase, HeadOnTarget, PhaseEnsemble, PhasePlan,
-    MASS_SCALING_BIAS,
-};
-use super::simulate::{choose_reduction, Reduction};
-use super::simulate_section::{formulation, plane_contact};
-use super::single::{take_phase_mean, RunReport};
 use crate::error::{Error, Result};
 use crate::fe::axisym::subcycle::Integration;
 use crate::fe::subcycle::Subcycling;
 use crate::mesh::meridian::MeridianMesh;
 use crate::scene::{approach, Approach, PlaneEnforcement, Scene, Switch, WallKind};
-use serde::Serialize;
+use crate::study::convergence::phase_band::banded_mesh;
+use crate::study::convergence::phase_ensemble::{
+    converged_head_on, Bar, HeadOnAnswer, HeadOnCase, HeadOnTarget, PhaseEnsemble, PhasePlan,
+    MASS_SCALING_BIAS,
+};
+use crate::study::records::error_estimate::{
+    ErrorEstimate, EstimateMethod, LevelOutcome, PhaseSummary, LADDER_RATIO,
+};
+use crate::study::run::scene::{take_phase_mean, RunReport};
+use crate::study::run::section::{formulation, plane_contact};
+use crate::study::run::simulate::{choose_reduction, Reduction};
 
 /// The band's split: each surface ring at the contact edge split five-fold, its shells
 /// confined to the surface ([`crate::mesh::meridian_band::SURFACE_DEPTH`]).
@@ -57,35 +58,6 @@ pub const SUBCYCLE_MAX_LEVEL: u8 = 3;
 
 /// The share of the tolerance that the mass-scaling bias bound may take.
 const MASS_SCALING_SHARE: f64 = 0.2;
-
-/// How a run's error estimate was obtained (results.json `error_estimate.method`).
-#[derive(Debug, Clone, PartialEq, Serialize)]
-#[serde(rename_all = "snake_case", tag = "kind")]
-pub enum EstimateMethod {
-    /// The scene's own mesh ladder: each level halves its pole and bulk sizes.
-    SceneLadder {
-        /// Why the banded family did not run with `--tolerance`: the scene is one it does
-        /// not cover, or the scene's own levels −1 and 0 already met a tolerance of 2 % or
-        /// looser; None when it was not asked for.
-        #[serde(skip_serializing_if = "Option::is_none")]
-        why_not_banded: Option<String>,
-    },
-    /// The banded, mass-scaled family of [`converged_head_on`], sized from the physics.
-    BandedFamily {
-        /// Surface rings at the contact edge split this many times, -.
-        band_split: usize,
-        /// The contact edge the band is centred on, m.
-        band_edge_m: f64,
-        /// Meshes per level (phases of the rings), -.
-        meshes_per_level: usize,
-        /// Mass-scaling budget of every run (added mass over the section's), -.
-        mass_scaling: f64,
-        /// The bias bound of that budget, relative, in every bar, -.
-        mass_scaling_bias: f64,
-        /// CPU time of all the family's runs, s.
-        cpu_time_s: f64,
-    },
-}
 
 /// The mass-scaling budget for a relative tolerance `tolerance` on e: the largest whose bias
 /// bound ([`MASS_SCALING_BIAS`] · budget) is at most a fifth of the tolerance, and at most
@@ -270,8 +242,8 @@ fn estimate_of(case: &HeadOnCase, answer: &HeadOnAnswer, tolerance: f64) -> Resu
 
 /// A bar of [`converged_head_on`] as a two-level estimate: the fine mean, the extrapolated
 /// value (order 2 assumed) and the bar (level difference, sampling error, mass-scaling bias).
-fn estimate_from_bar(bar: &Bar) -> super::convergence::Estimate {
-    use super::convergence::{Behaviour, Estimate, ASSUMED_ORDER};
+fn estimate_from_bar(bar: &Bar) -> crate::study::records::estimate::Estimate {
+    use crate::study::records::estimate::{Behaviour, Estimate, ASSUMED_ORDER};
     Estimate {
         finest: bar.value,
         extrapolated: bar.extrapolated,
@@ -342,8 +314,8 @@ mod tests {
         assert_eq!(wall.relative_speed, 1.0);
         let mesh = || crate::mesh::meridian::ladder_ball(0.02, 5e-4, 0).unwrap();
         let (a, b) = (
-            super::super::phase_ensemble::head_on(&pair, mesh()),
-            super::super::phase_ensemble::head_on(&wall, mesh()),
+            crate::study::convergence::phase_ensemble::head_on(&pair, mesh()),
+            crate::study::convergence::phase_ensemble::head_on(&wall, mesh()),
         );
         assert_eq!(a.speed, b.speed);
         assert_eq!(a.speed, 1.0);

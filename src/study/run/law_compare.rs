@@ -2,12 +2,12 @@
 //! speeds at first touch (the quantities `twoball laws run` gives), for results.json and the
 //! printed summary.
 
-use super::number::sci;
 use crate::analytic::impact::{integrate, DEFAULT_TOLERANCE};
 use crate::analytic::laws::{ContactPair, Registry};
 use crate::analytic::Body;
 use crate::error::{Error, Result};
 use crate::scene::{Scene, Touch};
+use crate::study::records::number::sci;
 use serde::Serialize;
 use std::collections::BTreeMap;
 
@@ -42,7 +42,7 @@ pub fn compare_laws(scene: &Scene, touch: &Touch) -> Result<Vec<LawOutcome>> {
     let b1 = Body::ball(scene.ball1.material, scene.ball1.diameter, "ball1")?;
     let (mu, _) = scene.friction_coefficients();
     let [a, b] = touch.v;
-    let (b2, b) = super::outcome::analytic_partner(scene, b)?;
+    let (b2, b) = crate::study::records::outcome::analytic_partner(scene, b)?;
     let pair = ContactPair::between(&b1, &b2, mu);
     let registry = Registry::builtin();
     let tangential = &scene.laws.tangential;

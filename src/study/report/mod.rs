@@ -1,10 +1,15 @@
 //! The verification report: tables and the paper's Figures 6-10 regenerated from a finished
 //! sweep folder, written as Markdown with its CSV and SVG files beside it.
 
-use super::plots::{Chart, Series, Style};
-use super::sweep::{read_records, CaseRecord, Status, SweepSpec};
+pub mod curves;
+pub mod damper_plots;
+pub mod figures;
+pub mod law_fit_files;
+
 use crate::atomic::{ensure_dir, write_atomic};
 use crate::error::{Error, Result};
+use crate::study::common::plots::{Chart, Series, Style};
+use crate::study::sweep::{read_records, CaseRecord, Status, SweepSpec};
 use std::fmt::Write as _;
 use std::path::Path;
 
@@ -26,7 +31,7 @@ fn stats(v: &[f64]) -> String {
     format!("{:.1} / {:.1}", 100.0 * mean, 100.0 * max)
 }
 
-type Getter = fn(&crate::study::outcome::Outcome) -> f64;
+type Getter = fn(&crate::study::records::outcome::Outcome) -> f64;
 
 const QUANTITIES: [(&str, Getter); 5] = [
     ("e", |o| o.e),
@@ -148,7 +153,7 @@ pub fn write_report(
     ensure_dir(&fig_dir)?;
     let mut figures: Vec<String> = Vec::new();
     // The CSV from the finished case files (also while a sweep is running or after a kill).
-    let (csv, _, _) = super::sweep::csv_text(dir, &cases);
+    let (csv, _, _) = crate::study::sweep::csv_text(dir, &cases);
     write_atomic(fig_dir.join("sweep.csv"), csv.as_bytes())?;
 
     let mut md = String::new();
@@ -188,9 +193,9 @@ pub fn write_report(
         n_none,
         n_fail
     );
-    let size = |s: super::sweep::Size| match s {
-        super::sweep::Size::Absolute(m) => format!("{} mm", m * 1000.0),
-        super::sweep::Size::PerDiameter(f) => format!("D/{}", (1.0 / f).round()),
+    let size = |s: crate::study::sweep::Size| match s {
+        crate::study::sweep::Size::Absolute(m) => format!("{} mm", m * 1000.0),
+        crate::study::sweep::Size::PerDiameter(f) => format!("D/{}", (1.0 / f).round()),
     };
     let _ = writeln!(
         w,
@@ -286,7 +291,7 @@ pub fn write_report(
             let sel = |r: &&CaseRecord| {
                 r.params.mesh == m.name && r.params.v1t == 0.0 && r.params.v2t == 0.0
             };
-            let speed = |o: &crate::study::outcome::Outcome| {
+            let speed = |o: &crate::study::records::outcome::Outcome| {
                 if getter == 0 {
                     o.v1_after[0]
                 } else {

@@ -11,10 +11,6 @@
 //! A sweep case on the meridian section runs phase ensembles, or with `[study] tolerance` the
 //! banded family, and is costed as such ([`Estimator::estimate_to`]).
 
-use super::outcome::analytic_outcome;
-use super::phase_band::banded_mesh;
-use super::phase_ensemble::{family_mesh, hertz_contact_radius, HeadOnCase, HeadOnTarget};
-use super::simulate::{choose_reduction, Reduction, DEFAULT_HOLD_FRACTION};
 use crate::error::Result;
 use crate::fe::axisym::mass_scaling::within_budget;
 use crate::fe::solver::timestep::characteristic_length;
@@ -23,6 +19,12 @@ use crate::mesh::meridian::MeridianMesh;
 use crate::mesh::quality::hex_volume;
 use crate::mesh::Mesh;
 use crate::scene::{approach, Approach, MeshSettings, Scene};
+use crate::study::convergence::phase_band::banded_mesh;
+use crate::study::convergence::phase_ensemble::{
+    family_mesh, hertz_contact_radius, HeadOnCase, HeadOnTarget,
+};
+use crate::study::records::outcome::analytic_outcome;
+use crate::study::run::simulate::{choose_reduction, Reduction, DEFAULT_HOLD_FRACTION};
 use std::collections::HashMap;
 use std::sync::Mutex;
 
@@ -96,7 +98,7 @@ impl Estimator {
         if let Some(hit) = cached {
             return Ok(hit);
         }
-        let mesh = super::simulate_section::section_mesh(name, b)?;
+        let mesh = crate::study::run::section::section_mesh(name, b)?;
         let length = mesh
             .quads
             .iter()
@@ -179,13 +181,13 @@ impl Estimator {
 }
 
 impl Estimator {
-    /// The estimated cost of `scene` as a sweep case runs it ([`super::single::sweep_case_to`]
+    /// The estimated cost of `scene` as a sweep case runs it ([`crate::study::convergence::scene_estimate::sweep_case_to`]
     /// with `tolerance`): a head-on scene on the meridian section runs phase ensembles, not
     /// its mesh once. With a tolerance that the banded family covers, the family's runs
     /// ([`Estimator::banded_family`]; for a tolerance of 2 % or looser an upper bound, since
     /// the scene's own levels −1 and 0, about a thirtieth of it, may meet it first and end
-    /// the case: [`super::single::run_to_tolerance`]); otherwise its default ladder, levels
-    /// −1 and 0 of [`super::single::SCENE_PHASE_MESHES`] meshes each (a level −1 mesh has a
+    /// the case: [`crate::study::convergence::scene_estimate::run_to_tolerance`]); otherwise its default ladder, levels
+    /// −1 and 0 of [`crate::study::convergence::scene_estimate::SCENE_PHASE_MESHES`] meshes each (a level −1 mesh has a
     /// quarter of the quads and twice the step: an eighth of the cost). Any other case as
     /// [`Estimator::estimate`].
     ///
@@ -198,8 +200,10 @@ impl Estimator {
     ) -> Result<CostEstimate> {
         // The family's cost does not depend on the scene's own mesh: it is not meshed.
         if let (true, Some(t)) = (fe, tolerance) {
-            let budget = super::converged_scene::mass_scaling_for(t);
-            if let Ok(case) = super::converged_scene::head_on_case(scene, budget)? {
+            let budget = crate::study::convergence::converged_scene::mass_scaling_for(t);
+            if let Ok(case) =
+                crate::study::convergence::converged_scene::head_on_case(scene, budget)?
+            {
                 if let Approach::Impact(touch) = approach(scene)? {
                     let (outcome, _) = analytic_outcome(scene, &touch)?;
                     let simulated = simulated_time(scene, outcome.contact_duration);
@@ -211,10 +215,12 @@ impl Estimator {
         if !fe || own.elements == 0 {
             return Ok(own);
         }
-        match super::single::default_plan(scene)? {
+        match crate::study::convergence::scene_estimate::default_plan(scene)? {
             Some(_) => Ok(CostEstimate {
                 elements: own.elements,
-                steps: own.steps * super::single::SCENE_PHASE_MESHES as f64 * (1.0 + 1.0 / 8.0),
+                steps: own.steps
+                    * crate::study::convergence::scene_estimate::SCENE_PHASE_MESHES as f64
+                    * (1.0 + 1.0 / 8.0),
             }),
             None => Ok(own),
         }
@@ -222,7 +228,7 @@ impl Estimator {
 
     /// The cost of the banded family as `twoball run --tolerance` runs `case` for `simulated`
     /// seconds each run: the pilot (plain family level 0 at Hertz's contact radius) and
-    /// levels 0 and 1 of [`super::converged_scene::MESHES`] meshes each, banded around the
+    /// levels 0 and 1 of [`crate::study::convergence::converged_scene::MESHES`] meshes each, banded around the
     /// edge of a ball flattened by `delta_max` (m; the analytical estimate): a = √(2 R h),
     /// h = δ/2 against the mirror ball, δ against a wall. Each mesh runs at its mass-scaled
     /// step; subcycling is left out (an upper bound).
@@ -232,7 +238,7 @@ impl Estimator {
         simulated: f64,
         delta_max: f64,
     ) -> Result<CostEstimate> {
-        use super::converged_scene::{FINE_LEVEL, MESHES, SPLIT};
+        use crate::study::convergence::converged_scene::{FINE_LEVEL, MESHES, SPLIT};
         let d = case.diameter;
         let depth = match case.target {
             HeadOnTarget::IdenticalBall => delta_max / 2.0,

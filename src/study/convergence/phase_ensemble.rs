@@ -2,7 +2,7 @@
 //!
 //! On the meridian section every surface node is a ring, so a plastic contact grows ring by
 //! ring and e (with t_c and the peak force) is a sawtooth in the mesh's size: it follows
-//! where the last ring to land before maximum compression sits (docs/contact-penalty.md, "Why
+//! where the last ring to land before maximum compression sits (verification/contact-penalty.md, "Why
 //! the section's e scatters"). Scaling the mesh near the pole by s moves every ring radius to
 //! s·r_k; the outermost ring inside the true contact radius a changes once per factor
 //! q = r_{k+1}/r_k (the ratio of the two rings at a), so the sawtooth is periodic in ln s with
@@ -15,17 +15,18 @@
 //! ([`ring_ratio`]), then the other M − 1 meshes in parallel (rayon). [`converged_head_on`]
 //! runs one ensemble on ladder level L and one on the next coarser mesh and combines them
 //! into an error bar ([`Bar`]): the two-level Richardson estimate of
-//! [`super::convergence`] (the coarse-to-fine difference, an honest bound for order ≥ 1)
+//! [`crate::study::records::estimate`] (the coarse-to-fine difference, an honest bound for order ≥ 1)
 //! plus the sampling error of the fine mean.
 
-use super::convergence::{estimate, Estimate};
 use crate::analytic::hertz::HertzPair;
 use crate::error::{Error, Result};
 use crate::fe::axisym::element::QuadFormulation;
 use crate::fe::axisym::subcycle::Integration;
 use crate::material::Material;
 use crate::mesh::meridian::{ladder_ball, MeridianMesh};
-use crate::study::section_impact::{HeadOn, ImpactResult, PlaneContact, Target};
+use crate::study::convergence::ladder::refine;
+use crate::study::records::estimate::{estimate, Estimate};
+use crate::study::run::section_impact::{HeadOn, ImpactResult, PlaneContact, Target};
 use rayon::prelude::*;
 use serde::Serialize;
 use std::f64::consts::PI;
@@ -109,7 +110,7 @@ pub struct PhaseEnsemble {
 /// Measured on copper-fe (banded levels 0 and 1, 0.01 to 10 m/s, budgets 1e-5 to 1e-4) and
 /// on steel, aluminum and the Johnson-Cook copper at one speed each, budget 1e-4: the
 /// largest ratio was 9.1 (e of steel at 1.39 m/s on banded level 0; 4.5 on its level 1;
-/// docs/contact-penalty.md, "Mass scaling of the contact region").
+/// verification/contact-penalty.md, "Mass scaling of the contact region").
 pub const MASS_SCALING_BIAS: f64 = 10.0;
 
 /// A value with its error bar (same unit).
@@ -233,7 +234,7 @@ pub struct PhasePlan {
     pub level: i32,
     /// Meshes per ensemble (even, ≥ 2).
     pub meshes: usize,
-    /// With `Some(split)`, the banded family ([`super::phase_band`]): the ladder around the
+    /// With `Some(split)`, the banded family ([`crate::study::convergence::phase_band`]): the ladder around the
     /// contact edge with the rings there split `split`-fold (1..=16); the fine level is then
     /// ≥ 1 (its coarse level ≥ 0).
     pub band: Option<usize>,
@@ -354,11 +355,11 @@ pub fn run_ensemble(
     let pilot_mesh = mesh_at(1.0)?;
     let pilot = run(pilot_mesh.clone())?;
     let q = ring_ratio(&pilot_mesh, pilot.contact_radius_max)?;
-    let token = super::interrupt::current();
+    let token = crate::study::common::interrupt::current();
     let rest: Vec<PhaseRun> = (1..meshes)
         .into_par_iter()
         .map(|j| {
-            super::interrupt::within(token.as_ref(), || {
+            crate::study::common::interrupt::within(token.as_ref(), || {
                 let s = q.powf(j as f64 / meshes as f64);
                 Ok(member(s, &run(mesh_at(s)?)?))
             })
@@ -417,7 +418,7 @@ fn check(case: &HeadOnCase, plan: &PhasePlan) -> Result<()> {
         ));
     }
     if let Some(split) = plan.band {
-        super::phase_band::check_split(split)?;
+        crate::study::convergence::phase_band::check_split(split)?;
         if plan.level < 1 {
             return Err(Error::invalid(
                 "level",
@@ -478,7 +479,7 @@ pub(super) fn head_on(case: &HeadOnCase, mesh: MeridianMesh) -> HeadOn {
 /// Errors: those of the run; [`Error::Interrupted`] on an interrupt.
 pub(super) fn run_head_on(case: &HeadOnCase, mesh: MeridianMesh) -> Result<ImpactResult> {
     head_on(case, mesh).run_observed(&mut |solver, _| {
-        if super::interrupt::requested() {
+        if crate::study::common::interrupt::requested() {
             return Err(Error::Interrupted(format!(
                 "at t = {:.3e} s of a head-on run",
                 solver.time()
@@ -543,11 +544,11 @@ pub fn ensemble_over(
         return Err(Error::invalid("ring_ratio", q, "> 1, finite"));
     }
     check_meshes(meshes)?;
-    let token = super::interrupt::current();
+    let token = crate::study::common::interrupt::current();
     let mut results: Vec<(PhaseRun, ImpactResult)> = (0..meshes)
         .into_par_iter()
         .map(|j| {
-            super::interrupt::within(token.as_ref(), || {
+            crate::study::common::interrupt::within(token.as_ref(), || {
                 let s = q.powf(j as f64 / meshes as f64);
                 let r = run(mesh_at(s)?)?;
                 Ok((member(s, &r), r))
@@ -563,7 +564,7 @@ pub fn ensemble_over(
 /// bars: an ensemble of `plan.meshes` meshes on family level `plan.level` (sized from
 /// Hertz's contact radius a; [`family_mesh`]) and one on the next coarser level; with
 /// `plan.band`, on the banded family around the contact edge of a level-0 run
-/// ([`super::phase_band`]). With `plan.tolerance`, while e's relative bar exceeds it the
+/// ([`crate::study::convergence::phase_band`]). With `plan.tolerance`, while e's relative bar exceeds it the
 /// next finer level runs and the fine ensemble becomes the coarse one, at most
 /// `plan.max_refinements` times ([`HeadOnAnswer::fine_level`] says where it stopped).
 ///
@@ -571,7 +572,7 @@ pub fn ensemble_over(
 /// a tolerance that is not finite and positive, or refinements past the ladder's level 7.
 pub fn converged_head_on(case: &HeadOnCase, plan: &PhasePlan) -> Result<HeadOnAnswer> {
     check(case, plan)?;
-    use super::phase_band::{banded_ensemble_at, contact_edge};
+    use crate::study::convergence::phase_band::{banded_ensemble_at, contact_edge};
     let edge = match plan.band {
         Some(_) => Some(contact_edge(case)?),
         None => None,
@@ -588,8 +589,9 @@ pub fn converged_head_on(case: &HeadOnCase, plan: &PhasePlan) -> Result<HeadOnAn
     let (coarse, fine) = match plan.band {
         // The banded ring ratio is read at the edge: both levels' members run at once.
         Some(_) => {
-            let token = super::interrupt::current();
-            let within = |level: i32| super::interrupt::within(token.as_ref(), || at(level));
+            let token = crate::study::common::interrupt::current();
+            let within =
+                |level: i32| crate::study::common::interrupt::within(token.as_ref(), || at(level));
             rayon::join(|| within(plan.level - 1), || within(plan.level))
         }
         None => (at(plan.level - 1), at(plan.level)),
@@ -599,15 +601,22 @@ pub fn converged_head_on(case: &HeadOnCase, plan: &PhasePlan) -> Result<HeadOnAn
     let mut cpu_time_s = edge.as_ref().map_or(0.0, |(_, r)| r.wall_time_s) + cpu_of(&coarse);
     let bar_e = |c: &PhaseEnsemble, f: &PhaseEnsemble| Bar::of(&c.e, &f.e, case.mass_scaling);
     if let Some(tol) = plan.tolerance {
-        while bar_e(&coarse, &fine)?.relative_error() > tol
-            && level < plan.level + plan.max_refinements as i32
-        {
-            cpu_time_s += cpu_of(&fine);
-            level += 1;
-            let (finer, finer_pilot) = at(level)?;
-            coarse = std::mem::replace(&mut fine, finer);
-            pilot = finer_pilot;
-        }
+        // Met unless the relative bar of e exceeds the tolerance (a NaN bar stops refining).
+        let met = |(c, f, ..): &Refined| {
+            let r = bar_e(c, f)?.relative_error();
+            Ok(!matches!(
+                r.partial_cmp(&tol),
+                Some(std::cmp::Ordering::Greater)
+            ))
+        };
+        let finer = |(_, f, _, l, cpu): Refined| -> Result<Refined> {
+            let cpu = cpu + cpu_of(&f);
+            let (finer, finer_pilot) = at(l + 1)?;
+            Ok((f, finer, finer_pilot, l + 1, cpu))
+        };
+        let state = (coarse, fine, pilot, level, cpu_time_s);
+        ((coarse, fine, pilot, level, cpu_time_s), _) =
+            refine(state, plan.max_refinements, met, finer)?;
     }
     cpu_time_s += cpu_of(&fine);
     let ms = case.mass_scaling;
@@ -624,6 +633,10 @@ pub fn converged_head_on(case: &HeadOnCase, plan: &PhasePlan) -> Result<HeadOnAn
         cpu_time_s,
     })
 }
+
+/// The state of the refine loop: coarse and fine ensembles, the fine pilot run, the fine
+/// level and the CPU time so far (s).
+type Refined = (PhaseEnsemble, PhaseEnsemble, ImpactResult, i32, f64);
 
 /// CPU time of an ensemble's runs (the sum of their wall times), s.
 fn cpu_of(en: &PhaseEnsemble) -> f64 {
@@ -672,7 +685,7 @@ mod tests {
     /// pool's threads) at their first observation.
     #[test]
     fn a_cancelled_job_stops_the_ensembles() {
-        use super::super::interrupt::{within, CancelToken};
+        use crate::study::common::interrupt::{within, CancelToken};
         let token = CancelToken::new();
         token.cancel();
         let plan = PhasePlan {

@@ -1,4 +1,4 @@
-//! Stress matrix (issue 7 item 1): many extreme scenes, each run as a child `twoball run`
+//! The robustness matrix (`twoball stress`): many extreme scenes, each run as a child `twoball run`
 //! process under a wall-time cap, classified as completed (energy error under tolerance),
 //! completed but flagged, stopped with a clear reason, or failed silently (NaN/inf in the
 //! output, panic, timeout, or a physically impossible result without a stop).
@@ -569,7 +569,7 @@ fn run_one(case: &StressCase, spec: &StressSpec, opts: &StressOptions) -> Result
     let (status, timed_out) = loop {
         match child.try_wait() {
             Ok(Some(s)) => break (Some(s), false),
-            Ok(None) if super::interrupt::requested() => {
+            Ok(None) if crate::study::common::interrupt::requested() => {
                 let _ = child.kill();
                 let _ = child.wait();
                 return Err(Error::Interrupted(String::new()));
@@ -614,8 +614,8 @@ pub fn run_stress(spec: &StressSpec, opts: &StressOptions) -> Result<(StressCoun
         .iter()
         .filter(|c| read_record(&opts.out, &c.id).is_none())
         .collect();
-    let progress = super::progress::Cases::new(
-        super::progress::Mode::detect(opts.verbose),
+    let progress = crate::study::common::progress::Cases::new(
+        crate::study::common::progress::Mode::detect(opts.verbose),
         "stress",
         pending.len(),
     );
@@ -624,13 +624,13 @@ pub fn run_stress(spec: &StressSpec, opts: &StressOptions) -> Result<(StressCoun
     std::thread::scope(|s| {
         for _ in 0..opts.jobs.min(pending.len().max(1)) {
             s.spawn(|| loop {
-                if super::interrupt::requested() {
+                if crate::study::common::interrupt::requested() {
                     break;
                 }
                 let k = next.fetch_add(1, Ordering::SeqCst);
                 let Some(c) = pending.get(k) else { break };
                 let res = run_one(c, spec, opts).and_then(|rec| {
-                    if super::interrupt::requested() {
+                    if crate::study::common::interrupt::requested() {
                         // Cut short: not recorded, so a resumed matrix reruns it.
                         return Err(Error::Interrupted(String::new()));
                     }
@@ -655,7 +655,7 @@ pub fn run_stress(spec: &StressSpec, opts: &StressOptions) -> Result<(StressCoun
     });
     let failure = failure.into_inner().unwrap_or_else(|p| p.into_inner());
     match failure {
-        _ if super::interrupt::requested() => {
+        _ if crate::study::common::interrupt::requested() => {
             return Err(Error::Interrupted(format!(
                 "after {} of {} cases: they are in {} (the same command resumes); summary.md not written",
                 progress.counts().0,

@@ -7,9 +7,6 @@
 //! invariance: subtracting a uniform velocity changes nothing in the collision), so that the
 //! contact plane x = 0 stays put; results are transformed back to the scene frame.
 
-use super::outcome::{ball_inertia, dissipation_factor, Outcome};
-use super::simulate_section::{simulate_section, SectionRun};
-use super::snapshots::Snapshots;
 use crate::error::{Error, Result};
 use crate::fe::contact::{
     ContactParams, ContactProbe, Coulomb, PenaltyRule, RigidPlane, SurfacePair,
@@ -24,6 +21,9 @@ use crate::mesh::Mesh;
 use crate::scene::{
     BallScene, MeshSettings, PlaneEnforcement, Scene, Switch, Symmetry, Touch, WallKind,
 };
+use crate::study::records::outcome::{ball_inertia, dissipation_factor, Outcome};
+use crate::study::run::section::{simulate_section, SectionRun};
+use crate::study::run::snapshots::Snapshots;
 use serde::Serialize;
 use std::time::Instant;
 
@@ -883,8 +883,8 @@ pub fn simulate(
         } else {
             end_time
         };
-        let mut bar = super::progress::Bar::new(
-            super::progress::Mode::detect(opts.progress),
+        let mut bar = crate::study::common::progress::RunProgress::new(
+            crate::study::common::progress::Mode::detect(opts.progress),
             solver.time(),
             expected_end,
         );
@@ -897,7 +897,7 @@ pub fn simulate(
             _ => None,
         };
         loop {
-            if super::interrupt::requested() {
+            if crate::study::common::interrupt::requested() {
                 return Err(Error::Interrupted(format!(
                     "at t = {:.3e} s of about {:.3e} s",
                     solver.time() - pre,
@@ -1099,10 +1099,13 @@ fn with_threads_for<T: Send>(elements: usize, f: impl FnOnce() -> T + Send) -> T
         return f();
     };
     // The caller's cancel request and progress receiver go with the work.
-    let (token, hook) = (super::interrupt::current(), super::progress::current());
+    let (token, hook) = (
+        crate::study::common::interrupt::current(),
+        crate::study::common::progress::current(),
+    );
     let f = move || {
-        super::interrupt::within(token.as_ref(), || {
-            super::progress::reporting(hook.as_ref(), f)
+        crate::study::common::interrupt::within(token.as_ref(), || {
+            crate::study::common::progress::reporting(hook.as_ref(), f)
         })
     };
     // Wait on a plain thread: a pool worker (a sweep's) that waited inside `install` on
@@ -1115,14 +1118,14 @@ fn with_threads_for<T: Send>(elements: usize, f: impl FnOnce() -> T + Send) -> T
 /// The FE runner of a sweep case: analytical duration estimate, FE run, summary and δ(t).
 ///
 /// Errors: as [`simulate`]; a scene without impact (the sweep never asks for one).
-pub fn sweep_case(scene: &Scene) -> Result<super::sweep::FeCase> {
+pub fn sweep_case(scene: &Scene) -> Result<crate::study::records::case::FeCase> {
     let touch = match crate::scene::approach(scene)? {
         crate::scene::Approach::Impact(t) => t,
         crate::scene::Approach::NoImpact { reason } => {
             return Err(Error::Parse(format!("no impact: {reason}")))
         }
     };
-    let (an, _) = super::outcome::analytic_outcome(scene, &touch)?;
+    let (an, _) = crate::study::records::outcome::analytic_outcome(scene, &touch)?;
     let sim = simulate(
         scene,
         &touch,
@@ -1137,10 +1140,10 @@ pub fn sweep_case(scene: &Scene) -> Result<super::sweep::FeCase> {
 
 impl Simulation {
     /// The run as a sweep case: its outcome, figures and δ(t).
-    pub fn fe_case(&self) -> super::sweep::FeCase {
-        super::sweep::FeCase {
+    pub fn fe_case(&self) -> crate::study::records::case::FeCase {
+        crate::study::records::case::FeCase {
             delta_history: self.history.iter().map(|r| [r.t, r.delta]).collect(),
-            summary: super::sweep::FeSummary {
+            summary: crate::study::records::case::FeSummary {
                 outcome: self.outcome,
                 energy_error: self.energy_error,
                 reduction: self.savings.reduction.name().into(),

@@ -15,11 +15,16 @@
 //! governed mostly by the pole size; extra "pole refinement" runs (pole size D/(100 m k) at
 //! the middle density) show what a finer pole alone buys, judged against the same reference.
 
-use super::plots::{Chart, Series, Style};
-use super::single::run_scene;
+pub mod kernel;
+pub mod machine;
+pub mod profile;
+pub mod robustness;
+
 use crate::atomic::{ensure_dir, write_atomic};
 use crate::error::{Error, Result};
 use crate::scene::{Formulation, Override, Scene};
+use crate::study::common::plots::{Chart, Series, Style};
+use crate::study::run::scene::run_scene;
 use serde::{Deserialize, Serialize};
 use std::fmt::Write as _;
 use std::path::Path;
@@ -316,7 +321,7 @@ pub fn run_ladder(
             }
         }
         let scene = scene_for(&base, toml, scene_dir, &s)?;
-        let opts = super::simulate::RunOptions {
+        let opts = crate::study::run::simulate::RunOptions {
             history_rows: 400,
             ..Default::default()
         };

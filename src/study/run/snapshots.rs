@@ -112,7 +112,7 @@ impl Snapshots {
 /// fields `displacement` (m) and `velocity` (m/s); cell fields `stress` (Pa, symmetric
 /// tensor, components xx yy zz xy yz zx), `von_mises` (Pa), `plastic_strain` (-) and `part`
 /// (0-based part index); `time` (s since first touch) as the field `TimeValue`; in `format`.
-/// Everything is in the simulated model's frame (see [`crate::study::simulate`]).
+/// Everything is in the simulated model's frame (see [`crate::study::run::simulate`]).
 ///
 /// Errors: a non-finite value anywhere (nothing is written), I/O errors naming the path.
 pub fn write_state(

@@ -4,8 +4,8 @@
 use crate::error::{Error, Result};
 use crate::fe::profile::Phase;
 use crate::scene::Scene;
-use crate::study::simulate::RunOptions;
-use crate::study::single::run_scene;
+use crate::study::run::scene::run_scene;
+use crate::study::run::simulate::RunOptions;
 use std::io::Write;
 use std::time::Instant;
 

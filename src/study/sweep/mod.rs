@@ -20,14 +20,20 @@
 //! penalty_factor = 0.01                             # optional: contact.penalty_factor of its cases
 //! ```
 
-use super::outcome::{analytic_outcome, Outcome};
-use super::sweep_status::{clear_running, mark_running};
+pub mod cost;
+pub mod similarity;
+pub mod slurm;
+pub mod status;
+
 use crate::atomic::{
     ensure_dir, remove_stale_temporaries, remove_temporaries_older_than, write_atomic,
 };
 use crate::error::{Error, Result};
 use crate::scene::reader::{parse_table, Reader};
 use crate::scene::{approach, Approach, Override, Scene, DEFAULT_SCENE};
+use crate::study::records::case::{FeCase, FeSummary};
+use crate::study::records::outcome::{analytic_outcome, Outcome};
+use crate::study::sweep::status::{clear_running, mark_running};
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 use std::collections::HashMap;
@@ -142,40 +148,6 @@ pub enum Status {
     NoImpact,
     /// The run stopped with an error (the message says why).
     Failed,
-}
-
-/// The FE part of a case result.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-pub struct FeSummary {
-    /// The FE outcome.
-    pub outcome: Outcome,
-    /// Relative energy-balance error of the run.
-    pub energy_error: f64,
-    /// Symmetry reduction used (`quarter`, `half`, `full`).
-    pub reduction: String,
-    /// Number of elements simulated.
-    pub elements: usize,
-    /// Element updates (elements × steps).
-    pub element_cycles: u64,
-    /// Wall time of the FE run, s.
-    pub wall_time_s: f64,
-    /// The run's error estimate of e (absolute, -), when it has one (a head-on case on the
-    /// section).
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub e_error: Option<f64>,
-    /// The case whose FE run this is, scaled by dimensional similarity
-    /// ([`super::similarity`]); None when the case ran its own.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub scaled_from: Option<String>,
-}
-
-/// An FE run as a sweep sees it: the summary and the δ(t) history (t in s, δ in m).
-#[derive(Debug, Clone, PartialEq)]
-pub struct FeCase {
-    /// Summary numbers.
-    pub summary: FeSummary,
-    /// δ(t) samples.
-    pub delta_history: Vec<[f64; 2]>,
 }
 
 /// What is written for each case (one JSON file per case).
@@ -305,21 +277,23 @@ pub fn select<'a>(
         .collect())
 }
 
-/// Estimated cost of each case in element-steps ([`super::cost`]); a case whose estimate
-/// fails (it will fail when run, with its reason) costs [`super::cost::CASE_OVERHEAD`].
+/// Estimated cost of each case in element-steps ([`crate::study::sweep::cost`]); a case whose estimate
+/// fails (it will fail when run, with its reason) costs [`crate::study::sweep::cost::CASE_OVERHEAD`].
 pub fn case_costs(spec: &SweepSpec, cases: &[&Case]) -> Vec<f64> {
     let fe = spec.model == SweepModel::Fe;
-    let estimator = super::cost::Estimator::default();
+    let estimator = crate::study::sweep::cost::Estimator::default();
     let twins = twins(spec, cases);
     cases
         .par_iter()
         .zip(&twins)
         .map(|(c, twin)| match twin {
             // Scaled from its twin's run: the analytical model only.
-            Some(_) => super::cost::CASE_OVERHEAD,
+            Some(_) => crate::study::sweep::cost::CASE_OVERHEAD,
             None => estimator
                 .estimate_to(&c.scene, fe, spec.tolerance)
-                .map_or(super::cost::CASE_OVERHEAD, |e| e.element_steps()),
+                .map_or(crate::study::sweep::cost::CASE_OVERHEAD, |e| {
+                    e.element_steps()
+                }),
         })
         .collect()
 }
@@ -329,12 +303,12 @@ fn runs_on_section(scene: &Scene) -> bool {
     let Ok(Approach::Impact(touch)) = approach(scene) else {
         return false;
     };
-    super::simulate::choose_reduction(scene, &touch)
-        .is_ok_and(|(r, _)| r == super::simulate::Reduction::Axisymmetric)
+    crate::study::run::simulate::choose_reduction(scene, &touch)
+        .is_ok_and(|(r, _)| r == crate::study::run::simulate::Reduction::Axisymmetric)
 }
 
 /// For each of `cases`, the earlier case (its position in `cases`) whose FE run it is scaled
-/// by the factor k (dimensional similarity, [`super::similarity::similarity_factor`]): the
+/// by the factor k (dimensional similarity, [`crate::study::sweep::similarity::similarity_factor`]): the
 /// first similar case that runs its own. None for a case that runs, for a case off the
 /// meridian section, and for every case of an analytic-only sweep.
 pub fn twins(spec: &SweepSpec, cases: &[&Case]) -> Vec<Option<(usize, f64)>> {
@@ -360,7 +334,8 @@ pub fn twins(spec: &SweepSpec, cases: &[&Case]) -> Vec<Option<(usize, f64)>> {
                 (q.v1n, q.v2n, q.v1t, q.v2t, &q.mesh) == (p.v1n, p.v2n, p.v1t, p.v2t, &p.mesh)
             })
             .find_map(|j| {
-                super::similarity::similarity_factor(&cases[j].scene, scene).map(|k| (j, k))
+                crate::study::sweep::similarity::similarity_factor(&cases[j].scene, scene)
+                    .map(|k| (j, k))
             });
     }
     out
@@ -384,7 +359,7 @@ pub fn shard_plan(spec: &SweepSpec, cases: &[&Case], count: usize) -> Vec<usize>
     if count <= 1 {
         return vec![0; cases.len()];
     }
-    let mut plan = super::cost::balance(&case_costs(spec, cases), count);
+    let mut plan = crate::study::sweep::cost::balance(&case_costs(spec, cases), count);
     // A case scaled from its twin's run goes with the twin (which comes first).
     for (i, twin) in twins(spec, cases).iter().enumerate() {
         if let Some((j, _)) = twin {
@@ -872,7 +847,7 @@ pub fn run_sweep(
 
 /// Runs the unfinished cases of `mine` (this shard's) and sums up: first those that run their
 /// own FE model, then those of `twin_of` (case index → the similar case and the factor k),
-/// whose FE result is their twin's scaled ([`super::similarity::scaled_fe_case`]; their own
+/// whose FE result is their twin's scaled ([`crate::study::sweep::similarity::scaled_fe_case`]; their own
 /// run when the twin has no finished FE result).
 fn run_cases(
     spec: &SweepSpec,
@@ -908,16 +883,16 @@ fn run_cases(
     let dir = opts.out.join("cases");
     let shard_name = format!("{}/{}", opts.shard.index, opts.shard.count);
     let n_pending = pending.len();
-    let progress = super::progress::Cases::new(
-        super::progress::Mode::detect(opts.verbose),
+    let progress = crate::study::common::progress::Cases::new(
+        crate::study::common::progress::Mode::detect(opts.verbose),
         "sweep",
         n_pending,
     );
     let n_scaled = std::sync::atomic::AtomicUsize::new(0);
     // Workers of the pool stop on the caller's cancel request too (library callers).
-    let token = super::interrupt::current();
+    let token = crate::study::common::interrupt::current();
     let run_one = |c: &&Case| -> Result<()> {
-        if super::interrupt::requested() {
+        if crate::study::common::interrupt::requested() {
             return Err(Error::Interrupted(String::new()));
         }
         let t0 = Instant::now();
@@ -929,7 +904,7 @@ fn run_cases(
                 summary,
                 delta_history: rec.fe_history,
             };
-            let mut case = super::similarity::scaled_fe_case(&run, *k);
+            let mut case = crate::study::sweep::similarity::scaled_fe_case(&run, *k);
             case.summary.scaled_from = Some(twin.id.clone());
             Some(case)
         });
@@ -952,7 +927,7 @@ fn run_cases(
         if let Some(rest) = opts.pace.checked_sub(t0.elapsed()) {
             std::thread::sleep(rest);
         }
-        if super::interrupt::requested() {
+        if crate::study::common::interrupt::requested() {
             // The case may have been cut short: not recorded, so a resumed sweep reruns it.
             clear_running(&opts.out, &c.id);
             return Err(Error::Interrupted(String::new()));
@@ -967,8 +942,9 @@ fn run_cases(
         );
         Ok(())
     };
-    let work =
-        |c: &&Case| -> Result<()> { super::interrupt::within(token.as_ref(), || run_one(c)) };
+    let work = |c: &&Case| -> Result<()> {
+        crate::study::common::interrupt::within(token.as_ref(), || run_one(c))
+    };
     // The cases that run their own FE model first, then those scaled from them.
     let (derived, own): (Vec<&Case>, Vec<&Case>) =
         pending.iter().partition(|c| twin_of.contains_key(&c.index));
@@ -996,6 +972,9 @@ fn run_cases(
         other => other,
     })?;
     progress.finish();
+    // Markers are gone with their cases: an empty folder of them says nothing (another
+    // shard's live markers keep it).
+    let _ = std::fs::remove_dir(opts.out.join("running"));
     // One writer only: shards of an array leave the CSV to an unsharded run or the report.
     let (in_csv, failed) = if opts.shard.count == 1 {
         write_csv(&opts.out, cases)?

@@ -9,11 +9,11 @@
 //! The run of the scaled scene then gives e, the velocities and η unchanged, δ_max, the
 //! contact duration and δ(t) scaled by k, and spins scaled by 1/k (measured: the law bench's
 //! similarity check, 3.2e-10 relative; docs/contact-laws.md). A sweep over diameters with
-//! per-diameter meshes derives its similar cases from one run ([`super::sweep`]).
+//! per-diameter meshes derives its similar cases from one run ([`crate::study::sweep`]).
 
-use super::sweep::FeCase;
 use crate::material::Material;
 use crate::scene::{BallScene, MeshSettings, OutputSettings, Scene, SolverSettings};
+use crate::study::records::case::FeCase;
 use serde_json::Value;
 
 /// Relative tolerance of the comparison of two scaled scenes' numbers (per-diameter sizes

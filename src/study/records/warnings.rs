@@ -42,6 +42,11 @@ pub enum Check {
     /// A plastic impact on the meridian section run on one mesh alone: its e is one phase of
     /// the surface rings, not the phase mean.
     SingleRingPhase,
+    /// A head-on section run whose default error estimate could not run (its mesh levels
+    /// do not reach the contact's edge): one run of the scene's mesh, no error bar.
+    NoErrorEstimate,
+    /// A scene setting the chosen model does not use.
+    IgnoredSetting,
 }
 
 /// One warning: the check and its one-line message (values with units).
@@ -153,6 +158,17 @@ pub fn single_ring_phase(plastic: f64, kinetic: f64) -> Option<Warning> {
     })
 }
 
+/// The note of a head-on section run that fell back to one run because its default error
+/// estimate could not run (`why`, the estimate's one-line error).
+pub fn no_error_estimate(why: &str) -> Warning {
+    Warning {
+        check: Check::NoErrorEstimate,
+        message: format!(
+            "no error bar: the default error estimate cannot run this scene ({why}); the result is one run of the scene's mesh (twoball run --tolerance T converges it where the banded family holds it)"
+        ),
+    }
+}
+
 /// The analytical model's range check: maximum approach `delta2` (m) against the effective
 /// radius `r_star` (m).
 pub fn analytic_warnings(delta2: f64, r_star: f64) -> Vec<Warning> {
@@ -170,10 +186,15 @@ pub fn analytic_warnings(delta2: f64, r_star: f64) -> Vec<Warning> {
     w
 }
 
-/// Prints each warning as one line `warning: ...` on stderr.
+/// Prints each warning as one line on stderr: `note: ...` for a setting the model ignores,
+/// `warning: ...` for a result not to take at face value.
 pub fn print(warnings: &[Warning]) {
     for w in warnings {
-        eprintln!("warning: {}", w.message);
+        let kind = match w.check {
+            Check::IgnoredSetting => "note",
+            _ => "warning",
+        };
+        eprintln!("{kind}: {}", w.message);
     }
 }
 

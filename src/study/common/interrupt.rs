@@ -55,19 +55,7 @@ thread_local! {
 /// Runs `f` on this thread with `token` (None: as is) as the job's cancel request; the
 /// previous token is restored afterwards.
 pub fn within<R>(token: Option<&CancelToken>, f: impl FnOnce() -> R) -> R {
-    let Some(token) = token else {
-        return f();
-    };
-    let before = TOKEN.with(|t| t.replace(Some(token.clone())));
-    struct Restore(Option<CancelToken>);
-    impl Drop for Restore {
-        fn drop(&mut self) {
-            let before = self.0.take();
-            TOKEN.with(|t| *t.borrow_mut() = before);
-        }
-    }
-    let _restore = Restore(before);
-    f()
+    crate::study::common::scoped::with_value(&TOKEN, token, f)
 }
 
 /// The cancel token this thread works within, if any (to hand on to worker threads).

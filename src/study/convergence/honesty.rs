@@ -1,14 +1,14 @@
 //! Is the error estimate honest? Over a set of head-on cases, the estimate of each run
-//! (mesh levels −1 and 0, [`super::error_estimate`]) against its true error, taken as the
+//! (mesh levels −1 and 0, [`crate::study::records::error_estimate`]) against its true error, taken as the
 //! difference from the same case two refinements finer (level +2).
 //!
 //! The study takes a runner closure `run(scene, level)`, so the 3D model and any other model
 //! are checked by the same code; [`honesty_table`] prints the result as a Markdown table.
 
-use super::convergence::Estimate;
-use super::error_estimate::{ErrorEstimate, LevelOutcome};
 use crate::error::Result;
 use crate::scene::{Override, Scene, DEFAULT_SCENE};
+use crate::study::records::error_estimate::{ErrorEstimate, LevelOutcome};
+use crate::study::records::estimate::Estimate;
 use std::path::Path;
 
 /// The materials of the default check (three presets: soft, medium and stiff-and-light).

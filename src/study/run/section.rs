@@ -6,12 +6,6 @@
 //! Frames: the section's axis z is the contact frame's x (the line of centres, from ball 1
 //! towards ball 2), and the run is in the pair's centre-of-mass frame, like the 3D models.
 
-use super::outcome::{dissipation_factor, Outcome};
-use super::progress::{Bar, Mode};
-use super::simulate::{
-    HistoryRow, Kinematics, Reduction, RunOptions, Savings, Simulation, DEFAULT_HOLD_FRACTION,
-};
-use super::snapshots::Snapshots;
 use crate::error::{Error, Result};
 use crate::fe::axisym::element::QuadFormulation;
 use crate::fe::axisym::subcycle::Integration;
@@ -19,7 +13,13 @@ use crate::fe::solver::subcycle::{SubcycleReport, Subcycling};
 use crate::fe::Formulation;
 use crate::mesh::meridian::{ball, block, BlockSpec, MeridianMesh, SectionSpec};
 use crate::scene::{BallScene, MeshSettings, PlaneEnforcement, Scene, Switch, Touch};
-use crate::study::section_impact::{HeadOn, ImpactRow, OtherBall, PlaneContact, Target, WallBlock};
+use crate::study::common::progress::{Mode, RunProgress};
+use crate::study::records::outcome::{dissipation_factor, Outcome};
+use crate::study::run::simulate::{
+    HistoryRow, Kinematics, Reduction, RunOptions, Savings, Simulation, DEFAULT_HOLD_FRACTION,
+};
+use crate::study::run::snapshots::Snapshots;
+use crate::study::run::section_impact::{HeadOn, ImpactRow, OtherBall, PlaneContact, Target, WallBlock};
 use std::time::Instant;
 
 /// What the section run needs beyond the scene: the kinematics at touch, the analytical
@@ -103,7 +103,7 @@ pub fn wall_block(scene: &Scene) -> Result<Option<WallBlock>> {
 
 /// The section element of the scene's 3D element choice: one point with hourglass control
 /// for the one-point hexahedron, selectively reduced (B-bar) for B-bar.
-pub(super) fn formulation(scene: &Scene) -> QuadFormulation {
+pub(crate) fn formulation(scene: &Scene) -> QuadFormulation {
     match scene.solver.element {
         Formulation::OnePoint => QuadFormulation::default(),
         Formulation::BBar => QuadFormulation::SelectiveReduced,
@@ -111,7 +111,7 @@ pub(super) fn formulation(scene: &Scene) -> QuadFormulation {
 }
 
 /// How the section enforces its rigid plane for the scene's `contact.plane`.
-pub(super) fn plane_contact(scene: &Scene) -> PlaneContact {
+pub(crate) fn plane_contact(scene: &Scene) -> PlaneContact {
     match scene.contact.plane {
         PlaneEnforcement::Kinematic => PlaneContact::Kinematic,
         PlaneEnforcement::Penalty => PlaneContact::Nodal,
@@ -223,7 +223,7 @@ pub(super) fn simulate_section(run: SectionRun<'_>, opts: &RunOptions) -> Result
             .unwrap_or(duration / opts.history_rows.max(2) as f64),
     );
     let expected_end = h.end_time.unwrap_or(duration + hold);
-    let mut bar = Bar::new(Mode::detect(opts.progress), 0.0, expected_end);
+    let mut bar = RunProgress::new(Mode::detect(opts.progress), 0.0, expected_end);
     let mut snapshots = match (&opts.snapshot_dir, scene.output.vtu_snapshots) {
         (Some(dir), n) if n > 0 => {
             Some(Snapshots::new(dir.clone(), n, 0.0, duration).ascii(opts.vtu_ascii))
@@ -232,7 +232,7 @@ pub(super) fn simulate_section(run: SectionRun<'_>, opts: &RunOptions) -> Result
     };
     let result = h.run_observed(&mut |solver, last| {
         let t = solver.time();
-        if super::interrupt::requested() {
+        if crate::study::common::interrupt::requested() {
             return Err(Error::Interrupted(format!(
                 "at t = {t:.3e} s of about {expected_end:.3e} s"
             )));
@@ -244,7 +244,7 @@ pub(super) fn simulate_section(run: SectionRun<'_>, opts: &RunOptions) -> Result
         Ok(())
     });
     bar.finish();
-    let r = result.map_err(super::simulate::advice)?;
+    let r = result.map_err(crate::study::run::simulate::advice)?;
     let history: Vec<HistoryRow> = r.history.iter().map(|row| history_row(row, &run)).collect();
     let frame = run.touch.frame;
     let v_cm = run.kin.v_cm;
