@@ -2,7 +2,6 @@
 //! moves e, δ_max and the contact duration by less than the bias bound every mass-scaled bar
 //! carries (`study::convergence::phase_ensemble::MASS_SCALING_BIAS` × budget) and takes fewer steps.
 
-use twoball::study::run::section_impact::{HeadOn, ImpactResult, Target};
 use twoball::study::convergence::phase_ensemble::{
     family_mesh, hertz_contact_radius, HeadOnCase, MASS_SCALING_BIAS,
 };

@@ -15,11 +15,13 @@ use crate::mesh::meridian::{ball, block, BlockSpec, MeridianMesh, SectionSpec};
 use crate::scene::{BallScene, MeshSettings, PlaneEnforcement, Scene, Switch, Touch};
 use crate::study::common::progress::{Mode, RunProgress};
 use crate::study::records::outcome::{dissipation_factor, Outcome};
+use crate::study::run::section_impact::{
+    HeadOn, ImpactRow, OtherBall, PlaneContact, Target, WallBlock,
+};
 use crate::study::run::simulate::{
     HistoryRow, Kinematics, Reduction, RunOptions, Savings, Simulation, DEFAULT_HOLD_FRACTION,
 };
 use crate::study::run::snapshots::Snapshots;
-use crate::study::run::section_impact::{HeadOn, ImpactRow, OtherBall, PlaneContact, Target, WallBlock};
 use std::time::Instant;
 
 /// What the section run needs beyond the scene: the kinematics at touch, the analytical
