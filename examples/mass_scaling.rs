@@ -12,11 +12,11 @@
 //! plain family's level L, sized from Hertz's contact radius); BUDGETS a comma list of
 //! added-mass fractions (0: none).
 
-use twoball::fe::axisym::impact::{HeadOn, Target};
 use twoball::material::Material;
 use twoball::mesh::meridian::MeridianMesh;
 use twoball::study::convergence::phase_band::{banded_mesh, contact_edge};
 use twoball::study::convergence::phase_ensemble::{family_mesh, hertz_contact_radius, HeadOnCase};
+use twoball::study::run::section_impact::{HeadOn, Target};
 
 /// A comma list of `T`, or an error naming `what`.
 fn list<T: std::str::FromStr>(s: &str, what: &str) -> Result<Vec<T>, String> {

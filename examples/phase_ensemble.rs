@@ -17,13 +17,13 @@
 //! default 2 (`twoball run --tolerance` runs its family with K = 3).
 
 use twoball::fe::axisym::element::QuadFormulation;
-use twoball::fe::axisym::impact::PlaneContact;
 use twoball::fe::axisym::subcycle::Integration;
 use twoball::material::Material;
 use twoball::study::convergence::phase_ensemble::{
     converged_head_on, ensemble_at, ensemble_at_radius, HeadOnCase, HeadOnTarget, PhaseEnsemble,
     PhasePlan,
 };
+use twoball::study::run::section_impact::PlaneContact;
 
 /// Argument `i` parsed, or `default` when absent.
 fn arg<T: std::str::FromStr>(

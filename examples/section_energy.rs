@@ -18,16 +18,16 @@
 //! along the surface to the radius TO (µm). `SECTION_RINGS=1` also prints every ring
 //! arrival, `SECTION_PULSE=FILE` writes the force pulse (t in s, F in N) of the last mesh as
 //! CSV, `SECTION_CONTACT=segment` integrates the plane's penalty pressure over each segment
-//! (`fe::axisym::plane_segment`) instead of lumping it at the nodes.
+//! (`fe::contact::meridian::plane_segment`) instead of lumping it at the nodes.
 
 use twoball::fe::axisym::element::QuadFormulation;
-use twoball::fe::axisym::impact::{HeadOn, PlaneContact, Target};
 use twoball::fe::axisym::section::SectionSolver;
 use twoball::fe::axisym::subcycle::Integration;
 use twoball::material::Material;
 use twoball::mesh::meridian::{
     ball, ladder_ball, ladder_ball_banded, EdgeBand, MeridianMesh, SectionSpec,
 };
+use twoball::study::run::section_impact::{HeadOn, PlaneContact, Target};
 
 const D: f64 = 0.02;
 

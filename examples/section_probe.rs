@@ -7,10 +7,10 @@
 //! subcycled).
 
 use twoball::fe::axisym::element::QuadFormulation;
-use twoball::fe::axisym::impact::{HeadOn, Target};
 use twoball::fe::axisym::subcycle::Integration;
 use twoball::material::Material;
 use twoball::mesh::meridian::{ball, SectionSpec};
+use twoball::study::run::section_impact::{HeadOn, Target};
 
 /// Argument `i` as a length in metres, or `default`.
 fn length(args: &[String], i: usize, default: f64) -> Result<f64, String> {

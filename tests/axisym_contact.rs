@@ -11,7 +11,7 @@ mod hertz;
 use axisym_support::test_ball;
 use hertz::{elastic_copper, finite_ball_reference, windowed_peak, DIAMETER};
 use twoball::analytic::hertz::HertzPair;
-use twoball::fe::axisym::impact::{HeadOn, ImpactResult, Target};
+use twoball::study::run::section_impact::{HeadOn, ImpactResult, Target};
 
 struct Compared {
     run: ImpactResult,
@@ -108,7 +108,7 @@ fn elastic_ball_on_the_symmetry_plane_matches_hertz_at_0_2_m_s() {
 #[test]
 #[ignore]
 fn two_balls_with_node_to_segment_contact_agree_with_the_symmetry_plane() {
-    use twoball::fe::axisym::impact::OtherBall;
+    use twoball::study::run::section_impact::OtherBall;
     let r = DIAMETER / 2.0;
     let (pole, far) = (50e-6, 1e-3);
     let mut one = HeadOn::new(
@@ -201,8 +201,8 @@ fn default_scene_ladder() {
 /// compliance (e.g. a node put at a fixed fraction of its predicted penetration) or pulls.
 #[test]
 fn the_kinematic_plane_is_the_stiff_limit_of_the_penalty_plane() {
-    use twoball::fe::axisym::impact::PlaneContact;
     use twoball::mesh::meridian::ladder_ball;
+    use twoball::study::run::section_impact::PlaneContact;
     let run = |plane: PlaneContact, fkn: f64, factor: f64| {
         let mesh = ladder_ball(DIAMETER, 470.4e-6, 0).unwrap();
         let mut h = HeadOn::new(mesh, elastic_copper(), 1.0, Target::MirrorBall);

@@ -5,11 +5,11 @@
 //! subcycled.
 
 use twoball::fe::axisym::element::QuadFormulation;
-use twoball::fe::axisym::impact::{HeadOn, ImpactResult, OtherBall, Target};
 use twoball::fe::axisym::subcycle::Integration;
 use twoball::fe::simd::KernelPath;
 use twoball::material::Material;
 use twoball::mesh::meridian::{ball, MeridianMesh, SectionSpec};
+use twoball::study::run::section_impact::{HeadOn, ImpactResult, OtherBall, Target};
 
 fn mesh(d: f64) -> MeridianMesh {
     ball(&SectionSpec {

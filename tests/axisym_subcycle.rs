@@ -3,13 +3,14 @@
 //! power-of-two step classes reproduce e, δ_max and the contact duration within 0.1 % with
 //! an energy error below 1e-3 and far fewer element updates; with one level they are Box 6.1.
 
-use twoball::fe::axisym::impact::{HeadOn, ImpactResult, PlaneContact, Target};
-use twoball::fe::axisym::plane::{RigidPlane, Side};
-use twoball::fe::axisym::section::{SectionContact, SectionModel, SectionSolver};
+use twoball::fe::axisym::section::{SectionModel, SectionSolver};
 use twoball::fe::axisym::subcycle::Integration;
+use twoball::fe::contact::meridian::plane_nodal::{NodalPlane, Side};
+use twoball::fe::interaction::Interaction;
 use twoball::fe::materials::J2Material;
 use twoball::material::Material;
 use twoball::mesh::meridian::{ball, ladder_ball, MeridianMesh, SectionSpec};
+use twoball::study::run::section_impact::{HeadOn, ImpactResult, PlaneContact, Target};
 
 const D: f64 = 0.02;
 
@@ -117,8 +118,8 @@ fn default_scene_updates_under_a_third_of_the_quads_per_step() {
     model.integration = Integration::Subcycled { max_level: 3 };
     let contact = &mesh.segment_sets["contact"];
     let plane =
-        RigidPlane::new(&mesh, contact, D / 2.0, Side::Below, 10.0, material.youngs).unwrap();
-    let s = SectionSolver::new(model, vec![Box::new(plane) as Box<dyn SectionContact>]).unwrap();
+        NodalPlane::new(&mesh, contact, D / 2.0, Side::Below, 10.0, material.youngs).unwrap();
+    let s = SectionSolver::new(model, vec![Box::new(plane) as Box<dyn Interaction<2>>]).unwrap();
     let levels = s.node_levels();
     // The pole's contact nodes need the fine step; the bulk runs 2^3 times longer steps.
     let pole = (0..n)

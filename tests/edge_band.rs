@@ -6,12 +6,12 @@
 //! answers with their bars are `#[ignore]`d (half a minute and more):
 //! `cargo test --release --test edge_band -- --ignored --nocapture`.
 
-use twoball::fe::axisym::impact::{HeadOn, Target};
 use twoball::mesh::meridian::{ladder_ball, MeridianMesh};
 use twoball::study::convergence::phase_band::{banded_mesh, contact_edge, SIZING_PER_EDGE};
 use twoball::study::convergence::phase_ensemble::{
     converged_head_on, ring_ratio, HeadOnCase, PhasePlan,
 };
+use twoball::study::run::section_impact::{HeadOn, Target};
 
 const D: f64 = 0.02;
 

@@ -8,8 +8,8 @@
 //! field (x, −y, 0).
 #![allow(clippy::needless_range_loop)]
 
-use twoball::fe::lamb::sphere_frequency;
-use twoball::fe::modal::{assemble, modes_near};
+use twoball::fe::linear::lamb::sphere_frequency;
+use twoball::fe::linear::modal::{assemble, modes_near};
 use twoball::fe::{Formulation, Model, Settings, Solver};
 use twoball::mesh::ball::{ball, BallSpec, Cut};
 use twoball::Material;

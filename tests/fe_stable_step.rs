@@ -3,7 +3,7 @@
 //! M_lumped⁻¹ K (K including the hourglass stiffness). ω_max is computed here by power
 //! iteration on the assembled small-strain system, independently of the explicit loop.
 
-use twoball::fe::modal::assemble;
+use twoball::fe::linear::modal::assemble;
 use twoball::fe::{Formulation, Model, Settings, Solver};
 use twoball::material::Material;
 use twoball::mesh::ball::{ball, BallSpec, Cut};

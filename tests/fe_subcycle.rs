@@ -160,7 +160,7 @@ impl Interaction for EndLoad {
         }
         Ok(())
     }
-    fn stable_time_step(&self, _mass: &[f64]) -> Option<f64> {
+    fn stable_time_step(&self, _mass: &[f64], _omega: &[f64]) -> Option<f64> {
         None
     }
     fn energy(&self) -> InteractionEnergy {
@@ -323,7 +323,7 @@ impl Interaction for StepLimit {
         self.on = ctx.t < self.until;
         Ok(())
     }
-    fn stable_time_step(&self, _mass: &[f64]) -> Option<f64> {
+    fn stable_time_step(&self, _mass: &[f64], _omega: &[f64]) -> Option<f64> {
         self.on.then_some(self.dt)
     }
     fn energy(&self) -> InteractionEnergy {
@@ -626,7 +626,7 @@ impl Interaction for CallLog {
         self.0.lock().unwrap().push((ctx.t, ctx.dt));
         Ok(())
     }
-    fn stable_time_step(&self, _mass: &[f64]) -> Option<f64> {
+    fn stable_time_step(&self, _mass: &[f64], _omega: &[f64]) -> Option<f64> {
         None
     }
     fn energy(&self) -> InteractionEnergy {

@@ -2,10 +2,10 @@
 //! moves e, δ_max and the contact duration by less than the bias bound every mass-scaled bar
 //! carries (`study::convergence::phase_ensemble::MASS_SCALING_BIAS` × budget) and takes fewer steps.
 
-use twoball::fe::axisym::impact::{HeadOn, ImpactResult, Target};
 use twoball::study::convergence::phase_ensemble::{
     family_mesh, hertz_contact_radius, HeadOnCase, MASS_SCALING_BIAS,
 };
+use twoball::study::run::section_impact::{HeadOn, ImpactResult, Target};
 
 /// The default scene's balls at `v_rel` (m/s) on plain family level 0, mass-scaled within
 /// `budget`.

@@ -15,11 +15,11 @@ mod hertz;
 use hertz::{finite_ball_reference, windowed_peak};
 use twoball::analytic::hertz::HertzPair;
 use twoball::fe::axisym::element::QuadFormulation;
-use twoball::fe::axisym::impact::{HeadOn, ImpactResult, PlaneContact, Target};
 use twoball::material::Material;
 use twoball::mesh::meridian::{ball, ladder_ball, ladder_pole_size, MeridianMesh, SectionSpec};
 use twoball::mesh::section::quad_area;
 use twoball::study::records::estimate::{estimate, Behaviour, Estimate};
+use twoball::study::run::section_impact::{HeadOn, ImpactResult, PlaneContact, Target};
 
 const D: f64 = 0.02;
 

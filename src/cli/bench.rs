@@ -2,9 +2,8 @@
 //! (`study::bench::{kernel, profile, machine}`, `study::bench`).
 
 use crate::error::Result;
-use crate::fe::simd::KernelPath;
 use crate::fe::Formulation;
-use crate::study::bench::kernel::KernelBench;
+use crate::study::bench::kernel::{KernelBench, KernelCap};
 use clap::{Args, Subcommand, ValueEnum};
 
 /// Arguments of `twoball bench`.
@@ -69,12 +68,12 @@ pub enum KernelChoice {
     Portable,
 }
 
-impl From<KernelChoice> for KernelPath {
+impl From<KernelChoice> for KernelCap {
     fn from(c: KernelChoice) -> Self {
         match c {
-            KernelChoice::Widest => KernelPath::Avx512,
-            KernelChoice::Avx2 => KernelPath::Avx2,
-            KernelChoice::Portable => KernelPath::Portable,
+            KernelChoice::Widest => KernelCap::Widest,
+            KernelChoice::Avx2 => KernelCap::Avx2,
+            KernelChoice::Portable => KernelCap::Portable,
         }
     }
 }

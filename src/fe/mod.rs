@@ -7,8 +7,11 @@
 //!   scalar reference kernel beside its lane kernel, registered in [`elements::Formulation`];
 //! - [`materials`]: J2 plasticity and the hardening laws behind one trait;
 //! - [`simd`]: lanes, instruction-set tokens and kernel dispatch, row layouts, prefetch;
-//! - [`contact`]: contact search and laws (interactions the loop calls);
+//! - [`contact`]: contact search and laws, rigid planes, the meridian section's contacts (the
+//!   interactions the loops call);
 //! - [`linear`]: small-strain linear tools for verification (modal analysis, Lamb's modes);
+//! - [`axisym`]: the meridian section of a head-on impact: ring quads, ring masses, mass
+//!   scaling, its loop and subcycling;
 //! - [`model`] (what the solver is given) and [`tensor`] (small tensor algebra).
 // Index loops mirror the index notation of the formulas (σ_ij B_Ij, ...): keep them.
 #![allow(clippy::needless_range_loop)]
@@ -22,10 +25,10 @@ pub mod simd;
 pub mod solver;
 pub mod tensor;
 
-pub use elements::{hex_bbar, hex_one_point, objective, shape};
-pub use linear::{lamb, modal};
+// What the layers above use: the model, the solver and its settings and reports, and the
+// interaction seam. Element kernels, shapes and materials' internals stay behind their
+// modules' paths.
 pub use model::{Formulation, Model, Part};
-pub use simd::rows;
 pub use solver::energy::EnergyReport;
 pub use solver::explicit::{Settings, Solver};
-pub use solver::{energy, explicit, interaction, mass, profile, subcycle, timestep};
+pub use solver::{energy, explicit, interaction, profile, subcycle};

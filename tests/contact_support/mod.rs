@@ -75,7 +75,7 @@ impl Interaction for UniformLoad {
         Ok(())
     }
 
-    fn stable_time_step(&self, _mass: &[f64]) -> Option<f64> {
+    fn stable_time_step(&self, _mass: &[f64], _omega: &[f64]) -> Option<f64> {
         None
     }
 

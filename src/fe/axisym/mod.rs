@@ -10,29 +10,16 @@
 //! - [`mass`]: lumped ring masses;
 //! - [`mass_scaling`]: raised densities of the smallest quads within an added-mass budget;
 //! - [`section`]: the model and the explicit loop (Box 6.1), with energy accounting;
-//! - [`plane`]: penalty contact against a rigid plane z = const;
-//! - [`plane_segment`]: the same plane with the penalty pressure integrated over each
-//!   boundary segment (the contact area grows continuously);
-//! - [`plane_kinematic`]: the same plane as a unilateral kinematic constraint (no penalty);
-//! - [`segment`]: two-pass node-to-segment penalty contact of two meridian boundaries;
 //! - [`subcycle`]: multi-time-step integration (power-of-two step classes, nodal partition);
-//! - [`impact`]: a head-on impact (mirror ball, rigid wall, elastic block or a second ball)
-//!   run end to end
-//!   (e, δ_max, contact duration, peak force,
-//!   energies, history).
 //!
 //! The quads run on the lane paths of [`crate::fe::simd`] (eight lanes with AVX-512, four
-//! otherwise), W quads of one material and one step at a time; the contacts are scalar.
+//! otherwise), W quads of one material and one step at a time; its contacts
+//! ([`crate::fe::contact::meridian`]) are scalar.
 
 pub mod element;
-pub mod impact;
 pub mod mass;
 pub mod mass_scaling;
-pub mod plane;
-pub mod plane_kinematic;
-pub mod plane_segment;
 pub mod quad;
 pub mod quad_lanes;
 pub mod section;
-pub mod segment;
 pub mod subcycle;

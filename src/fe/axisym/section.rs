@@ -1,6 +1,7 @@
 //! The explicit loop of the meridian model, step for step Box 6.1 of Belytschko, Liu & Moran
 //! (2000) like the 3D solver: central differences in time, lumped ring masses, v_r = 0 on the
-//! axis, internal forces from the quads, contact forces from the [`SectionContact`]s, and the
+//! axis, internal forces from the quads, contact forces from the two-component
+//! [`Interaction`]s ([`crate::fe::contact::meridian`]), and the
 //! energy balance (kinetic, internal, plastic, hourglass, contact) checked every step.
 
 use super::element::{update, QuadFormulation, QuadOutput, QuadState};
@@ -8,63 +9,10 @@ use super::mass::element_masses;
 use super::quad_lanes;
 use super::subcycle::{Integration, Schedule};
 use crate::error::{Error, Result};
+use crate::fe::interaction::{ContactState, Interaction, Kick, StepContext};
 use crate::fe::materials::J2Material;
 use crate::fe::materials::{Hardening, LawVisitor};
 use crate::fe::simd::{build, Kernel, KernelPath, LaneIsa, LaneKernel};
-
-/// What a contact reports for one force evaluation.
-#[derive(Debug, Clone, Copy, Default, PartialEq)]
-pub struct ContactState {
-    /// Total normal force of the whole ring, N.
-    pub normal_force: f64,
-    /// Energy stored in the penalty springs, J.
-    pub stored: f64,
-    /// Nodes in contact.
-    pub active_nodes: usize,
-    /// Largest penetration, m.
-    pub max_penetration: f64,
-    /// Largest current radius r of a node in contact (the contact radius), m.
-    pub contact_radius: f64,
-}
-
-/// A contact on the section: adds its nodal forces (r, z; N) at positions `x` (m).
-pub trait SectionContact {
-    /// Adds the contact forces at `x` to `f` and reports the contact's state.
-    fn add_forces(&mut self, x: &[[f64; 2]], f: &mut [[f64; 2]]) -> ContactState;
-    /// Largest stable step (s) of the springs on nodal masses `mass` (kg) whose elements have
-    /// highest frequencies `omega` (rad/s).
-    fn stable_step(&self, mass: &[f64], omega: &[f64]) -> f64;
-    /// Every node the contact may act on with the largest stable step (s) its springs allow
-    /// it; nodes whose forces are coupled (a node and the segments it meets) share one step.
-    /// The smallest of them is [`SectionContact::stable_step`].
-    fn node_limits(&self, mass: &[f64], omega: &[f64]) -> Vec<(usize, f64)>;
-    /// True for a node the contact constrains kinematically at its kicks (none for a
-    /// penalty contact).
-    fn holds(&self, _i: usize) -> bool {
-        false
-    }
-    /// A kinematic contact's correction of the acceleration `a` (m/s²) of node `i` at its
-    /// kick `node` (forces already in `a`); returns the work of its force over the kick, J.
-    fn constrain(&mut self, _i: usize, _node: Kick, _a: &mut [f64; 2]) -> f64 {
-        0.0
-    }
-}
-
-/// What the solver passes for one node's kick: its position x^n (m), half-step velocity
-/// v^{n−1/2} (m/s), ring mass (kg), and the steps closed and opened (s).
-#[derive(Debug, Clone, Copy)]
-pub struct Kick {
-    /// Position (r, z), m.
-    pub x: [f64; 2],
-    /// Half-step velocity of the step just closed, m/s.
-    pub v_half: [f64; 2],
-    /// Ring mass, kg.
-    pub mass: f64,
-    /// The step the kick closes, s (0 at the start).
-    pub close: f64,
-    /// The step the kick opens, s.
-    pub open: f64,
-}
 
 /// The meridian model: nodes, quads with their materials, initial velocities, supports and
 /// loads. Nodes with r = 0 are on the axis and get v_r = 0.
@@ -209,7 +157,7 @@ pub struct SectionEnergy {
 /// The explicit solver of a [`SectionModel`] with its contacts.
 pub struct SectionSolver {
     pub(super) model: SectionModel,
-    contacts: Vec<Box<dyn SectionContact>>,
+    contacts: Vec<Box<dyn Interaction<2>>>,
     pub(super) x: Vec<[f64; 2]>,
     pub(super) v: Vec<[f64; 2]>,
     pub(super) v_half: Vec<[f64; 2]>,
@@ -248,7 +196,7 @@ pub struct SectionSolver {
 
 impl SectionSolver {
     /// A solver at t = 0 for `model` with `contacts`; evaluates the initial forces.
-    pub fn new(model: SectionModel, contacts: Vec<Box<dyn SectionContact>>) -> Result<Self> {
+    pub fn new(model: SectionModel, contacts: Vec<Box<dyn Interaction<2>>>) -> Result<Self> {
         model.check()?;
         let n = model.nodes.len();
         let mut mass = vec![0.0; n];
@@ -377,7 +325,7 @@ impl SectionSolver {
         if k == 0 || self.model.fixed[i][1] {
             return 0.0;
         }
-        let node = Kick {
+        let node = Kick::<2> {
             x: self.x[i],
             v_half: self.v_half[i],
             mass: self.mass[i],
@@ -449,12 +397,21 @@ impl SectionSolver {
     }
 
     /// Evaluates every contact at the current x into `f_c` and the contact states.
-    pub(super) fn contact_forces(&mut self) {
+    pub(super) fn contact_forces(&mut self) -> Result<()> {
         self.f_c.fill([0.0; 2]);
         self.contact.clear();
+        let ctx = StepContext {
+            t: self.time,
+            dt: self.dt,
+            x: &self.x,
+            v: &self.v_half,
+            mass: &self.mass,
+        };
         for c in self.contacts.iter_mut() {
-            self.contact.push(c.add_forces(&self.x, &mut self.f_c));
+            c.add_forces(&ctx, &mut self.f_c)?;
+            self.contact.push(c.state());
         }
+        Ok(())
     }
 
     /// Internal, contact, load and damping forces at the current x with v^{n+1/2} over `dt`;
@@ -467,7 +424,7 @@ impl SectionSolver {
         self.all_quads = all;
         self.element_dt = done?;
         self.element_updates += self.model.quads.len() as u64;
-        self.contact_forces();
+        self.contact_forces()?;
         let alpha = self.model.damping;
         for i in 0..n {
             for c in 0..2 {
@@ -485,7 +442,10 @@ impl SectionSolver {
         let c = self
             .contacts
             .iter()
-            .map(|c| c.stable_step(&self.mass, &self.omega))
+            .map(|c| {
+                c.stable_time_step(&self.mass, &self.omega)
+                    .unwrap_or(f64::INFINITY)
+            })
             .fold(f64::INFINITY, f64::min);
         self.model.time_step_factor * self.element_dt.min(c)
     }

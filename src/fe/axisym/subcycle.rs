@@ -5,7 +5,7 @@
 //! With fine step h, node i has level L_i (step 2^{L_i} h), the largest k ≤ K with
 //! 2^k h ≤ s Δt_i, where s is the step factor and Δt_i the node's limit: the smallest
 //! Courant step of its quads and, for a node a contact may act on, its spring's stable step
-//! ([`SectionContact::node_limits`](super::section::SectionContact::node_limits)), at most
+//! ([`Interaction::node_limits`](crate::fe::interaction::Interaction::node_limits)), at most
 //! [`NEIGHBOUR_RATIO`] times the limit of any node it shares a quad with. A quad is
 //! updated at the level of its finest node, u_e = min L_i, with step 2^{u_e} h. Every node
 //! drifts every fine step with its constant half-step velocity; a node is due (kicked with its
@@ -201,7 +201,7 @@ impl SectionSolver {
         let due_elements = &sched.elements[..sched.element_end[z]];
         self.update_elements(due_elements, &sched.element_level, h)?;
         self.element_updates += due_elements.len() as u64;
-        self.contact_forces();
+        self.contact_forces()?;
         // At the end of a cycle the next one is planned first: a kinematic contact needs the
         // step each node opens.
         let next = if sync {

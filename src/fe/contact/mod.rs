@@ -5,7 +5,10 @@
 //! - [`node_to_segment::SurfacePair`]: two deformable surfaces, symmetric two-pass
 //!   node-to-segment (each surface is slave once and master once, each pass weighted ½).
 //!
-//! Both implement [`crate::fe::interaction::Interaction`]. The normal law is a penalty spring
+//! - [`meridian`]: the meridian section's planes (nodal, segment, kinematic) and its
+//!   two-boundary node-to-segment pair.
+//!
+//! All implement [`crate::fe::interaction::Interaction`]. The normal law is a penalty spring
 //! ([`penalty`]), optionally with a dashpot; friction is Coulomb with regularised stick and a
 //! return mapping ([`friction`]); candidates come from a bounding-box and bucket search
 //! ([`search`]); each step's resultants, area, penetration and energies are in
@@ -13,6 +16,7 @@
 
 pub mod friction;
 pub mod law;
+pub mod meridian;
 pub mod node_to_segment;
 pub mod output;
 pub mod penalty;

@@ -470,7 +470,7 @@ impl Interaction for SurfacePair {
     /// frequency under the slave, and m* pairing the slave with its reference partner or the lightest master node it has touched since. This
     /// assumes the two surfaces have similar element sizes where they meet (as the graded
     /// balls do); the penetration guard in `add_forces` catches a violation.
-    fn stable_time_step(&self, mass: &[f64]) -> Option<f64> {
+    fn stable_time_step(&self, mass: &[f64], _omega: &[f64]) -> Option<f64> {
         self.dt_cache.get_or(mass, || {
             self.passes
                 .iter()
@@ -787,7 +787,7 @@ mod tests {
         let k = mat.youngs * 0.25 / 0.5;
         let (wp, we) = (k.sqrt(), 4.0 * mat.dilatational_wave_speed());
         let expect = (2.0 / (wp + we)).min(1.0 / wp);
-        let dt = pair.stable_time_step(&mass).unwrap();
+        let dt = pair.stable_time_step(&mass, &[]).unwrap();
         assert!((dt - expect).abs() < 1e-12 * expect, "{dt} vs {expect}");
     }
 }

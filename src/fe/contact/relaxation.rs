@@ -64,7 +64,7 @@ impl Interaction for MassDamping {
     }
 
     /// A dashpot on a lumped mass is stable for α Δt < 2; the limit is 1/α.
-    fn stable_time_step(&self, _mass: &[f64]) -> Option<f64> {
+    fn stable_time_step(&self, _mass: &[f64], _omega: &[f64]) -> Option<f64> {
         (self.alpha > 0.0).then(|| 1.0 / self.alpha)
     }
 

@@ -281,7 +281,7 @@ impl Interaction for RigidPlane {
         Ok(())
     }
 
-    fn stable_time_step(&self, mass: &[f64]) -> Option<f64> {
+    fn stable_time_step(&self, mass: &[f64], _omega: &[f64]) -> Option<f64> {
         self.dt_cache
             .get_or(mass, || self.smallest_spring_step(mass))
     }
@@ -364,7 +364,7 @@ mod tests {
         assert!((o.stored_energy - 0.5 * eps * g * g).abs() < 1e-9 * eps * g * g);
         // Stable step of the stiffest spring: interior node, A = 1/9, k = ε A, m = 1, on
         // elements 1/3 x 1/3 x 0.5 (Courant length V / largest face = 1/3: frequency 6 c).
-        let dt = wall.stable_time_step(&mass).unwrap();
+        let dt = wall.stable_time_step(&mass, &[]).unwrap();
         let (wp, we) = ((eps / 9.0).sqrt(), 6.0 * mat.dilatational_wave_speed());
         let expect = (2.0 / (wp + we)).min(1.0 / wp);
         assert!((dt - expect).abs() < 1e-12 * dt, "{dt} vs {expect}");
@@ -417,20 +417,20 @@ mod tests {
         )
         .unwrap();
         let light = vec![1e-6; m.nodes.len()];
-        let before = wall.stable_time_step(&light).unwrap();
+        let before = wall.stable_time_step(&light, &[]).unwrap();
         assert_eq!(before, wall.smallest_spring_step(&light).unwrap());
         // A step so short that the Soft rule's m/Δt² term (5e10 N/m here) outweighs its bulk
         // term (0.2e9-3.4e9 N/m): the first step stiffens every law.
         let mut f = vec![[0.0; 3]; m.nodes.len()];
         at_rest(&mut wall, &m, &light, 1e-9, &mut f).unwrap();
-        let after = wall.stable_time_step(&light).unwrap();
+        let after = wall.stable_time_step(&light, &[]).unwrap();
         assert_eq!(after, wall.smallest_spring_step(&light).unwrap());
         assert!(
             after < 0.5 * before,
             "{after} vs {before}: the stiffer laws must show"
         );
         let heavy = vec![1.0; m.nodes.len()];
-        let h = wall.stable_time_step(&heavy).unwrap();
+        let h = wall.stable_time_step(&heavy, &[]).unwrap();
         assert_eq!(h, wall.smallest_spring_step(&heavy).unwrap());
         assert!(h > 10.0 * after);
     }

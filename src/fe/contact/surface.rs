@@ -2,8 +2,8 @@
 //! of the solid underneath (what the penalty stiffness is scaled by).
 
 use crate::error::{Error, Result};
+use crate::fe::solver::timestep::characteristic_length;
 use crate::fe::tensor::{quad_area, sub};
-use crate::fe::timestep::characteristic_length;
 use crate::mesh::topology::HEX_FACES;
 use std::collections::HashMap;
 

@@ -802,7 +802,7 @@ fn record_history<H: Hardening>(law: &H, b: &mut Batch<'_>, start: &[f64], dt: f
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::fe::{elements::ElementStateMut, hex_one_point};
+    use crate::fe::elements::{hex_one_point, ElementStateMut};
     use crate::material::Material;
     use crate::mesh::ball::{ball, BallSpec, Cut};
 

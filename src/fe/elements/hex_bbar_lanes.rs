@@ -361,10 +361,10 @@ impl Element for BBarHex {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::fe::{
-        elements::hex_one_point_lanes::tests::{assert_forces_match, four_elements, lanes},
-        elements::{ElementStateMut, IntegrationPoint},
+    use crate::fe::elements::{
         hex_bbar,
+        hex_one_point_lanes::tests::{assert_forces_match, four_elements, lanes},
+        ElementStateMut, IntegrationPoint,
     };
     use crate::material::Material;
 

@@ -539,10 +539,10 @@ impl Element for OnePointHex {
 #[cfg(test)]
 pub(crate) mod tests {
     use super::*;
-    use crate::fe::{
-        elements::ElementStateMut,
+    use crate::fe::elements::{
         hex_one_point,
         shape::{gauss_points_2x2x2, natural_derivatives, spatial_gradients, NODE_XI},
+        ElementStateMut,
     };
     use crate::material::Material;
 

@@ -15,6 +15,10 @@ pub struct Bilinear {
 }
 
 impl Hardening for Bilinear {
+    fn rate_independent(&self) -> bool {
+        true
+    }
+
     #[inline(always)]
     fn static_yield(&self, eps_p: f64) -> f64 {
         self.yield0 + self.h * eps_p

@@ -15,6 +15,10 @@ pub struct Counting(pub Bilinear);
 impl Hardening for Counting {
     const HISTORY: usize = 2;
 
+    fn rate_independent(&self) -> bool {
+        true
+    }
+
     #[inline(always)]
     fn static_yield(&self, eps_p: f64) -> f64 {
         self.0.static_yield(eps_p)

@@ -28,6 +28,11 @@ pub trait Hardening: Copy + std::fmt::Debug + Send + Sync {
     #[inline(always)]
     fn update_history(&self, _history: &mut [f64], _eps_p: f64, _dp: f64, _dt: f64) {}
 
+    /// True when the flow stress does not depend on the strain rate: the law has no time
+    /// scale, so a model of it scales with its lengths (similar scenes share one run). No
+    /// default: every law says.
+    fn rate_independent(&self) -> bool;
+
     /// Flow stress at `eps_p` and a plastic strain rate no higher than the law's reference
     /// rate (the elastic check), Pa.
     fn static_yield(&self, eps_p: f64) -> f64;

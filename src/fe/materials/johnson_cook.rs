@@ -98,6 +98,11 @@ impl JohnsonCook {
 }
 
 impl Hardening for JohnsonCook {
+    /// Without the rate term (C = 0) the law is rate-independent.
+    fn rate_independent(&self) -> bool {
+        self.c == 0.0
+    }
+
     fn static_yield(&self, eps_p: f64) -> f64 {
         // 0^n = 0 for n > 0: a point that never yielded skips the power (same bits).
         if eps_p == 0.0 {

@@ -92,6 +92,12 @@ impl Law {
         self.with(InitialYield)
     }
 
+    /// True when the law's flow stress does not depend on the strain rate
+    /// ([`Hardening::rate_independent`]).
+    pub fn rate_independent(&self) -> bool {
+        self.with(RateIndependent)
+    }
+
     /// History values the law keeps per integration point ([`Hardening::HISTORY`]).
     pub fn history_per_point(&self) -> usize {
         self.with(HistoryPerPoint)
@@ -117,6 +123,16 @@ impl LawVisitor for InitialYield {
     type Output = f64;
     fn visit<H: Hardening>(self, law: &H) -> f64 {
         law.static_yield(0.0)
+    }
+}
+
+/// [`Law::rate_independent`] as a visitor.
+struct RateIndependent;
+
+impl LawVisitor for RateIndependent {
+    type Output = bool;
+    fn visit<H: Hardening>(self, law: &H) -> bool {
+        law.rate_independent()
     }
 }
 

@@ -42,6 +42,10 @@ impl Power {
 }
 
 impl Hardening for Power {
+    fn rate_independent(&self) -> bool {
+        true
+    }
+
     fn static_yield(&self, eps_p: f64) -> f64 {
         self.flow(eps_p).0
     }

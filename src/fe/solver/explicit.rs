@@ -779,7 +779,7 @@ impl Solver {
             interaction: None,
         };
         for (k, it) in self.interactions.iter().enumerate() {
-            if let Some(d) = it.stable_time_step(&self.mass) {
+            if let Some(d) = it.stable_time_step(&self.mass, &[]) {
                 let d = self.settings.time_step_factor * d;
                 if d < stable.dt {
                     stable = StableStep {

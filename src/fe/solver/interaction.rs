@@ -1,22 +1,26 @@
 //! The seam between the solid solver and whatever pushes on its nodes from outside the
-//! elements: contact pairs, rigid walls, body forces. The explicit loop (Box 6.1, step
-//! "external forces") calls every [`Interaction`] once per step; contact laws plug in here.
+//! elements: contact pairs, rigid planes and walls, body forces. The explicit loop (Box 6.1,
+//! step "external forces") calls every [`Interaction`] once per force evaluation; contact
+//! laws plug in here. One trait for every dimension: `D` is the number of nodal components,
+//! 3 for the hexahedral model (x, y, z), 2 for the meridian section (r, z; forces of whole
+//! rings).
 
 use crate::error::Result;
 
-/// What an interaction sees at one step of the central-difference loop.
+/// What an interaction sees at one force evaluation of the central-difference loop.
 ///
-/// Nodal arrays are indexed by global node number; vectors are (x, y, z) components.
+/// Nodal arrays are indexed by global node number; vectors have `D` components ((x, y, z) in
+/// 3D, (r, z) on the meridian section).
 #[derive(Debug, Clone, Copy)]
-pub struct StepContext<'a> {
+pub struct StepContext<'a, const D: usize = 3> {
     /// Time t^n, s.
     pub t: f64,
     /// Time step Δt^{n+1/2} about to be taken, s.
     pub dt: f64,
     /// Current nodal coordinates x^n, m.
-    pub x: &'a [[f64; 3]],
+    pub x: &'a [[f64; D]],
     /// Mid-step nodal velocities v^{n-1/2}, m/s.
-    pub v: &'a [[f64; 3]],
+    pub v: &'a [[f64; D]],
     /// Lumped nodal masses, kg.
     pub mass: &'a [f64],
 }
@@ -32,8 +36,45 @@ pub struct InteractionEnergy {
     pub work: f64,
 }
 
+/// What a contact reports for its last force evaluation (the meridian loop's history reads
+/// it; a contact with a richer output of its own may keep the default).
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct ContactState {
+    /// Total normal force (of the whole ring on the section), N.
+    pub normal_force: f64,
+    /// Energy stored in the penalty springs, J.
+    pub stored: f64,
+    /// Nodes in contact.
+    pub active_nodes: usize,
+    /// Largest penetration, m.
+    pub max_penetration: f64,
+    /// Largest distance from the axis (current r) of a node in contact (the contact radius on
+    /// the section), m.
+    pub contact_radius: f64,
+}
+
+/// What the loop passes for one node's kick to a kinematic contact: its position x^n (m),
+/// half-step velocity v^{n−1/2} (m/s), lumped mass (kg), and the steps closed and opened (s).
+#[derive(Debug, Clone, Copy)]
+pub struct Kick<const D: usize> {
+    /// Position, m.
+    pub x: [f64; D],
+    /// Half-step velocity of the step just closed, m/s.
+    pub v_half: [f64; D],
+    /// Lumped mass, kg.
+    pub mass: f64,
+    /// The step the kick closes, s (0 at the start).
+    pub close: f64,
+    /// The step the kick opens, s.
+    pub open: f64,
+}
+
 /// A source of nodal forces that is not an element: contact, walls, loads.
-pub trait Interaction: Send {
+///
+/// A penalty contact adds forces ([`Interaction::add_forces`]) and reports its springs' step
+/// limits; a kinematic one also claims its nodes ([`Interaction::holds`]) and corrects their
+/// accelerations at their kicks ([`Interaction::constrain`]).
+pub trait Interaction<const D: usize = 3>: Send {
     /// Short name for reports (e.g. `ball-ball contact`).
     fn name(&self) -> &str;
 
@@ -41,11 +82,13 @@ pub trait Interaction: Send {
     ///
     /// Fails with [`crate::Error::Numerical`] when the interaction detects an instability
     /// (for example penetration beyond its allowed fraction of the element size).
-    fn add_forces(&mut self, ctx: &StepContext<'_>, f: &mut [[f64; 3]]) -> Result<()>;
+    fn add_forces(&mut self, ctx: &StepContext<'_, D>, f: &mut [[f64; D]]) -> Result<()>;
 
     /// The largest time step (s) this interaction keeps stable, given the lumped nodal
-    /// masses (kg); `None` when it sets no limit.
-    fn stable_time_step(&self, mass: &[f64]) -> Option<f64>;
+    /// masses `mass` (kg) and, where the loop tracks it, the highest frequency `omega` (rad/s)
+    /// of the elements at each node (empty otherwise: the interaction then uses its own
+    /// estimate); `None` when it sets no limit.
+    fn stable_time_step(&self, mass: &[f64], omega: &[f64]) -> Option<f64>;
 
     /// Stored, dissipated and total work so far, J.
     fn energy(&self) -> InteractionEnergy;
@@ -56,5 +99,30 @@ pub trait Interaction: Send {
     /// the same instants. `None` (the default): unknown, no element is held back.
     fn active_nodes(&self) -> Option<&[u32]> {
         None
+    }
+
+    /// Every node the interaction may act on with the largest stable step (s) its springs
+    /// allow it, on masses `mass` (kg) and element frequencies `omega` (rad/s) as in
+    /// [`Interaction::stable_time_step`]; nodes whose forces are coupled (a node and the
+    /// segments it meets) share one step. Empty (the default): no per-node limit.
+    fn node_limits(&self, _mass: &[f64], _omega: &[f64]) -> Vec<(usize, f64)> {
+        Vec::new()
+    }
+
+    /// True for a node the interaction constrains kinematically at its kicks (none for a
+    /// penalty contact, the default).
+    fn holds(&self, _i: usize) -> bool {
+        false
+    }
+
+    /// A kinematic contact's correction of the acceleration `a` (m/s²) of node `i` at its
+    /// kick `node` (forces already in `a`); returns the work of its force over the kick, J.
+    fn constrain(&mut self, _i: usize, _node: Kick<D>, _a: &mut [f64; D]) -> f64 {
+        0.0
+    }
+
+    /// The contact's state at its last force evaluation (the default: nothing to report).
+    fn state(&self) -> ContactState {
+        ContactState::default()
     }
 }

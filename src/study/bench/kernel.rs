@@ -28,7 +28,30 @@ pub struct KernelBench {
     /// Also time the one-thread step phase by phase (the solver's phase timer).
     pub phases: bool,
     /// Widest kernel path to use.
-    pub kernel_cap: KernelPath,
+    pub kernel_cap: KernelCap,
+}
+
+/// The widest element kernel a benchmark may use (the solver picks the widest path the CPU
+/// has within it; the same results on every path).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum KernelCap {
+    /// The widest kernel this CPU supports (eight AVX-512 lanes where it can).
+    Widest,
+    /// At most the four-lane AVX2 kernel.
+    Avx2,
+    /// The portable kernel (four lanes as plain arrays).
+    Portable,
+}
+
+impl KernelCap {
+    /// The solver's kernel path of this cap.
+    fn path(self) -> KernelPath {
+        match self {
+            KernelCap::Widest => KernelPath::Avx512,
+            KernelCap::Avx2 => KernelPath::Avx2,
+            KernelCap::Portable => KernelPath::Portable,
+        }
+    }
 }
 
 /// Median ns per element-step, the final nodal positions and velocities of one run, and the
@@ -128,7 +151,7 @@ pub fn kernel(a: &KernelBench, out: &mut impl Write) -> Result<()> {
     if all == 0 {
         return Err(Error::invalid("--threads", 0, "at least 1"));
     }
-    let kernel_cap = a.kernel_cap;
+    let kernel_cap = a.kernel_cap.path();
     let d = 0.02;
     let mesh = ball(&BallSpec {
         diameter: d,

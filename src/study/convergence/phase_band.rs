@@ -18,13 +18,13 @@
 //! every level. Its levels are the ladder's (0, 1, …): a banded plan's fine level is ≥ 1.
 
 use crate::error::Result;
-use crate::fe::axisym::impact::ImpactResult;
 use crate::mesh::meridian::{ladder_ball_banded, EdgeBand, MeridianMesh};
 pub use crate::mesh::meridian_band::check_split;
 use crate::study::convergence::phase_ensemble::{
     ensemble_over, family_mesh, hertz_contact_radius, ring_ratio, run_head_on, HeadOnCase,
     PhaseEnsemble,
 };
+use crate::study::run::section_impact::ImpactResult;
 
 /// The banded family's sizing radius over the edge: its core reaches 1.5 × 0.45 = 0.675
 /// edges along the surface, inside the band's 0.8 even for an ensemble member scaled by a

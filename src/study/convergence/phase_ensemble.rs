@@ -21,12 +21,12 @@
 use crate::analytic::hertz::HertzPair;
 use crate::error::{Error, Result};
 use crate::fe::axisym::element::QuadFormulation;
-use crate::fe::axisym::impact::{HeadOn, ImpactResult, PlaneContact, Target};
 use crate::fe::axisym::subcycle::Integration;
 use crate::material::Material;
 use crate::mesh::meridian::{ladder_ball, MeridianMesh};
 use crate::study::convergence::ladder::refine;
 use crate::study::records::estimate::{estimate, Estimate};
+use crate::study::run::section_impact::{HeadOn, ImpactResult, PlaneContact, Target};
 use rayon::prelude::*;
 use serde::Serialize;
 use std::f64::consts::PI;

@@ -8,13 +8,13 @@ use super::matrix::{HeadOnPoint, ObliquePoint};
 use crate::analytic::{Body, HertzPair};
 use crate::error::{Error, Result};
 use crate::fe::axisym::element::QuadFormulation;
-use crate::fe::axisym::impact::PlaneContact;
 use crate::mesh::meridian_band::depth_for;
 use crate::scene::Scene;
 use crate::study::convergence::phase_ensemble::{
     converged_head_on, Bar as EnsembleBar, HeadOnCase, HeadOnTarget, PhasePlan, MIN_LEVEL,
 };
 use crate::study::run::scene::run_scene;
+use crate::study::run::section_impact::PlaneContact;
 use crate::study::run::simulate::RunOptions;
 use serde::{Deserialize, Deserializer, Serialize, Serializer};
 use std::path::Path;

@@ -2,6 +2,8 @@
 //!
 //! - [`simulate`]: the FE run (model, reductions, stop rule, reduction to rigid motion);
 //! - [`section`]: the run of a head-on scene on the meridian section;
+//! - [`section_impact`]: the impact driver and stop rule of a head-on run on the section
+//!   (first touch to separation; e, δ_max, duration, peak force, history);
 //! - [`ignored`]: the scene settings the chosen model does not use, one note each;
 //! - [`scene`]: one scene, both models side by side, results.json and history.csv;
 //! - [`law_compare`]: the scene's `[laws]`, integrated on the run's balls and speeds;
@@ -11,5 +13,6 @@ pub mod ignored;
 pub mod law_compare;
 pub mod scene;
 pub mod section;
+pub mod section_impact;
 pub mod simulate;
 pub mod snapshots;

@@ -8,7 +8,6 @@
 
 use crate::error::{Error, Result};
 use crate::fe::axisym::element::QuadFormulation;
-use crate::fe::axisym::impact::{HeadOn, ImpactRow, OtherBall, PlaneContact, Target, WallBlock};
 use crate::fe::axisym::subcycle::Integration;
 use crate::fe::solver::subcycle::{SubcycleReport, Subcycling};
 use crate::fe::Formulation;
@@ -16,6 +15,9 @@ use crate::mesh::meridian::{ball, block, BlockSpec, MeridianMesh, SectionSpec};
 use crate::scene::{BallScene, MeshSettings, PlaneEnforcement, Scene, Switch, Touch};
 use crate::study::common::progress::{Mode, RunProgress};
 use crate::study::records::outcome::{dissipation_factor, Outcome};
+use crate::study::run::section_impact::{
+    HeadOn, ImpactRow, OtherBall, PlaneContact, Target, WallBlock,
+};
 use crate::study::run::simulate::{
     HistoryRow, Kinematics, Reduction, RunOptions, Savings, Simulation, DEFAULT_HOLD_FRACTION,
 };

@@ -13,7 +13,7 @@
 
 use crate::error::Result;
 use crate::fe::axisym::mass_scaling::within_budget;
-use crate::fe::timestep::characteristic_length;
+use crate::fe::solver::timestep::characteristic_length;
 use crate::mesh::ball::{ball, BallSpec, Cut};
 use crate::mesh::meridian::MeridianMesh;
 use crate::mesh::quality::hex_volume;

@@ -11,7 +11,6 @@
 //! similarity check, 3.2e-10 relative; docs/contact-laws.md). A sweep over diameters with
 //! per-diameter meshes derives its similar cases from one run ([`crate::study::sweep`]).
 
-use crate::fe::materials::law::Law;
 use crate::material::Material;
 use crate::scene::{BallScene, MeshSettings, OutputSettings, Scene, SolverSettings};
 use crate::study::records::case::FeCase;
@@ -21,14 +20,9 @@ use serde_json::Value;
 /// scaled back differ from the other scene's in the last bits).
 const SAME: f64 = 1e-12;
 
-/// True when `m` has no time scale (no strain-rate term).
+/// True when `m` has no time scale (no strain-rate term; linear hardening without a law).
 fn rate_independent(m: &Material) -> bool {
-    match &m.hardening {
-        None | Some(Law::Bilinear(_)) | Some(Law::Power(_)) => true,
-        Some(Law::JohnsonCook(jc)) => jc.c == 0.0,
-        #[allow(unreachable_patterns)]
-        Some(_) => false,
-    }
+    m.hardening.is_none_or(|law| law.rate_independent())
 }
 
 /// Ball `b` with its lengths scaled by `k` (its spin by 1/k); None for a mesh read from a

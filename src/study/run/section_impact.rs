@@ -7,15 +7,17 @@
 //! Reports what the 3D study reports: the coefficient of restitution, the maximum approach,
 //! the contact duration, the peak force, the energy terms, the energy error and history rows.
 
-use super::element::QuadFormulation;
-use super::plane::{ring_areas_and_thickness, RigidPlane, Side};
-use super::plane_kinematic::KinematicPlane;
-use super::plane_segment::SegmentPlane;
-use super::section::{SectionContact, SectionModel, SectionSolver};
-use super::segment::{Boundary, SegmentPair};
-use super::subcycle::Integration;
 use crate::error::{Error, Result};
+use crate::fe::axisym::element::QuadFormulation;
+use crate::fe::axisym::mass_scaling;
+use crate::fe::axisym::section::{SectionModel, SectionSolver};
+use crate::fe::axisym::subcycle::Integration;
+use crate::fe::contact::meridian::plane_kinematic::KinematicPlane;
+use crate::fe::contact::meridian::plane_nodal::{ring_areas_and_thickness, NodalPlane, Side};
+use crate::fe::contact::meridian::plane_segment::SegmentPlane;
+use crate::fe::contact::meridian::segment::{Boundary, SegmentPair};
 use crate::fe::contact::pulse::pulse_duration;
+use crate::fe::interaction::Interaction;
 use crate::fe::materials::J2Material;
 use crate::fe::simd::KernelPath;
 use crate::material::Material;
@@ -58,7 +60,7 @@ pub struct WallBlock {
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum PlaneContact {
-    /// A penalty spring per boundary node ([`RigidPlane`]): the contact area grows ring by ring.
+    /// A penalty spring per boundary node ([`NodalPlane`]): the contact area grows ring by ring.
     Nodal,
     /// Penalty pressure integrated over the penetrated part of each segment
     /// ([`SegmentPlane`]): the contact area grows continuously.
@@ -122,10 +124,10 @@ pub struct HeadOn {
     /// How the mirror plane or the wall takes the boundary.
     pub plane_contact: PlaneContact,
     /// Mass-scaling budget: the added mass over the model's mass that may raise the
-    /// smallest quads' steps ([`super::mass_scaling`]; 0, the default: none).
+    /// smallest quads' steps ([`crate::fe::axisym::mass_scaling`]; 0, the default: none).
     pub mass_scaling: f64,
     /// The widest lane path of the quads, `None` for scalar updates (the same
-    /// bits either way; [`super::section::SectionModel::kernel`]).
+    /// bits either way; [`SectionModel::kernel`]).
     pub kernel: Option<KernelPath>,
 }
 
@@ -289,7 +291,7 @@ impl HeadOn {
         w: &WallBlock,
         radius: f64,
         mat: J2Material,
-    ) -> Result<(SectionModel, Box<dyn SectionContact>)> {
+    ) -> Result<(SectionModel, Box<dyn Interaction<2>>)> {
         let n1 = self.mesh.nodes.len();
         let base = w.mesh.node_sets.get("base").filter(|b| !b.is_empty());
         let Some(base) = base else {
@@ -419,7 +421,7 @@ impl HeadOn {
             _ => 0.5,
         };
         let penetration_limit = limit_fraction * thickness;
-        let (model, contact): (SectionModel, Box<dyn SectionContact>) = match &self.target {
+        let (model, contact): (SectionModel, Box<dyn Interaction<2>>) = match &self.target {
             Target::MirrorBall | Target::RigidWall => {
                 let mut model =
                     SectionModel::new(self.mesh.nodes.clone(), self.mesh.quads.clone(), mat);
@@ -432,9 +434,9 @@ impl HeadOn {
                     _ => self.fkn,
                 };
                 let (m, youngs) = (&self.mesh, self.material.youngs);
-                let plane: Box<dyn SectionContact> = match self.plane_contact {
+                let plane: Box<dyn Interaction<2>> = match self.plane_contact {
                     PlaneContact::Nodal => {
-                        Box::new(RigidPlane::new(m, &seg1, radius, Side::Below, fkn, youngs)?)
+                        Box::new(NodalPlane::new(m, &seg1, radius, Side::Below, fkn, youngs)?)
                     }
                     PlaneContact::Segment => Box::new(SegmentPlane::new(
                         m,
@@ -480,7 +482,7 @@ impl HeadOn {
                     self.fkn,
                     self.material.youngs.min(o.material.youngs),
                 )?;
-                (model, Box::new(pair) as Box<dyn SectionContact>)
+                (model, Box::new(pair) as Box<dyn Interaction<2>>)
             }
             Target::ElasticWall(w) => self.wall_model(w, radius, mat)?,
         };
@@ -489,12 +491,12 @@ impl HeadOn {
         model.time_step_factor = self.time_step_factor;
         model.integration = self.integration;
         model.kernel = self.kernel;
-        super::mass_scaling::check_budget(self.mass_scaling)?;
+        mass_scaling::check_budget(self.mass_scaling)?;
         let mut added_mass_fraction = 0.0;
         if self.mass_scaling > 0.0 {
             let mats = &model.materials;
             let of = &model.material_of;
-            let scaling = super::mass_scaling::within_budget(
+            let scaling = mass_scaling::within_budget(
                 &model.nodes,
                 &model.quads,
                 |e| mats[of[e]].wave_speed,

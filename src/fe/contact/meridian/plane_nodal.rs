@@ -6,9 +6,9 @@
 //! averaged over its segments). Frictionless: a head-on impact has no tangential slip on the
 //! symmetry plane and no tangential load anywhere by symmetry about the axis.
 
-use super::section::{ContactState, SectionContact};
 use crate::error::{Error, Result};
 use crate::fe::contact::penalty::{normal_force, stable_step};
+use crate::fe::interaction::{ContactState, Interaction, InteractionEnergy, StepContext};
 use crate::mesh::meridian::MeridianMesh;
 use std::f64::consts::PI;
 
@@ -21,13 +21,15 @@ pub enum Side {
     Above,
 }
 
-/// A rigid plane z = z₀ and the penalty springs of the boundary nodes that may touch it.
+/// A rigid plane z = z₀ and the penalty springs of the boundary nodes that may touch it
+/// (one spring per node: the contact area grows ring by ring).
 #[derive(Debug, Clone)]
-pub struct RigidPlane {
+pub struct NodalPlane {
     z0: f64,
     sign: f64,
     nodes: Vec<usize>,
     k: Vec<f64>,
+    state: ContactState,
 }
 
 /// Length (m) and thickness h (m: area of the quad under it over its length) of the boundary
@@ -48,7 +50,10 @@ pub fn segment_length_and_thickness(mesh: &MeridianMesh, s: [u32; 2]) -> Result<
         })?;
     let (pa, pb) = (mesh.nodes[s[0] as usize], mesh.nodes[s[1] as usize]);
     let l = (pb[0] - pa[0]).hypot(pb[1] - pa[1]);
-    Ok((l, super::quad::area(&q.map(|n| mesh.nodes[n as usize])) / l))
+    Ok((
+        l,
+        crate::fe::axisym::quad::area(&q.map(|n| mesh.nodes[n as usize])) / l,
+    ))
 }
 
 /// Checks a penalty factor FKN: finite and > 0.
@@ -85,7 +90,17 @@ pub fn ring_areas_and_thickness(
         .collect())
 }
 
-impl RigidPlane {
+/// The energy of a penalty contact on the section: what its springs store now (their force
+/// is conservative, so the work they did on the nodes is minus that, J; nothing dissipated).
+pub fn penalty_energy(state: &ContactState) -> InteractionEnergy {
+    InteractionEnergy {
+        stored: state.stored,
+        dissipated: 0.0,
+        work: -state.stored,
+    }
+}
+
+impl NodalPlane {
     /// The plane z = `z0` (m) with the body on `side`, acting on the nodes of `segments` of
     /// `mesh`, with penalty factor `fkn` (> 0) on Young's modulus `youngs` (Pa).
     pub fn new(
@@ -98,7 +113,8 @@ impl RigidPlane {
     ) -> Result<Self> {
         check_fkn(fkn)?;
         let nh = ring_areas_and_thickness(mesh, segments)?;
-        Ok(RigidPlane {
+        Ok(NodalPlane {
+            state: ContactState::default(),
             z0,
             sign: if side == Side::Below { 1.0 } else { -1.0 },
             nodes: nh.iter().map(|t| t.0).collect(),
@@ -112,8 +128,13 @@ impl RigidPlane {
     }
 }
 
-impl SectionContact for RigidPlane {
-    fn add_forces(&mut self, x: &[[f64; 2]], f: &mut [[f64; 2]]) -> ContactState {
+impl Interaction<2> for NodalPlane {
+    fn name(&self) -> &str {
+        "nodal plane contact"
+    }
+
+    fn add_forces(&mut self, ctx: &StepContext<'_, 2>, f: &mut [[f64; 2]]) -> Result<()> {
+        let x = ctx.x;
         let mut s = ContactState::default();
         for (&i, &k) in self.nodes.iter().zip(&self.k) {
             let gap = self.sign * (self.z0 - x[i][1]);
@@ -127,13 +148,24 @@ impl SectionContact for RigidPlane {
                 s.contact_radius = s.contact_radius.max(x[i][0]);
             }
         }
-        s
+        self.state = s;
+        Ok(())
     }
 
-    fn stable_step(&self, mass: &[f64], omega: &[f64]) -> f64 {
-        self.springs()
-            .map(|(i, k)| stable_step(k, mass[i], omega[i]))
-            .fold(f64::INFINITY, f64::min)
+    fn stable_time_step(&self, mass: &[f64], omega: &[f64]) -> Option<f64> {
+        Some(
+            self.springs()
+                .map(|(i, k)| stable_step(k, mass[i], omega[i]))
+                .fold(f64::INFINITY, f64::min),
+        )
+    }
+
+    fn energy(&self) -> InteractionEnergy {
+        penalty_energy(&self.state)
+    }
+
+    fn state(&self) -> ContactState {
+        self.state
     }
 
     fn node_limits(&self, mass: &[f64], omega: &[f64]) -> Vec<(usize, f64)> {

@@ -5,10 +5,10 @@
 //! the quads under it, E the smaller Young's modulus of the two bodies), so that matching
 //! meshes carry the one-pass force. Frictionless (head-on: no tangential load by symmetry).
 
-use super::plane::ring_areas_and_thickness;
-use super::section::{ContactState, SectionContact};
+use super::plane_nodal::{penalty_energy, ring_areas_and_thickness};
 use crate::error::{Error, Result};
 use crate::fe::contact::penalty::{effective_mass, normal_force, stable_step};
+use crate::fe::interaction::{ContactState, Interaction, InteractionEnergy, StepContext};
 
 /// One boundary of the pair: its contact segments (body on their left) and the springs of
 /// their nodes.
@@ -24,6 +24,7 @@ struct Side {
 #[derive(Debug, Clone)]
 pub struct SegmentPair {
     sides: [Side; 2],
+    state: ContactState,
 }
 
 /// A boundary of one body: its mesh, the contact segments (mesh numbering) and the offset
@@ -61,6 +62,7 @@ impl SegmentPair {
         };
         Ok(SegmentPair {
             sides: [side(&a)?, side(&b)?],
+            state: ContactState::default(),
         })
     }
 }
@@ -143,8 +145,13 @@ fn closest(p: [f64; 2], segs: &[[usize; 2]], x: &[[f64; 2]]) -> Option<Hit> {
     best
 }
 
-impl SectionContact for SegmentPair {
-    fn add_forces(&mut self, x: &[[f64; 2]], f: &mut [[f64; 2]]) -> ContactState {
+impl Interaction<2> for SegmentPair {
+    fn name(&self) -> &str {
+        "section pair contact"
+    }
+
+    fn add_forces(&mut self, ctx: &StepContext<'_, 2>, f: &mut [[f64; 2]]) -> Result<()> {
+        let x = ctx.x;
         let mut st = ContactState::default();
         for pass in 0..2 {
             let (slave, master) = (&self.sides[pass], &self.sides[1 - pass]);
@@ -175,10 +182,41 @@ impl SectionContact for SegmentPair {
                 st.contact_radius = st.contact_radius.max(x[i][0]);
             }
         }
-        st
+        self.state = st;
+        Ok(())
     }
 
-    fn stable_step(&self, mass: &[f64], omega: &[f64]) -> f64 {
+    fn stable_time_step(&self, mass: &[f64], omega: &[f64]) -> Option<f64> {
+        Some(self.pair_step(mass, omega))
+    }
+
+    fn energy(&self) -> InteractionEnergy {
+        penalty_energy(&self.state)
+    }
+
+    fn state(&self) -> ContactState {
+        self.state
+    }
+
+    fn node_limits(&self, mass: &[f64], omega: &[f64]) -> Vec<(usize, f64)> {
+        // A node's force goes to the segment it meets: the nodes of both boundaries share
+        // the pair's step.
+        let dt = self.pair_step(mass, omega);
+        let mut nodes: Vec<usize> = self
+            .sides
+            .iter()
+            .flat_map(|s| s.springs.iter().map(|&(i, _)| i))
+            .collect();
+        nodes.sort_unstable();
+        nodes.dedup();
+        nodes.into_iter().map(|i| (i, dt)).collect()
+    }
+}
+
+impl SegmentPair {
+    /// The pair's stable step (s) on masses `mass` (kg) and element frequencies `omega`
+    /// (rad/s): both passes may act on a node at once.
+    fn pair_step(&self, mass: &[f64], omega: &[f64]) -> f64 {
         let mut dt = f64::INFINITY;
         for pass in 0..2 {
             let (slave, master) = (&self.sides[pass], &self.sides[1 - pass]);
@@ -190,19 +228,5 @@ impl SectionContact for SegmentPair {
             }
         }
         dt
-    }
-
-    fn node_limits(&self, mass: &[f64], omega: &[f64]) -> Vec<(usize, f64)> {
-        // A node's force goes to the segment it meets: the nodes of both boundaries share
-        // the pair's step.
-        let dt = self.stable_step(mass, omega);
-        let mut nodes: Vec<usize> = self
-            .sides
-            .iter()
-            .flat_map(|s| s.springs.iter().map(|&(i, _)| i))
-            .collect();
-        nodes.sort_unstable();
-        nodes.dedup();
-        nodes.into_iter().map(|i| (i, dt)).collect()
     }
 }

@@ -13,7 +13,7 @@
 //! a node the solid pulls off the plane predicts a position off it and gets none. This is the
 //! forward-increment Lagrange multiplier of Carpenter, Taylor & Katona (1991) for a rigid
 //! surface, where each constraint involves one node and needs no system solve (the rigid wall
-//! of DYNA3D-type codes). Compared with the penalty plane ([`super::plane`]) it has no
+//! of DYNA3D-type codes). Compared with the penalty plane ([`super::plane_nodal`]) it has no
 //! compliance (the penalty's FKN → ∞ limit), no stable-step limit of its own (the step is the
 //! elements'), and no stored energy; a node that lands loses its normal velocity relative to
 //! the plane, and that work is the contact's (counted as external work, ≤ 0 on landing).
@@ -21,9 +21,9 @@
 //! With subcycling every node drifts with its constant half-step velocity between its kicks,
 //! so a node put on the plane at its next kick lies off the plane at every fine step before.
 
-use super::plane::{ring_areas_and_thickness, Side};
-use super::section::{ContactState, Kick, SectionContact};
+use super::plane_nodal::{ring_areas_and_thickness, Side};
 use crate::error::Result;
+use crate::fe::interaction::{ContactState, Interaction, InteractionEnergy, Kick, StepContext};
 use crate::mesh::meridian::MeridianMesh;
 
 /// A rigid plane z = z₀ enforced as a unilateral kinematic constraint on boundary nodes.
@@ -37,6 +37,10 @@ pub struct KinematicPlane {
     force: Vec<f64>,
     /// Index into `nodes` of every mesh node (usize::MAX for nodes the plane does not hold).
     slot: Vec<usize>,
+    /// The state of the last force evaluation.
+    state: ContactState,
+    /// Work of the plane's forces on the nodes so far, J.
+    work: f64,
 }
 
 /// The normal acceleration (m/s²) that puts a node at `z` (m) with half-step velocity `vz`
@@ -81,6 +85,8 @@ impl KinematicPlane {
             force: vec![0.0; nodes.len()],
             nodes,
             slot,
+            state: ContactState::default(),
+            work: 0.0,
         })
     }
 
@@ -91,8 +97,13 @@ impl KinematicPlane {
     }
 }
 
-impl SectionContact for KinematicPlane {
-    fn add_forces(&mut self, x: &[[f64; 2]], _f: &mut [[f64; 2]]) -> ContactState {
+impl Interaction<2> for KinematicPlane {
+    fn name(&self) -> &str {
+        "kinematic plane contact"
+    }
+
+    fn add_forces(&mut self, ctx: &StepContext<'_, 2>, _f: &mut [[f64; 2]]) -> Result<()> {
+        let x = ctx.x;
         let mut s = ContactState::default();
         for (&i, &f) in self.nodes.iter().zip(&self.force) {
             if f > 0.0 {
@@ -102,22 +113,30 @@ impl SectionContact for KinematicPlane {
             }
             s.max_penetration = s.max_penetration.max(self.sign * (x[i][1] - self.z0));
         }
-        s
+        self.state = s;
+        Ok(())
     }
 
-    fn stable_step(&self, _mass: &[f64], _omega: &[f64]) -> f64 {
-        f64::INFINITY
+    fn stable_time_step(&self, _mass: &[f64], _omega: &[f64]) -> Option<f64> {
+        None
     }
 
-    fn node_limits(&self, _mass: &[f64], _omega: &[f64]) -> Vec<(usize, f64)> {
-        Vec::new()
+    fn energy(&self) -> InteractionEnergy {
+        InteractionEnergy {
+            work: self.work,
+            ..Default::default()
+        }
+    }
+
+    fn state(&self) -> ContactState {
+        self.state
     }
 
     fn holds(&self, i: usize) -> bool {
         self.slot_of(i).is_some()
     }
 
-    fn constrain(&mut self, i: usize, node: Kick, a: &mut [f64; 2]) -> f64 {
+    fn constrain(&mut self, i: usize, node: Kick<2>, a: &mut [f64; 2]) -> f64 {
         let Some(k) = self.slot_of(i) else {
             return 0.0;
         };
@@ -132,7 +151,9 @@ impl SectionContact for KinematicPlane {
         self.force[k] = -self.sign * f;
         // Work of the force at t^n over half of each step around it.
         let v_next = vz + 0.5 * (node.close + node.open) * az;
-        f * 0.5 * (node.close * vz + node.open * v_next)
+        let work = f * 0.5 * (node.close * vz + node.open * v_next);
+        self.work += work;
+        work
     }
 }
 
@@ -169,6 +190,23 @@ mod tests {
         assert!((next + 1e-3).abs() < 1e-18 && a > 0.0);
     }
 
+    /// The plane's state after a force evaluation at positions `x` (m).
+    fn forces_state(plane: &mut KinematicPlane, x: &[[f64; 2]]) -> ContactState {
+        let v = vec![[0.0; 2]; x.len()];
+        let mass = vec![1.0; x.len()];
+        let ctx = StepContext {
+            t: 0.0,
+            dt: 1e-8,
+            x,
+            v: &v,
+            mass: &mass,
+        };
+        plane
+            .add_forces(&ctx, &mut vec![[0.0; 2]; x.len()])
+            .unwrap();
+        plane.state()
+    }
+
     #[test]
     fn the_plane_holds_only_its_boundary_nodes_and_reports_its_force() {
         use crate::mesh::meridian::{ball, SectionSpec};
@@ -201,7 +239,7 @@ mod tests {
         let work = plane.constrain(pole, kick, &mut a);
         // Stopping 1 m/s over one step: a = −v/Δt, force m v/Δt = 200 N.
         assert!((a[1] + 1e8).abs() < 1e-3);
-        let s = plane.add_forces(&mesh.nodes, &mut vec![[0.0; 2]; mesh.nodes.len()]);
+        let s = forces_state(&mut plane, &mesh.nodes);
         assert!((s.normal_force - 200.0).abs() < 1e-9 && s.active_nodes == 1);
         // It took work: half of the step before at 1 m/s against 200 N.
         assert!((work + 200.0 * 0.5e-8).abs() < 1e-18);
@@ -211,7 +249,7 @@ mod tests {
             ..kick
         };
         assert_eq!(plane.constrain(pole, away, &mut [0.0, 0.0]), 0.0);
-        let s = plane.add_forces(&mesh.nodes, &mut vec![[0.0; 2]; mesh.nodes.len()]);
+        let s = forces_state(&mut plane, &mesh.nodes);
         assert_eq!(s.normal_force, 0.0);
     }
 }

@@ -17,15 +17,15 @@
 //! sawtooth over the mesh (docs/contact-penalty.md, "Why the section's e scatters").
 //!
 //! On a segment in full contact with a uniform gap g the nodes carry ε (−g) A_I, A_I the
-//! consistent ring area ∫ N_I 2π r l dξ: the nodal rule of [`super::plane`] with its k_I = FKN
+//! consistent ring area ∫ N_I 2π r l dξ: the nodal rule of [`super::plane_nodal`] with its k_I = FKN
 //! E A_I / h_I. The step limits use that k_I (the row sum of the consistent penalty matrix,
 //! which bounds its largest eigenvalue by Gershgorin's theorem), shared by the two nodes of a
 //! segment, which the penalty couples.
 
-use super::plane::{check_fkn, segment_length_and_thickness, Side};
-use super::section::{ContactState, SectionContact};
+use super::plane_nodal::{check_fkn, penalty_energy, segment_length_and_thickness, Side};
 use crate::error::Result;
 use crate::fe::contact::penalty::stable_step;
+use crate::fe::interaction::{ContactState, Interaction, InteractionEnergy, StepContext};
 use crate::mesh::meridian::MeridianMesh;
 use std::f64::consts::PI;
 
@@ -46,6 +46,7 @@ pub struct SegmentPlane {
     z0: f64,
     sign: f64,
     rings: Vec<Ring>,
+    state: ContactState,
 }
 
 /// Penetrated sub-interval [ξ₀, ξ₁] ⊂ [0, 1] of a segment with nodal gaps `ga`, `gb` (m), or
@@ -111,6 +112,7 @@ impl SegmentPlane {
             z0,
             sign: if side == Side::Below { 1.0 } else { -1.0 },
             rings,
+            state: ContactState::default(),
         })
     }
 
@@ -126,8 +128,13 @@ impl SegmentPlane {
     }
 }
 
-impl SectionContact for SegmentPlane {
-    fn add_forces(&mut self, x: &[[f64; 2]], f: &mut [[f64; 2]]) -> ContactState {
+impl Interaction<2> for SegmentPlane {
+    fn name(&self) -> &str {
+        "segment plane contact"
+    }
+
+    fn add_forces(&mut self, ctx: &StepContext<'_, 2>, f: &mut [[f64; 2]]) -> Result<()> {
+        let x = ctx.x;
         let mut s = ContactState::default();
         let mut last_active = usize::MAX;
         for r in &self.rings {
@@ -152,14 +159,25 @@ impl SectionContact for SegmentPlane {
             let edge = |xi: f64| (1.0 - xi) * x[r.a][0] + xi * x[r.b][0];
             s.contact_radius = s.contact_radius.max(edge(x0)).max(edge(x1));
         }
-        s
+        self.state = s;
+        Ok(())
     }
 
-    fn stable_step(&self, mass: &[f64], omega: &[f64]) -> f64 {
-        self.node_limits(mass, omega)
-            .into_iter()
-            .map(|t| t.1)
-            .fold(f64::INFINITY, f64::min)
+    fn stable_time_step(&self, mass: &[f64], omega: &[f64]) -> Option<f64> {
+        Some(
+            self.node_limits(mass, omega)
+                .into_iter()
+                .map(|t| t.1)
+                .fold(f64::INFINITY, f64::min),
+        )
+    }
+
+    fn energy(&self) -> InteractionEnergy {
+        penalty_energy(&self.state)
+    }
+
+    fn state(&self) -> ContactState {
+        self.state
     }
 
     fn node_limits(&self, mass: &[f64], omega: &[f64]) -> Vec<(usize, f64)> {
