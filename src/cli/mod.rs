@@ -145,7 +145,7 @@ where
     };
     if matches!(
         cli.command,
-        Command::Run(_) | Command::Sweep(_) | Command::Stress(_)
+        Command::Run(_) | Command::Sweep(_) | Command::Stress(_) | Command::Damper(_)
     ) {
         crate::study::interrupt::install();
     }

@@ -37,6 +37,7 @@ pub mod convergence;
 pub mod cost;
 pub mod curves;
 pub mod damper_plots;
+pub mod damper_run;
 pub mod error_estimate;
 pub mod error_honesty;
 pub mod figures;
