@@ -1,12 +1,12 @@
 //! What mass scaling (`fe::axisym::mass_scaling`) saves and costs on a head-on section: per
 //! mesh and budget, the steps, the initial stable step, the wall time and e, δ_max, the
-//! contact duration and the peak force; the table of docs/contact-penalty.md ("Mass scaling
+//! contact duration and the peak force; the table of verification/contact-penalty.md ("Mass scaling
 //! of the contact region").
 //!
 //! `cargo run --release --example mass_scaling -- V_REL MESHES BUDGETS [MATERIAL]`: two
 //! identical D = 20 mm balls (MATERIAL a preset, default copper-fe) at relative speed V_REL
 //! (m/s); MESHES a comma list of `band:L` (the banded family's level L around the contact
-//! edge of a plain level-0 run, four-fold band through the depth: `study::phase_band`),
+//! edge of a plain level-0 run, four-fold band through the depth: `study::convergence::phase_band`),
 //! `bandSPLIT:L` (the same with a SPLIT-fold band, `band5:L` the bench's five-fold band
 //! confined to the surface) and `plain:L` (the
 //! plain family's level L, sized from Hertz's contact radius); BUDGETS a comma list of
@@ -15,8 +15,8 @@
 use twoball::fe::axisym::impact::{HeadOn, Target};
 use twoball::material::Material;
 use twoball::mesh::meridian::MeridianMesh;
-use twoball::study::phase_band::{banded_mesh, contact_edge};
-use twoball::study::phase_ensemble::{family_mesh, hertz_contact_radius, HeadOnCase};
+use twoball::study::convergence::phase_band::{banded_mesh, contact_edge};
+use twoball::study::convergence::phase_ensemble::{family_mesh, hertz_contact_radius, HeadOnCase};
 
 /// A comma list of `T`, or an error naming `what`.
 fn list<T: std::str::FromStr>(s: &str, what: &str) -> Result<Vec<T>, String> {

@@ -1,6 +1,6 @@
-//! The section model's converged head-on answer (`study::phase_ensemble::converged_head_on`)
+//! The section model's converged head-on answer (`study::convergence::phase_ensemble::converged_head_on`)
 //! for two identical balls: the ensembles of family levels LEVEL − 1 and LEVEL, member by
-//! member, and the answer with its error bars (docs/contact-penalty.md, "The section's
+//! member, and the answer with its error bars (verification/contact-penalty.md, "The section's
 //! converged answer").
 //!
 //! `cargo run --release --example phase_ensemble -- LEVEL MESHES V_REL [MATERIAL] [one-point|b-bar] [D]`
@@ -10,7 +10,7 @@
 //! ensemble of LEVEL alone (no coarse ensemble, no bar): the deep levels of a ladder. With
 //! `PHASE_RING_AT=R` (µm) as well, the ring ratio q is read at the contact radius R instead
 //! of from a pilot run, and all members run at once (`ensemble_at_radius`). `PHASE_BAND=SPLIT`
-//! runs the banded family instead (`study::phase_band`: the surface rings at the contact edge
+//! runs the banded family instead (`study::convergence::phase_band`: the surface rings at the contact edge
 //! of a level-0 run split SPLIT-fold; LEVEL ≥ 1). `PHASE_MASS_SCALING=BUDGET` mass-scales
 //! every run within BUDGET (added mass over the section's; `fe::axisym::mass_scaling`).
 //! `PHASE_SUBCYCLE_MAX_LEVEL=K` caps the subcycling at level K instead of the section's
@@ -20,7 +20,7 @@ use twoball::fe::axisym::element::QuadFormulation;
 use twoball::fe::axisym::impact::PlaneContact;
 use twoball::fe::axisym::subcycle::Integration;
 use twoball::material::Material;
-use twoball::study::phase_ensemble::{
+use twoball::study::convergence::phase_ensemble::{
     converged_head_on, ensemble_at, ensemble_at_radius, HeadOnCase, HeadOnTarget, PhaseEnsemble,
     PhasePlan,
 };
@@ -137,7 +137,7 @@ fn run(args: &[String]) -> Result<(), String> {
     for (label, en) in [("coarse", &ans.coarse), ("fine", &ans.fine)] {
         print_ensemble(label, en);
     }
-    let pct = |b: &twoball::study::phase_ensemble::Bar| 100.0 * b.relative_error();
+    let pct = |b: &twoball::study::convergence::phase_ensemble::Bar| 100.0 * b.relative_error();
     println!(
         "e {:.5} ± {:.5} ({:.2} %); δ_max {:.4} µm ± {:.2} %; t_c {:.3} µs ± {:.2} %; F_peak {:.1} N ± {:.2} %; {:.1} s CPU",
         ans.e.value, ans.e.error, pct(&ans.e), ans.delta_max.value * 1e6, pct(&ans.delta_max),

@@ -1,6 +1,6 @@
 //! Where the impact energy of the default scene (two D = 20 mm copper-fe balls, ±1 m/s; one
 //! ball section against the symmetry plane) goes on a meridian mesh, and which surface rings
-//! the plane reached: the table of docs/contact-penalty.md ("Why the section's e scatters").
+//! the plane reached: the table of verification/contact-penalty.md ("Why the section's e scatters").
 //!
 //! Per mesh, after separation and over the initial kinetic energy KE₀: the rebound (the
 //! rigid-body kinetic energy, e²), the vibration kinetic energy (kinetic minus rigid-body),

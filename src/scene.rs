@@ -80,6 +80,11 @@ pub enum MeshSettings {
     },
 }
 
+/// The ball diameters a scene (and `twoball analytic`) accepts, m.
+pub const DIAMETER_RANGE: std::ops::RangeInclusive<f64> = 1e-4..=1.0;
+/// The largest velocity component a scene (and `twoball analytic`) accepts, m/s.
+pub const SPEED_MAX: f64 = 1000.0;
+
 /// One ball of the scene.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct BallScene {
@@ -288,6 +293,30 @@ const REDUCTION_KEYS: [&str; 4] = [
     "skip_work",
 ];
 
+/// Every key of the scene reference (docs/design.md §6) as a dotted path, `ballN` for either
+/// ball and a table such as `ballN.material.hardening` as one key: the list the check of
+/// ignored settings ([`crate::study::run::ignored`]) must cover.
+pub fn reference_keys() -> Vec<String> {
+    let mut keys = Vec::new();
+    let mut under = |prefix: &str, names: &[&str]| {
+        keys.extend(names.iter().map(|k| format!("{prefix}.{k}")));
+    };
+    for k in BALL_KEYS {
+        match k {
+            "material" => under("ballN.material", &MATERIAL_KEYS),
+            "mesh" => under("ballN.mesh", &MESH_KEYS),
+            k => under("ballN", &[k]),
+        }
+    }
+    under("contact", &CONTACT_KEYS);
+    under("solver", &SOLVER_KEYS);
+    under("output", &OUTPUT_KEYS);
+    under("reduction", &REDUCTION_KEYS);
+    under("wall", &wall::WALL_KEYS);
+    under("laws", &laws::LAWS_KEYS);
+    keys
+}
+
 /// Default bulk element size as a fraction of the diameter. With the default pole size, the
 /// coarsest bulk that keeps the coefficient of restitution of the default scene within 1 %
 /// of the converged value (0.7 %; D/5 is 1.9 % off): docs/performance.md, "Run time
@@ -445,11 +474,11 @@ fn read_ball(b: Reader<'_>, dir: &Path) -> Result<(BallScene, bool)> {
     let diameter = b
         .f64(
             "diameter",
-            |d| (1e-4..=1.0).contains(&d),
+            |d| DIAMETER_RANGE.contains(&d),
             "1e-4 <= diameter <= 1 m",
         )?
         .ok_or_else(|| b.missing("diameter", "ball diameter in m"))?;
-    let speed_ok = |v: f64| v.abs() <= 1000.0;
+    let speed_ok = |v: f64| v.abs() <= SPEED_MAX;
     let velocity = b
         .vec3("velocity", speed_ok, "|component| <= 1000 m/s")?
         .ok_or_else(|| b.missing("velocity", "[vx, vy, vz] in m/s"))?;
@@ -634,12 +663,19 @@ fn read_mesh(m: Option<Reader<'_>>, d: f64, dir: &Path) -> Result<(MeshSettings,
     Ok((mesh, pole.is_some()))
 }
 
+impl Default for ContactSettings {
+    /// The settings of a scene without `[contact]`.
+    fn default() -> Self {
+        ContactSettings {
+            penalty_factor: 1.0,
+            friction: Friction::On,
+            plane: PlaneEnforcement::Kinematic,
+        }
+    }
+}
+
 fn read_contact(c: Option<Reader<'_>>) -> Result<ContactSettings> {
-    let mut out = ContactSettings {
-        penalty_factor: 1.0,
-        friction: Friction::On,
-        plane: PlaneEnforcement::Kinematic,
-    };
+    let mut out = ContactSettings::default();
     let Some(c) = c else { return Ok(out) };
     c.only(&CONTACT_KEYS)?;
     if let Some(p) = c.choice("plane", &["kinematic", "penalty"])? {

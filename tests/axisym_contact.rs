@@ -1,6 +1,6 @@
 //! A ball section on the rigid plane: the elastic head-on impact of two equal copper-fe
 //! balls (D = 20 mm) on their symmetry plane against Hertz at low a/R and the finite-ball
-//! reference of docs/contact-penalty.md, with restitution and energy checks. The impacts take
+//! reference of verification/contact-penalty.md, with restitution and energy checks. The impacts take
 //! minutes in the scalar kernels and are `#[ignore]`d: `cargo test --release --test
 //! axisym_contact -- --ignored --nocapture`.
 

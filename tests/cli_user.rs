@@ -463,3 +463,168 @@ fn the_analytical_table_reads_plainly() {
         assert!(!err.contains("ball1.material"), "{err}");
     }
 }
+
+/// Honest defaults, item 1: a setting the chosen model ignores gets one `note:` line and a
+/// `ignored_setting` warning in results.json, on each model (the section, the quarter, the
+/// half and the full 3D model); the same setting where the model uses it gets none.
+#[test]
+fn a_setting_the_model_ignores_is_noted_on_every_model() {
+    let root = scratch("ignored");
+    let coarse = [
+        "--set",
+        "ball1.mesh={size=0.0068,pole_size=0.0034}",
+        "--set",
+        "ball2.mesh={size=0.0068,pole_size=0.0034}",
+    ];
+    let cases: [(&str, &[&str], &str); 5] = [
+        (
+            "section",
+            &["--set", "contact.penalty_factor=0.5"],
+            "contact.penalty_factor",
+        ),
+        (
+            "quarter",
+            &[
+                "--set",
+                "contact.friction=0.3",
+                "--set",
+                "reduction.symmetry=\"quarter\"",
+            ],
+            "contact.friction",
+        ),
+        (
+            "half",
+            &[
+                "--set",
+                "contact.plane=\"penalty\"",
+                "--set",
+                "reduction.symmetry=\"half\"",
+            ],
+            "contact.plane",
+        ),
+        (
+            "full",
+            &[
+                "--set",
+                "solver.hold_time=1e-5",
+                "--set",
+                "solver.end_time=2e-4",
+                "--set",
+                "reduction.symmetry=\"off\"",
+            ],
+            "solver.hold_time",
+        ),
+        (
+            "used",
+            &[
+                "--set",
+                "contact.penalty_factor=0.5",
+                "--set",
+                "reduction.symmetry=\"quarter\"",
+            ],
+            "",
+        ),
+    ];
+    for (name, sets, key) in cases {
+        let mut args = vec!["run", "--no-error-estimate", "--out", name];
+        args.extend_from_slice(&coarse);
+        args.extend_from_slice(sets);
+        let o = run_in(&root, &args);
+        let err = text(&o.stderr);
+        assert!(o.status.success(), "{name}: {err}");
+        let notes: Vec<&str> = err.lines().filter(|l| l.starts_with("note: ")).collect();
+        let checks = warnings_of(&root.join(name));
+        let ignored = checks.iter().filter(|c| *c == "ignored_setting").count();
+        if key.is_empty() {
+            assert!(notes.is_empty() && ignored == 0, "{name}: {err}");
+        } else {
+            assert_eq!(notes.len(), 1, "{name}: {err}");
+            assert!(
+                notes[0].starts_with(&format!("note: {key} ")),
+                "{name}: {err}"
+            );
+            assert_eq!(ignored, 1, "{name}: {checks:?}");
+        }
+    }
+    let _ = std::fs::remove_dir_all(&root);
+}
+
+/// Honest defaults, item 5: usage errors are one line with exit code 1, as every other
+/// error; `analytic` takes the scene's ranges; `report` names its missing folder; a run
+/// refused or failed leaves no output folder behind.
+#[test]
+fn bad_input_gets_one_line_exit_1_and_leaves_nothing() {
+    let root = scratch("bad");
+    let one_line = |args: &[&str], needle: &str| {
+        let o = run_in(&root, args);
+        let err = text(&o.stderr);
+        assert_eq!(o.status.code(), Some(1), "{args:?}: {err}");
+        let lines: Vec<&str> = err.lines().collect();
+        assert_eq!(lines.len(), 1, "{args:?}: {err}");
+        assert!(
+            lines[0].starts_with("error: ") && lines[0].contains(needle),
+            "{err}"
+        );
+    };
+    one_line(&["analytic", "--v1", "abc"], "--v1");
+    one_line(&["run", "--no-such-flag"], "--no-such-flag");
+    one_line(&["analytic", "--diameter", "5"], "--diameter");
+    one_line(&["analytic", "--v1", "2000"], "--v1");
+    one_line(&["report", "no-such-sweep"], "no-such-sweep");
+    one_line(
+        &["run", "--tolerance", "200%", "--out", "tol"],
+        "--tolerance",
+    );
+    assert!(!root.join("tol").exists(), "a refused run left its folder");
+    std::fs::write(root.join("bad.msh"), "not a mesh").unwrap();
+    std::fs::write(
+        root.join("bad.toml"),
+        "[ball1]\nmaterial = \"copper-fe\"\ndiameter = 0.02\nvelocity = [1.0, 0.0, 0.0]\nmesh = { file = \"bad.msh\" }\n[ball2]\nmaterial = \"copper-fe\"\ndiameter = 0.02\nvelocity = [-1.0, 0.0, 0.0]\n",
+    )
+    .unwrap();
+    let o = run_in(&root, &["run", "bad.toml", "--out", "mesh"]);
+    assert_eq!(o.status.code(), Some(1), "{}", text(&o.stderr));
+    assert!(!root.join("mesh").exists(), "a failed run left its folder");
+    // Help is not an error.
+    let o = run_in(&root, &["run", "--help"]);
+    assert_eq!(o.status.code(), Some(0));
+    let _ = std::fs::remove_dir_all(&root);
+}
+
+/// Honest defaults, item 5: hard head-on impacts complete by default; where the default
+/// error estimate's mesh levels do not hold the contact, the run says so in one line and
+/// answers from the scene's mesh.
+#[test]
+fn hard_head_on_impacts_complete_by_default() {
+    let root = scratch("hard");
+    for v in [70.0, 100.0, 300.0] {
+        let name = format!("v{v}");
+        let o = run_in(
+            &root,
+            &[
+                "run",
+                "--set",
+                &format!("ball1.velocity=[{v},0,0]"),
+                "--set",
+                &format!("ball2.velocity=[-{v},0,0]"),
+                "--out",
+                &name,
+            ],
+        );
+        let err = text(&o.stderr);
+        assert!(o.status.success(), "±{v} m/s: {err}");
+        let results: serde_json::Value = serde_json::from_str(
+            &std::fs::read_to_string(root.join(&name).join("results.json")).unwrap(),
+        )
+        .unwrap();
+        let e = results["e"].as_f64().unwrap();
+        assert!(e > 0.0 && e < 1.0, "±{v} m/s: e = {e}");
+        let bar = results["error_estimate"].is_object();
+        let noted = warnings_of(&root.join(&name)).contains(&"no_error_estimate".to_string());
+        assert!(
+            bar != noted,
+            "±{v} m/s: a bar or a note, not both or neither: {err}"
+        );
+    }
+    let _ = std::fs::remove_dir_all(&root);
+}

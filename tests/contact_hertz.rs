@@ -1,4 +1,4 @@
-//! Acceptance 1, 5 and 6 of issue 5: normal elastic impact of two identical copper balls
+//! Normal elastic impact of two identical copper balls
 //! (yield set far above any stress) against Hertz's closed forms, energy over the impact,
 //! and the sensitivity to the penalty factor.
 //!
@@ -77,7 +77,7 @@ fn report(label: &str, r: &Impact) {
 
 /// Energy, restitution and clean separation: what every impact must satisfy. An elastic impact
 /// loses only what stays in the balls' vibration: e measured 0.99976 on the coarsest mesh of
-/// the ladder (200 µm pole), 0.99996-1.00000 on the finer ones (docs/contact-penalty.md), so
+/// the ladder (200 µm pole), 0.99996-1.00000 on the finer ones (verification/contact-penalty.md), so
 /// e must lie in [0.999, 1.0001] (above 1 the contact would have created energy).
 fn check_impact_invariants(r: &Impact) {
     assert!(
@@ -95,7 +95,7 @@ fn check_impact_invariants(r: &Impact) {
 
 /// The 2 m/s impact on the 100 µm / 2 mm mesh against the finite-ball reference (the exact
 /// finite ball, not Hertz's half-space, which it misses by −1.4 / −1.6 / +2.1 %). The 2 m/s
-/// ladder against that reference (docs/contact-penalty.md, "The free ball") gives +4.34 /
+/// ladder against that reference (verification/contact-penalty.md, "The free ball") gives +4.34 /
 /// +3.03 / −0.86 % on the 200 µm mesh, +1.54 / +1.36 / −0.67 % on this one, +0.63 / +0.52 /
 /// −0.36 % on the 50 µm mesh (δ_max / t_c / F_peak, t_c/20 window): converging to it. Bounds of
 /// 2 % (δ_max, t_c) and 1 % (force) hold this mesh and anything more accurate, and fail the
@@ -117,7 +117,7 @@ fn two_balls_with_two_pass_contact_match_hertz_at_2_m_s() {
     // The deformable pair on a coarse mesh (pole element 0.2 mm, a ≈ 2.3 elements) against
     // the finite-ball reference. Measured +3.93 % / +2.60 % / −0.65 % (δ_max / t_c / F_peak);
     // the mirror-image wall run on the 200 µm mesh gives +4.34 / +3.03 / −0.86 %
-    // (docs/contact-penalty.md, "The free ball"), and the errors shrink with the pole element.
+    // (verification/contact-penalty.md, "The free ball"), and the errors shrink with the pole element.
     // The refined comparison is `refined_two_balls_2_m_s`.
     let pair = impact(2.0, 2e-4, 3e-3, fkn(10.0), true);
     report("ball-ball 2 m/s pole 0.2 mm", &pair);
@@ -145,11 +145,10 @@ fn refined_two_balls_2_m_s() {
 }
 
 /// A refined run at relative speed `v` (m/s) with pole element `pole` (m, about a/10) and
-/// far-field size `size` (m). Acceptance 1 asks δ_max, t_c and the peak force within 1 % of
-/// Hertz; the peak force is the t_c/20 moving average against the same average of Hertz's pulse
-/// (raw and other windows printed beside it). NOT MET at 2 m/s: measured on 50 µm / 1 mm,
+/// far-field size `size` (m), δ_max, t_c and the peak force against Hertz; the peak force is the t_c/20 moving average against the same average of Hertz's pulse
+/// (raw and other windows printed beside it). At 2 m/s Hertz is not within 1 %: on 50 µm / 1 mm,
 /// δ_max −0.76 %, t_c −1.05 %, force +1.74 % (the same for every window from t_c/100 to
-/// t_c/6: systematic, not noise; docs/contact-penalty.md), and the exact finite ball is
+/// t_c/6: systematic, not noise; verification/contact-penalty.md), and the exact finite ball is
 /// further still from Hertz (its quasi-static image, CalculiX's free ball: −1.38 / −1.56 /
 /// +2.13 %). The Hertz bounds below are therefore 2.5 %, a sanity check; against the
 /// finite-ball reference (Hertz stiffened by that CalculiX fit) all three quantities must be
@@ -196,10 +195,10 @@ fn refined_hertz_0_1_m_s() {
     refined(0.1, 2e-5, 2e-3);
 }
 
-/// Mesh ladder at 2 m/s refining the pole and the far field together (docs/contact-penalty.md).
-/// Acceptance 1 asks the errors against Hertz to shrink monotonically to under 1 %: NOT MET,
-/// because the converged finite ball is not Hertz's half-space. Measured against Hertz
-/// (2026-11-25): 200 µm / 4 mm: δ_max +2.91 %, t_c +1.43 %, force +1.23 %; 100 µm / 2 mm:
+/// Mesh ladder at 2 m/s refining the pole and the far field together (verification/contact-penalty.md).
+/// The errors against Hertz do not shrink monotonically to under 1 %, because the
+/// converged finite ball is not Hertz's half-space. Against Hertz
+/// (verification/contact-penalty.md): 200 µm / 4 mm: δ_max +2.91 %, t_c +1.43 %, force +1.23 %; 100 µm / 2 mm:
 /// +0.14 %, −0.23 %, +1.43 %; 70 µm / 1.4 mm: −0.44 %, −0.74 %, +1.58 %; 50 µm / 1 mm:
 /// −0.76 %, −1.05 %, +1.74 %, heading for the free-ball reference's −1.38 / −1.56 / +2.13 %.
 /// What this test holds: every run conserves energy and rebounds elastically, the finer
@@ -278,7 +277,7 @@ fn hertz_pulse_reproduces_the_closed_forms() {
 /// The stiffened pulse behind the finite-ball reference: a constant stiffening s scales
 /// Hertz's law exactly, F = (1 + s) K δ^{3/2}, so δ_max and t_c scale by (1 + s)^{−2/5} and
 /// the peak force by (1 + s)^{2/5}; and with CalculiX's free-ball stiffening at 2 m/s, δ_max
-/// and the peak force agree with the first-order energy balance (docs/contact-penalty.md:
+/// and the peak force agree with the first-order energy balance (verification/contact-penalty.md:
 /// δ_max −1.38 %, t_c −1.56 %, F_peak +2.13 % against Hertz).
 #[test]
 fn stiffened_pulse_scales_as_the_closed_forms() {
@@ -325,7 +324,7 @@ fn stiffened_pulse_scales_as_the_closed_forms() {
     );
 }
 
-/// Penalty sensitivity at 2 m/s (acceptance 6, docs/contact-penalty.md): over FKN = 5 to 40
+/// Penalty sensitivity at 2 m/s (verification/contact-penalty.md): over FKN = 5 to 40
 /// (a factor of 8 around the default 10) δ_max and t_c move by less than 1 %, the t_c/20
 /// peak force by less than PENALTY_FORCE, and e by less than PENALTY_E; FKN = 5-20 (the
 /// recommended range) also keeps the elastic invariants.
@@ -370,7 +369,7 @@ const PENALTY_E: f64 = 2e-4;
 /// Where the peak-force excess at 2 m/s comes from: the same impact (pole 100 µm, far field
 /// 2 mm) with the one-point hex at three hourglass coefficients and with the B-bar hex (no
 /// hourglass control). If the excess were hourglass stiffness it would follow ε_hg and vanish
-/// with B-bar. Prints the rows of docs/contact-penalty.md, "Peak force: element check".
+/// with B-bar. Prints the rows of verification/contact-penalty.md, "Peak force: element check".
 #[test]
 #[ignore]
 fn peak_force_element_check_2_m_s() {
@@ -400,7 +399,7 @@ fn peak_force_element_check_2_m_s() {
         check_impact_invariants(&r);
         excess.push((label, r.force_window_error()));
     }
-    // What docs/contact-penalty.md concludes: the excess (+1.37 to +1.46 % over a 15-fold
+    // What verification/contact-penalty.md concludes: the excess (+1.37 to +1.46 % over a 15-fold
     // change of ε_hg, +1.29 % with B-bar) is not the hourglass control nor the one-point
     // integration. Each variant is within 0.3 % of the default element's excess and keeps
     // more than +1 %: an excess that followed ε_hg or vanished with B-bar fails.
@@ -417,7 +416,7 @@ fn peak_force_element_check_2_m_s() {
 
 /// The peak-force excess against the geometry of the elements: the same impact with
 /// geometrically linear elements (reference configuration, Hertz's small-displacement
-/// assumption) at the three speeds of acceptance 1. Prints the rows of docs/contact-penalty.md,
+/// assumption) at the three speeds of the contact tests. Prints the rows of verification/contact-penalty.md,
 /// "Peak force: large against small displacements".
 #[test]
 #[ignore]
@@ -443,7 +442,7 @@ fn peak_force_linear_geometry() {
             &r,
         );
         check_impact_invariants(&r);
-        // What docs/contact-penalty.md concludes: the large-displacement kinematics are not
+        // What verification/contact-penalty.md concludes: the large-displacement kinematics are not
         // the excess (linear geometry +1.53 % against +1.43 % at 2 m/s): small-displacement
         // elements keep the excess within 0.3 % of the large-displacement run and above +1 %.
         if v == 2.0 {

@@ -1,4 +1,4 @@
-//! Acceptance 2 of issue 5: static Hertz. A quarter ball held on its equatorial disk is pressed
+//! Static Hertz. A quarter ball held on its equatorial disk is pressed
 //! by a rigid frictionless plane ramped slowly into its pole and left to settle under
 //! mass-proportional damping (dynamic relaxation). The nodal pressures must follow
 //! p0 sqrt(1 − r²/a²) within 3 % of p0 inside 0.8 a and the contact radius must be within 2 %,
@@ -40,15 +40,15 @@ fn static_hertz_pressure_profile_and_contact_radius() {
     assert!(a_err.abs() < 0.02, "contact radius error {a_err}");
 }
 
-/// The open item of issue 5 (peak force 1-2 % above Hertz at 2 m/s) asks whether the excess is
+/// Whether the peak force's excess over Hertz at 2 m/s (1-2 %) is
 /// the discretisation or Hertz's half-space idealisation. Here the patch is resolved alike at
 /// every depth (pole element a/9) while a/R changes eightfold: a discretisation error would be
 /// about the same at every depth, a finite-body effect grows with a/R. The force is compared
 /// with Hertz's at the elastic approach, the plane's travel less the pole's penetration.
 ///
 /// What must hold: the excess grows with a/R, in proportion to it, and the ball is stiffer
-/// than the half-space (the direction of the dynamic excess). Measured (2026-11-23): +1.45,
-/// +2.68, +5.35 % at a/R = 0.022, 0.045, 0.089 (docs/contact-penalty.md).
+/// than the half-space (the direction of the dynamic excess). Measured: +1.45,
+/// +2.68, +5.35 % at a/R = 0.022, 0.045, 0.089 (verification/contact-penalty.md).
 /// `cargo test --release --test contact_static_hertz static_force -- --ignored --nocapture`
 #[test]
 #[ignore]

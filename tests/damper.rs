@@ -408,7 +408,7 @@ fn ball_frames_start_at_release_and_follow_the_run() {
 #[test]
 fn the_empty_frames_peaks_lie_on_the_drawn_envelope() {
     use twoball::damper::decay::envelope_fit;
-    use twoball::study::damper_plots::{damping_chart, decay_chart};
+    use twoball::study::report::damper_plots::{damping_chart, decay_chart};
     let o = table2_case("1-empty", 6.0);
     let chart = decay_chart(&o);
     let envelope = &chart.series[2].points;

@@ -1,6 +1,6 @@
 //! The edge band (`mesh::meridian_band`, `study::phase_band`) on the plastic default scene
 //! (two D = 20 mm copper-fe balls, ±1 m/s; one ball section against the symmetry plane): the
-//! claims of docs/contact-penalty.md, "An edge band of finer rings".
+//! claims of verification/contact-penalty.md, "An edge band of finer rings".
 //!
 //! `cargo test --release --test edge_band -- --nocapture` prints the members; the banded
 //! answers with their bars are `#[ignore]`d (half a minute and more):
@@ -8,12 +8,14 @@
 
 use twoball::fe::axisym::impact::{HeadOn, Target};
 use twoball::mesh::meridian::{ladder_ball, MeridianMesh};
-use twoball::study::phase_band::{banded_mesh, contact_edge, SIZING_PER_EDGE};
-use twoball::study::phase_ensemble::{converged_head_on, ring_ratio, HeadOnCase, PhasePlan};
+use twoball::study::convergence::phase_band::{banded_mesh, contact_edge, SIZING_PER_EDGE};
+use twoball::study::convergence::phase_ensemble::{
+    converged_head_on, ring_ratio, HeadOnCase, PhasePlan,
+};
 
 const D: f64 = 0.02;
 
-/// The section's converged e of the default scene (docs/contact-penalty.md, "The B-bar ladder
+/// The section's converged e of the default scene (verification/contact-penalty.md, "The B-bar ladder
 /// converges monotonically": both quads at pole D/2156).
 const E_CONVERGED: f64 = 0.3184;
 

@@ -8,13 +8,14 @@
 use std::path::Path;
 use twoball::scene::pole::hertz_contact_radius;
 use twoball::scene::{MeshSettings, Override, Scene, DEFAULT_SCENE};
-use twoball::study::convergence::Behaviour;
-use twoball::study::error_estimate::LadderPlan;
-use twoball::study::error_honesty::{
+use twoball::study::convergence::honesty::{
     check_honesty, honesty_cases, honesty_table, HONESTY_MATERIALS, HONESTY_SPEEDS,
 };
-use twoball::study::simulate::RunOptions;
-use twoball::study::single::{run_level, run_scene, run_scene_with_estimate};
+use twoball::study::convergence::ladder::LadderPlan;
+use twoball::study::convergence::scene_estimate::{run_level, run_scene_with_estimate};
+use twoball::study::records::estimate::Behaviour;
+use twoball::study::run::scene::run_scene;
+use twoball::study::run::simulate::RunOptions;
 
 /// The default scene with dotted-path overrides.
 fn scene(sets: &[&str]) -> Scene {

@@ -10,8 +10,8 @@
 
 use std::path::Path;
 use twoball::scene::{Override, Scene, DEFAULT_SCENE};
-use twoball::study::simulate::RunOptions;
-use twoball::study::single::{run_scene, RunReport};
+use twoball::study::run::scene::{run_scene, RunReport};
+use twoball::study::run::simulate::RunOptions;
 
 /// The default scene on the 3D model (`auto-3d`: these are the 3D model's claims) with
 /// dotted-path overrides.

@@ -401,8 +401,8 @@ fn scenes_select_hardening_laws_and_name_bad_keys() {
 fn default_scene_runs_every_law_and_the_unit_power_law_is_bilinear() {
     use std::path::Path;
     use twoball::scene::{Override, Scene, DEFAULT_SCENE};
-    use twoball::study::simulate::RunOptions;
-    use twoball::study::single::run_scene;
+    use twoball::study::run::scene::run_scene;
+    use twoball::study::run::simulate::RunOptions;
     let run = |sets: &[String]| {
         let o: Vec<Override> = sets.iter().map(|s| Override::parse(s).unwrap()).collect();
         let scene = Scene::from_toml(DEFAULT_SCENE, Path::new("."), &o).unwrap();

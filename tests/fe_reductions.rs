@@ -9,8 +9,8 @@
 use std::path::Path;
 use twoball::analytic::{Body, HertzPair};
 use twoball::scene::{Override, Scene, DEFAULT_SCENE};
-use twoball::study::simulate::{RunOptions, Simulation};
-use twoball::study::single::{run_scene, RunReport};
+use twoball::study::run::scene::{run_scene, RunReport};
+use twoball::study::run::simulate::{RunOptions, Simulation};
 
 /// The default scene on the 3D model (`auto-3d`; the section model has no simulated free
 /// flight) with dotted-path overrides.

@@ -526,8 +526,8 @@ fn squeezed_elements_drop_a_level_and_stay_stable() {
 #[test]
 fn default_scene_three_times_fewer_updates_same_results() {
     use twoball::scene::Scene;
-    use twoball::study::simulate::RunOptions;
-    use twoball::study::single::run_scene;
+    use twoball::study::run::scene::run_scene;
+    use twoball::study::run::simulate::RunOptions;
     let run = |sub: Subcycling| {
         let mut scene = Scene::default();
         scene.reduction.symmetry = twoball::scene::Symmetry::Auto3d;

@@ -1,9 +1,9 @@
 //! Mass scaling of a head-on section (`fe::axisym::mass_scaling`): within its budget it
 //! moves e, δ_max and the contact duration by less than the bias bound every mass-scaled bar
-//! carries (`study::phase_ensemble::MASS_SCALING_BIAS` × budget) and takes fewer steps.
+//! carries (`study::convergence::phase_ensemble::MASS_SCALING_BIAS` × budget) and takes fewer steps.
 
 use twoball::fe::axisym::impact::{HeadOn, ImpactResult, Target};
-use twoball::study::phase_ensemble::{
+use twoball::study::convergence::phase_ensemble::{
     family_mesh, hertz_contact_radius, HeadOnCase, MASS_SCALING_BIAS,
 };
 

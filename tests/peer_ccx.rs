@@ -198,7 +198,7 @@ fn number(row: &[String], i: usize) -> f64 {
 /// CalculiX, axisymmetric and static, finds an elastic hemisphere held at its equator
 /// stiffer than Hertz's half-space law at a/R = 0.045: +2.39 % at h = a/10, +2.33 %
 /// converged (a/40), against twoball's +2.68 % at a pole element of a/9
-/// (docs/contact-penalty.md). A code that matched Hertz there, or a broken force
+/// (verification/contact-penalty.md). A code that matched Hertz there, or a broken force
 /// convention (CalculiX reports a 2-degree segment), would fall outside 1.8-3.0 %.
 #[test]
 fn ccx_finite_ball_is_stiffer_than_hertz() {
@@ -216,7 +216,7 @@ fn ccx_finite_ball_is_stiffer_than_hertz() {
 /// The impact's own finite-ball reference (scripts/ccx_static_hertz.py --support free),
 /// coarsest mesh: the whole ball under the uniform body force that balances the contact,
 /// approach at the centre of mass, is stiffer than Hertz by +4.06 % at a/R = 0.045 (+4.06 %
-/// converged at a/20; docs/contact-penalty.md, "The free ball"), clearly more than the held
+/// converged at a/20; verification/contact-penalty.md, "The free ball"), clearly more than the held
 /// hemisphere's +2.39 %; and the secant steps must leave the north pole (which only fixes
 /// the rigid-body mode) carrying under 1e-4 of the contact force. A body force applied to
 /// the wrong set or with the wrong sign, or the approach taken at the pole instead of the

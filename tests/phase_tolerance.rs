@@ -1,7 +1,9 @@
 //! `study::phase_ensemble::converged_head_on` with a tolerance: while e's bar exceeds it, the
 //! next finer level runs and the fine ensemble becomes the coarse one.
 
-use twoball::study::phase_ensemble::{converged_head_on, ensemble_at, HeadOnCase, PhasePlan};
+use twoball::study::convergence::phase_ensemble::{
+    converged_head_on, ensemble_at, HeadOnCase, PhasePlan,
+};
 
 /// The default scene on the plain family's coarsest levels (cheap runs).
 fn plan(tolerance: Option<f64>, max_refinements: u32) -> PhasePlan {

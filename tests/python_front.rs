@@ -1,7 +1,7 @@
 //! The Python front (python/): builds the `twoball` Python package with maturin into a
 //! virtual environment under the target folder, then runs its pytest suite (the same results
-//! as the command line to the bit, history arrays, one-line ValueErrors, Ctrl-C within half a
-//! second, the GIL released) and the example script, which must write its PNG.
+//! as the command line to the bit, history arrays, one-line ValueErrors, Ctrl-C stopping a run
+//! where it is, the GIL released) and the example script, which must write its PNG.
 //!
 //! Needs python3 with the venv module and pip access to maturin, numpy, pytest and
 //! matplotlib: missing, the test fails under `CI=true` and is skipped with a notice otherwise.

@@ -9,9 +9,10 @@ mod run_support;
 use std::path::Path;
 use std::process::Command;
 use twoball::scene::{approach, Approach, Override, Scene, Touch, DEFAULT_SCENE};
-use twoball::study::outcome::ball_inertia;
-use twoball::study::simulate::{choose_reduction, Reduction, RunOptions};
-use twoball::study::single::{run_scene, run_scene_default};
+use twoball::study::convergence::scene_estimate::run_scene_default;
+use twoball::study::records::outcome::ball_inertia;
+use twoball::study::run::scene::run_scene;
+use twoball::study::run::simulate::{choose_reduction, Reduction, RunOptions};
 
 fn scene(sets: &[&str]) -> Scene {
     let sets: Vec<Override> = sets.iter().map(|s| Override::parse(s).unwrap()).collect();
@@ -141,19 +142,22 @@ fn a_head_on_run_reports_its_error_bar_and_the_pair_symmetry() {
         .expect("an error estimate by default");
     let levels: Vec<i32> = est.meshes.iter().map(|m| m.level).collect();
     assert_eq!(levels, [-1, 0]);
-    // The reported e is the mean of the level-0 phase ensemble (study::phase_ensemble), the
+    // The reported e is the mean of the level-0 phase ensemble (study::convergence::phase_ensemble), the
     // estimate's finest value; the scene's own mesh is one of its members.
     let e = r.e.unwrap();
     assert_eq!(e, est.e.finest);
     assert_eq!(r.fe.as_ref().unwrap().outcome.e, e);
     // A sweep runs a head-on case the same way: its FE e is the run's mean.
-    let case = twoball::study::single::sweep_case(&s).unwrap();
+    let case = twoball::study::convergence::scene_estimate::sweep_case(&s).unwrap();
     assert_eq!(case.summary.outcome.e, e);
     assert_eq!(case.summary.reduction, "axisymmetric");
     let phase = est.meshes[1]
         .phase
         .expect("a phase ensemble on the section");
-    assert_eq!(phase.meshes, twoball::study::single::SCENE_PHASE_MESHES);
+    assert_eq!(
+        phase.meshes,
+        twoball::study::convergence::scene_estimate::SCENE_PHASE_MESHES
+    );
     assert!(phase.e_min <= e && e <= phase.e_max, "{phase:?} e = {e}");
     assert!(phase.e_min < est.e.finest && est.e.finest < phase.e_max);
     assert!(
@@ -211,12 +215,13 @@ fn the_default_run_is_the_sections_phase_mean_near_the_converged_e() {
     let d = r.relative_difference.as_ref().unwrap();
     assert!((d.e - (e / an.e - 1.0)).abs() < 1e-12, "{d:?}");
     // One mesh alone is one ring phase, and says so; an elastic impact has no sawtooth.
-    let alone = twoball::study::single::run_scene_alone(&s, &opts()).unwrap();
-    let phase = twoball::study::warnings::Check::SingleRingPhase;
+    let alone = twoball::study::convergence::scene_estimate::run_scene_alone(&s, &opts()).unwrap();
+    let phase = twoball::study::records::warnings::Check::SingleRingPhase;
     assert!(alone.warnings.iter().any(|w| w.check == phase));
     assert!(r.warnings.iter().all(|w| w.check != phase));
     let elastic = scene(&["ball1.material.yield=1e11", "ball2.material.yield=1e11"]);
-    let alone = twoball::study::single::run_scene_alone(&elastic, &opts()).unwrap();
+    let alone =
+        twoball::study::convergence::scene_estimate::run_scene_alone(&elastic, &opts()).unwrap();
     assert!(alone.warnings.iter().all(|w| w.check != phase));
     // On a rigid wall the wall is what stays at rest: v1 after = −e v1.
     let sets: Vec<Override> = Vec::new();

@@ -4,7 +4,7 @@
 
 use std::path::Path;
 use twoball::scene::{approach, Approach, Scene};
-use twoball::study::law_compare::{compare_laws, law_table};
+use twoball::study::run::law_compare::{compare_laws, law_table};
 
 const BALLS: &str = r#"
 [ball1]

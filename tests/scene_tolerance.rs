@@ -4,12 +4,13 @@
 
 use std::path::Path;
 use twoball::scene::{Override, Scene, DEFAULT_SCENE};
-use twoball::study::error_estimate::{EstimateMethod, LadderPlan};
-use twoball::study::simulate::RunOptions;
-use twoball::study::single::run_scene_with_estimate;
+use twoball::study::convergence::ladder::LadderPlan;
+use twoball::study::convergence::scene_estimate::run_scene_with_estimate;
+use twoball::study::records::error_estimate::EstimateMethod;
+use twoball::study::run::simulate::RunOptions;
 
 /// The default scene's converged e: the four-fold banded level-2 answer 0.31847 ± 0.21 %
-/// and the B-bar ladder's extrapolation 0.3184 (docs/contact-penalty.md, "The section's
+/// and the B-bar ladder's extrapolation 0.3184 (verification/contact-penalty.md, "The section's
 /// converged answer").
 const CONVERGED_E: f64 = 0.3184;
 
@@ -93,7 +94,8 @@ fn a_ball_on_a_rigid_wall_converges_as_the_pair_and_a_sweep_case_carries_its_bar
         .map(|s| Override::parse(s).unwrap())
         .collect();
     let wall = Scene::from_toml(twoball::scene::WALL_SCENE, Path::new("."), &sets).unwrap();
-    let case = twoball::study::single::sweep_case_to(&wall, Some(0.01)).unwrap();
+    let case =
+        twoball::study::convergence::scene_estimate::sweep_case_to(&wall, Some(0.01)).unwrap();
     let s = &case.summary;
     assert_eq!(s.outcome.e, r.e.unwrap());
     assert_eq!(s.e_error, Some(est.e.error));
@@ -107,7 +109,9 @@ fn a_ball_on_a_rigid_wall_converges_as_the_pair_and_a_sweep_case_carries_its_bar
 /// does not, even where their bar would claim it.
 #[test]
 fn a_loose_tolerance_that_the_default_levels_meet_takes_their_answer() {
-    use twoball::study::single::{run_scene_default, LEVELS_MET_TOLERANCE, LEVELS_TOLERANCE_FLOOR};
+    use twoball::study::convergence::scene_estimate::{
+        run_scene_default, LEVELS_MET_TOLERANCE, LEVELS_TOLERANCE_FLOOR,
+    };
     let opts = RunOptions {
         history_rows: 100,
         ..RunOptions::default()
@@ -173,7 +177,7 @@ fn a_loose_tolerance_that_the_default_levels_meet_takes_their_answer() {
         "ball1.mesh.size=0.006",
         "ball2.mesh.size=0.006",
     ]);
-    assert!(twoball::study::error_estimate::scene_at_level(&coarse, -1).is_err());
+    assert!(twoball::study::convergence::ladder::scene_at_level(&coarse, -1).is_err());
     let r = run_scene_with_estimate(&coarse, &opts, loose).unwrap();
     let method = r.error_estimate.unwrap().method;
     assert!(
@@ -185,7 +189,7 @@ fn a_loose_tolerance_that_the_default_levels_meet_takes_their_answer() {
 /// The level-2 means of the banded family (two meshes, mass scaling 1e-4, subcycled to
 /// level 3) for D = 20 mm identical balls: (material, speed of each ball m/s, e). From
 /// `cargo test --release --test tolerance_honesty -- --ignored --nocapture`
-/// (docs/contact-penalty.md, "Is the banded bar honest?").
+/// (verification/contact-penalty.md, "Is the banded bar honest?").
 const LEVEL_2: [(&str, f64, f64); 21] = [
     ("copper-fe", 5.0, 0.21808),
     ("copper-fe", 2.5, 0.25956),
@@ -216,7 +220,7 @@ const LEVEL_2: [(&str, f64, f64); 21] = [
 /// penalty.md, "The default levels against the floor").
 #[test]
 fn the_default_levels_stay_within_the_floor() {
-    use twoball::study::single::{run_scene_default, LEVELS_TOLERANCE_FLOOR};
+    use twoball::study::convergence::scene_estimate::{run_scene_default, LEVELS_TOLERANCE_FLOOR};
     let opts = RunOptions {
         history_rows: 10,
         ..RunOptions::default()

@@ -13,9 +13,9 @@ use twoball::analytic::hertz::HertzPair;
 use twoball::analytic::{collide, Body};
 use twoball::error::Result;
 use twoball::scene::{approach, Approach, Override, Scene, Touch, DEFAULT_SCENE, WALL_SCENE};
-use twoball::study::outcome::ball_inertia;
-use twoball::study::simulate::{choose_reduction, Reduction, RunOptions};
-use twoball::study::single::{run_scene, RunReport};
+use twoball::study::records::outcome::ball_inertia;
+use twoball::study::run::scene::{run_scene, RunReport};
+use twoball::study::run::simulate::{choose_reduction, Reduction, RunOptions};
 
 fn parse(text: &str, sets: &[&str]) -> Result<Scene> {
     let sets: Vec<Override> = sets.iter().map(|s| Override::parse(s).unwrap()).collect();
@@ -212,7 +212,7 @@ fn a_rigid_wall_at_twice_the_penalty_is_the_mirror_pair() {
         );
         assert!(rel(peak_force(&w), peak_force(&pair)) < 1e-9, "{model:?}");
         let (fw, fp) = (w.fe.as_ref().unwrap(), pair.fe.as_ref().unwrap());
-        let total = |r: &twoball::study::simulate::Simulation| r.history[0].total;
+        let total = |r: &twoball::study::run::simulate::Simulation| r.history[0].total;
         assert!(rel(2.0 * total(fw), total(fp)) < 1e-9, "{model:?}");
         assert_eq!(w.v2_after, [0.0; 3]);
         assert!((w.v1_after[0] + w.e.unwrap()).abs() < 1e-12);
@@ -253,7 +253,7 @@ fn a_rigid_wall_at_twice_the_penalty_is_the_mirror_pair() {
 /// An elastic ball on a rigid half-space (yield out of reach), 0.1 m/s, on the section with
 /// its default mesh (pole from the contact radius, a/R = 0.019): Hertz with E* = E/(1 − ν²),
 /// R* = R, m* = m within 1 % in δ_max and t_c, and the finite-ball reference of
-/// docs/contact-penalty.md (CalculiX's free ball on a rigid plane) within 1 %.
+/// verification/contact-penalty.md (CalculiX's free ball on a rigid plane) within 1 %.
 #[test]
 fn an_elastic_ball_on_a_rigid_wall_matches_hertz() {
     let v = 0.1;

@@ -8,9 +8,9 @@ use twoball::error::Result;
 use twoball::mesh::meridian::{block, BlockSpec};
 use twoball::mesh::section::quad_area;
 use twoball::scene::{approach, Approach, Override, Scene, WALL_SCENE};
-use twoball::study::outcome::ball_inertia;
-use twoball::study::simulate::{choose_reduction, RunOptions};
-use twoball::study::single::{run_scene, RunReport};
+use twoball::study::records::outcome::ball_inertia;
+use twoball::study::run::scene::{run_scene, RunReport};
+use twoball::study::run::simulate::{choose_reduction, RunOptions};
 
 /// Ball 1 (copper-fe, D = 20 mm, elastic: yield out of reach) against an elastic wall of
 /// the same elastic copper.

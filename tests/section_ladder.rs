@@ -1,7 +1,7 @@
 //! The section model's mesh ladder (`mesh::meridian::ladder_ball`) on head-on impacts of two
 //! D = 20 mm copper-fe balls (one ball against the symmetry plane): the tables of
-//! docs/contact-penalty.md ("The section model's mesh ladder"), with Richardson extrapolation
-//! and the observed order from `study::convergence::estimate`.
+//! verification/contact-penalty.md ("The section model's mesh ladder"), with Richardson extrapolation
+//! and the observed order from `study::records::estimate::estimate`.
 //!
 //! The ladders are `#[ignore]`d (minutes each); rerun one with
 //! `cargo test --release --test section_ladder NAME -- --ignored --nocapture`; `LADDER_TOP=K`
@@ -19,7 +19,7 @@ use twoball::fe::axisym::impact::{HeadOn, ImpactResult, PlaneContact, Target};
 use twoball::material::Material;
 use twoball::mesh::meridian::{ball, ladder_ball, ladder_pole_size, MeridianMesh, SectionSpec};
 use twoball::mesh::section::quad_area;
-use twoball::study::convergence::{estimate, Behaviour, Estimate};
+use twoball::study::records::estimate::{estimate, Behaviour, Estimate};
 
 const D: f64 = 0.02;
 
@@ -288,7 +288,7 @@ fn plastic_default_scene_ladder() {
 }
 
 /// Acceptance 1 (and 5 at 0.2 m/s: the level-0 δ_max against the converged one) of issue 26:
-/// elastic head-on impacts against the finite-ball reference of docs/contact-penalty.md.
+/// elastic head-on impacts against the finite-ball reference of verification/contact-penalty.md.
 fn elastic_ladder(v: f64) {
     let top = std::env::var("LADDER_TOP")
         .ok()
@@ -434,19 +434,19 @@ fn plastic_phase_average() {
     }
 }
 
-/// Is the phase ensemble's error bar honest (issue 26, acceptance 6; docs/contact-penalty.md,
+/// Is the phase ensemble's error bar honest (issue 26, acceptance 6; verification/contact-penalty.md,
 /// "The section's converged answer")? Over 21 head-on cases (copper-fe, steel, aluminum at
 /// relative speeds 0.02 to 10 m/s), the bar of family level −1 (ensembles on levels −2 and
-/// −1, `study::phase_ensemble`) against the true error, taken from the ensemble two
+/// −1, `study::convergence::phase_ensemble`) against the true error, taken from the ensemble two
 /// refinements finer (level +1, `HONESTY_TRUTH_MESHES` members, default 4). The runner maps
-/// `study::error_honesty`'s levels −1, 0, +2 to family levels −2, −1, +1 and prints its
+/// `study::convergence::honesty`'s levels −1, 0, +2 to family levels −2, −1, +1 and prints its
 /// table; `HONESTY_MATERIALS=steel` and `HONESTY_SPEEDS=1,5` (m/s per ball) shrink it.
 #[test]
 #[ignore]
 fn phase_honesty() {
-    use twoball::study::error_estimate::{LevelOutcome, PhaseSummary};
-    use twoball::study::error_honesty::{check_honesty, honesty_cases, honesty_table};
-    use twoball::study::phase_ensemble::{ensemble_at, HeadOnCase, HeadOnTarget};
+    use twoball::study::convergence::honesty::{check_honesty, honesty_cases, honesty_table};
+    use twoball::study::convergence::phase_ensemble::{ensemble_at, HeadOnCase, HeadOnTarget};
+    use twoball::study::records::error_estimate::{LevelOutcome, PhaseSummary};
     let truth_meshes: usize = std::env::var("HONESTY_TRUTH_MESHES")
         .ok()
         .and_then(|s| s.parse().ok())
@@ -507,7 +507,7 @@ fn phase_honesty() {
     );
 }
 
-/// Issue 26, acceptance 2 (docs/contact-penalty.md, "The B-bar ladder"): the plastic default
+/// Issue 26, acceptance 2 (verification/contact-penalty.md, "The B-bar ladder"): the plastic default
 /// scene's phase means on the B-bar quads converge monotonically in e, δ_max and t_c from
 /// family level 0 to `LADDER_TOP` (default 3, pole D/2156; about 30 min on 2 cores, 7 for
 /// `LADDER_TOP=2`), e also from level −1, and the finest mean, extrapolated at order 2,
@@ -517,7 +517,7 @@ fn phase_honesty() {
 #[test]
 #[ignore]
 fn plastic_b_bar_ladder_is_monotone() {
-    use twoball::study::phase_ensemble::{
+    use twoball::study::convergence::phase_ensemble::{
         ensemble_at, ensemble_at_radius, HeadOnCase, HeadOnTarget,
     };
     let top: i32 = std::env::var("LADDER_TOP")

@@ -2,7 +2,7 @@
 //! the classifier really catches the silent failures it is there for.
 
 use std::path::Path;
-use twoball::study::stress::{classify, Class, StressSpec};
+use twoball::study::bench::robustness::{classify, Class, StressSpec};
 
 #[test]
 fn quick_stress_subset_has_no_silent_failure() {

@@ -106,7 +106,7 @@ fn energy_growth_names_the_node_time_and_cause() {
         !msg.contains("solver.") && !msg.contains("contact."),
         "{msg}"
     );
-    let advised = twoball::study::simulate::advice(err).to_string();
+    let advised = twoball::study::run::simulate::advice(err).to_string();
     assert!(advised.starts_with(&msg), "{advised}");
     assert!(
         advised.ends_with("lower solver.time_step_factor or contact.penalty_factor"),

@@ -9,7 +9,7 @@ mod hertz;
 use std::path::Path;
 use twoball::analytic::{Body, HertzPair};
 use twoball::scene::{approach, Approach, Override, Scene, DEFAULT_SCENE};
-use twoball::study::simulate::{simulate, Reduction, RunOptions, Simulation};
+use twoball::study::run::simulate::{simulate, Reduction, RunOptions, Simulation};
 
 /// The default scene on the 3D model (`auto-3d`) with dotted-path overrides.
 fn scene(sets: &[&str]) -> Scene {
@@ -24,7 +24,7 @@ fn run(s: &Scene) -> Simulation {
     let Approach::Impact(t) = approach(s).unwrap() else {
         panic!("no impact")
     };
-    let (an, _) = twoball::study::outcome::analytic_outcome(s, &t).unwrap();
+    let (an, _) = twoball::study::records::outcome::analytic_outcome(s, &t).unwrap();
     simulate(
         s,
         &t,
@@ -69,9 +69,9 @@ const COARSE: [&str; 4] = [
 /// −1.4 % (δ_max) and −1.6 % (t_c) at 2 m/s. The same impact in the contact harness
 /// (quarter ball on a frictionless wall, same mesh) is +1.54 % / +1.36 % from the reference
 /// (this pipeline run: +1.08 % / +0.67 %),
-/// the 200 µm mesh +4.3 % / +3.0 %, the 50 µm mesh +0.6 % / +0.5 % (docs/contact-penalty.md,
+/// the 200 µm mesh +4.3 % / +3.0 %, the 50 µm mesh +0.6 % / +0.5 % (verification/contact-penalty.md,
 /// "The free ball"): within 2 % holds this mesh and anything more accurate, and fails the
-/// next coarser mesh. (Name kept from the former Hertz comparison.)
+/// next coarser mesh. (The name says what the reference stiffens: Hertz.)
 #[test]
 fn elastic_impact_matches_hertz_within_one_percent() {
     let mut sets = vec!["ball1.material.yield=1e11", "ball2.material.yield=1e11"];
@@ -210,7 +210,7 @@ fn phase_totals_belong_to_the_run() {
     let Approach::Impact(t) = approach(&s).unwrap() else {
         panic!("no impact")
     };
-    let (an, _) = twoball::study::outcome::analytic_outcome(&s, &t).unwrap();
+    let (an, _) = twoball::study::records::outcome::analytic_outcome(&s, &t).unwrap();
     let profiled = || {
         simulate(
             &s,

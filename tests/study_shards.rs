@@ -5,7 +5,7 @@
 use std::collections::BTreeSet;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output, Stdio};
-use twoball::study::cost::{balance, shard_loads, CASE_OVERHEAD};
+use twoball::study::sweep::cost::{balance, shard_loads, CASE_OVERHEAD};
 use twoball::study::sweep::{case_costs, select, SweepSpec};
 
 const PAPER: &str = "verification/ansys-study.toml";
@@ -347,7 +347,7 @@ fn status_lists_failures_with_reasons_and_tells_running_from_missing() {
     let mut gone = Command::new("true").spawn().unwrap();
     let dead = gone.id();
     gone.wait().unwrap();
-    let host = twoball::study::sweep_status::this_host();
+    let host = twoball::study::sweep::status::this_host();
     std::fs::create_dir_all(out.join("running")).unwrap();
     for (id, pid) in [(a, std::process::id()), (b, dead)] {
         let m = format!(r#"{{"host":"{host}","pid":{pid},"shard":"1/1"}}"#);

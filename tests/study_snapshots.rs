@@ -11,7 +11,7 @@ use std::path::Path;
 use std::process::Command;
 
 /// Allowed departure of the final node-mean speed from e, as a fraction of e (measured
-/// −0.21 %; the former bound, 0.1 m/s, was 15-30 % of e).
+/// −0.21 %).
 const SNAP_BAND: f64 = 0.02;
 
 fn twoball() -> Command {

@@ -3,7 +3,7 @@
 
 use std::path::Path;
 use twoball::scene::MeshSettings;
-use twoball::study::simulate::default_fkn;
+use twoball::study::run::simulate::default_fkn;
 use twoball::study::sweep::SweepSpec;
 
 #[test]

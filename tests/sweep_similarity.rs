@@ -61,7 +61,8 @@ fn similar_cases_on_the_section_are_scaled_from_one_run() {
         verbose: false,
         mesh: None,
     };
-    let fe: twoball::study::sweep::FeRunner<'_> = &twoball::study::single::sweep_case;
+    let fe: twoball::study::sweep::FeRunner<'_> =
+        &twoball::study::convergence::scene_estimate::sweep_case;
     let s = run_sweep(&spec, &opts, Some(fe)).unwrap();
     assert_eq!((s.total, s.failed, s.scaled), (4, 0, 2));
     let run = read_case(&out, &cases[0].id).unwrap();
@@ -78,7 +79,7 @@ fn similar_cases_on_the_section_are_scaled_from_one_run() {
     let (ha, hb) = (last(&run.fe_history), last(&scaled.fe_history));
     assert!((hb[0] - 2.5 * ha[0]).abs() <= 1e-12 * hb[0]);
     // The case's own run agrees to printed precision (six digits).
-    let own = twoball::study::single::sweep_case(&cases[2].scene).unwrap();
+    let own = twoball::study::convergence::scene_estimate::sweep_case(&cases[2].scene).unwrap();
     let rel = |x: f64, y: f64| (x - y).abs() / y.abs();
     let o = &own.summary.outcome;
     assert!(rel(b.outcome.e, o.e) < 1e-6, "{} {}", b.outcome.e, o.e);

@@ -1,4 +1,4 @@
-//! Is the bar of `twoball run --tolerance` honest? (docs/contact-penalty.md, "Is the
+//! Is the bar of `twoball run --tolerance` honest? (verification/contact-penalty.md, "Is the
 //! banded bar honest?") Each case is the default scene's pair of another metal and speed,
 //! cased as `--tolerance 0.5%` cases it (`study::converged_scene::family_case`) and run on
 //! the banded family (`study::converged_scene::plan`, five-fold band, two meshes per level),
@@ -14,9 +14,9 @@
 
 use std::path::Path;
 use twoball::scene::{Override, Scene, DEFAULT_SCENE};
-use twoball::study::converged_scene::{family_case, plan};
-use twoball::study::phase_band::banded_ensemble_at;
-use twoball::study::phase_ensemble::converged_head_on;
+use twoball::study::convergence::converged_scene::{family_case, plan};
+use twoball::study::convergence::phase_band::banded_ensemble_at;
+use twoball::study::convergence::phase_ensemble::converged_head_on;
 
 #[test]
 #[ignore]

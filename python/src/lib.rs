@@ -12,11 +12,12 @@ use std::path::{Path, PathBuf};
 use std::sync::{Arc, Mutex};
 use std::time::{Duration, Instant};
 use twoball::scene::{Override, Scene, DEFAULT_SCENE};
-use twoball::study::error_estimate::LadderPlan;
-use twoball::study::interrupt::{self, CancelToken};
-use twoball::study::progress::{self, Hook};
-use twoball::study::simulate::{RunOptions, HISTORY_HEADER};
-use twoball::study::single::{run_scene_default, run_scene_with_estimate, write_outputs};
+use twoball::study::common::interrupt::{self, CancelToken};
+use twoball::study::common::progress::{self, Hook};
+use twoball::study::convergence::ladder::LadderPlan;
+use twoball::study::convergence::scene_estimate::{run_scene_default, run_scene_with_estimate};
+use twoball::study::run::scene::write_outputs;
+use twoball::study::run::simulate::{RunOptions, HISTORY_HEADER};
 use twoball::Error;
 
 /// How often the waiting Python thread checks for Ctrl-C and progress.
@@ -235,8 +236,9 @@ fn sweep(
     };
     wait_job(py, progress, move || {
         let tolerance = spec.tolerance;
-        let runner =
-            move |s: &twoball::scene::Scene| twoball::study::single::sweep_case_to(s, tolerance);
+        let runner = move |s: &twoball::scene::Scene| {
+            twoball::study::convergence::scene_estimate::sweep_case_to(s, tolerance)
+        };
         let fe: twoball::study::sweep::FeRunner<'_> = &runner;
         let s = run_sweep(&spec, &opts, Some(fe))?;
         Ok(serde_json::json!({

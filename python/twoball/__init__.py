@@ -215,7 +215,7 @@ def run(
     ``results["error_estimate"]``.
 
     Returns a :class:`Run` (results dict and history arrays). Raises ValueError on bad input,
-    KeyboardInterrupt on Ctrl-C (within half a second; nothing written), RuntimeError when
+    KeyboardInterrupt on Ctrl-C (the run stops within a few hundred steps; nothing written), RuntimeError when
     the run fails numerically.
     """
     sets = dict(overrides or {})

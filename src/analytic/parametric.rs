@@ -1,6 +1,6 @@
 //! The paper's parametric studies (Figures 11–14): the energy dissipation factor against
 //! density, dynamic friction coefficient, elastic modulus (per modulus ratio) and yield strength
-//! (per yield ratio); `study::figures` writes them as CSV and SVG.
+//! (per yield ratio); `study::report::figures` writes them as CSV and SVG.
 //!
 //! Base case (docs/design.md, section 2): two Table 1 copper balls, D = 20 mm, left ball
 //! v_n1 = +1 m/s, right ball v_n2 = −1 m/s (the FE study's set-up), no tangential speed unless

@@ -10,8 +10,8 @@ use crate::analytic::parametric::all_figures;
 use crate::analytic::{collide_with_mu, Body, Collision};
 use crate::error::{Error, Result};
 use crate::material::{Material, MaterialOverrides, PRESET_NAMES};
-use crate::study::number::sci;
-use crate::study::warnings::{analytic_warnings, Warning};
+use crate::study::records::number::sci;
+use crate::study::records::warnings::{analytic_warnings, Warning};
 use clap::{Args, ValueEnum};
 use serde_json::{json, Value};
 use std::path::PathBuf;
@@ -203,8 +203,12 @@ pub(super) fn bodies(a: &AnalyticArgs) -> Result<(Body, Body)> {
         ("--diameter2", a.diameter2),
     ] {
         if let Some(d) = d {
-            if !(d.is_finite() && d > 0.0) {
-                return Err(Error::invalid(flag, d, "> 0 m, finite"));
+            if !crate::scene::DIAMETER_RANGE.contains(&d) {
+                return Err(Error::invalid(
+                    flag,
+                    d,
+                    "1e-4 <= diameter <= 1 m, as in a scene",
+                ));
             }
         }
     }
@@ -396,8 +400,12 @@ fn collide_args(a: &AnalyticArgs) -> Result<(Collision, Body, Body)> {
         ("--v1t", a.v1t),
         ("--v2t", a.v2t),
     ] {
-        if !v.is_finite() {
-            return Err(Error::invalid(flag, v, "a finite speed in m/s"));
+        if !(v.abs() <= crate::scene::SPEED_MAX) {
+            return Err(Error::invalid(
+                flag,
+                v,
+                "|speed| <= 1000 m/s, as in a scene",
+            ));
         }
     }
     let mu = match a.mu {
@@ -418,7 +426,7 @@ fn collide_args(a: &AnalyticArgs) -> Result<(Collision, Body, Body)> {
     }
     let c = collide_with_mu(&b1, &b2, [a.v1, a.v1t], [v2n, a.v2t], mu)?;
     if let Some(path) = &a.curve {
-        crate::study::curves::write_analytic_curve(&c, path, a.samples)?;
+        crate::study::report::curves::write_analytic_curve(&c, path, a.samples)?;
     }
     Ok((c, b1, b2))
 }
@@ -436,7 +444,7 @@ pub fn analytic_json(a: &AnalyticArgs) -> Result<Value> {
 pub fn run_analytic(a: AnalyticArgs) -> Result<()> {
     let (c, b1, b2) = collide_args(&a)?;
     let warnings = collision_warnings(&c);
-    crate::study::warnings::print(&warnings);
+    crate::study::records::warnings::print(&warnings);
     if a.json {
         let mut v = collision_json(&c, &b1, &b2);
         v["warnings"] = json!(warnings);
@@ -580,7 +588,7 @@ pub fn run_materials(a: MaterialsArgs) -> Result<()> {
 pub fn run_parametric(a: ParametricArgs) -> Result<()> {
     std::fs::create_dir_all(&a.out).map_err(|e| Error::io(&a.out, e))?;
     for f in all_figures()? {
-        crate::study::figures::write(&f, &a.out)?;
+        crate::study::report::figures::write(&f, &a.out)?;
         println!(
             "{}: {} curves x {} points -> {}/{}.csv, .svg",
             f.name,

@@ -1,10 +1,10 @@
 //! `twoball bench`: the arguments of the benchmarks; the harnesses are in the study
-//! (`study::bench_kernel`, `study::bench_profile`, `study::bench_machine`, `study::bench`).
+//! (`study::bench::{kernel, profile, machine}`, `study::bench`).
 
 use crate::error::Result;
 use crate::fe::simd::KernelPath;
 use crate::fe::Formulation;
-use crate::study::bench_kernel::KernelBench;
+use crate::study::bench::kernel::KernelBench;
 use clap::{Args, Subcommand, ValueEnum};
 
 /// Arguments of `twoball bench`.
@@ -114,7 +114,7 @@ pub struct MachineArgs {
 /// Runs `twoball bench …`.
 pub fn run(a: BenchArgs) -> Result<()> {
     match a.which {
-        BenchKind::Kernel(k) => crate::study::bench_kernel::kernel(
+        BenchKind::Kernel(k) => crate::study::bench::kernel::kernel(
             &KernelBench {
                 size_per_d: k.size_per_d,
                 steps: k.steps,
@@ -128,7 +128,7 @@ pub fn run(a: BenchArgs) -> Result<()> {
         ),
         BenchKind::Profile(p) => super::bench_profile::profile(p),
         BenchKind::Machine(m) => {
-            crate::study::bench_machine::machine(m.repeats, &mut std::io::stdout().lock())
+            crate::study::bench::machine::machine(m.repeats, &mut std::io::stdout().lock())
         }
         BenchKind::Study(s) => super::bench_study::run(s),
     }

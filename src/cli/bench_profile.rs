@@ -1,5 +1,5 @@
 //! `twoball bench profile [SCENE]`: the arguments; the run and its phase table are
-//! `study::bench_profile`.
+//! `study::bench::profile`.
 
 use crate::error::Result;
 use crate::scene::{Override, Scene, DEFAULT_SCENE};
@@ -30,5 +30,5 @@ pub fn profile(a: ProfileArgs) -> Result<()> {
         Some(p) => Scene::from_file(p, &sets)?,
         None => Scene::from_toml(DEFAULT_SCENE, Path::new("."), &sets)?,
     };
-    crate::study::bench_profile::profile(&scene, a.threads, &mut std::io::stdout().lock())
+    crate::study::bench::profile::profile(&scene, a.threads, &mut std::io::stdout().lock())
 }

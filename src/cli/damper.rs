@@ -8,9 +8,9 @@ use crate::damper::file::{read, Overrides};
 use crate::damper::report::{write_report, ReportInput};
 use crate::damper::run::write_outputs;
 use crate::error::{Error, Result};
-use crate::study::damper_plots::{write_plots, write_windows_chart};
-use crate::study::damper_run::run_cases_with_progress;
-use crate::study::progress::Mode;
+use crate::study::common::progress::Mode;
+use crate::study::report::damper_plots::{write_plots, write_windows_chart};
+use crate::study::run::damper::run_cases_with_progress;
 use clap::Args;
 use std::path::PathBuf;
 

@@ -415,7 +415,7 @@ fn print_spec(
 pub fn run_with(a: LawRunArgs, registry: &Registry) -> Result<()> {
     let r = run_law(&a, registry)?;
     if let (Some(path), Some(i)) = (&a.ball.curve, &r.impact) {
-        crate::study::curves::write_law_curve(i, path)?;
+        crate::study::report::curves::write_law_curve(i, path)?;
     }
     if a.ball.json {
         println!("{}", run_json(&a, &r));
@@ -469,7 +469,7 @@ pub fn list_json(registry: &Registry) -> Result<Value> {
 pub fn law_run_json(a: &LawRunArgs, registry: &Registry) -> Result<Value> {
     let r = run_law(a, registry)?;
     if let (Some(path), Some(i)) = (&a.ball.curve, &r.impact) {
-        crate::study::curves::write_law_curve(i, path)?;
+        crate::study::report::curves::write_law_curve(i, path)?;
     }
     Ok(run_json(a, &r))
 }

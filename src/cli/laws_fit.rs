@@ -1,6 +1,6 @@
 //! `twoball laws fit`: fit a normal law's free parameters to head-on e and δ_max data; the
 //! files a DEM user needs (fit.json, e_of_v.csv, DEM input snippets) are written by
-//! `study::law_fit_files`.
+//! `study::report::law_fit_files`.
 
 use super::laws::parse_params;
 use crate::analytic::law_fit::{fit, read_observations};
@@ -8,7 +8,7 @@ use crate::analytic::laws::{ContactPair, Registry};
 use crate::analytic::Body;
 use crate::error::{Error, Result};
 use crate::material::{Material, PRESET_NAMES};
-use crate::study::law_fit_files::{write_fit_files, FitSetting};
+use crate::study::report::law_fit_files::{write_fit_files, FitSetting};
 use clap::Args;
 use std::path::PathBuf;
 

@@ -120,6 +120,26 @@ where
     }
 }
 
+/// Prints a command-line parsing outcome and returns its exit code: help and version as clap
+/// writes them; a usage error as one line `error: ...` with exit code 1, as every other error.
+fn usage_error(e: &clap::Error) -> i32 {
+    use clap::error::ErrorKind;
+    match e.kind() {
+        ErrorKind::DisplayHelp
+        | ErrorKind::DisplayVersion
+        | ErrorKind::DisplayHelpOnMissingArgumentOrSubcommand => {
+            let _ = e.print();
+            e.exit_code()
+        }
+        _ => {
+            let text = e.to_string();
+            let line = text.lines().next().unwrap_or_default();
+            eprintln!("error: {}", line.trim_start_matches("error: "));
+            1
+        }
+    }
+}
+
 /// Runs the command line and returns the process exit code.
 pub fn main() -> i32 {
     main_from(std::env::args_os())
@@ -137,17 +157,13 @@ where
         .and_then(|m| Cli::from_arg_matches(&m));
     let cli = match parsed {
         Ok(c) => c,
-        Err(e) => {
-            // clap prints help/version to stdout with exit 0 and usage errors with exit 2.
-            let _ = e.print();
-            return e.exit_code();
-        }
+        Err(e) => return usage_error(&e),
     };
     if matches!(
         cli.command,
         Command::Run(_) | Command::Sweep(_) | Command::Stress(_) | Command::Damper(_)
     ) {
-        crate::study::interrupt::install();
+        crate::study::common::interrupt::install();
     }
     let dispatch = move || match cli.command {
         Command::Analytic(a) => analytic::run_analytic(a),
@@ -174,7 +190,7 @@ where
         Ok(()) => 0,
         Err(e @ crate::Error::Interrupted(_)) => {
             eprintln!("{e}");
-            crate::study::interrupt::EXIT_CODE
+            crate::study::common::interrupt::EXIT_CODE
         }
         Err(e) => {
             eprintln!("error: {e}");

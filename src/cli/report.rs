@@ -32,6 +32,13 @@ pub struct ReportArgs {
 
 /// Runs `twoball report`.
 pub fn run(a: ReportArgs) -> Result<()> {
+    if !a.dir.is_dir() {
+        return Err(Error::invalid(
+            "DIR",
+            a.dir.display(),
+            "a sweep output folder (twoball sweep FILE --out DIR)",
+        ));
+    }
     let to = a.to.clone().unwrap_or_else(|| a.dir.clone());
     let kept = a.dir.join(crate::study::sweep::SPEC_COPY);
     let sweep = a.sweep.clone().unwrap_or_else(|| {

@@ -4,11 +4,12 @@
 
 use crate::error::{Error, Result};
 use crate::scene::{Override, Scene, DEFAULT_SCENE};
-use crate::study::error_estimate::{LadderPlan, DEFAULT_MAX_REFINEMENTS};
-use crate::study::simulate::RunOptions;
-use crate::study::single::{
-    default_plan, run_scene_alone, run_scene_with_estimate, side_by_side, write_outputs,
+use crate::study::convergence::ladder::{LadderPlan, DEFAULT_MAX_REFINEMENTS};
+use crate::study::convergence::scene_estimate::{
+    default_plan, run_scene_alone, run_scene_with_estimate,
 };
+use crate::study::run::scene::{side_by_side, write_outputs};
+use crate::study::run::simulate::RunOptions;
 use clap::Args;
 use std::collections::HashMap;
 use std::ffi::OsString;
@@ -107,6 +108,8 @@ pub fn run(a: RunArgs) -> Result<()> {
         vtu_ascii: a.vtu_ascii,
         ..RunOptions::default()
     };
+    // Everything that can be refused is read before the output folder is made.
+    let plan = ladder_plan(&a, &scene)?;
     let created = a.out.as_ref().is_some_and(|d| !d.exists());
     if let Some(dir) = &a.out {
         crate::atomic::ensure_dir(dir)?;
@@ -114,30 +117,32 @@ pub fn run(a: RunArgs) -> Result<()> {
         eprintln!("note: output.vtu_snapshots needs --out DIR; no snapshots written");
     }
     let before = a.out.as_deref().map(snapshot_files).unwrap_or_default();
-    let plan = ladder_plan(&a, &scene)?;
-    let report = match plan.map_or_else(
+    let outcome = plan.map_or_else(
         || run_scene_alone(&scene, &opts),
         |p| run_scene_with_estimate(&scene, &opts, p),
-    ) {
-        Err(Error::Interrupted(at)) => {
+    );
+    let report = match outcome {
+        Ok(r) => r,
+        Err(e) => {
+            // A failed or interrupted run leaves no snapshot of its own, nor the folder it made.
             let removed = a
                 .out
                 .as_ref()
                 .map_or(0, |d| remove_partial_output(d, &before, created));
-            let what = if removed > 0 {
-                format!("; nothing written ({removed} snapshot files of this run removed)")
-            } else {
-                "; nothing written".into()
-            };
-            return Err(Error::Interrupted(format!("{at}{what}")));
+            return Err(match e {
+                Error::Interrupted(at) if removed > 0 => Error::Interrupted(format!(
+                    "{at}; nothing written ({removed} snapshot files of this run removed)"
+                )),
+                Error::Interrupted(at) => Error::Interrupted(format!("{at}; nothing written")),
+                e => e,
+            });
         }
-        r => r?,
     };
     print!("{}", side_by_side(&report));
     if let Some(est) = &report.error_estimate {
         println!("{}", est.summary());
     }
-    crate::study::warnings::print(&report.warnings);
+    crate::study::records::warnings::print(&report.warnings);
     if let Some(dir) = &a.out {
         write_outputs(&report, dir)?;
         println!(
@@ -165,7 +170,7 @@ fn snapshot_files(dir: &Path) -> HashMap<OsString, Option<SystemTime>> {
         .collect()
 }
 
-/// Removes the snapshot files that an interrupted run wrote into `dir` (those not in `before`
+/// Removes the snapshot files that a failed or interrupted run wrote into `dir` (those not in `before`
 /// or modified since), and `dir` itself if the run `created` it and it is now empty, so that
 /// no folder looks complete; returns the number of files removed.
 ///

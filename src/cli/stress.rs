@@ -1,7 +1,7 @@
 //! `twoball stress [--matrix FILE] --out DIR [--jobs N] [--quick]`: the stability matrix.
 
 use crate::error::{Error, Result};
-use crate::study::stress::{run_stress, StressOptions, StressSpec};
+use crate::study::bench::robustness::{run_stress, StressOptions, StressSpec};
 use clap::Args;
 use std::path::{Path, PathBuf};
 

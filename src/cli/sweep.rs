@@ -1,15 +1,15 @@
 //! `twoball sweep FILE --out DIR [--jobs N] [--shard I/N]`: a parameter sweep such as the
 //! paper's ANSYS study, resumable and shardable; each impacting case runs the FE model
-//! ([`crate::study::single::sweep_case`]) beside the analytical one. `--slurm` writes the
+//! ([`crate::study::convergence::scene_estimate::sweep_case`]) beside the analytical one. `--slurm` writes the
 //! sweep as a Slurm job array instead; `twoball sweep status DIR` tells where a sweep stands.
 
 use crate::error::{Error, Result};
-use crate::study::slurm::{self, ArrayCommand, SlurmOptions};
+use crate::study::sweep::slurm::{self, ArrayCommand, SlurmOptions};
+use crate::study::sweep::status::sweep_status;
 use crate::study::sweep::{
     adopt_folder, folder_spec, run_sweep, select, shard_costs, Shard, SweepModel, SweepOptions,
     SweepSpec,
 };
-use crate::study::sweep_status::sweep_status;
 use clap::{Args, Subcommand};
 use std::path::{Path, PathBuf};
 use std::time::Duration;
@@ -145,7 +145,9 @@ pub fn run(a: SweepArgs) -> Result<()> {
         mesh: a.mesh.clone(),
     };
     let tolerance = spec.tolerance;
-    let runner = move |s: &crate::scene::Scene| crate::study::single::sweep_case_to(s, tolerance);
+    let runner = move |s: &crate::scene::Scene| {
+        crate::study::convergence::scene_estimate::sweep_case_to(s, tolerance)
+    };
     let fe: crate::study::sweep::FeRunner<'_> = &runner;
     let s = run_sweep(&spec, &opts, Some(fe))?;
     let csv = if s.csv_written {

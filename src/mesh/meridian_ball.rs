@@ -14,7 +14,7 @@
 //! degenerates into a triangle at r = 0.
 
 use super::ball::{core_point, invert, Plan, CONTACT_HALF_ANGLE_DEG, MAX_ELEMENTS};
-use super::meridian::MeridianMesh;
+use super::section::MeridianMesh;
 use super::section::{boundary_edges, quad_area};
 use crate::error::{Error, Result};
 use std::collections::BTreeMap;

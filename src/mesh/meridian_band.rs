@@ -3,7 +3,7 @@
 //! On the section every surface node is a whole ring, so a plastic contact grows ring by ring
 //! and e follows where the last ring to land before maximum compression sits: a sawtooth over
 //! the mesh whose half-width shrinks about as the ring spacing at the contact edge
-//! (docs/contact-penalty.md, "Why the section's e scatters"). The band splits the ring
+//! (verification/contact-penalty.md, "Why the section's e scatters"). The band splits the ring
 //! spacing there, and only there: the O-grid's layers are shells around the refined core, each
 //! meeting the surface in one ring, so splitting the layer intervals whose surface rings fall
 //! in the band into `split` shells each puts `split` times more rings across the band. An
@@ -30,7 +30,7 @@ pub const BAND_OUTER_PER_EDGE: f64 = 1.15;
 /// (3 of the 18 cells of a level-0 layer, 6 of level 1's). The rings at the surface are what
 /// the sawtooth follows; shells run through the depth are thin quads down to the axis, among
 /// the smallest of the mesh, which mass scaling must raise all the way down. Confined, the laws bench's five-fold points cost 0.54-0.75 of the four-fold
-/// through-depth ones' CPU at the same answers (docs/contact-penalty.md, "A band confined to
+/// through-depth ones' CPU at the same answers (verification/contact-penalty.md, "A band confined to
 /// the surface").
 pub const SURFACE_DEPTH: f64 = 1.0 / 6.0;
 

@@ -16,11 +16,11 @@
 //! circle at every level.
 
 use super::ball::{Plan, MAX_ELEMENTS};
-use super::meridian::MeridianMesh;
 use super::meridian_ball::{
     build_quarter, pole_edge, surface_ring_radius, uniform_layers, with_sets,
 };
 use super::meridian_band::{layer_rings, EdgeBand};
+use super::section::MeridianMesh;
 use crate::error::{Error, Result};
 
 /// Half-width of the refined core around the pole, in predicted contact radii: the plastic

@@ -1,8 +1,24 @@
-//! Geometry of meridian-section meshes: signed quad areas, boundary edges, the section's
+//! Meridian-section meshes ([`MeridianMesh`]) and their geometry: signed quad areas, boundary edges, the section's
 //! area and the volume of its solid of revolution about the z axis.
 
-use super::meridian::MeridianMesh;
 use std::collections::BTreeMap;
+
+/// A mesh of 4-node quadrilaterals on the meridian half-plane r ≥ 0. Coordinates in metres.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct MeridianMesh {
+    /// Node coordinates (r, z), m; r ≥ 0, and nodes on the axis have r = 0 exactly.
+    pub nodes: Vec<[f64; 2]>,
+    /// Quadrilaterals as 4 node indices, counter-clockwise in the (r, z) plane (positive area).
+    pub quads: Vec<[u32; 4]>,
+    /// Boundary segments off the axis, each listed once, ordered counter-clockwise around the
+    /// section (the body lies to the left of each segment, the outward normal to the right).
+    pub boundary: Vec<[u32; 2]>,
+    /// Named node sets (`axis`: nodes with r = 0; `surface`; `contact`), sorted node indices.
+    pub node_sets: BTreeMap<String, Vec<u32>>,
+    /// Named segment sets (`surface`: the spherical boundary; `contact`: its part near the
+    /// pole), with the orientation of `boundary`.
+    pub segment_sets: BTreeMap<String, Vec<[u32; 2]>>,
+}
 
 /// Signed area (m²) of a quad with corners `p` (positive when counter-clockwise in (r, z)).
 pub fn quad_area(p: &[[f64; 2]; 4]) -> f64 {

@@ -15,7 +15,7 @@ use crate::error::{Error, Result};
 use serde::Serialize;
 use toml::Value;
 
-const LAWS_KEYS: [&str; 3] = ["compare", "tangential", "params"];
+pub(crate) const LAWS_KEYS: [&str; 3] = ["compare", "tangential", "params"];
 
 /// One normal law to compare, with its parameter overrides.
 #[derive(Debug, Clone, PartialEq, Serialize)]

@@ -62,7 +62,7 @@ pub struct WallScene {
     pub size: Option<[f64; 2]>,
 }
 
-const WALL_KEYS: [&str; 5] = ["kind", "position", "normal", "material", "size"];
+pub(crate) const WALL_KEYS: [&str; 5] = ["kind", "position", "normal", "material", "size"];
 
 fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
     a[0] * b[0] + a[1] * b[1] + a[2] * b[2]

@@ -1,64 +1,22 @@
 //! The two-ball study: FE beside the analytical model for one scene or for a whole sweep.
 //!
-//! - [`outcome`]: the quantities both models produce, and the analytical answer for a scene;
-//! - [`phase_ensemble`]: the section model's converged head-on answer, a mean over ring phases;
-//! - [`bench`]: run time against error on a mesh/element/time-step ladder;
-//! - [`bench_kernel`]: the explicit step's cost per element, threads, determinism;
-//! - [`bench_profile`]: where a scene's run spends its wall time, phase by phase;
-//! - [`bench_machine`]: this machine's ceilings (FMA throughput, memory bandwidth);
-//! - [`sweep`]: resumable, shardable parameter sweeps (the paper's ANSYS study);
-//! - [`similarity`]: scenes that are one another scaled, and the run of one as the other's;
-//! - [`cost`]: estimated cost of a case, shards balanced by it;
-//! - [`curves`]: contact-history CSV files of the analytical model and the law integrator;
-//! - [`convergence`]: Richardson extrapolation, observed order and error estimates of a ladder;
-//! - [`error_estimate`]: a run's own error bar from a mesh ladder (a run closure per level);
-//! - [`converged_scene`]: `--tolerance` on a head-on section scene, on the banded family;
-//! - [`error_honesty`]: whether the error estimates hold over a set of head-on cases;
-//! - [`slurm`]: a sweep as a Slurm job array;
-//! - [`sweep_status`]: cases done, failed, running and missing in a sweep folder;
-//! - [`simulate`]: the FE run (model, reductions, stop rule, reduction to rigid motion);
-//! - [`single`]: one scene, both models side by side, results.json and history.csv;
-//! - [`plots`]: SVG charts for the report;
-//! - [`figures`]: CSV and SVG files of the paper's parametric figures;
-//! - [`law_fit_files`]: the files of a contact-law fit (JSON, e(v) table, DEM snippets);
-//! - [`laws_bench`]: `twoball laws bench`, every contact law against cached FE over a matrix;
-//! - [`law_compare`]: the scene's `[laws]`, integrated on the run's balls and speeds;
-//! - [`snapshots`]: `.vtu` snapshots of a run for ParaView;
-//! - [`progress`]: progress on stderr (a bar on a terminal, plain lines elsewhere);
-//! - [`interrupt`]: Ctrl-C stops a job cleanly;
-//! - [`warnings`]: results a user should not trust blindly, each said in one line.
+//! Rooms, each calling only the rooms listed before it:
+//! - [`records`]: what every room passes around: an outcome, a case, a value with its error
+//!   bar, a run's error estimate, warnings, numbers for people;
+//! - [`common`]: progress on stderr, Ctrl-C and SVG charts, for every room;
+//! - [`run`]: one scene on one mesh: the model chosen, the FE run, results.json, history.csv;
+//! - [`convergence`]: the mesh ladder and its refine loop, phase ensembles, the banded
+//!   family (`--tolerance`), a scene's run with its error bar, the honesty check;
+//! - [`sweep`]: resumable, shardable parameter sweeps with Slurm, cost and similarity;
+//! - [`bench`]: run time against error, kernels, the machine, phase profiles, the
+//!   robustness matrix; [`laws_bench`]: every contact law against cached FE;
+//! - [`report`]: the verification report, charts and figure files.
 
 pub mod bench;
-pub mod bench_kernel;
-pub mod bench_machine;
-pub mod bench_profile;
-pub mod converged_scene;
+pub mod common;
 pub mod convergence;
-pub mod cost;
-pub mod curves;
-pub mod damper_plots;
-pub mod damper_run;
-pub mod error_estimate;
-pub mod error_honesty;
-pub mod figures;
-pub mod interrupt;
-pub mod law_compare;
-pub mod law_fit_files;
 pub mod laws_bench;
-pub mod number;
-pub mod outcome;
-pub mod phase_band;
-pub mod phase_ensemble;
-pub mod plots;
-pub mod progress;
+pub mod records;
 pub mod report;
-pub mod similarity;
-pub mod simulate;
-pub mod simulate_section;
-pub mod single;
-pub mod slurm;
-pub mod snapshots;
-pub mod stress;
+pub mod run;
 pub mod sweep;
-pub mod sweep_status;
-pub mod warnings;

@@ -119,11 +119,11 @@ pub fn hertz_pulse(v: f64, delta_max: f64, f_max: f64, n: usize) -> Vec<(f64, f6
 /// body force that balances the contact force, approach measured at the centre of mass, as
 /// twoball's impacts measure it (a/R = 0.011 / 0.022 / 0.045: +0.89 / +1.92 / +4.06 %;
 /// `python3 scripts/ccx_static_hertz.py --support free --depths 1.25,5,20 --per-a 20`,
-/// docs/contact-penalty.md). Static, so an estimate of the exact impact good to the
+/// verification/contact-penalty.md). Static, so an estimate of the exact impact good to the
 /// quasi-static error (the pulse lasts about seven periods of the ball's lowest mode), not a
-/// closed form. (Until 2026-11-25 the fit was the hemisphere held at its equator,
-/// −0.26 % + 0.589 a/R: that support carries the whole contact force to the equator, a
-/// softer image of the ball than its own inertia is.)
+/// closed form. (The hemisphere held at its equator gives −0.26 % + 0.589 a/R: that support
+/// carries the whole contact force to the equator, a softer image of the ball than its own
+/// inertia is.)
 pub const FINITE_BALL_S0: f64 = -0.00190;
 /// See [`FINITE_BALL_S0`].
 pub const FINITE_BALL_S1: f64 = 0.955;

@@ -11,11 +11,11 @@ use crate::fe::axisym::element::QuadFormulation;
 use crate::fe::axisym::impact::PlaneContact;
 use crate::mesh::meridian_band::depth_for;
 use crate::scene::Scene;
-use crate::study::phase_ensemble::{
+use crate::study::convergence::phase_ensemble::{
     converged_head_on, Bar as EnsembleBar, HeadOnCase, HeadOnTarget, PhasePlan, MIN_LEVEL,
 };
-use crate::study::simulate::RunOptions;
-use crate::study::single::run_scene;
+use crate::study::run::scene::run_scene;
+use crate::study::run::simulate::RunOptions;
 use serde::{Deserialize, Deserializer, Serialize, Serializer};
 use std::path::Path;
 
@@ -104,7 +104,7 @@ pub struct ObliqueFe {
 }
 
 /// How converged every head-on FE point is: the phase ensembles of
-/// [`crate::study::phase_ensemble::converged_head_on`], fine on family level `level`,
+/// [`crate::study::convergence::phase_ensemble::converged_head_on`], fine on family level `level`,
 /// coarse on `level − 1`, `meshes` meshes each.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct FePlan {
@@ -177,7 +177,7 @@ impl FePlan {
     /// below 1 (naming `--fe-level`).
     pub fn with_band(self, split: Option<usize>) -> Result<FePlan> {
         if let Some(s) = split {
-            if crate::study::phase_band::check_split(s).is_err() {
+            if crate::study::convergence::phase_band::check_split(s).is_err() {
                 return Err(Error::invalid(
                     "--fe-band",
                     s,
@@ -280,7 +280,7 @@ impl FePlan {
         plan + &scaled + &refined
     }
 
-    /// The plan of `study::phase_ensemble`.
+    /// The plan of `study::convergence::phase_ensemble`.
     pub fn phase_plan(&self) -> PhasePlan {
         PhasePlan {
             level: self.level,
@@ -309,7 +309,7 @@ pub fn hertz_contact_radius(p: &HeadOnPoint) -> Result<f64> {
     Ok(pair.contact_radius(pair.max_approach(p.speed)))
 }
 
-/// The head-on case of `point` for `study::phase_ensemble` (two identical balls, the
+/// The head-on case of `point` for `study::convergence::phase_ensemble` (two identical balls, the
 /// default one-point quads).
 pub fn head_on_case(point: &HeadOnPoint) -> HeadOnCase {
     HeadOnCase {
@@ -324,7 +324,7 @@ pub fn head_on_case(point: &HeadOnPoint) -> HeadOnCase {
     }
 }
 
-/// A bar of `study::phase_ensemble` as a bench bar.
+/// A bar of `study::convergence::phase_ensemble` as a bench bar.
 fn bar_of(b: &EnsembleBar) -> Bar {
     Bar {
         value: b.value,

@@ -8,7 +8,7 @@ use super::{BenchResults, HeadOnResult};
 use crate::analytic::laws::Registry;
 use crate::atomic::write_atomic;
 use crate::error::{Error, Result};
-use crate::study::plots::{Chart, Series, Style};
+use crate::study::common::plots::{Chart, Series, Style};
 use std::path::Path;
 
 /// Speeds of each law's e(v) line.

@@ -1,0 +1,620 @@
+//! Run time against error (`twoball bench study`): one scene on a ladder of meshes, element
+//! formulations and time-step factors, each run's error in e and δ_max taken against a
+//! Richardson-extrapolated reference, so a researcher can pick the cheapest setting that
+//! reaches a given accuracy.
+//!
+//! The mesh ladder refines the scene's graded mesh uniformly: level m has bulk size D/(10 m)
+//! and pole size D/(100 m) (the default mesh is m = 1), so the grading ratio stays 10 and
+//! h ∝ 1/m. With three ladder levels in constant ratio r (h₁ = r h₂ = r² h₃), the observed
+//! order and the extrapolated value of a quantity q are (Roache 1998, ch. 5)
+//!   p = ln((q₁ − q₂)/(q₂ − q₃)) / ln r,   q* = q₃ + (q₃ − q₂)/(r^p − 1).
+//! When the differences change sign (not yet in the asymptotic range) or p falls outside
+//! [0.5, 4], no extrapolation is made: the finest value is the reference, marked as such.
+//!
+//! Because the contact patch is resolved only by the pole elements, the error in e is
+//! governed mostly by the pole size; extra "pole refinement" runs (pole size D/(100 m k) at
+//! the middle density) show what a finer pole alone buys, judged against the same reference.
+
+pub mod kernel;
+pub mod machine;
+pub mod profile;
+pub mod robustness;
+
+use crate::atomic::{ensure_dir, write_atomic};
+use crate::error::{Error, Result};
+use crate::scene::{Formulation, Override, Scene};
+use crate::study::common::plots::{Chart, Series, Style};
+use crate::study::run::scene::run_scene;
+use serde::{Deserialize, Serialize};
+use std::fmt::Write as _;
+use std::path::Path;
+
+/// One configuration of the ladder.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct Setting {
+    /// Mesh density multiplier m (bulk size D/(10 m), pole size D/(100 m)).
+    pub density: f64,
+    /// Element formulation.
+    pub element: Formulation,
+    /// Time-step safety factor.
+    pub time_step_factor: f64,
+    /// Extra pole refinement k (pole size D/(100 m k)); 1 on the mesh ladder.
+    #[serde(default = "one")]
+    pub pole_refinement: f64,
+}
+
+fn one() -> f64 {
+    1.0
+}
+
+impl Setting {
+    /// A short label, e.g. `one-point m=1.41 s=0.9`.
+    pub fn label(&self) -> String {
+        let pole = if self.pole_refinement == 1.0 {
+            String::new()
+        } else {
+            format!(" pole/{}", self.pole_refinement)
+        };
+        format!(
+            "{} m={:.3}{pole} s={}",
+            element_name(self.element),
+            self.density,
+            self.time_step_factor
+        )
+    }
+
+    fn file_stem(&self) -> String {
+        let pole = if self.pole_refinement == 1.0 {
+            String::new()
+        } else {
+            format!("_k{:.3}", self.pole_refinement)
+        };
+        format!(
+            "{}_m{:.4}{pole}_s{:.3}",
+            element_name(self.element),
+            self.density,
+            self.time_step_factor
+        )
+    }
+
+    /// Bulk element size over diameter, D/(10 m) / D.
+    pub fn bulk_size_per_d(&self) -> f64 {
+        0.1 / self.density
+    }
+
+    /// Pole element size over diameter, D/(100 m k) / D.
+    pub fn pole_size_per_d(&self) -> f64 {
+        0.01 / (self.density * self.pole_refinement)
+    }
+
+    /// Whether this setting is a level of the mesh ladder (no extra pole refinement).
+    fn on_ladder(&self) -> bool {
+        self.pole_refinement == 1.0
+    }
+}
+
+fn element_name(f: Formulation) -> &'static str {
+    f.name()
+}
+
+/// What one run of the ladder measured.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Measured {
+    /// The configuration.
+    pub setting: Setting,
+    /// Elements simulated (after symmetry reduction).
+    pub elements: usize,
+    /// Element updates.
+    pub element_cycles: u64,
+    /// Wall time of the FE run, s.
+    pub wall_time_s: f64,
+    /// Coefficient of restitution.
+    pub e: f64,
+    /// Largest approach, m.
+    pub delta_max: f64,
+    /// Contact duration, s.
+    pub contact_duration: f64,
+    /// Energy error (relative).
+    pub energy_error: f64,
+}
+
+/// A Richardson-extrapolated reference of one quantity.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Extrapolated {
+    /// The extrapolated value q*.
+    pub value: f64,
+    /// The observed order p (NaN when the differences change sign).
+    pub order: f64,
+    /// Whether the three values were monotone with 0.5 ≤ p ≤ 4 (asymptotic range); if not,
+    /// `value` is the finest mesh's value.
+    pub asymptotic: bool,
+}
+
+/// Richardson extrapolation from three values on meshes h₁ = r h₂ = r² h₃ (coarse to fine).
+/// Returns the finest value with order NaN when the three are equal to round-off.
+pub fn richardson(q: [f64; 3], r: f64) -> Extrapolated {
+    let (d12, d23) = (q[0] - q[1], q[1] - q[2]);
+    if d23.abs() <= 1e-14 * q[2].abs().max(1e-300) {
+        return Extrapolated {
+            value: q[2],
+            order: f64::NAN,
+            asymptotic: true,
+        };
+    }
+    let ratio = d12 / d23;
+    let raw = if ratio > 0.0 {
+        ratio.ln() / r.ln()
+    } else {
+        f64::NAN
+    };
+    if raw.is_finite() && (0.5..=4.0).contains(&raw) {
+        Extrapolated {
+            value: q[2] + (q[2] - q[1]) / (r.powf(raw) - 1.0),
+            order: raw,
+            asymptotic: true,
+        }
+    } else {
+        // Not in the asymptotic range: extrapolating with an assumed order would invent
+        // digits; the finest value is the reference and the table says so.
+        Extrapolated {
+            value: q[2],
+            order: raw,
+            asymptotic: false,
+        }
+    }
+}
+
+#[derive(Debug, Clone, PartialEq)]
+pub struct Ladder {
+    /// Mesh densities m, ascending, in constant ratio (at least 3).
+    pub densities: Vec<f64>,
+    /// Element formulations run on every density.
+    pub elements: Vec<Formulation>,
+    /// Extra time-step factors run on the middle density of the ladder (m = 1 for the
+    /// default ladder) with the first formulation.
+    pub time_step_factors: Vec<f64>,
+    /// Time-step factor of the mesh ladder.
+    pub base_factor: f64,
+    /// Extra pole refinements k (pole size D/(100 m k)) run on the middle density with the
+    /// first formulation and the base factor.
+    pub pole_refinements: Vec<f64>,
+}
+
+impl Ladder {
+    /// Checks the ladder, naming the bad field.
+    pub fn validated(self) -> Result<Self> {
+        if self.densities.len() < 3 {
+            return Err(Error::invalid(
+                "--densities",
+                format!("{:?}", self.densities),
+                "at least 3 densities (Richardson needs three meshes)",
+            ));
+        }
+        if !self
+            .densities
+            .iter()
+            .all(|m| m.is_finite() && (0.2..=4.0).contains(m))
+            || !self.densities.windows(2).all(|w| w[1] > w[0])
+        {
+            return Err(Error::invalid(
+                "--densities",
+                format!("{:?}", self.densities),
+                "ascending values in 0.2..=4",
+            ));
+        }
+        let n = self.densities.len();
+        let r1 = self.densities[n - 1] / self.densities[n - 2];
+        let r2 = self.densities[n - 2] / self.densities[n - 3];
+        if (r1 / r2 - 1.0).abs() > 0.02 {
+            return Err(Error::invalid(
+                "--densities",
+                format!("{:?}", self.densities),
+                "the three finest in a constant ratio (within 2 %)",
+            ));
+        }
+        if self.elements.is_empty() {
+            return Err(Error::invalid(
+                "--elements",
+                "none",
+                "one-point and/or b-bar",
+            ));
+        }
+        for &s in self.time_step_factors.iter().chain([&self.base_factor]) {
+            if !(s > 0.0 && s <= 1.0) {
+                return Err(Error::invalid("--time-step-factors", s, "0 < factor <= 1"));
+            }
+        }
+        for &k in &self.pole_refinements {
+            if !(k.is_finite() && (1.0..=8.0).contains(&k)) {
+                return Err(Error::invalid("--pole-refinements", k, "1 <= k <= 8"));
+            }
+        }
+        Ok(self)
+    }
+
+    /// Every setting to run, in order.
+    pub fn settings(&self) -> Vec<Setting> {
+        let mut out = Vec::new();
+        for &element in &self.elements {
+            for &density in &self.densities {
+                out.push(Setting {
+                    density,
+                    element,
+                    time_step_factor: self.base_factor,
+                    pole_refinement: 1.0,
+                });
+            }
+        }
+        for &s in &self.time_step_factors {
+            if s != self.base_factor {
+                out.push(Setting {
+                    density: self.densities[self.densities.len() / 2],
+                    element: self.elements[0],
+                    time_step_factor: s,
+                    pole_refinement: 1.0,
+                });
+            }
+        }
+        for &k in &self.pole_refinements {
+            if k != 1.0 {
+                out.push(Setting {
+                    density: self.densities[self.densities.len() / 2],
+                    element: self.elements[0],
+                    time_step_factor: self.base_factor,
+                    pole_refinement: k,
+                });
+            }
+        }
+        out
+    }
+}
+
+/// The scene with one ladder setting applied to both balls, on the 3D model (the hex
+/// meshes of the ladder; `reduction.symmetry = "auto"` runs as `"auto-3d"`).
+pub fn scene_for(base: &Scene, toml: &str, dir: &Path, s: &Setting) -> Result<Scene> {
+    let mut sets = Vec::new();
+    for (k, b) in [(1, &base.ball1), (2, &base.ball2)] {
+        let size = b.diameter * s.bulk_size_per_d();
+        let pole = b.diameter * s.pole_size_per_d();
+        sets.push(Override::parse(&format!(
+            "ball{k}.mesh={{size={size:e},pole_size={pole:e}}}"
+        ))?);
+    }
+    sets.push(Override::parse(&format!(
+        "solver.element=\"{}\"",
+        element_name(s.element)
+    ))?);
+    sets.push(Override::parse(&format!(
+        "solver.time_step_factor={}",
+        s.time_step_factor
+    ))?);
+    let mut scene = Scene::from_toml(toml, dir, &sets)?;
+    scene.reduction.symmetry = scene.reduction.symmetry.three_d();
+    Ok(scene)
+}
+
+/// Runs (or reads back from `dir/cases/`) every setting of `ladder` on the scene `toml`
+/// (read relative to `scene_dir`), calling `progress` after each. Each finished case is
+/// stored atomically, so an interrupted bench resumes where it stopped.
+///
+/// Errors: scene errors, FE failures (naming the setting), I/O errors.
+pub fn run_ladder(
+    toml: &str,
+    scene_dir: &Path,
+    ladder: &Ladder,
+    dir: &Path,
+    mut progress: impl FnMut(&Measured, bool),
+) -> Result<Vec<Measured>> {
+    let base = Scene::from_toml(toml, scene_dir, &[])?;
+    let cases = dir.join("cases");
+    ensure_dir(&cases)?;
+    let mut out = Vec::new();
+    for s in ladder.settings() {
+        let path = cases.join(format!("{}.json", s.file_stem()));
+        if let Ok(text) = std::fs::read_to_string(&path) {
+            if let Ok(m) = serde_json::from_str::<Measured>(&text) {
+                if m.setting == s {
+                    progress(&m, true);
+                    out.push(m);
+                    continue;
+                }
+            }
+        }
+        let scene = scene_for(&base, toml, scene_dir, &s)?;
+        let opts = crate::study::run::simulate::RunOptions {
+            history_rows: 400,
+            ..Default::default()
+        };
+        let report = run_scene(&scene, &opts)
+            .map_err(|e| Error::Numerical(format!("bench study, {}: {e}", s.label())))?;
+        let fe = report
+            .fe
+            .as_ref()
+            .ok_or_else(|| Error::invalid("scene", "no impact", "a scene whose balls collide"))?;
+        let m = Measured {
+            setting: s,
+            elements: fe.elements,
+            element_cycles: fe.element_cycles,
+            wall_time_s: fe.wall_time_s,
+            e: fe.outcome.e,
+            delta_max: fe.outcome.delta_max,
+            contact_duration: fe.outcome.contact_duration,
+            energy_error: fe.energy_error,
+        };
+        let json = serde_json::to_string_pretty(&m)
+            .map_err(|e| Error::Parse(format!("bench case: {e}")))?;
+        write_atomic(&path, json.as_bytes())?;
+        progress(&m, false);
+        out.push(m);
+    }
+    Ok(out)
+}
+
+/// References of e, δ_max and contact duration from the three finest meshes of the first
+/// formulation.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct References {
+    /// Formulation whose ladder gave the references.
+    pub element: Formulation,
+    /// Refinement ratio r of the three finest meshes.
+    pub ratio: f64,
+    /// Coefficient of restitution.
+    pub e: Extrapolated,
+    /// Largest approach, m.
+    pub delta_max: Extrapolated,
+    /// Contact duration, s.
+    pub contact_duration: Extrapolated,
+}
+
+/// Richardson references from the ladder runs of formulation `element` at base factor.
+///
+/// Errors: fewer than three such runs.
+pub fn references(runs: &[Measured], ladder: &Ladder, element: Formulation) -> Result<References> {
+    let mut l: Vec<&Measured> = runs
+        .iter()
+        .filter(|m| {
+            m.setting.element == element
+                && m.setting.time_step_factor == ladder.base_factor
+                && m.setting.on_ladder()
+        })
+        .collect();
+    l.sort_by(|a, b| a.setting.density.total_cmp(&b.setting.density));
+    if l.len() < 3 {
+        return Err(Error::invalid(
+            "bench study",
+            format!("{} runs of {}", l.len(), element_name(element)),
+            "three mesh levels",
+        ));
+    }
+    let t = &l[l.len() - 3..];
+    let ratio = t[2].setting.density / t[1].setting.density;
+    let q = |f: fn(&Measured) -> f64| richardson([f(t[0]), f(t[1]), f(t[2])], ratio);
+    Ok(References {
+        element,
+        ratio,
+        e: q(|m| m.e),
+        delta_max: q(|m| m.delta_max),
+        contact_duration: q(|m| m.contact_duration),
+    })
+}
+
+fn rel(a: f64, b: f64) -> f64 {
+    (a - b).abs() / b.abs()
+}
+
+/// The table (CSV, SI units in the header) of every run with its errors against `r`.
+pub fn csv(runs: &[Measured], r: &References) -> String {
+    let mut s = String::from(
+        "element,density_m,bulk_size_per_d,pole_size_per_d,time_step_factor,elements,element_cycles,wall_time_s,e,delta_max_m,contact_duration_s,energy_error,err_e_rel,err_delta_max_rel,err_duration_rel\n",
+    );
+    for m in runs {
+        let st = &m.setting;
+        let _ = writeln!(
+            s,
+            "{},{},{:.6e},{:.6e},{},{},{},{:.4},{:.7e},{:.7e},{:.7e},{:.3e},{:.4e},{:.4e},{:.4e}",
+            element_name(st.element),
+            st.density,
+            st.bulk_size_per_d(),
+            st.pole_size_per_d(),
+            st.time_step_factor,
+            m.elements,
+            m.element_cycles,
+            m.wall_time_s,
+            m.e,
+            m.delta_max,
+            m.contact_duration,
+            m.energy_error,
+            rel(m.e, r.e.value),
+            rel(m.delta_max, r.delta_max.value),
+            rel(m.contact_duration, r.contact_duration.value),
+        );
+    }
+    s
+}
+
+/// The fastest run whose error in e is at most `tol` (relative), if any.
+pub fn fastest_within<'a>(runs: &'a [Measured], r: &References, tol: f64) -> Option<&'a Measured> {
+    runs.iter()
+        .filter(|m| rel(m.e, r.e.value) <= tol)
+        .min_by(|a, b| a.wall_time_s.total_cmp(&b.wall_time_s))
+}
+
+/// A Markdown summary: references, the table, the fastest setting within 1 % in e.
+pub fn markdown(runs: &[Measured], refs: &[References]) -> String {
+    let r = &refs[0];
+    let mut s = String::new();
+    let ext = |name: &str, x: &Extrapolated, unit: &str| {
+        format!(
+            "| {name} | {:.6e} {unit} | {:.2} | {} |\n",
+            x.value,
+            x.order,
+            if x.asymptotic {
+                "yes"
+            } else {
+                "no: reference = finest mesh"
+            }
+        )
+    };
+    for rr in refs {
+        let _ = writeln!(
+            s,
+            "Richardson references from the three finest {} meshes (ratio r = {:.3}):\n",
+            element_name(rr.element),
+            rr.ratio
+        );
+        s.push_str(
+            "| quantity | extrapolated | observed order p | asymptotic |\n|---|---|---|---|\n",
+        );
+        s.push_str(&ext("e", &rr.e, ""));
+        s.push_str(&ext("delta_max", &rr.delta_max, "m"));
+        s.push_str(&ext("contact duration", &rr.contact_duration, "s"));
+        s.push('\n');
+    }
+    let _ = writeln!(
+        s,
+        "Errors below are against the {} references.\n",
+        element_name(r.element)
+    );
+    s.push_str("| element | m | bulk size / D | pole size / D | time-step factor | elements | element-cycles | wall (s) | e | err e | err delta_max | err duration | energy err |\n|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+    for m in runs {
+        let st = &m.setting;
+        let _ = writeln!(
+            s,
+            "| {} | {:.3} | 1/{:.0} | 1/{:.0} | {} | {} | {:.3e} | {:.2} | {:.5} | {:.2} % | {:.2} % | {:.2} % | {:.1e} |",
+            element_name(st.element),
+            st.density,
+            1.0 / st.bulk_size_per_d(),
+            1.0 / st.pole_size_per_d(),
+            st.time_step_factor,
+            m.elements,
+            m.element_cycles as f64,
+            m.wall_time_s,
+            m.e,
+            100.0 * rel(m.e, r.e.value),
+            100.0 * rel(m.delta_max, r.delta_max.value),
+            100.0 * rel(m.contact_duration, r.contact_duration.value),
+            m.energy_error
+        );
+    }
+    match fastest_within(runs, r, 0.01) {
+        Some(m) => {
+            let _ = writeln!(
+                s,
+                "\nFastest setting within 1 % in e: {} ({} elements), {:.2} s wall, error in e {:.2} %.",
+                m.setting.label(),
+                m.elements,
+                m.wall_time_s,
+                100.0 * rel(m.e, r.e.value)
+            );
+        }
+        None => s.push_str("\nNo setting of this ladder reaches 1 % in e.\n"),
+    }
+    s
+}
+
+/// Wall time against error in e and δ_max, log10-log10 (SVG).
+///
+/// Errors: plotting failures.
+pub fn chart(runs: &[Measured], r: &References) -> Result<String> {
+    let mut series = Vec::new();
+    let mut groups: Vec<(Formulation, f64, bool)> = Vec::new();
+    for m in runs {
+        let g = (
+            m.setting.element,
+            m.setting.time_step_factor,
+            m.setting.on_ladder(),
+        );
+        if !groups.contains(&g) {
+            groups.push(g);
+        }
+    }
+    for (q, name) in [(0, "e"), (1, "delta_max")] {
+        for &(el, f, ladder) in &groups {
+            let points = runs
+                .iter()
+                .filter(|m| {
+                    m.setting.element == el
+                        && m.setting.time_step_factor == f
+                        && m.setting.on_ladder() == ladder
+                })
+                .map(|m| {
+                    let err = if q == 0 {
+                        rel(m.e, r.e.value)
+                    } else {
+                        rel(m.delta_max, r.delta_max.value)
+                    };
+                    (m.wall_time_s.max(1e-3).log10(), err.max(1e-6).log10())
+                })
+                .collect();
+            series.push(Series {
+                label: format!(
+                    "{name}: {} s={f}{}",
+                    element_name(el),
+                    if ladder { "" } else { " finer pole" }
+                ),
+                points,
+                style: Style::Points,
+            });
+        }
+    }
+    Chart {
+        title: "run time against error (Richardson reference)".into(),
+        x_label: "log10 wall time (s)".into(),
+        y_label: "log10 relative error".into(),
+        series,
+    }
+    .svg()
+}
+
+/// Writes `bench-study.csv`, `bench-study.md` and `bench-study.svg` into `dir`, atomically.
+///
+/// Errors: I/O and plotting failures; fewer than three mesh levels of the first formulation.
+pub fn write_outputs(runs: &[Measured], ladder: &Ladder, dir: &Path) -> Result<String> {
+    let mut refs = Vec::new();
+    for &el in &ladder.elements {
+        refs.push(references(runs, ladder, el)?);
+    }
+    write_atomic(dir.join("bench-study.csv"), csv(runs, &refs[0]).as_bytes())?;
+    let md = markdown(runs, &refs);
+    write_atomic(dir.join("bench-study.md"), md.as_bytes())?;
+    write_atomic(
+        dir.join("bench-study.svg"),
+        chart(runs, &refs[0])?.as_bytes(),
+    )?;
+    Ok(md)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn richardson_recovers_a_known_second_order_limit() {
+        // q(h) = 2 + 3 h² on h = 1, 1/2, 1/4.
+        let q = [5.0, 2.75, 2.1875];
+        let x = richardson(q, 2.0);
+        assert!((x.order - 2.0).abs() < 1e-12);
+        assert!((x.value - 2.0).abs() < 1e-12);
+        assert!(x.asymptotic);
+    }
+
+    #[test]
+    fn richardson_flags_oscillating_sequences() {
+        let x = richardson([1.0, 1.2, 1.1], 2.0);
+        assert!(!x.asymptotic);
+        assert!(x.order.is_nan());
+        assert_eq!(x.value, 1.1);
+    }
+
+    #[test]
+    fn ladder_needs_three_levels_in_constant_ratio() {
+        let l = Ladder {
+            densities: vec![0.5, 1.0, 1.5],
+            elements: vec![Formulation::OnePoint],
+            time_step_factors: vec![],
+            base_factor: 0.9,
+            pole_refinements: vec![],
+        };
+        assert!(l.validated().is_err());
+    }
+}

@@ -1,0 +1,191 @@
+//! A run's own error bar, as results.json writes it: the estimate of e, δ_max and the contact
+//! duration from the runs of a mesh ladder ([`crate::study::records::estimate`]; the ladder itself is
+//! [`crate::study::convergence::ladder`]), the levels that ran and how the estimate was obtained.
+
+use crate::error::{Error, Result};
+use crate::study::records::estimate::{estimate, Estimate};
+use serde::Serialize;
+
+/// The refinement ratio of the ladder: each level halves the element sizes.
+pub const LADDER_RATIO: f64 = 2.0;
+
+/// What one mesh level of the ladder produced.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct LevelOutcome {
+    /// Ladder level: 0 the scene's mesh, negative coarser, positive finer.
+    pub level: i32,
+    /// Pole element size of ball 1, m.
+    pub pole_size: f64,
+    /// Bulk element size of ball 1, m.
+    pub size: f64,
+    /// Coefficient of restitution e, -.
+    pub e: f64,
+    /// Maximum approach δ_max, m.
+    pub delta_max: f64,
+    /// Contact duration, s.
+    pub contact_duration: f64,
+    /// Wall time of the run, s.
+    pub wall_time_s: f64,
+    /// The section model's phase ensemble behind e, δ_max and the contact duration (means
+    /// over its meshes); None for a single run.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub phase: Option<PhaseSummary>,
+}
+
+/// What a level's phase ensemble adds ([`crate::study::convergence::phase_ensemble`]).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct PhaseSummary {
+    /// Meshes of the ensemble (the scene's own and M − 1 with scaled pole sizes).
+    pub meshes: usize,
+    /// Ring ratio q: the pole sizes run over q^{j/M}, -.
+    pub ring_ratio: f64,
+    /// Sampling error of the mean e (even members against all), -.
+    pub e_sampling_error: f64,
+    /// Smallest e of the members, -.
+    pub e_min: f64,
+    /// Largest e of the members, -.
+    pub e_max: f64,
+}
+
+/// The error estimate written as results.json's `error_estimate`.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct ErrorEstimate {
+    /// Refinement ratio between levels, -.
+    pub ratio: f64,
+    /// Coefficient of restitution e, -.
+    pub e: Estimate,
+    /// Maximum approach δ_max, m.
+    pub delta_max: Estimate,
+    /// Contact duration, s.
+    pub contact_duration: Estimate,
+    /// The runs of the ladder, coarse to fine (the finest is the reported run).
+    pub meshes: Vec<LevelOutcome>,
+    /// The requested relative tolerance on e, - (with `--tolerance`).
+    pub tolerance: Option<f64>,
+    /// Whether the estimate of e met the tolerance (with `--tolerance`).
+    pub tolerance_met: Option<bool>,
+    /// How the estimate was obtained: the scene's own ladder, or the banded family that
+    /// `--tolerance` runs on a head-on section scene it covers.
+    pub method: EstimateMethod,
+}
+
+impl ErrorEstimate {
+    /// The estimate from ladder runs (coarse to fine, at least two).
+    pub fn from_runs(meshes: Vec<LevelOutcome>, tolerance: Option<f64>) -> Result<ErrorEstimate> {
+        let of = |f: fn(&LevelOutcome) -> f64, what: &str| -> Result<Estimate> {
+            let v: Vec<f64> = meshes.iter().map(f).collect();
+            estimate(&v, LADDER_RATIO).ok_or_else(|| {
+                Error::Numerical(format!(
+                    "error estimate of {what}: needs two or more finite values, got {v:?}"
+                ))
+            })
+        };
+        let mut e = of(|m| m.e, "e")?;
+        if let Some(p) = meshes.last().and_then(|m| m.phase) {
+            // The ensemble's mean still carries its sampling error.
+            e = e.with_error(e.error + p.e_sampling_error);
+        }
+        let tolerance_met = tolerance.map(|t| meets(&e, t));
+        Ok(ErrorEstimate {
+            ratio: LADDER_RATIO,
+            delta_max: of(|m| m.delta_max, "delta_max")?,
+            contact_duration: of(|m| m.contact_duration, "contact_duration")?,
+            e,
+            meshes,
+            tolerance,
+            tolerance_met,
+            method: EstimateMethod::SceneLadder {
+                why_not_banded: None,
+            },
+        })
+    }
+
+    /// One line for the terminal: each quantity with its bar and the ladder's flag.
+    pub fn summary(&self) -> String {
+        let levels: Vec<String> = self.meshes.iter().map(|m| m.level.to_string()).collect();
+        let one = |name: &str, unit: &str, q: &Estimate| {
+            let rel = q
+                .relative_error
+                .map_or("-".into(), |r| format!("{:.2}%", 100.0 * r));
+            let order = match (q.observed_order, q.order_used) {
+                (Some(p), _) => format!("p = {p:.2}"),
+                (None, Some(p)) => format!("p = {p} assumed"),
+                _ => "no order".into(),
+            };
+            format!(
+                "{name} {:.6e}{unit} ± {:.2e} ({rel}; {order}; {})",
+                q.extrapolated,
+                q.error,
+                q.behaviour.name()
+            )
+        };
+        let family = match &self.method {
+            EstimateMethod::SceneLadder { .. } => "mesh levels".to_string(),
+            EstimateMethod::BandedFamily {
+                band_split,
+                band_edge_m,
+                mass_scaling,
+                ..
+            } => format!(
+                "banded family, rings at {:.0} µm split {band_split}-fold, mass scaling {mass_scaling:.1e}, levels",
+                band_edge_m * 1e6
+            ),
+        };
+        let mut s = format!(
+            "error estimate ({family} {}): {}; {}; {}",
+            levels.join(", "),
+            one("e", "", &self.e),
+            one("delta_max", " m", &self.delta_max),
+            one("contact duration", " s", &self.contact_duration)
+        );
+        if let (Some(t), Some(met)) = (self.tolerance, self.tolerance_met) {
+            s.push_str(&format!(
+                "; tolerance {:.3}% on e {}",
+                100.0 * t,
+                if met { "met" } else { "NOT met" }
+            ));
+        }
+        if let EstimateMethod::SceneLadder {
+            why_not_banded: Some(why),
+        } = &self.method
+        {
+            s.push_str(&format!("; the scene's own ladder ran: {why}"));
+        }
+        s
+    }
+}
+
+/// How a run's error estimate was obtained (results.json `error_estimate.method`).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+#[serde(rename_all = "snake_case", tag = "kind")]
+pub enum EstimateMethod {
+    /// The scene's own mesh ladder: each level halves its pole and bulk sizes.
+    SceneLadder {
+        /// Why the banded family did not run with `--tolerance`: the scene is one it does
+        /// not cover, or the scene's own levels −1 and 0 already met a tolerance of 2 % or
+        /// looser; None when it was not asked for.
+        #[serde(skip_serializing_if = "Option::is_none")]
+        why_not_banded: Option<String>,
+    },
+    /// The banded, mass-scaled family of [`crate::study::convergence::phase_ensemble::converged_head_on`], sized
+    /// from the physics.
+    BandedFamily {
+        /// Surface rings at the contact edge split this many times, -.
+        band_split: usize,
+        /// The contact edge the band is centred on, m.
+        band_edge_m: f64,
+        /// Meshes per level (phases of the rings), -.
+        meshes_per_level: usize,
+        /// Mass-scaling budget of every run (added mass over the section's), -.
+        mass_scaling: f64,
+        /// The bias bound of that budget, relative, in every bar, -.
+        mass_scaling_bias: f64,
+        /// CPU time of all the family's runs, s.
+        cpu_time_s: f64,
+    },
+}
+
+/// True when the relative estimate of `e` is at most `tolerance`.
+fn meets(e: &Estimate, tolerance: f64) -> bool {
+    e.relative_error.is_some_and(|r| r <= tolerance)
+}

@@ -1,0 +1,15 @@
+//! The records every room of the study passes around.
+//!
+//! - [`outcome`]: the quantities both models produce, and the analytical answer for a scene;
+//! - [`case`]: a finished FE run as sweep and bench records hold it;
+//! - [`estimate`]: a value with its error bar, from a mesh ladder (Richardson, GCI);
+//! - [`error_estimate`]: a run's error estimate as results.json writes it;
+//! - [`warnings`]: results a user should not trust blindly, each said in one line;
+//! - [`number`]: numbers for people.
+
+pub mod case;
+pub mod error_estimate;
+pub mod estimate;
+pub mod number;
+pub mod outcome;
+pub mod warnings;

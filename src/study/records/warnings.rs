@@ -1,0 +1,253 @@
+//! Results a user should not take at face value: each check compares one number of a run
+//! with the limit beyond which it stops meaning what it says, and says so in one line.
+//!
+//! FE checks ([`fe_warnings`]): energy-balance error above 1 %; a coefficient of restitution
+//! above 1 (the run made energy); penetration deeper than 5 % of δ_max (the penalty is too
+//! soft for the contact it carries); a contact patch at δ_max narrower than 3 elements of
+//! the pole mesh (the contact is not resolved); hourglass energy above 5 % of the internal
+//! energy (the one-point elements deform in zero-energy modes); a plastic impact on the
+//! meridian section run on one mesh (its e is one ring phase). Analytical checks
+//! ([`analytic_warnings`]): a maximum approach above a tenth of the effective radius R*,
+//! where the small-deformation contact laws the model is built on no longer hold.
+
+use serde::Serialize;
+
+/// Energy-balance error above which a run is flagged (fraction).
+pub const ENERGY_ERROR_LIMIT: f64 = 0.01;
+/// Penetration above which the penalty is too soft, as a fraction of δ_max.
+pub const PENETRATION_LIMIT: f64 = 0.05;
+/// Elements across the contact patch (diameter 2a at δ_max) below which it is unresolved.
+pub const PATCH_ELEMENTS_MIN: f64 = 3.0;
+/// Hourglass energy above which a run is flagged, as a fraction of the internal energy.
+pub const HOURGLASS_LIMIT: f64 = 0.05;
+/// Approach above which the analytical model leaves its range, as a fraction of R*.
+pub const APPROACH_LIMIT: f64 = 0.1;
+
+/// Which check raised a warning.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Check {
+    /// Energy-balance error above [`ENERGY_ERROR_LIMIT`].
+    EnergyError,
+    /// FE coefficient of restitution above 1.
+    RestitutionAboveOne,
+    /// Penetration above [`PENETRATION_LIMIT`] of δ_max.
+    Penetration,
+    /// Contact patch narrower than [`PATCH_ELEMENTS_MIN`] elements.
+    UnresolvedContact,
+    /// Hourglass energy above [`HOURGLASS_LIMIT`] of the internal energy.
+    Hourglass,
+    /// Analytical approach above [`APPROACH_LIMIT`] of R*.
+    AnalyticRange,
+    /// A plastic impact on the meridian section run on one mesh alone: its e is one phase of
+    /// the surface rings, not the phase mean.
+    SingleRingPhase,
+    /// A head-on section run whose default error estimate could not run (its mesh levels
+    /// do not reach the contact's edge): one run of the scene's mesh, no error bar.
+    NoErrorEstimate,
+    /// A scene setting the chosen model does not use.
+    IgnoredSetting,
+}
+
+/// One warning: the check and its one-line message (values with units).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Warning {
+    /// The check that fired.
+    pub check: Check,
+    /// What is wrong and why it matters, in one line.
+    pub message: String,
+}
+
+/// What the FE checks need from a run (SI units; δ_max and penetration in m).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FeFigures {
+    /// Largest relative energy error (fraction).
+    pub energy_error: f64,
+    /// FE coefficient of restitution.
+    pub e: f64,
+    /// FE maximum approach of the mass centres, m.
+    pub delta_max: f64,
+    /// Largest contact penetration, m.
+    pub max_penetration: f64,
+    /// Effective radius R* = R1 R2 / (R1 + R2), m.
+    pub r_star: f64,
+    /// Element size at the contact pole, m (None when unknown, e.g. a mesh file).
+    pub pole_size: Option<f64>,
+    /// Largest hourglass energy over the run, J.
+    pub hourglass: f64,
+    /// Largest internal (elastic + plastic + hourglass) energy over the run, J.
+    pub internal: f64,
+}
+
+/// Elements of size `h` (m) across the contact patch at approach `delta` (m) between
+/// surfaces of effective radius `r_star` (m): the patch diameter 2a with a = √(R* δ)
+/// (Hertz geometry), over h.
+pub fn patch_elements(r_star: f64, delta: f64, h: f64) -> f64 {
+    2.0 * (r_star * delta.max(0.0)).sqrt() / h
+}
+
+/// The FE checks of one run; empty when every figure is within its limit.
+pub fn fe_warnings(f: &FeFigures) -> Vec<Warning> {
+    let mut w = Vec::new();
+    if f.energy_error > ENERGY_ERROR_LIMIT {
+        w.push(Warning {
+            check: Check::EnergyError,
+            message: format!(
+                "energy error {:.2} % is above {:.0} %: the FE energies do not balance; refine the mesh or lower solver.time_step_factor",
+                100.0 * f.energy_error,
+                100.0 * ENERGY_ERROR_LIMIT
+            ),
+        });
+    }
+    if f.e > 1.0 {
+        w.push(Warning {
+            check: Check::RestitutionAboveOne,
+            message: format!(
+                "FE e = {:.5} is above 1: the run made energy (numerical, not physical)",
+                f.e
+            ),
+        });
+    }
+    if f.delta_max > 0.0 && f.max_penetration > PENETRATION_LIMIT * f.delta_max {
+        w.push(Warning {
+            check: Check::Penetration,
+            message: format!(
+                "penetration {:.3e} m is {:.0} % of delta_max {:.3e} m (limit {:.0} %): the contact penalty is too soft; raise contact.penalty_factor",
+                f.max_penetration,
+                100.0 * f.max_penetration / f.delta_max,
+                f.delta_max,
+                100.0 * PENETRATION_LIMIT
+            ),
+        });
+    }
+    if let Some(h) = f.pole_size {
+        let n = patch_elements(f.r_star, f.delta_max, h);
+        if n < PATCH_ELEMENTS_MIN {
+            w.push(Warning {
+                check: Check::UnresolvedContact,
+                message: format!(
+                    "the contact patch at delta_max (diameter {:.3e} m) spans {n:.1} elements of {h:.3e} m (fewer than {PATCH_ELEMENTS_MIN:.0}): the contact is not resolved; refine mesh.pole_size",
+                    2.0 * (f.r_star * f.delta_max.max(0.0)).sqrt()
+                ),
+            });
+        }
+    }
+    if f.internal > 0.0 && f.hourglass > HOURGLASS_LIMIT * f.internal {
+        w.push(Warning {
+            check: Check::Hourglass,
+            message: format!(
+                "hourglass energy is {:.1} % of the internal energy (limit {:.0} %): zero-energy modes distort the result; use solver.element = \"b-bar\" or a finer mesh",
+                100.0 * f.hourglass / f.internal,
+                100.0 * HOURGLASS_LIMIT
+            ),
+        });
+    }
+    w
+}
+
+/// Plastic work above this fraction of the initial kinetic energy makes a single section
+/// run's e a ring-phase sample.
+pub const PLASTIC_SHARE_MIN: f64 = 1e-3;
+
+/// The check of a section run on one mesh (no ensemble) whose plastic work is `plastic` (J)
+/// out of an initial kinetic energy `kinetic` (J): its e is one ring phase.
+pub fn single_ring_phase(plastic: f64, kinetic: f64) -> Option<Warning> {
+    (kinetic > 0.0 && plastic > PLASTIC_SHARE_MIN * kinetic).then(|| Warning {
+        check: Check::SingleRingPhase,
+        message: "e of a plastic impact on the section from one mesh is one phase of its surface rings (about ±2 % on the default mesh); its error estimate (the default, with mesh.size at most D/8) gives the phase mean and its bar".into(),
+    })
+}
+
+/// The note of a head-on section run that fell back to one run because its default error
+/// estimate could not run (`why`, the estimate's one-line error).
+pub fn no_error_estimate(why: &str) -> Warning {
+    Warning {
+        check: Check::NoErrorEstimate,
+        message: format!(
+            "no error bar: the default error estimate cannot run this scene ({why}); the result is one run of the scene's mesh (twoball run --tolerance T converges it where the banded family holds it)"
+        ),
+    }
+}
+
+/// The analytical model's range check: maximum approach `delta2` (m) against the effective
+/// radius `r_star` (m).
+pub fn analytic_warnings(delta2: f64, r_star: f64) -> Vec<Warning> {
+    let mut w = Vec::new();
+    if r_star.is_finite() && r_star > 0.0 && delta2 > APPROACH_LIMIT * r_star {
+        w.push(Warning {
+            check: Check::AnalyticRange,
+            message: format!(
+                "analytical delta_2 = {delta2:.3e} m is {:.0} % of R* = {r_star:.3e} m (the model assumes small deformation, delta_2 < {:.0} % of R*): its results are outside its range",
+                100.0 * delta2 / r_star,
+                100.0 * APPROACH_LIMIT
+            ),
+        });
+    }
+    w
+}
+
+/// Prints each warning as one line on stderr: `note: ...` for a setting the model ignores,
+/// `warning: ...` for a result not to take at face value.
+pub fn print(warnings: &[Warning]) {
+    for w in warnings {
+        let kind = match w.check {
+            Check::IgnoredSetting => "note",
+            _ => "warning",
+        };
+        eprintln!("{kind}: {}", w.message);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn clean() -> FeFigures {
+        FeFigures {
+            energy_error: 1e-3,
+            e: 0.32,
+            delta_max: 7.8e-5,
+            max_penetration: 1e-6,
+            r_star: 5e-3,
+            pole_size: Some(1e-4),
+            hourglass: 1e-4,
+            internal: 1e-2,
+        }
+    }
+
+    #[test]
+    fn a_clean_run_has_no_warning_and_each_limit_fires_alone() {
+        assert!(fe_warnings(&clean()).is_empty());
+        let one = |f: FeFigures| {
+            let w = fe_warnings(&f);
+            assert_eq!(w.len(), 1, "{w:?}");
+            w[0].check
+        };
+        let mut f = clean();
+        f.energy_error = 0.018;
+        assert_eq!(one(f), Check::EnergyError);
+        let mut f = clean();
+        f.e = 1.001;
+        assert_eq!(one(f), Check::RestitutionAboveOne);
+        let mut f = clean();
+        f.max_penetration = 0.06 * f.delta_max;
+        assert_eq!(one(f), Check::Penetration);
+        let mut f = clean();
+        f.hourglass = 0.06 * f.internal;
+        assert_eq!(one(f), Check::Hourglass);
+        // The paper's 2 mm mesh on a 5 mm ball: R* = 1.25 mm, delta ~ 1e-5 m.
+        let mut f = clean();
+        f.r_star = 1.25e-3;
+        f.delta_max = 1e-5;
+        f.max_penetration = 1e-8;
+        f.pole_size = Some(2e-3);
+        assert_eq!(one(f), Check::UnresolvedContact);
+    }
+
+    #[test]
+    fn analytic_range_is_a_tenth_of_r_star() {
+        assert!(analytic_warnings(4.9e-4, 5e-3).is_empty());
+        assert_eq!(analytic_warnings(5.1e-4, 5e-3).len(), 1);
+        assert!(analytic_warnings(1.0, f64::INFINITY).is_empty());
+    }
+}

@@ -1,0 +1,106 @@
+//! The scene's `[laws]` comparison: each named normal law integrated on the run's balls and
+//! speeds at first touch (the quantities `twoball laws run` gives), for results.json and the
+//! printed summary.
+
+use crate::analytic::impact::{integrate, DEFAULT_TOLERANCE};
+use crate::analytic::laws::{ContactPair, Registry};
+use crate::analytic::Body;
+use crate::error::{Error, Result};
+use crate::scene::{Scene, Touch};
+use crate::study::records::number::sci;
+use serde::Serialize;
+use std::collections::BTreeMap;
+
+/// One law's answer for the scene's impact (results.json `laws[i]`).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct LawOutcome {
+    /// Normal law name.
+    pub law: String,
+    /// Tangential law name.
+    pub tangential_law: String,
+    /// Resolved normal-law parameters (key → value in the parameter's SI unit).
+    pub params: BTreeMap<String, f64>,
+    /// Coefficient of restitution e, -.
+    pub e: f64,
+    /// Maximum approach δ_max, m.
+    pub delta_max: f64,
+    /// Contact duration t_c, s.
+    pub contact_duration: f64,
+    /// Peak normal force, N.
+    pub peak_force: f64,
+}
+
+/// Integrates every law of `scene.laws` on the balls of `scene` with the velocities (normal,
+/// tangential) in the contact frame of `touch` and the scene's kinetic friction coefficient;
+/// a `[wall]` scene's partner is the rigid half-space at rest.
+/// Errors: a parameter outside its range (named `laws.params.LAW.KEY`), or an integration
+/// that fails (named by the law).
+pub fn compare_laws(scene: &Scene, touch: &Touch) -> Result<Vec<LawOutcome>> {
+    if scene.laws.laws.is_empty() {
+        return Ok(Vec::new());
+    }
+    let b1 = Body::ball(scene.ball1.material, scene.ball1.diameter, "ball1")?;
+    let (mu, _) = scene.friction_coefficients();
+    let [a, b] = touch.v;
+    let (b2, b) = crate::study::records::outcome::analytic_partner(scene, b)?;
+    let pair = ContactPair::between(&b1, &b2, mu);
+    let registry = Registry::builtin();
+    let tangential = &scene.laws.tangential;
+    let (t, _) = registry
+        .build_tangential(tangential, &[], &pair)
+        .map_err(|e| e.map_field(|f| format!("laws.tangential ({f})")))?;
+    scene
+        .laws
+        .laws
+        .iter()
+        .map(|l| {
+            let (n, p) = registry
+                .build_normal(&l.name, &l.params, &pair)
+                .map_err(|e| e.map_field(|f| format!("laws.params.{f}")))?;
+            let i = integrate(
+                &b1,
+                &b2,
+                [a[0], a[1]],
+                [b[0], b[1]],
+                n.as_ref(),
+                t.as_ref(),
+                DEFAULT_TOLERANCE,
+            )
+            .map_err(|e| Error::Numerical(format!("law {}: {e}", l.name)))?
+            .ok_or_else(|| {
+                Error::Numerical(format!("law {}: the balls do not approach", l.name))
+            })?;
+            Ok(LawOutcome {
+                law: l.name.clone(),
+                tangential_law: tangential.clone(),
+                params: p.iter().map(|(k, v)| (k.to_string(), v)).collect(),
+                e: i.e,
+                delta_max: i.delta_max,
+                contact_duration: i.contact_duration,
+                peak_force: i.peak_force,
+            })
+        })
+        .collect()
+}
+
+/// The printed table of the compared laws (empty string without laws).
+pub fn law_table(laws: &[LawOutcome]) -> String {
+    let Some(first) = laws.first() else {
+        return String::new();
+    };
+    let mut s = format!(
+        "contact laws (tangential {}; `twoball laws run` on the same balls and speeds):\n{:<22}{:>14}{:>16}{:>18}{:>16}\n",
+        first.tangential_law, "law", "e [-]", "delta_max [m]", "contact time [s]", "peak force [N]"
+    );
+    for l in laws {
+        s.push_str(&format!(
+            "{:<22}{:>14}{:>16}{:>18}{:>16}\n",
+            l.law,
+            sci(l.e, 6),
+            sci(l.delta_max, 6),
+            sci(l.contact_duration, 6),
+            sci(l.peak_force, 6)
+        ));
+    }
+    s
+}

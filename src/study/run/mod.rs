@@ -1,0 +1,17 @@
+//! One scene on one mesh.
+//!
+//! - [`simulate`]: the FE run (model, reductions, stop rule, reduction to rigid motion);
+//! - [`section`]: the run of a head-on scene on the meridian section;
+//! - [`ignored`]: the scene settings the chosen model does not use, one note each;
+//! - [`scene`]: one scene, both models side by side, results.json and history.csv;
+//! - [`law_compare`]: the scene's `[laws]`, integrated on the run's balls and speeds;
+//! - [`snapshots`]: `.vtu` snapshots of a run for ParaView;
+//! - [`damper`]: the particle-damper cases of a command, with progress and Ctrl-C.
+
+pub mod damper;
+pub mod ignored;
+pub mod law_compare;
+pub mod scene;
+pub mod section;
+pub mod simulate;
+pub mod snapshots;
