@@ -208,8 +208,8 @@ pub fn report_markdown(r: &ReportInput) -> String {
     let _ = writeln!(
         s,
         "# The particle damper against its measurements\n\n\
-Every table below is written by one command (`REPORT.md`, `windows.csv` and `windows.svg`; \
-`--to FOLDER` writes them into FOLDER with FOLDER/NOTES.md appended):\n\n```sh\n{}\n```\n\n\
+The tables of the next three sections are written by one command (`REPORT.md`, `windows.csv` \
+and `windows.svg`; `--to FOLDER` writes them into FOLDER with FOLDER/NOTES.md appended):\n\n```sh\n{}\n```\n\n\
 ζ is the logarithmic decrement of the frame's free decay over the run's window; the damping \
 the balls add is ζ − ζ_empty, ζ_empty = {:.3} % the empty structure's damping ratio \
 (`frame.damping_ratio` of the scene file), for the prediction and the measurement alike.",
