@@ -457,6 +457,13 @@ fn damper_command_names_bad_input_in_one_line() {
     let dir = std::env::temp_dir().join(format!("twoball-damper-bad-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     let good = std::fs::read_to_string("verification/damper/table2.toml").unwrap();
+    let release_line = format!(
+        "line {}",
+        good.lines()
+            .position(|l| l.starts_with("release = 0.03"))
+            .unwrap()
+            + 1
+    );
     for (edit, expect) in [
         (
             good.replace("count = 19", "count = 90"),
@@ -470,7 +477,10 @@ fn damper_command_names_bad_input_in_one_line() {
             good.replace("diameter = 0.015", "diameter = 0.05"),
             "diameter = 0.05",
         ),
-        (good.replace("release = 0.03", "relaese = 0.03"), "line 10"),
+        (
+            good.replace("release = 0.03", "relaese = 0.03"),
+            release_line.as_str(),
+        ),
     ] {
         let path = dir.join("scene.toml");
         std::fs::write(&path, edit).unwrap();
@@ -495,4 +505,193 @@ fn damper_command_names_bad_input_in_one_line() {
     ]);
     assert!(String::from_utf8_lossy(&o.stderr).contains("--case = 8-lead"));
     std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// Column `name` of a CSV text's data rows, by its header.
+fn csv_column(text: &str, name: &str) -> Vec<String> {
+    let mut lines = text.lines();
+    let header: Vec<&str> = lines.next().unwrap().split(',').collect();
+    let k = header.iter().position(|h| *h == name).unwrap_or_else(|| {
+        panic!("no column {name} in {header:?}");
+    });
+    lines
+        .map(|l| l.split(',').nth(k).unwrap_or("").to_string())
+        .collect()
+}
+
+/// The damping the balls add, in summary.csv, windows.csv and REPORT.md, is ζ − ζ_empty with
+/// ζ_empty read here from the scene file (not from the program's structures), for the
+/// prediction and Table 2's measurement; the window figure and table are written, the
+/// empty frame's window ratios are its damping ratio, the notes are appended, progress
+/// lines are printed.
+#[test]
+fn the_added_damping_is_zeta_less_the_empty_frames_and_the_windows_are_written() {
+    let root = std::env::temp_dir().join(format!("twoball-damper-added-{}", std::process::id()));
+    let (out, to) = (root.join("o"), root.join("report"));
+    std::fs::create_dir_all(&to).unwrap();
+    std::fs::write(to.join("NOTES.md"), "## Notes\n\nThe discussion.\n").unwrap();
+    let o = twoball(&[
+        "damper",
+        "verification/damper/table2.toml",
+        "--out",
+        out.to_str().unwrap(),
+        "--to",
+        to.to_str().unwrap(),
+        "--case",
+        "1-empty",
+        "--case",
+        "5-steel-3",
+        "--duration",
+        "2.5",
+        "--window-width",
+        "1.25",
+    ]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(o.status.success(), "{err}");
+    assert!(err.contains("damper: 2 cases started"), "{err}");
+    assert!(err.contains("damper: 2 cases done"), "{err}");
+
+    let scene: toml::Value = std::fs::read_to_string("verification/damper/table2.toml")
+        .unwrap()
+        .parse()
+        .unwrap();
+    let empty = scene["frame"]["damping_ratio"].as_float().unwrap();
+    let measured = |name: &str| {
+        scene["case"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .find(|c| c["name"].as_str() == Some(name))
+            .unwrap()["measured"]["damping_ratio"]
+            .as_float()
+            .unwrap()
+    };
+    let num = |s: &String| s.parse::<f64>().unwrap();
+    let summary = std::fs::read_to_string(out.join("summary.csv")).unwrap();
+    let names = csv_column(&summary, "case");
+    let zeta = csv_column(&summary, "damping_ratio [-]");
+    let added = csv_column(&summary, "added_damping_ratio [-]");
+    let added_measured = csv_column(&summary, "measured_added_damping_ratio [-]");
+    let report = std::fs::read_to_string(to.join("REPORT.md")).unwrap();
+    assert_eq!(names, ["1-empty", "5-steel-3"]);
+    for k in 0..2 {
+        let want = num(&zeta[k]) - empty;
+        assert!((num(&added[k]) - want).abs() <= 1e-15, "{summary}");
+        let want_measured = measured(&names[k]) - empty;
+        assert!(
+            (num(&added_measured[k]) - want_measured).abs() <= 1e-15,
+            "{summary}"
+        );
+    }
+    // The steel case's row: added predicted and measured side by side, then their ratio.
+    let (a, m) = (100.0 * (num(&zeta[1]) - empty), 100.0 * (0.0079 - empty));
+    let cells = format!("| {a:.3} | {m:.3} |");
+    let row = report
+        .lines()
+        .find(|l| l.starts_with("| 5-steel-3 | 3 |"))
+        .unwrap();
+    assert!(row.contains(&cells), "{cells} not in {row}");
+    assert!(report.contains("twoball damper verification/damper/table2.toml --out DIR"));
+    assert!(report.trim_end().ends_with("The discussion."), "{report}");
+    assert!(report.contains("claims about cases this run did not include are left out"));
+
+    // Windows: two per case; the empty frame's are its damping ratio; added = ζ − ζ_empty.
+    let windows = std::fs::read_to_string(to.join("windows.csv")).unwrap();
+    let wz = csv_column(&windows, "damping_ratio [-]");
+    let wa = csv_column(&windows, "added_damping_ratio [-]");
+    assert_eq!(
+        csv_column(&windows, "case"),
+        ["1-empty", "1-empty", "5-steel-3", "5-steel-3"]
+    );
+    assert_eq!(
+        csv_column(&windows, "window_end [s]"),
+        ["1.25", "2.5", "1.25", "2.5"]
+    );
+    for k in 0..4 {
+        assert!(
+            (num(&wa[k]) - (num(&wz[k]) - empty)).abs() <= 1e-15,
+            "{windows}"
+        );
+    }
+    for z in &wz[..2] {
+        assert!((num(z) / empty - 1.0).abs() < 1e-3, "{windows}");
+    }
+    let svg = std::fs::read_to_string(to.join("windows.svg")).unwrap();
+    assert!(svg.starts_with("<svg") && svg.contains("5-steel-3") && svg.contains("1-empty"));
+    assert!(svg.len() < 300_000, "{} bytes", svg.len());
+    assert!(!out.join("REPORT.md").exists());
+    std::fs::remove_dir_all(&root).unwrap();
+}
+
+/// Every claim of the scene file holds on Table 2's measured damping ratios (the claims
+/// say what the paper's Section 6 says), and each names the cases it compares; the glass
+/// claim has the 14 balls damping more than the 19.
+#[test]
+fn the_scene_files_claims_hold_on_table2() {
+    use twoball::damper::file::read;
+    let file = read(std::path::Path::new("verification/damper/table2.toml")).unwrap();
+    let empty = file.empty_damping_ratio();
+    let cases = file.cases(&Default::default()).unwrap();
+    let zeta = |name: &str| {
+        cases
+            .iter()
+            .find(|c| c.name == name)
+            .unwrap()
+            .measured
+            .unwrap()
+            .damping_ratio
+    };
+    let claims = file.claims().unwrap();
+    assert_eq!(claims.len(), 10);
+    for c in &claims {
+        let (a, b) = (zeta(&c.cases[0]), zeta(&c.cases[1]));
+        assert!(c.relation.holds(a, b, empty), "{}: {a} against {b}", c.says);
+    }
+    assert!(claims
+        .iter()
+        .any(|c| c.compares() == "4-glass-14 > 7-glass-19"
+            && c.says.contains("14 balls damp more than 19")));
+}
+
+/// Ctrl-C during a damper run stops it within a report interval, exits 130 naming the case
+/// and the time reached, and writes nothing.
+#[test]
+fn ctrl_c_stops_a_damper_run_with_130_and_writes_nothing() {
+    use std::io::BufRead;
+    let out = std::env::temp_dir().join(format!("twoball-damper-sigint-{}", std::process::id()));
+    let mut child = std::process::Command::new(env!("CARGO_BIN_EXE_twoball"))
+        .args([
+            "damper",
+            "verification/damper/table2.toml",
+            "--out",
+            out.to_str().unwrap(),
+            "--case",
+            "5-steel-3",
+            "--duration",
+            "60",
+        ])
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    let mut err = std::io::BufReader::new(child.stderr.take().unwrap());
+    let mut first = String::new();
+    err.read_line(&mut first).unwrap();
+    assert!(first.starts_with("damper: 1 case started"), "{first}");
+    // SAFETY: kill(2) on our own child's pid with a valid signal number.
+    assert_eq!(
+        unsafe { libc::kill(child.id() as libc::pid_t, libc::SIGINT) },
+        0
+    );
+    let mut rest = String::new();
+    std::io::Read::read_to_string(&mut err, &mut rest).unwrap();
+    let status = child.wait().unwrap();
+    assert_eq!(status.code(), Some(130), "{rest}");
+    let last = rest.trim().lines().last().unwrap();
+    assert!(
+        last.starts_with("interrupted in case 5-steel-3 at t = ")
+            && last.ends_with("nothing written"),
+        "{rest}"
+    );
+    assert!(!out.exists());
 }

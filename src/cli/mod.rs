@@ -164,7 +164,7 @@ where
     };
     if matches!(
         cli.command,
-        Command::Run(_) | Command::Sweep(_) | Command::Stress(_)
+        Command::Run(_) | Command::Sweep(_) | Command::Stress(_) | Command::Damper(_)
     ) {
         crate::study::common::interrupt::install();
     }

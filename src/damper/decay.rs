@@ -78,6 +78,36 @@ pub fn log_decrement(peaks: &[Peak], window: (f64, f64)) -> Result<Decay> {
     })
 }
 
+/// The logarithmic decrement of one window of a record.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct WindowDecay {
+    /// The window [t0, t1], s.
+    pub window: (f64, f64),
+    /// Its decay ([`log_decrement`] over the peaks inside); None with fewer than two peaks.
+    pub decay: Option<Decay>,
+}
+
+/// The logarithmic decrement in consecutive windows [k w, (k + 1) w] (s, k = 0, 1, ...) that
+/// end by `end` (s, to 1e-4 of a width: a record sampled to 9.99999 s holds five 2 s
+/// windows): each over the peaks inside it alone, as a run whose `window` is that
+/// window reads it. A window holding fewer than two peaks has no decay. Empty when `width`
+/// is not positive and finite or no whole window fits.
+pub fn window_decays(peaks: &[Peak], width: f64, end: f64) -> Vec<WindowDecay> {
+    if !(width.is_finite() && width > 0.0 && end.is_finite()) {
+        return Vec::new();
+    }
+    let n = (end / width + 1e-4).floor().max(0.0) as usize;
+    (0..n)
+        .map(|k| {
+            let window = (k as f64 * width, (k + 1) as f64 * width);
+            WindowDecay {
+                window,
+                decay: log_decrement(peaks, window).ok(),
+            }
+        })
+        .collect()
+}
+
 /// The least-squares exponential envelope A(t) = A₀ exp(−σ (t − t₀)) of the peaks in the
 /// window [t0, t1] (s): a straight-line fit of ln(value) against time, t₀ the first peak's
 /// time. Returns (t₀ in s, A₀ in the response's unit, σ in 1/s); None with fewer than two
@@ -139,5 +169,39 @@ mod tests {
         let d = log_decrement(&peaks(&t, &x), (0.0, 20.0)).unwrap();
         assert!((d.frequency / fd - 1.0).abs() < 1e-6, "{d:?}");
         assert!((d.ratio / zeta - 1.0).abs() < 1e-4, "{d:?}");
+    }
+
+    /// Windows of a decay whose rate halves at 6 s: each window gives its own rate, the
+    /// windows tile [0, end] and a window without two peaks has none.
+    #[test]
+    fn windows_read_each_part_of_a_record_alone() {
+        let (fd, z1, z2): (f64, f64, f64) = (1.69, 0.012, 0.006);
+        let wd = 2.0 * PI * fd;
+        let t: Vec<f64> = (0..10001).map(|i| i as f64 * 1e-3).collect();
+        let x: Vec<f64> = t
+            .iter()
+            .map(|&t| {
+                let a = if t < 6.0 {
+                    -z1 * wd * t
+                } else {
+                    -z1 * wd * 6.0 - z2 * wd * (t - 6.0)
+                };
+                a.exp() * (wd * t).cos()
+            })
+            .collect();
+        let w = window_decays(&peaks(&t, &x), 2.0, 10.0);
+        assert_eq!(w.len(), 5);
+        assert_eq!(w[4].window, (8.0, 10.0));
+        for (k, want) in [z1, z1, z1, z2, z2].into_iter().enumerate() {
+            let got = w[k].decay.unwrap().ratio;
+            assert!(
+                (got / want - 1.0).abs() < 1e-3,
+                "window {k}: {got} against {want}"
+            );
+        }
+        let short = window_decays(&peaks(&t, &x), 0.3, 0.6);
+        assert_eq!(short.len(), 2);
+        assert!(short.iter().all(|w| w.decay.is_none()));
+        assert!(window_decays(&peaks(&t, &x), 0.0, 10.0).is_empty());
     }
 }

@@ -2,6 +2,7 @@
 //! cases, each with its balls (material, diameter, count, laid out in the box) and the
 //! measured frequency and damping ratio it is compared with.
 
+use super::claims::{Claim, Relation};
 use super::scene::{BallSpec, BoxSpec, DamperScene, FrameSpec, LawChoice};
 use crate::error::{Error, Result};
 use crate::material::Material;
@@ -81,6 +82,10 @@ pub struct Measured {
     pub frequency: f64,
     /// Damping ratio (a fraction).
     pub damping_ratio: f64,
+    /// Ratio of the balls' mass to the frame's mass as the paper states it (a fraction),
+    /// if given.
+    #[serde(default)]
+    pub mass_ratio: Option<f64>,
 }
 
 #[derive(Debug, Clone, Deserialize)]
@@ -89,6 +94,15 @@ struct CaseFile {
     name: String,
     balls: Option<BallsFile>,
     measured: Option<Measured>,
+}
+
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct ClaimFile {
+    says: String,
+    cases: [String; 2],
+    relation: String,
+    within: Option<f64>,
 }
 
 /// A damper scene file as read, before the cases are laid out; the fields a command line may
@@ -103,6 +117,8 @@ pub struct DamperFile {
     laws: LawsFile,
     run: RunFile,
     case: Vec<CaseFile>,
+    #[serde(default)]
+    claim: Vec<ClaimFile>,
 }
 
 /// One case ready to run.
@@ -208,6 +224,39 @@ pub fn lay_out(
 }
 
 impl DamperFile {
+    /// The damping ratio of the empty structure (`frame.damping_ratio`, a fraction).
+    pub fn empty_damping_ratio(&self) -> f64 {
+        self.frame.damping_ratio
+    }
+
+    /// The file's claims (`[[claim]]`: `says`, `cases = [A, B]`, `relation` "greater" or
+    /// "similar" with `within`). Errors: a case name not among the file's cases, an unknown
+    /// relation (naming `claim[k]` and the field).
+    pub fn claims(&self) -> Result<Vec<Claim>> {
+        self.claim
+            .iter()
+            .enumerate()
+            .map(|(k, c)| {
+                let field = format!("claim[{k}]");
+                for name in &c.cases {
+                    if !self.case.iter().any(|d| &d.name == name) {
+                        let names: Vec<&str> = self.case.iter().map(|d| d.name.as_str()).collect();
+                        return Err(Error::invalid(
+                            format!("{field}.cases"),
+                            name,
+                            format!("one of {}", names.join(", ")),
+                        ));
+                    }
+                }
+                Ok(Claim {
+                    says: c.says.clone(),
+                    cases: c.cases.clone(),
+                    relation: Relation::parse(&c.relation, c.within, &field)?,
+                })
+            })
+            .collect()
+    }
+
     /// The cases with `o` applied, laid out and validated. Errors name the case and field.
     pub fn cases(&self, o: &Overrides) -> Result<Vec<DamperCase>> {
         let wall = Material::preset(&self.container.material).map_err(|e| e.within("box"))?;

@@ -12,6 +12,7 @@
 //! This module does not use the finite-element solver.
 
 pub mod cells;
+pub mod claims;
 pub mod contact;
 pub mod decay;
 pub mod energy;
@@ -19,6 +20,7 @@ pub mod file;
 pub mod frame;
 pub mod neighbours;
 pub mod pairs;
+pub mod report;
 pub mod run;
 pub mod scene;
 pub mod sim;

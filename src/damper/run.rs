@@ -31,6 +31,8 @@ pub struct CaseOutcome {
     pub window: (f64, f64),
     /// The paper's values, if given.
     pub measured: Option<Measured>,
+    /// Damping ratio of the empty structure (the frame's, a fraction).
+    pub empty_damping: f64,
     /// Largest |energy balance residual| over the samples (relative to the initial energy).
     pub worst_residual: f64,
     /// Time step, s.
@@ -58,12 +60,38 @@ pub struct BallFrame {
     pub velocity: Vec<[f64; 3]>,
 }
 
+impl CaseOutcome {
+    /// The damping ratio the balls add, ζ − ζ_empty (a fraction; ζ over the window).
+    pub fn added_damping(&self) -> f64 {
+        self.decay.ratio - self.empty_damping
+    }
+
+    /// The damping ratio the balls added in the measurement, ζ_measured − ζ_empty (a
+    /// fraction), if the case has a measured ζ.
+    pub fn measured_added_damping(&self) -> Option<f64> {
+        self.measured.map(|m| m.damping_ratio - self.empty_damping)
+    }
+}
+
 /// Most ball frames kept per case (the VTU series of the balls).
 pub const BALL_FRAMES: usize = 200;
 
 /// Runs one case to its duration and reads its decay. Errors: an invalid scene or law, a
 /// non-finite state, fewer than two peaks in the window (each naming the case).
 pub fn run_case(case: &DamperCase, registry: &Registry) -> Result<CaseOutcome> {
+    run_case_observed(case, registry, &|_| Ok(()))
+}
+
+/// How often a running case reports its simulated time, s.
+pub const REPORT_INTERVAL: f64 = 0.05;
+
+/// [`run_case`], calling `at(t)` with the simulated time t (s) at release and about every
+/// [`REPORT_INTERVAL`]; an error of `at` (e.g. an interrupt) stops the case and is returned.
+pub fn run_case_observed(
+    case: &DamperCase,
+    registry: &Registry,
+    at: &dyn Fn(f64) -> Result<()>,
+) -> Result<CaseOutcome> {
     let named = |e: Error| match e {
         Error::Numerical(m) => Error::Numerical(format!("case {}: {m}", case.name)),
         other => other.within(&format!("case {}", case.name)),
@@ -74,8 +102,12 @@ pub fn run_case(case: &DamperCase, registry: &Registry) -> Result<CaseOutcome> {
     let every = expected.div_ceil(BALL_FRAMES).max(1);
     let mut frames = Vec::new();
     let mut seen = 0usize;
+    let report_every = ((REPORT_INTERVAL / case.scene.sample_interval).round() as usize).max(1);
     let samples = sim
         .run_observed(case.scene.duration, case.scene.sample_interval, &mut |s| {
+            if seen.is_multiple_of(report_every) {
+                at(s.time)?;
+            }
             if !s.position.is_empty() && seen.is_multiple_of(every) {
                 let v3 = |v: &nalgebra::Vector3<f64>| [v.x, v.y, v.z];
                 frames.push(BallFrame {
@@ -85,8 +117,12 @@ pub fn run_case(case: &DamperCase, registry: &Registry) -> Result<CaseOutcome> {
                 });
             }
             seen += 1;
+            Ok(())
         })
-        .map_err(named)?;
+        .map_err(|e| match e {
+            Error::Interrupted(_) => e,
+            other => named(other),
+        })?;
     let wall_time = start.elapsed().as_secs_f64();
     let t: Vec<f64> = samples.iter().map(|s| s.time).collect();
     let x: Vec<f64> = samples.iter().map(|s| s.displacement).collect();
@@ -106,6 +142,7 @@ pub fn run_case(case: &DamperCase, registry: &Registry) -> Result<CaseOutcome> {
         decay,
         window: case.window,
         measured: case.measured,
+        empty_damping: case.scene.frame.damping_ratio,
         worst_residual,
         dt: sim.dt(),
         steps: sim.steps,
@@ -118,7 +155,21 @@ pub fn run_case(case: &DamperCase, registry: &Registry) -> Result<CaseOutcome> {
 
 /// Runs every case, in parallel across cases; the outcomes keep the cases' order.
 pub fn run_cases(cases: &[DamperCase], registry: &Registry) -> Result<Vec<CaseOutcome>> {
-    cases.par_iter().map(|c| run_case(c, registry)).collect()
+    run_cases_observed(cases, registry, &|_, _| Ok(()))
+}
+
+/// [`run_cases`], calling `at(k, t)` as case `k` (its index in `cases`) reaches simulated
+/// time t (s), as [`run_case_observed`] does; the first error stops every case.
+pub fn run_cases_observed(
+    cases: &[DamperCase],
+    registry: &Registry,
+    at: &(dyn Fn(usize, f64) -> Result<()> + Sync),
+) -> Result<Vec<CaseOutcome>> {
+    cases
+        .par_iter()
+        .enumerate()
+        .map(|(k, c)| run_case_observed(c, registry, &|t| at(k, t)))
+        .collect()
 }
 
 /// The history CSV of one case: frame motion, the ball force on the box and every energy term.
@@ -168,7 +219,8 @@ pub fn cycles_csv(samples: &[Sample]) -> String {
 /// Header of the summary CSV.
 pub const SUMMARY_HEADER: &str = "case,balls [-],ball_mass [kg],mass_ratio [-],frequency [Hz],\
 damping_ratio [-],measured_frequency [Hz],measured_damping_ratio [-],cycles [-],window_start [s],\
-window_end [s],energy_residual [-],dt [s],steps [-],wall_time [s]";
+window_end [s],energy_residual [-],dt [s],steps [-],wall_time [s],empty_damping_ratio [-],\
+added_damping_ratio [-],measured_added_damping_ratio [-]";
 
 /// The summary CSV: one row per case.
 pub fn summary_csv(outcomes: &[CaseOutcome]) -> String {
@@ -179,7 +231,7 @@ pub fn summary_csv(outcomes: &[CaseOutcome]) -> String {
         });
         let _ = writeln!(
             s,
-            "{},{},{},{},{},{},{},{},{},{},{},{},{},{},{:.2}",
+            "{},{},{},{},{},{},{},{},{},{},{},{},{},{},{:.2},{},{},{}",
             o.name,
             o.balls,
             o.ball_mass,
@@ -194,7 +246,11 @@ pub fn summary_csv(outcomes: &[CaseOutcome]) -> String {
             o.worst_residual,
             o.dt,
             o.steps,
-            o.wall_time
+            o.wall_time,
+            o.empty_damping,
+            o.added_damping(),
+            o.measured_added_damping()
+                .map_or(String::new(), |d| d.to_string())
         );
     }
     s

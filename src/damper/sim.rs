@@ -432,18 +432,19 @@ impl Simulation {
     /// Runs to time `until` (s), recording a sample every `interval` (s) and at the start.
     /// Errors: a non-finite state (names the time and the likely cause).
     pub fn run(&mut self, until: f64, interval: f64) -> Result<Vec<Sample>> {
-        self.run_observed(until, interval, &mut |_| {})
+        self.run_observed(until, interval, &mut |_| Ok(()))
     }
 
     /// [`Simulation::run`], calling `observe(self)` at release and after every recorded
-    /// sample (to record the balls' states).
+    /// sample (to record the balls' states, show progress); an error of `observe` (e.g. an
+    /// interrupt) stops the run and is returned.
     pub fn run_observed(
         &mut self,
         until: f64,
         interval: f64,
-        observe: &mut dyn FnMut(&Simulation),
+        observe: &mut dyn FnMut(&Simulation) -> Result<()>,
     ) -> Result<Vec<Sample>> {
-        observe(self);
+        observe(self)?;
         let mut samples = vec![self.sample()];
         let mut next = self.time + interval;
         while self.time + 0.5 * self.dt < until {
@@ -458,7 +459,7 @@ impl Simulation {
                     )));
                 }
                 samples.push(s);
-                observe(self);
+                observe(self)?;
             }
         }
         Ok(samples)

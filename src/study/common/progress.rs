@@ -117,12 +117,31 @@ pub struct RunProgress {
     last_line: Instant,
     last_frac: f64,
     hook: Option<Hook>,
+    /// What the plain lines name: the job (`run`) and what it simulates (`FE`).
+    job: (&'static str, String),
 }
 
 impl RunProgress {
     /// Progress of a run from solver time `start` to its expected end `end` (s), shown as
     /// `mode` says.
     pub fn new(mode: Mode, start: f64, end: f64) -> Self {
+        Self::worded(
+            mode,
+            ("run", "FE", " (stop rule's expected end)"),
+            start,
+            end,
+        )
+    }
+
+    /// [`RunProgress::new`] for another simulation through time: plain lines begin `job:` and name
+    /// `what` it simulates (e.g. `damper`, `7 cases`).
+    pub fn for_job(mode: Mode, job: &'static str, what: &str, start: f64, end: f64) -> Self {
+        Self::worded(mode, (job, what, ""), start, end)
+    }
+
+    /// The bar with its plain lines' words: job, what it simulates, what the end is based on.
+    fn worded(mode: Mode, words: (&'static str, &str, &str), start: f64, end: f64) -> Self {
+        let (job, what, basis) = words;
         let bar = (mode == Mode::Terminal).then(|| {
             terminal_bar(
                 ((end - start).max(0.0) * BAR_UNITS_PER_S) as u64,
@@ -139,10 +158,11 @@ impl RunProgress {
             last_line: Instant::now(),
             last_frac: 0.0,
             hook: current(),
+            job: (job, what.to_string()),
         };
         if mode == Mode::Plain {
             plain(&format!(
-                "run: FE started, about {:.3e} s to simulate (stop rule's expected end)",
+                "{job}: {what} started, about {:.3e} s to simulate{basis}",
                 end - start
             ));
         }
@@ -192,7 +212,8 @@ impl RunProgress {
                 if plain_line_due(frac, self.last_frac, self.last_line.elapsed()) {
                     let wall = self.started.elapsed().as_secs_f64();
                     plain(&format!(
-                        "run: t = {:.3e} of ~{:.3e} s simulated ({:.0} %), {} wall, ETA {}",
+                        "{}: t = {:.3e} of ~{:.3e} s simulated ({:.0} %), {} wall, ETA {}",
+                        self.job.0,
                         t - self.start,
                         self.end - self.start,
                         100.0 * frac,
@@ -218,7 +239,9 @@ impl RunProgress {
         }
         if self.mode == Mode::Plain {
             plain(&format!(
-                "run: FE done, {:.3e} s simulated in {} wall",
+                "{}: {} done, {:.3e} s simulated in {} wall",
+                self.job.0,
+                self.job.1,
                 self.t - self.start,
                 human(self.started.elapsed().as_secs_f64())
             ));

@@ -1,6 +1,6 @@
 //! SVG charts of a damper case ([`crate::damper`]): the frame's free decay with its envelope,
 //! and the damping ratio cycle by cycle against amplitude (particle dampers are strongly
-//! amplitude dependent).
+//! amplitude dependent); and of a run, the damping ratio of every case window by window.
 //!
 //! The envelope is the least-squares exponential through the analysed window's peaks
 //! ([`crate::damper::decay::envelope_fit`]), A(t) = A₀ exp(−σ (t − t₀)), its damping ratio
@@ -9,6 +9,7 @@
 
 use crate::atomic::write_atomic;
 use crate::damper::decay::{cycle_ratios, envelope_fit, peaks};
+use crate::damper::report::case_windows;
 use crate::damper::run::CaseOutcome;
 use crate::error::Result;
 use crate::study::common::plots::{Chart, Series, Style};
@@ -102,6 +103,41 @@ pub fn damping_chart(o: &CaseOutcome) -> Chart {
             },
         ],
     }
+}
+
+/// The windows chart: ζ (%) of each case in consecutive windows of `width` s, drawn at
+/// each window's middle (one line per case; a window without two peaks is left out).
+pub fn windows_chart(outcomes: &[CaseOutcome], width: f64) -> Chart {
+    let series = outcomes
+        .iter()
+        .map(|o| Series {
+            label: o.name.clone(),
+            points: case_windows(o, width)
+                .iter()
+                .filter_map(|w| {
+                    let d = w.decay?;
+                    Some((0.5 * (w.window.0 + w.window.1), 100.0 * d.ratio))
+                })
+                .collect(),
+            style: Style::Line,
+        })
+        .collect();
+    Chart {
+        title: format!("damping ratio per {width} s window (log decrement inside each window)"),
+        x_label: "middle of the window [s]".into(),
+        y_label: "damping ratio [%]".into(),
+        series,
+    }
+}
+
+/// Writes `windows.svg` ([`windows_chart`]) into `dir`, atomically.
+///
+/// Errors: plotters drawing failures, I/O errors naming the path.
+pub fn write_windows_chart(dir: &Path, outcomes: &[CaseOutcome], width: f64) -> Result<()> {
+    write_atomic(
+        dir.join("windows.svg"),
+        windows_chart(outcomes, width).svg()?.as_bytes(),
+    )
 }
 
 /// Writes `CASE/decay.svg` and `CASE/damping.svg` of every outcome into `dir` (the case

@@ -7,8 +7,10 @@
 //! - [`ignored`]: the scene settings the chosen model does not use, one note each;
 //! - [`scene`]: one scene, both models side by side, results.json and history.csv;
 //! - [`law_compare`]: the scene's `[laws]`, integrated on the run's balls and speeds;
-//! - [`snapshots`]: `.vtu` snapshots of a run for ParaView.
+//! - [`snapshots`]: `.vtu` snapshots of a run for ParaView;
+//! - [`damper`]: the particle-damper cases of a command, with progress and Ctrl-C.
 
+pub mod damper;
 pub mod ignored;
 pub mod law_compare;
 pub mod scene;
