@@ -297,7 +297,7 @@ def test_keyboard_interrupt_stops_a_long_run(tmp_path):
             threading.Thread(target=interrupt).start()
 
     try:
-        with pytest.raises(KeyboardInterrupt) as stopped:
+        with pytest.raises(KeyboardInterrupt):
             # The 3D model on a pole of D/400: seconds of time loop, so the interrupt lands
             # long before its end.
             fine = {"size": 0.002, "pole_size": 0.00005}
@@ -307,12 +307,11 @@ def test_keyboard_interrupt_stops_a_long_run(tmp_path):
     finally:
         signal.signal(signal.SIGINT, previous)
     assert sent, "the run ended before it reported progress"
-    # The job stops at the simulated time it had reached (a cancel check every few hundred
-    # steps): "interrupted at t = T s of about T_END s".
-    words = str(stopped.value).split()
-    at, end = float(words[words.index("t") + 2]), float(words[words.index("about") + 1])
-    print(f"interrupted at t = {at:.3e} s of {end:.3e} s")
-    assert 0 < at < 0.5 * end
+    done, total = sent[0]
+    print(f"interrupt sent at t = {done:.3e} s of about {total:.3e} s")
+    assert done < total
+    # Ctrl-C cancels the job and waits for it to stop: a job that ran on to its end would
+    # have written its results.
     assert not (tmp_path / "out" / "results.json").exists()
 
 
