@@ -282,10 +282,10 @@ fn concurrent_shards_share_the_folder_and_status_counts_what_is_missing() {
         )),
         "{stdout}"
     );
+    // A finished sweep leaves no running marker, nor their empty folder.
     assert!(std::fs::read_dir(out.join("running"))
-        .unwrap()
-        .next()
-        .is_none());
+        .ok()
+        .is_none_or(|mut d| d.next().is_none()));
     // An unsharded rerun redoes nothing and writes the CSV: every case once.
     let o2 = twoball(&["sweep", f, "--out", o]);
     assert!(text(&o2)
