@@ -480,6 +480,7 @@ fn phase_honesty() {
             e: ens.e.mean,
             delta_max: ens.delta_max.mean,
             contact_duration: ens.contact_duration.mean,
+            peak_force: ens.peak_force.mean,
             wall_time_s: ens.runs.iter().map(|r| r.wall_time_s).sum(),
             // The bar adds the fine mean's sampling error, as a run's and the bench's do.
             phase: Some(PhaseSummary {
@@ -488,6 +489,7 @@ fn phase_honesty() {
                 e_sampling_error: ens.e.sampling_error,
                 e_min: ens.e.min,
                 e_max: ens.e.max,
+                peak_force_sampling_error: ens.peak_force.sampling_error,
             }),
         })
     };

@@ -4,14 +4,16 @@
 //!
 //! - [`RunProgress`]: the simulated time of one FE run, scaled to the stop rule's end (refined as the
 //!   run learns it);
-//! - [`Cases`]: the cases of a sweep or stress matrix, done and failed.
+//! - [`Cases`]: the cases of a sweep or stress matrix, done and failed; also the member runs
+//!   of the phase ensembles that `--tolerance` refines through ([`counting_members`]).
 //!
 //! A library caller (e.g. the Python binding) also receives the progress through a [`Hook`]
 //! set with [`reporting`]: the bar or counter made on that thread calls it at each update.
 
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use std::io::{IsTerminal, Write};
-use std::sync::Mutex;
+use std::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::{Arc, Mutex};
 use std::time::{Duration, Instant};
 
 /// A plain line is printed at most this often when progress is steady...
@@ -269,7 +271,7 @@ struct PlainState {
 pub struct Cases {
     mode: Mode,
     label: String,
-    total: usize,
+    total: AtomicUsize,
     bar: Option<ProgressBar>,
     started: Instant,
     state: Mutex<PlainState>,
@@ -291,7 +293,7 @@ impl Cases {
         Cases {
             mode,
             label: label.into(),
-            total,
+            total: AtomicUsize::new(total),
             bar,
             started: Instant::now(),
             state: Mutex::new(PlainState {
@@ -306,8 +308,9 @@ impl Cases {
 
     fn line(&self, s: &PlainState) -> String {
         let wall = self.started.elapsed().as_secs_f64();
-        let frac = if self.total > 0 {
-            s.done as f64 / self.total as f64
+        let total = self.total();
+        let frac = if total > 0 {
+            s.done as f64 / total as f64
         } else {
             1.0
         };
@@ -315,7 +318,7 @@ impl Cases {
             "{}: {}/{} cases done ({} failed), {} wall, ETA {}",
             self.label,
             s.done,
-            self.total,
+            total,
             s.failed,
             human(wall),
             eta(wall, frac).map_or("-".into(), human)
@@ -329,7 +332,7 @@ impl Cases {
         s.done += 1;
         s.failed += usize::from(failed);
         if let Some(h) = &self.hook {
-            h(s.done as f64, self.total as f64);
+            h(s.done as f64, self.total() as f64);
         }
         match self.mode {
             Mode::Off => {}
@@ -340,13 +343,33 @@ impl Cases {
                 }
             }
             Mode::Plain => {
-                let frac = s.done as f64 / self.total.max(1) as f64;
+                let frac = s.done as f64 / self.total().max(1) as f64;
                 if plain_line_due(frac, s.last_frac, s.last_line.elapsed()) {
                     plain(&self.line(&s));
                     s.last_line = Instant::now();
                     s.last_frac = frac;
                 }
             }
+        }
+    }
+
+    /// The same counter without the thread's progress receiver: for counts that are not the
+    /// receiver's unit (the member runs inside one FE run's progress).
+    pub fn without_hook(mut self) -> Self {
+        self.hook = None;
+        self
+    }
+
+    /// Cases expected in all.
+    pub fn total(&self) -> usize {
+        self.total.load(Ordering::Relaxed)
+    }
+
+    /// `n` more cases are expected (a refinement the start could not foresee).
+    pub fn add_total(&self, n: usize) {
+        let total = self.total.fetch_add(n, Ordering::Relaxed) + n;
+        if let Some(b) = &self.bar {
+            b.set_length(total as u64);
         }
     }
 
@@ -390,4 +413,19 @@ mod tests {
         assert_eq!(human(12.34), "12.3 s");
         assert_eq!(human(600.0), "10.0 min");
     }
+}
+
+thread_local! {
+    static MEMBERS: std::cell::RefCell<Option<Arc<Cases>>> = const { std::cell::RefCell::new(None) };
+}
+
+/// Runs `f` with `cases` counting the phase-ensemble member runs that `f` starts on this
+/// thread (None: as is): the progress of a `--tolerance` refinement.
+pub fn counting_members<R>(cases: Option<&Arc<Cases>>, f: impl FnOnce() -> R) -> R {
+    crate::study::common::scoped::with_value(&MEMBERS, cases, f)
+}
+
+/// The member counter of this thread, if any (to hand on to worker threads).
+pub fn members() -> Option<Arc<Cases>> {
+    MEMBERS.with(|m| m.borrow().clone())
 }

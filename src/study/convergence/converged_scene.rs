@@ -205,6 +205,7 @@ fn estimate_of(case: &HeadOnCase, answer: &HeadOnAnswer, tolerance: f64) -> Resu
             e: en.e.mean,
             delta_max: en.delta_max.mean,
             contact_duration: en.contact_duration.mean,
+            peak_force: en.peak_force.mean,
             wall_time_s: en.runs.iter().map(|r| r.wall_time_s).sum(),
             phase: Some(PhaseSummary {
                 meshes: en.runs.len(),
@@ -212,6 +213,7 @@ fn estimate_of(case: &HeadOnCase, answer: &HeadOnAnswer, tolerance: f64) -> Resu
                 e_sampling_error: en.e.sampling_error,
                 e_min: en.e.min,
                 e_max: en.e.max,
+                peak_force_sampling_error: en.peak_force.sampling_error,
             }),
         })
     };
@@ -226,6 +228,7 @@ fn estimate_of(case: &HeadOnCase, answer: &HeadOnAnswer, tolerance: f64) -> Resu
         e,
         delta_max: estimate_from_bar(&answer.delta_max),
         contact_duration: estimate_from_bar(&answer.contact_duration),
+        peak_force: estimate_from_bar(&answer.peak_force),
         meshes,
         tolerance: Some(tolerance),
         tolerance_met,

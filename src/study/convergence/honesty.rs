@@ -184,6 +184,7 @@ mod tests {
                 e: f(0.9 - 0.1 * v, 0.02),
                 delta_max: f(1e-5 * v, -0.05),
                 contact_duration: f(6e-5, 0.03),
+                peak_force: f(1e3, 0.04),
                 wall_time_s: 0.0,
                 phase: None,
             })

@@ -152,6 +152,7 @@ mod tests {
             e: f(0.3190, 0.02),
             delta_max: f(1.74e-5, -0.03),
             contact_duration: f(5.9e-5, 0.01),
+            peak_force: f(900.0, 0.04),
             wall_time_s: 0.0,
             phase: None,
         })

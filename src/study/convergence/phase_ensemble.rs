@@ -545,12 +545,16 @@ pub fn ensemble_over(
     }
     check_meshes(meshes)?;
     let token = crate::study::common::interrupt::current();
+    let counter = crate::study::common::progress::members();
     let mut results: Vec<(PhaseRun, ImpactResult)> = (0..meshes)
         .into_par_iter()
         .map(|j| {
             crate::study::common::interrupt::within(token.as_ref(), || {
                 let s = q.powf(j as f64 / meshes as f64);
                 let r = run(mesh_at(s)?)?;
+                if let Some(c) = &counter {
+                    c.case_done(false, &format!("mesh scale {s:.4}: e = {:.5}", r.e));
+                }
                 Ok((member(s, &r), r))
             })
         })
@@ -610,6 +614,9 @@ pub fn converged_head_on(case: &HeadOnCase, plan: &PhasePlan) -> Result<HeadOnAn
             ))
         };
         let finer = |(_, f, _, l, cpu): Refined| -> Result<Refined> {
+            if let Some(c) = crate::study::common::progress::members() {
+                c.add_total(plan.meshes);
+            }
             let cpu = cpu + cpu_of(&f);
             let (finer, finer_pilot) = at(l + 1)?;
             Ok((f, finer, finer_pilot, l + 1, cpu))

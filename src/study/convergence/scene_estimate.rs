@@ -13,8 +13,9 @@ use crate::study::convergence::phase_ensemble::{ring_ratio, HeadOnCase, PhaseMea
 use crate::study::records::error_estimate::{
     ErrorEstimate, EstimateMethod, LevelOutcome, PhaseSummary,
 };
+use crate::study::run::force_curve::ForceCurve;
 use crate::study::run::scene::{run_scene, take_phase_mean, RunReport};
-use crate::study::run::simulate::{choose_reduction, Reduction, RunOptions};
+use crate::study::run::simulate::{choose_reduction, HistoryRow, Reduction, RunOptions};
 use std::time::Instant;
 
 /// The ladder a run of `scene` gets by default: the axisymmetric model's runs are cheap, so a
@@ -189,7 +190,7 @@ pub fn run_to_tolerance(
     let levels = default_plan(scene)? == Some(LadderPlan::TwoLevels);
     if tolerance < LEVELS_TOLERANCE_FLOOR || !levels {
         let report = run_scene(scene, opts)?;
-        return converge_report(case, report, tolerance, max_refinements);
+        return refine_with_progress(case, report, tolerance, max_refinements, opts);
     }
     let (mut estimate, report) = two_levels(scene, opts)?;
     // Their bar may understate their error by chance (below): it is at least the floor.
@@ -197,7 +198,7 @@ pub fn run_to_tolerance(
     estimate.e = e.with_error(e.error.max(LEVELS_TOLERANCE_FLOOR * e.extrapolated.abs()));
     let met = estimate.e.relative_error.is_some_and(|r| r <= tolerance);
     if !met {
-        return converge_report(case, report, tolerance, max_refinements);
+        return refine_with_progress(case, report, tolerance, max_refinements, opts);
     }
     with_estimate(
         report,
@@ -210,6 +211,32 @@ pub fn run_to_tolerance(
             ..estimate
         },
     )
+}
+
+/// [`converge_report`] with its member runs counted on stderr when `opts.progress` (the two
+/// first levels' ensembles and the contact-edge run; each refinement adds an ensemble).
+fn refine_with_progress(
+    case: &HeadOnCase,
+    report: RunReport,
+    tolerance: f64,
+    max_refinements: u32,
+    opts: &RunOptions,
+) -> Result<RunReport> {
+    use crate::study::common::progress::{counting_members, Cases, Mode};
+    let meshes = crate::study::convergence::converged_scene::MESHES;
+    let cases = std::sync::Arc::new(
+        Cases::new(
+            Mode::detect(opts.progress),
+            "tolerance: banded mesh family, member runs",
+            2 * meshes,
+        )
+        .without_hook(),
+    );
+    let out = counting_members(Some(&cases), || {
+        converge_report(case, report, tolerance, max_refinements)
+    });
+    cases.finish();
+    out
 }
 
 /// The tightest relative tolerance on e that the scene's default levels −1 and 0 may answer:
@@ -240,11 +267,13 @@ fn two_levels(scene: &Scene, opts: &RunOptions) -> Result<(ErrorEstimate, RunRep
             .map_err(|e| at_level(e, level))
     };
     let (coarse, fine) = rayon::join(|| within(-1, &quiet), || within(0, opts));
-    let (fine, report) = fine?;
-    Ok((
-        ErrorEstimate::from_runs(vec![coarse?.0, fine], None)?,
-        report,
-    ))
+    let (fine, mut report) = fine?;
+    let (coarse, coarse_report) = coarse?;
+    if !coarse_report.force_curve.delta.is_empty() {
+        report.force_curve =
+            std::mem::take(&mut report.force_curve).with_bar(&coarse_report.force_curve);
+    }
+    Ok((ErrorEstimate::from_runs(vec![coarse, fine], None)?, report))
 }
 
 /// `report` (the run of a ladder's finest level) with `estimate`: its e, δ_max and contact
@@ -267,7 +296,7 @@ pub fn run_level(
     opts: &RunOptions,
 ) -> Result<(LevelOutcome, RunReport)> {
     let s = scene_at_level(scene, level)?;
-    let report = run_scene(&s, opts)?;
+    let mut report = run_scene(&s, opts)?;
     let (pole_size, size) = mesh_sizes(&s);
     let e = report
         .e
@@ -279,6 +308,7 @@ pub fn run_level(
         e,
         delta_max: report.delta_max,
         contact_duration: report.contact_duration,
+        peak_force: report.fe.as_ref().map_or(0.0, |f| f.force.peak_smoothed),
         wall_time_s: report.wall_time_s,
         phase: None,
     };
@@ -287,7 +317,9 @@ pub fn run_level(
     let section = report.fe.as_ref().and_then(|f| f.contact_radius);
     match section {
         Some(radius) if radius > 0.0 && SCENE_PHASE_MESHES > 1 => {
-            Ok((phase_level(&s, radius, out, opts)?, report))
+            let (out, curve) = phase_level(&s, radius, out, &report, opts)?;
+            report.force_curve = curve;
+            Ok((out, report))
         }
         _ => Ok((out, report)),
     }
@@ -299,12 +331,14 @@ pub const SCENE_PHASE_MESHES: usize = 4;
 /// The section scene `s`'s level `out` (its own run, largest contact radius `radius`, m) as
 /// the mean of a phase ensemble ([`crate::study::convergence::phase_ensemble`]): the scene with both balls'
 /// pole sizes times q^{j/M}, j = 1..M−1, q the ring ratio at `radius`, run in parallel.
+/// Returns the level and the members' mean loading branch F(δ) (`own` the level's own run).
 fn phase_level(
     s: &Scene,
     radius: f64,
     out: LevelOutcome,
+    own: &RunReport,
     opts: &RunOptions,
-) -> Result<LevelOutcome> {
+) -> Result<(LevelOutcome, ForceCurve)> {
     use rayon::prelude::*;
     let mesh = crate::study::run::section::section_mesh("ball1", &s.ball1)?;
     let q = ring_ratio(&mesh, radius)?;
@@ -313,7 +347,7 @@ fn phase_level(
         history_rows: opts.history_rows,
         ..RunOptions::default()
     };
-    let members: Vec<LevelOutcome> = (1..m)
+    let runs: Vec<(LevelOutcome, Vec<HistoryRow>)> = (1..m)
         .into_par_iter()
         .map(|j| {
             let scale = q.powf(j as f64 / m as f64);
@@ -324,24 +358,34 @@ fn phase_level(
                 }
             }
             let r = run_scene(&sj, &quiet)?;
-            Ok(LevelOutcome {
+            let level = LevelOutcome {
                 e: r.e.unwrap_or(f64::NAN),
                 delta_max: r.delta_max,
                 contact_duration: r.contact_duration,
+                peak_force: r.fe.as_ref().map_or(0.0, |f| f.force.peak_smoothed),
                 wall_time_s: r.wall_time_s,
                 ..out
-            })
+            };
+            Ok((level, r.fe.map(|f| f.history).unwrap_or_default()))
         })
         .collect::<Result<_>>()?;
+    let own_rows: &[HistoryRow] = own.fe.as_ref().map_or(&[], |f| &f.history);
+    let histories: Vec<&[HistoryRow]> = std::iter::once(own_rows)
+        .chain(runs.iter().map(|(_, h)| h.as_slice()))
+        .collect();
+    let curve = ForceCurve::phase_mean(&histories);
+    let members: Vec<LevelOutcome> = runs.into_iter().map(|(l, _)| l).collect();
     let all: Vec<&LevelOutcome> = std::iter::once(&out).chain(&members).collect();
     let of = |f: fn(&LevelOutcome) -> f64| {
         PhaseMean::of(&all.iter().map(|o| f(o)).collect::<Vec<f64>>())
     };
     let e = of(|o| o.e);
-    Ok(LevelOutcome {
+    let peak_force = of(|o| o.peak_force);
+    let level = LevelOutcome {
         e: e.mean,
         delta_max: of(|o| o.delta_max).mean,
         contact_duration: of(|o| o.contact_duration).mean,
+        peak_force: peak_force.mean,
         wall_time_s: all.iter().map(|o| o.wall_time_s).sum(),
         phase: Some(PhaseSummary {
             meshes: m,
@@ -349,7 +393,9 @@ fn phase_level(
             e_sampling_error: e.sampling_error,
             e_min: e.min,
             e_max: e.max,
+            peak_force_sampling_error: peak_force.sampling_error,
         }),
         ..out
-    })
+    };
+    Ok((level, curve))
 }

@@ -24,6 +24,8 @@ pub struct LevelOutcome {
     pub delta_max: f64,
     /// Contact duration, s.
     pub contact_duration: f64,
+    /// Peak of the smoothed normal force, N ([`crate::study::run::smoothed_force`]).
+    pub peak_force: f64,
     /// Wall time of the run, s.
     pub wall_time_s: f64,
     /// The section model's phase ensemble behind e, δ_max and the contact duration (means
@@ -45,6 +47,8 @@ pub struct PhaseSummary {
     pub e_min: f64,
     /// Largest e of the members, -.
     pub e_max: f64,
+    /// Sampling error of the mean peak force (even members against all), N.
+    pub peak_force_sampling_error: f64,
 }
 
 /// The error estimate written as results.json's `error_estimate`.
@@ -58,6 +62,8 @@ pub struct ErrorEstimate {
     pub delta_max: Estimate,
     /// Contact duration, s.
     pub contact_duration: Estimate,
+    /// Peak of the smoothed normal force, N (with the phase sampling error on the section).
+    pub peak_force: Estimate,
     /// The runs of the ladder, coarse to fine (the finest is the reported run).
     pub meshes: Vec<LevelOutcome>,
     /// The requested relative tolerance on e, - (with `--tolerance`).
@@ -81,15 +87,18 @@ impl ErrorEstimate {
             })
         };
         let mut e = of(|m| m.e, "e")?;
+        let mut peak_force = of(|m| m.peak_force, "peak_force")?;
         if let Some(p) = meshes.last().and_then(|m| m.phase) {
             // The ensemble's mean still carries its sampling error.
             e = e.with_error(e.error + p.e_sampling_error);
+            peak_force = peak_force.with_error(peak_force.error + p.peak_force_sampling_error);
         }
         let tolerance_met = tolerance.map(|t| meets(&e, t));
         Ok(ErrorEstimate {
             ratio: LADDER_RATIO,
             delta_max: of(|m| m.delta_max, "delta_max")?,
             contact_duration: of(|m| m.contact_duration, "contact_duration")?,
+            peak_force,
             e,
             meshes,
             tolerance,
@@ -129,10 +138,11 @@ impl ErrorEstimate {
             ),
         };
         let mut s = format!(
-            "error bars from {family}: {}, {}, {}",
+            "error bars from {family}: {}, {}, {}, {}",
             bar("e", "", &self.e),
             bar("delta_max", " m", &self.delta_max),
-            bar("contact duration", " s", &self.contact_duration)
+            bar("contact duration", " s", &self.contact_duration),
+            bar("peak force (smoothed)", " N", &self.peak_force)
         );
         if let (Some(t), Some(met)) = (self.tolerance, self.tolerance_met) {
             s.push_str(&format!(

@@ -10,6 +10,7 @@ use crate::study::records::outcome::{
     analytic_outcome, ball_inertia, dissipation_factor, relative_difference, Outcome,
 };
 use crate::study::records::warnings::{analytic_warnings, fe_warnings, FeFigures, Warning};
+use crate::study::run::force_curve::ForceCurve;
 use crate::study::run::law_compare::{compare_laws, law_table, LawOutcome};
 use crate::study::run::simulate::{simulate, RunOptions, Simulation, HISTORY_HEADER};
 use serde::Serialize;
@@ -97,6 +98,10 @@ pub struct RunReport {
     pub error_estimate: Option<ErrorEstimate>,
     /// The scene as run (presets and overrides resolved).
     pub scene: Scene,
+    /// The loading branch F(δ) (force_curve.csv): the run's own, or on the section the
+    /// phase mean of its error estimate's fine level with a bar; empty without impact.
+    #[serde(skip)]
+    pub force_curve: ForceCurve,
 }
 
 /// Runs `scene`: analytical model, then FE (unless there is no impact).
@@ -126,6 +131,7 @@ pub fn run_scene(scene: &Scene, opts: &RunOptions) -> Result<RunReport> {
                 warnings: Vec::new(),
                 error_estimate: None,
                 scene: scene.clone(),
+                force_curve: ForceCurve::default(),
             })
         }
         Approach::Impact(t) => t,
@@ -157,6 +163,7 @@ pub fn run_scene(scene: &Scene, opts: &RunOptions) -> Result<RunReport> {
         wall_time_s: start.elapsed().as_secs_f64(),
         element_cycles: sim.element_cycles,
         relative_difference: Some(Differences::between(&fe, &an, touch.frame.axes[0])),
+        force_curve: ForceCurve::of_run(&sim.history),
         fe: Some(sim),
         analytic: Some(an),
         laws,
@@ -262,7 +269,8 @@ fn fe_figures(scene: &Scene, sim: &Simulation, r_star: f64) -> FeFigures {
     }
 }
 
-/// Writes results.json and history.csv into `dir` (created if needed), each atomically.
+/// Writes results.json, history.csv and (with an impact) force_curve.csv into `dir` (created
+/// if needed), each atomically.
 pub fn write_outputs(report: &RunReport, dir: &Path) -> Result<()> {
     ensure_dir(dir)?;
     let json = serde_json::to_string_pretty(report)
@@ -283,7 +291,17 @@ pub fn write_outputs(report: &RunReport, dir: &Path) -> Result<()> {
             csv.push('\n');
         }
     }
-    write_atomic(dir.join("history.csv"), csv.as_bytes())
+    write_atomic(dir.join("history.csv"), csv.as_bytes())?;
+    let curve = &report.force_curve;
+    if curve.delta.is_empty() {
+        return Ok(());
+    }
+    if !curve.is_finite() {
+        return Err(Error::Numerical(
+            "force_curve.csv: a non-finite force or bar; not written".into(),
+        ));
+    }
+    write_atomic(dir.join("force_curve.csv"), curve.csv().as_bytes())
 }
 
 /// The side-by-side table printed by `twoball run`.

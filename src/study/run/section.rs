@@ -21,6 +21,7 @@ use crate::study::run::section_impact::{
 use crate::study::run::simulate::{
     HistoryRow, Kinematics, Reduction, RunOptions, Savings, Simulation, DEFAULT_HOLD_FRACTION,
 };
+use crate::study::run::smoothed_force::smooth_history;
 use crate::study::run::snapshots::Snapshots;
 use std::time::Instant;
 
@@ -204,6 +205,8 @@ fn history_row(r: &ImpactRow, run: &SectionRun<'_>) -> HistoryRow {
         contact_stored: r.contact_stored,
         contact_dissipated: 0.0,
         total: r.total,
+        impulse: r.impulse,
+        normal_force_smoothed: 0.0,
     }
 }
 
@@ -247,7 +250,8 @@ pub(super) fn simulate_section(run: SectionRun<'_>, opts: &RunOptions) -> Result
     });
     bar.finish();
     let r = result.map_err(crate::study::run::simulate::advice)?;
-    let history: Vec<HistoryRow> = r.history.iter().map(|row| history_row(row, &run)).collect();
+    let mut history: Vec<HistoryRow> = r.history.iter().map(|row| history_row(row, &run)).collect();
+    let force = smooth_history(&mut history, r.contact_duration);
     let frame = run.touch.frame;
     let v_cm = run.kin.v_cm;
     let v_after =
@@ -302,6 +306,7 @@ pub(super) fn simulate_section(run: SectionRun<'_>, opts: &RunOptions) -> Result
         wall_time_s: start.elapsed().as_secs_f64(),
         max_penetration: r.max_penetration,
         contact_radius: Some(r.contact_radius_max),
+        force,
         history,
         phases: None,
     })

@@ -22,6 +22,7 @@ use crate::fe::materials::J2Material;
 use crate::fe::simd::KernelPath;
 use crate::material::Material;
 use crate::mesh::meridian::MeridianMesh;
+use crate::study::run::smoothed_force::{half_width, triangular};
 use serde::Serialize;
 use std::time::Instant;
 
@@ -160,6 +161,8 @@ pub struct ImpactRow {
     pub contact_stored: f64,
     /// Total of the above, J.
     pub total: f64,
+    /// Normal impulse since the start, ∫F dt accumulated every step, N·s.
+    pub impulse: f64,
 }
 
 /// The outcome of a head-on impact.
@@ -175,8 +178,11 @@ pub struct ImpactResult {
     pub delta_max: f64,
     /// Contact duration (first force to the fitted end of the pulse), s.
     pub contact_duration: f64,
-    /// Peak normal force (raw, of the steps), N.
+    /// Peak of the smoothed normal force (triangular window of half-width T_c/20 over the
+    /// history rows, [`crate::study::run::smoothed_force`]), N.
     pub peak_force: f64,
+    /// Peak normal force, raw, of the steps, N.
+    pub peak_force_raw: f64,
     /// Largest relative drift of the total energy over the run.
     pub energy_error: f64,
     /// Largest penetration into the plane, m.
@@ -210,6 +216,15 @@ pub struct ImpactResult {
     /// The force pulse (t in s, F in N) of the steps with a contact force.
     #[serde(skip)]
     pub pulse: Vec<(f64, f64)>,
+}
+
+/// The peak (N) of the rows' normal force smoothed for a contact of `contact_duration` (s).
+fn smoothed_peak(rows: &[ImpactRow], contact_duration: f64) -> f64 {
+    let t: Vec<f64> = rows.iter().map(|r| r.t).collect();
+    let impulse: Vec<f64> = rows.iter().map(|r| r.impulse).collect();
+    triangular(&t, &impulse, half_width(contact_duration))
+        .into_iter()
+        .fold(0.0, f64::max)
 }
 
 /// Hertz's contact duration 2.87 (m*²/(R* E*² v))^{1/5} (s) of a ball of radius `radius`
@@ -549,6 +564,7 @@ impl HeadOn {
         let dt0 = solver.dt();
         let mut history = Vec::new();
         let mut pulse: Vec<(f64, f64)> = Vec::new();
+        let mut impulse = 0.0;
         let mut next_row = 0.0;
         let mut drift: f64 = 0.0;
         let mut apart_since: Option<f64> = None;
@@ -595,6 +611,7 @@ impl HeadOn {
                     hourglass: scale * en.hourglass,
                     contact_stored: scale * en.contact,
                     total: scale * en.total,
+                    impulse,
                 };
                 if !en.total.is_finite() || !delta.is_finite() {
                     return Err(Error::Numerical(format!(
@@ -630,7 +647,9 @@ impl HeadOn {
                     self.max_steps
                 )));
             }
+            let t_before = solver.time();
             solver.step()?;
+            impulse += c.normal_force * (solver.time() - t_before);
         }
         observe(&solver, true)?;
         let (_, u_end, v_end) = approach(&solver);
@@ -644,7 +663,8 @@ impl HeadOn {
             v2_after: v_end[1],
             delta_max,
             contact_duration,
-            peak_force: pulse.iter().map(|p| p.1).fold(0.0, f64::max),
+            peak_force: smoothed_peak(&history, contact_duration),
+            peak_force_raw: pulse.iter().map(|p| p.1).fold(0.0, f64::max),
             energy_error: drift,
             max_penetration: max_pen,
             added_mass_fraction,

@@ -23,6 +23,7 @@ use crate::scene::{
 };
 use crate::study::records::outcome::{ball_inertia, dissipation_factor, Outcome};
 use crate::study::run::section::{simulate_section, SectionRun};
+use crate::study::run::smoothed_force::{smooth_history, ForceSummary};
 use crate::study::run::snapshots::Snapshots;
 use serde::Serialize;
 use std::time::Instant;
@@ -314,13 +315,19 @@ pub struct HistoryRow {
     pub contact_dissipated: f64,
     /// Sum of all the above, J.
     pub total: f64,
+    /// Normal impulse since the start of the run, ∫F dt accumulated every step, N·s.
+    pub impulse: f64,
+    /// Normal contact force smoothed by a triangular window of half-width T_c/20 in time,
+    /// impulse kept ([`crate::study::run::smoothed_force`]), N.
+    pub normal_force_smoothed: f64,
 }
 
 /// The header of history.csv, units in brackets.
 pub const HISTORY_HEADER: &str = "t [s],delta [m],normal_force [N],tangential_force [N],\
 v1x [m/s],v1y [m/s],v1z [m/s],v2x [m/s],v2y [m/s],v2z [m/s],\
 w1x [rad/s],w1y [rad/s],w1z [rad/s],w2x [rad/s],w2y [rad/s],w2z [rad/s],\
-kinetic [J],elastic [J],plastic [J],hourglass [J],contact_stored [J],contact_dissipated [J],total [J]";
+kinetic [J],elastic [J],plastic [J],hourglass [J],contact_stored [J],contact_dissipated [J],total [J],\
+impulse [N s],normal_force_smoothed [N]";
 
 impl HistoryRow {
     /// The row as CSV (all values finite by construction; checked by the caller).
@@ -336,6 +343,8 @@ impl HistoryRow {
             self.contact_stored,
             self.contact_dissipated,
             self.total,
+            self.impulse,
+            self.normal_force_smoothed,
         ]);
         v.iter()
             .map(|x| format!("{x:.9e}"))
@@ -363,6 +372,8 @@ impl HistoryRow {
             self.contact_stored,
             self.contact_dissipated,
             self.total,
+            self.impulse,
+            self.normal_force_smoothed,
         ])
         .chain(self.v.iter().flatten().copied())
         .chain(self.w.iter().flatten().copied())
@@ -422,6 +433,9 @@ pub struct Simulation {
     /// Largest contact radius over the run, m (the section model; None for the 3D models).
     #[serde(skip)]
     pub contact_radius: Option<f64>,
+    /// The contact force: raw and smoothed peaks, residual noise, the filter
+    /// (results.json `fe.force`).
+    pub force: ForceSummary,
     /// History rows.
     #[serde(skip)]
     pub history: Vec<HistoryRow>,
@@ -872,6 +886,7 @@ pub fn simulate(
         let d_touch = d_start - approach_rate * pre;
 
         let mut history = Vec::new();
+        let mut impulse = 0.0;
         let e_start = solver.energy().total;
         let mut drift: f64 = 0.0;
         let mut next_row = 0.0;
@@ -911,6 +926,14 @@ pub fn simulate(
             let probe_now = probe.last();
             let force_free = probe_now.active_nodes == 0 && probe_now.normal_force == 0.0;
             max_penetration = max_penetration.max(probe_now.max_penetration);
+            // The whole system's normal force (the reduced model's times its copies), N.
+            let normal_force = probe_now.normal_force
+                * match red {
+                    Reduction::Axisymmetric => 1.0,
+                    Reduction::Quarter => 4.0,
+                    Reduction::Half => 2.0,
+                    Reduction::Full => 1.0,
+                };
             let record = t >= next_row;
             let check = solver.step_count().is_multiple_of(16);
             if record || (by_separation && check) {
@@ -920,13 +943,7 @@ pub fn simulate(
                     let row = HistoryRow {
                         t: t - pre,
                         delta: d_touch - d,
-                        normal_force: probe_now.normal_force
-                            * match red {
-                                Reduction::Axisymmetric => 1.0,
-                                Reduction::Quarter => 4.0,
-                                Reduction::Half => 2.0,
-                                Reduction::Full => 1.0,
-                            },
+                        normal_force,
                         tangential_force: probe_now.tangential_force
                             * if red == Reduction::Half { 2.0 } else { 1.0 },
                         v: [to_scene(u[0], kin.v_cm), to_scene(u[1], kin.v_cm)],
@@ -938,6 +955,8 @@ pub fn simulate(
                         contact_stored: scale * e.interaction_stored,
                         contact_dissipated: scale * e.interaction_dissipated,
                         total: scale * e.total,
+                        impulse,
+                        normal_force_smoothed: 0.0,
                     };
                     if e_start > 0.0 {
                         drift = drift.max((e.total - e_start).abs() / e_start);
@@ -984,6 +1003,7 @@ pub fn simulate(
             )));
             }
             solver.step().map_err(advice)?;
+            impulse += normal_force * (solver.time() - t);
         }
         bar.finish();
         if let Some(s) = &mut snapshots {
@@ -994,6 +1014,7 @@ pub fn simulate(
         let w_after = [frame.to_global(w[0]), frame.to_global(w[1])];
         let data = probe.get();
         let contact_duration = data.contact_duration();
+        let force = smooth_history(&mut history, contact_duration);
         let delta_max = history.iter().map(|r| r.delta).fold(0.0, f64::max);
         let e_rel = -(u[0][0] - u[1][0]) / (kin.u[0][0] - kin.u[1][0]);
         let outcome = Outcome {
@@ -1039,6 +1060,7 @@ pub fn simulate(
             wall_time_s: start.elapsed().as_secs_f64(),
             max_penetration,
             contact_radius: None,
+            force,
             history,
             phases: opts.profile.then(|| solver.profile().totals()),
         })
