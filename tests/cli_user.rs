@@ -218,6 +218,37 @@ fn progress_is_printed_when_stderr_is_a_pipe() {
     let _ = std::fs::remove_dir_all(&root);
 }
 
+/// The refinement after "FE done" of a `--tolerance` run counts its member runs (±5 m/s: a
+/// short contact, a cheap family).
+#[test]
+fn a_tolerance_run_counts_its_member_runs() {
+    let root = scratch("tolerance-progress");
+    let o = run_in(
+        &root,
+        &[
+            "run",
+            "--tolerance",
+            "0.5%",
+            "--set",
+            "ball1.velocity=[5,0,0]",
+            "--set",
+            "ball2.velocity=[-5,0,0]",
+            "--out",
+            "tol",
+        ],
+    );
+    assert!(o.status.success(), "{}", text(&o.stderr));
+    let err = text(&o.stderr);
+    let done = err
+        .find("run: FE done")
+        .expect("the scene's run ends first");
+    let counted = err
+        .find("tolerance: banded mesh family, member runs: 4/4 cases done (0 failed)")
+        .unwrap_or_else(|| panic!("no member count:\n{err}"));
+    assert!(done < counted, "{err}");
+    let _ = std::fs::remove_dir_all(&root);
+}
+
 fn warnings_of(dir: &Path) -> Vec<String> {
     let v: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(dir.join("results.json")).unwrap()).unwrap();

@@ -164,6 +164,7 @@ fn d_scaled_mesh_gives_the_same_impact_at_5_and_20_mm() {
 /// (NOTES.md: 0.4294 against 0.4284 m/s; sweep.csv). Measured here: J_t/J_n +0.25 % from μ,
 /// v1t after +0.22 % from the analytical model.
 #[test]
+#[ignore = "a 3D half-model run of the sweep: about 1.5 min; tests/contact_oblique.rs checks gross sliding in every run"]
 fn gross_sliding_case_follows_coulomb() {
     // The sweep's mesh: its pole size is set (D/200), so the pole rule does not refine it.
     let s = scene(&[

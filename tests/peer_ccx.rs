@@ -222,6 +222,7 @@ fn ccx_finite_ball_is_stiffer_than_hertz() {
 /// the wrong set or with the wrong sign, or the approach taken at the pole instead of the
 /// centre of mass, would fall outside 3.5-4.6 %.
 #[test]
+#[ignore = "a CalculiX static solve on a fine free ball: about 1.5 min"]
 fn ccx_free_ball_is_stiffer_than_the_held_one() {
     let Some((row, out)) =
         static_hertz_20um(&["--support", "free", "--depths", "20", "--per-a", "10"])

@@ -219,6 +219,7 @@ const LEVEL_2: [(&str, f64, f64); 21] = [
 /// 2 % of the banded family's level-2 mean, whatever its own bar says (docs/contact-
 /// penalty.md, "The default levels against the floor").
 #[test]
+#[ignore = "21 default runs: about a minute in release, more in the test profile"]
 fn the_default_levels_stay_within_the_floor() {
     use twoball::study::convergence::scene_estimate::{run_scene_default, LEVELS_TOLERANCE_FLOOR};
     let opts = RunOptions {

@@ -186,18 +186,7 @@ fn run(
         let mut columns = vec![Vec::new(); names.len()];
         if let Some(sim) = &report.fe {
             for r in &sim.history {
-                let mut row = vec![r.t, r.delta, r.normal_force, r.tangential_force];
-                row.extend(r.v.iter().flatten());
-                row.extend(r.w.iter().flatten());
-                row.extend([
-                    r.kinetic,
-                    r.elastic,
-                    r.plastic,
-                    r.hourglass,
-                    r.contact_stored,
-                    r.contact_dissipated,
-                    r.total,
-                ]);
+                let row = r.values();
                 for (c, x) in columns.iter_mut().zip(row) {
                     c.push(x);
                 }

@@ -138,7 +138,8 @@ class Run:
     centres), normal_force [N], tangential_force [N], v1x..v2z [m/s] (centre-of-mass
     velocities), w1x..w2z [rad/s] (angular velocities), kinetic, elastic, plastic,
     hourglass, contact_stored, contact_dissipated, total [J] (energies of the whole
-    system). ``units`` maps each name to its unit; ``columns`` keeps the csv order.
+    system), impulse [N s] (accumulated every step) and normal_force_smoothed [N] (a
+    triangular window of half-width T_c/20 that keeps the impulse). ``units`` maps each name to its unit; ``columns`` keeps the csv order.
     """
 
     def __init__(self, results: dict, history: Dict[str, np.ndarray], units: Dict[str, str]):

@@ -38,7 +38,8 @@ def materials() -> Dict[str, Any]:
 class Run:
     """One scene's results: ``results`` (results.json's keys) and ``history`` (numpy arrays
     per history.csv column: t [s], delta [m], normal_force [N], tangential_force [N],
-    v1x..v2z [m/s], w1x..w2z [rad/s], kinetic..total [J])."""
+    v1x..v2z [m/s], w1x..w2z [rad/s], kinetic..total [J], impulse [N s],
+    normal_force_smoothed [N])."""
 
     results: Dict[str, Any]
     history: Dict[str, npt.NDArray[np.float64]]

@@ -594,8 +594,12 @@ pub fn converged_head_on(case: &HeadOnCase, plan: &PhasePlan) -> Result<HeadOnAn
         // The banded ring ratio is read at the edge: both levels' members run at once.
         Some(_) => {
             let token = crate::study::common::interrupt::current();
-            let within =
-                |level: i32| crate::study::common::interrupt::within(token.as_ref(), || at(level));
+            let counter = crate::study::common::progress::members();
+            let within = |level: i32| {
+                crate::study::common::interrupt::within(token.as_ref(), || {
+                    crate::study::common::progress::counting_members(counter.as_ref(), || at(level))
+                })
+            };
             rayon::join(|| within(plan.level - 1), || within(plan.level))
         }
         None => (at(plan.level - 1), at(plan.level)),

@@ -294,7 +294,8 @@ impl FePlan {
 
 /// The FE model of the head-on points, the start of every cache file's model name
 /// ([`FePlan::model`] adds the plan).
-pub const FE_MODEL: &str = "section phase ensemble with error bars, kinematic symmetry plane";
+pub const FE_MODEL: &str =
+    "section phase ensemble with error bars, kinematic symmetry plane, smoothed peak force";
 
 /// The FE model of the oblique points: one run of the 3D half model on the default graded
 /// meshes ([`oblique_fe`]), whatever the head-on plan (its cache files are not tied to it).

@@ -332,6 +332,15 @@ impulse [N s],normal_force_smoothed [N]";
 impl HistoryRow {
     /// The row as CSV (all values finite by construction; checked by the caller).
     pub fn csv(&self) -> String {
+        self.values()
+            .iter()
+            .map(|x| format!("{x:.9e}"))
+            .collect::<Vec<_>>()
+            .join(",")
+    }
+
+    /// The row's values in the order of [`HISTORY_HEADER`], in its units.
+    pub fn values(&self) -> Vec<f64> {
         let mut v = vec![self.t, self.delta, self.normal_force, self.tangential_force];
         v.extend(self.v.iter().flatten());
         v.extend(self.w.iter().flatten());
@@ -346,10 +355,7 @@ impl HistoryRow {
             self.impulse,
             self.normal_force_smoothed,
         ]);
-        v.iter()
-            .map(|x| format!("{x:.9e}"))
-            .collect::<Vec<_>>()
-            .join(",")
+        v
     }
 
     fn is_finite(&self) -> bool {
