@@ -18,6 +18,22 @@ use twoball::study::convergence::converged_scene::{family_case, plan};
 use twoball::study::convergence::phase_band::banded_ensemble_at;
 use twoball::study::convergence::phase_ensemble::converged_head_on;
 
+/// The default scene with two balls of metal `m` and diameter `d` (m) at ±`v` (m/s).
+fn head_on(m: &str, d: f64, v: f64) -> Scene {
+    let sets: Vec<Override> = [
+        format!("ball1.material=\"{m}\""),
+        format!("ball2.material=\"{m}\""),
+        format!("ball1.diameter={d}"),
+        format!("ball2.diameter={d}"),
+        format!("ball1.velocity=[{v},0,0]"),
+        format!("ball2.velocity=[-{v},0,0]"),
+    ]
+    .iter()
+    .map(|s| Override::parse(s).unwrap())
+    .collect();
+    Scene::from_toml(DEFAULT_SCENE, Path::new("."), &sets).unwrap()
+}
+
 #[test]
 #[ignore]
 fn the_tolerance_bar_holds_in_nine_cases_of_ten() {
@@ -33,16 +49,7 @@ fn the_tolerance_bar_holds_in_nine_cases_of_ten() {
     for m in &materials {
         for &v in &speeds {
             // The default scene (D = 20 mm) of metal `m` at ±v, as `--tolerance 0.5%` cases it.
-            let sets: Vec<Override> = [
-                format!("ball1.material=\"{m}\""),
-                format!("ball2.material=\"{m}\""),
-                format!("ball1.velocity=[{v},0,0]"),
-                format!("ball2.velocity=[-{v},0,0]"),
-            ]
-            .iter()
-            .map(|s| Override::parse(s).unwrap())
-            .collect();
-            let scene = Scene::from_toml(DEFAULT_SCENE, Path::new("."), &sets).unwrap();
+            let scene = head_on(m, 0.02, v);
             let case = family_case(&scene, 0.005).unwrap().unwrap();
             let start = std::time::Instant::now();
             // The claim: levels 0 and 1, as `--tolerance` runs them before any refinement.
@@ -82,9 +89,10 @@ fn the_tolerance_bar_holds_in_nine_cases_of_ten() {
 /// `steel-4340` at D = 10 and 30 mm and ±0.05, ±1, ±10 m/s, and the `ofhc-copper` D = 20 mm
 /// ±5 m/s case of the issue. The default claim is `twoball run`'s (levels −1 and 0 of the
 /// scene's own ladder, each a phase ensemble); the tolerance claim is the banded family's
-/// levels 0 and 1 as `--tolerance 0.5%` runs them (mass-scaled). The reference is the banded
-/// family one level finer than the tolerance claim (level 2) with mass scaling off, so that a
-/// bias of mass scaling on strain rates counts as error. A claim holds when |e − e_ref| ≤ bar.
+/// levels 0 and 1 as `--tolerance 0.5%` runs them (mass-scaling budget 1e-4). The reference
+/// is the banded family one level finer than the tolerance claim (level 2, the same budget;
+/// the bias of mass scaling on these rate-dependent metals is measured apart with
+/// `examples/mass_scaling.rs`). A claim holds when |e − e_ref| ≤ bar.
 ///
 /// `cargo test --release --test tolerance_honesty johnson_cook -- --ignored --nocapture`.
 #[test]
@@ -111,18 +119,7 @@ fn johnson_cook_bars_hold_in_twelve_cases_of_thirteen() {
     let (mut default_ok, mut tolerance_ok) = (0, 0);
     for &(m, d, v) in &cases {
         let start = std::time::Instant::now();
-        let sets: Vec<Override> = [
-            format!("ball1.material=\"{m}\""),
-            format!("ball2.material=\"{m}\""),
-            format!("ball1.diameter={d}"),
-            format!("ball2.diameter={d}"),
-            format!("ball1.velocity=[{v},0,0]"),
-            format!("ball2.velocity=[-{v},0,0]"),
-        ]
-        .iter()
-        .map(|s| Override::parse(s).unwrap())
-        .collect();
-        let scene = Scene::from_toml(DEFAULT_SCENE, Path::new("."), &sets).unwrap();
+        let scene = head_on(m, d, v);
         let opts = RunOptions {
             history_rows: 200,
             ..RunOptions::default()
@@ -137,16 +134,12 @@ fn johnson_cook_bars_hold_in_twelve_cases_of_thirteen() {
         claim_plan.tolerance = None;
         let claim = converged_head_on(&case, &claim_plan).unwrap();
         let edge = claim.band_edge.expect("the banded family has an edge");
-        let mut unscaled = case.clone();
-        unscaled.mass_scaling = 0.0;
-        let (reference, _) = banded_ensemble_at(
-            &unscaled,
-            2,
-            claim_plan.meshes,
-            edge,
-            claim_plan.band.unwrap(),
-        )
-        .unwrap();
+        // The claim's mass-scaling budget: its bias on a rate-dependent metal is measured
+        // apart (verification/contact-penalty.md, "Mass scaling of the contact region"); a
+        // reference without it costs tens of CPU minutes a case at level 2.
+        let (reference, _) =
+            banded_ensemble_at(&case, 2, claim_plan.meshes, edge, claim_plan.band.unwrap())
+                .unwrap();
         let e_ref = reference.e.mean;
         let (e1, bar1) = (claim.e.value, claim.e.error);
         let covered0 = (e0 - e_ref).abs() <= bar0;
