@@ -249,6 +249,33 @@ fn a_tolerance_run_counts_its_member_runs() {
     let _ = std::fs::remove_dir_all(&root);
 }
 
+/// A default run on a Johnson-Cook metal says in one line that its bar is not honest there.
+#[test]
+fn a_default_run_on_a_johnson_cook_metal_warns_of_its_bar() {
+    let root = scratch("jc-bar");
+    let o = run_in(
+        &root,
+        &[
+            "run",
+            "--set",
+            "ball1.material=\"ofhc-copper\"",
+            "--set",
+            "ball2.material=\"ofhc-copper\"",
+            "--out",
+            "jc",
+        ],
+    );
+    assert!(o.status.success(), "{}", text(&o.stderr));
+    let err = text(&o.stderr);
+    let lines: Vec<&str> = err
+        .lines()
+        .filter(|l| l.contains("not honest on a rate-dependent"))
+        .collect();
+    assert_eq!(lines.len(), 1, "{err}");
+    assert!(warnings_of(&root.join("jc")).contains(&"rate_dependent_bar".to_string()));
+    let _ = std::fs::remove_dir_all(&root);
+}
+
 fn warnings_of(dir: &Path) -> Vec<String> {
     let v: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(dir.join("results.json")).unwrap()).unwrap();

@@ -168,6 +168,18 @@ pub fn run_scene_with_estimate(
             ..estimate
         },
     )?;
+    let rate_dependent = |b: &crate::scene::BallScene| {
+        b.material
+            .hardening
+            .is_some_and(|law| !law.rate_independent())
+    };
+    if matches!(plan, LadderPlan::TwoLevels)
+        && (rate_dependent(&scene.ball1) || rate_dependent(&scene.ball2))
+    {
+        report
+            .warnings
+            .push(crate::study::records::warnings::rate_dependent_bar());
+    }
     report.wall_time_s = start.elapsed().as_secs_f64();
     Ok(report)
 }
