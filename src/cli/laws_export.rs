@@ -150,9 +150,22 @@ pub fn export(a: LawExportArgs, registry: &Registry) -> Result<()> {
     Ok(())
 }
 
-/// The law, parameters, material, diameter and reference speed a deck folder was written
-/// for (fit.json of `laws fit`, or law.json of `laws export`).
-fn read_setting(dir: &Path) -> Result<(String, Vec<(String, f64)>, String, f64, f64)> {
+/// What a deck folder was written for (fit.json of `laws fit`, or law.json of `laws export`).
+struct Setting {
+    /// The normal law's name.
+    law: String,
+    /// Its parameters by name, in their SI units.
+    params: Vec<(String, f64)>,
+    /// The material preset.
+    material: String,
+    /// Ball diameter, m.
+    diameter: f64,
+    /// Reference speed, m/s.
+    speed: f64,
+}
+
+/// The [`Setting`] of the deck folder `dir`.
+fn read_setting(dir: &Path) -> Result<Setting> {
     let path = [dir.join("fit.json"), dir.join("law.json")]
         .into_iter()
         .find(|p| p.exists())
@@ -182,13 +195,25 @@ fn read_setting(dir: &Path) -> Result<(String, Vec<(String, f64)>, String, f64, 
         .iter()
         .map(|(k, x)| x.as_f64().map(|x| (k.clone(), x)).ok_or_else(|| field(k)))
         .collect::<Result<Vec<_>>>()?;
-    Ok((law, params, material, diameter, speed))
+    Ok(Setting {
+        law,
+        params,
+        material,
+        diameter,
+        speed,
+    })
 }
 
 /// `twoball laws dem` against `registry`.
 pub fn dem(a: LawDemArgs, registry: &Registry) -> Result<()> {
     let code = Code::parse(&a.code)?;
-    let (law, over, material, diameter, reference) = read_setting(&a.dir)?;
+    let Setting {
+        law,
+        params: over,
+        material,
+        diameter,
+        speed: reference,
+    } = read_setting(&a.dir)?;
     let spec = *registry.normal(&law)?;
     let m = preset(&material)?;
     let b = Body::ball(m, diameter, "ball")?;
