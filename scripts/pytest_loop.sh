@@ -15,7 +15,7 @@ load="$(mktemp -d)"
 # The load: the default scene on the 3D quarter model (a single-threaded run of seconds), over and over.
 ( while true; do "$bin" run --no-error-estimate --set 'reduction.symmetry="auto-3d"' --out "$load/run" >/dev/null 2>&1 || true; done ) &
 loader=$!
-trap 'kill "$loader" 2>/dev/null; wait "$loader" 2>/dev/null; rm -rf "$load"' EXIT
+trap 'kill "$loader" 2>/dev/null || true; wait "$loader" 2>/dev/null || true; rm -rf "$load"' EXIT
 for i in $(seq 1 "$n"); do
   start=$(date +%s)
   if ! (cd python && TWOBALL_BIN="../$bin" PATH="$PWD/../target/python-front/venv/bin:$PATH" \
