@@ -76,6 +76,12 @@ pub const PRESET_NAMES: [&str; 12] = [
 ];
 
 impl Material {
+    /// Whether the response has no time scale: no hardening law, or one without a strain-rate
+    /// term ([`Law::rate_independent`]).
+    pub fn rate_independent(&self) -> bool {
+        self.hardening.is_none_or(|law| law.rate_independent())
+    }
+
     /// Builds a material from engineering units (E in GPa, yield in MPa) with `tangent = E/100`
     /// and μ_s = μ_d; used for the presets.
     const fn table(e_gpa: f64, yield_mpa: f64, rho: f64, mu: f64, nu: f64) -> Material {

@@ -168,13 +168,8 @@ pub fn run_scene_with_estimate(
             ..estimate
         },
     )?;
-    let rate_dependent = |b: &crate::scene::BallScene| {
-        b.material
-            .hardening
-            .is_some_and(|law| !law.rate_independent())
-    };
     if matches!(plan, LadderPlan::TwoLevels)
-        && (rate_dependent(&scene.ball1) || rate_dependent(&scene.ball2))
+        && !(scene.ball1.material.rate_independent() && scene.ball2.material.rate_independent())
     {
         report
             .warnings

@@ -11,7 +11,6 @@
 //! similarity check, 3.2e-10 relative; docs/contact-laws.md). A sweep over diameters with
 //! per-diameter meshes derives its similar cases from one run ([`crate::study::sweep`]).
 
-use crate::material::Material;
 use crate::scene::{BallScene, MeshSettings, OutputSettings, Scene, SolverSettings};
 use crate::study::records::case::FeCase;
 use serde_json::Value;
@@ -19,11 +18,6 @@ use serde_json::Value;
 /// Relative tolerance of the comparison of two scaled scenes' numbers (per-diameter sizes
 /// scaled back differ from the other scene's in the last bits).
 const SAME: f64 = 1e-12;
-
-/// True when `m` has no time scale (no strain-rate term; linear hardening without a law).
-fn rate_independent(m: &Material) -> bool {
-    m.hardening.is_none_or(|law| law.rate_independent())
-}
 
 /// Ball `b` with its lengths scaled by `k` (its spin by 1/k); None for a mesh read from a
 /// file (not scalable here) or a rate-dependent material.
@@ -44,7 +38,7 @@ fn scaled_ball(b: &BallScene, k: f64) -> Option<BallScene> {
         },
         MeshSettings::File { .. } => return None,
     };
-    rate_independent(&material).then(|| BallScene {
+    material.rate_independent().then(|| BallScene {
         material,
         material_name,
         diameter: k * diameter,
@@ -83,7 +77,7 @@ pub fn scaled(scene: &Scene, k: f64) -> Option<Scene> {
     } = output;
     let wall = match wall {
         Some(mut w) => {
-            if w.material.is_some_and(|m| !rate_independent(&m)) {
+            if w.material.is_some_and(|m| !m.rate_independent()) {
                 return None;
             }
             w.position = w.position.map(|x| k * x);
