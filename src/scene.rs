@@ -18,6 +18,7 @@
 
 mod approach;
 mod laws;
+mod material_table;
 mod overrides;
 pub mod pole;
 pub(crate) mod reader;
@@ -29,12 +30,13 @@ pub use overrides::Override;
 pub use wall::{WallKind, WallScene, DEFAULT_BLOCK_PER_D};
 
 use crate::error::{Error, Result};
-use crate::fe::materials::{law::LAW_NAMES, Law};
-use crate::material::{Material, MaterialOverrides, PRESET_NAMES};
+use crate::material::Material;
+use material_table::{read_material, MATERIAL_KEYS};
 use reader::{parse_table, Reader};
 use serde::Serialize;
 use std::path::{Path, PathBuf};
 use toml::{Table, Value};
+use wall::{dot, norm};
 
 /// The built-in default scene: the paper's Figure 8 case (FE-study copper, D = 20 mm,
 /// +1 and −1 m/s along the line of centres, no tangential speed).
@@ -264,17 +266,6 @@ const BALL_KEYS: [&str; 6] = [
     "position",
     "mesh",
 ];
-const MATERIAL_KEYS: [&str; 9] = [
-    "preset",
-    "hardening",
-    "E",
-    "nu",
-    "rho",
-    "yield",
-    "tangent",
-    "mu",
-    "mu_static",
-];
 const MESH_KEYS: [&str; 3] = ["size", "pole_size", "file"];
 const CONTACT_KEYS: [&str; 3] = ["penalty_factor", "friction", "plane"];
 const SOLVER_KEYS: [&str; 6] = [
@@ -382,8 +373,8 @@ impl Scene {
                         .into(),
                 )),
                 Some(w) => {
-                    let ball1 = w.place(ball1)?;
-                    let image = w.image(&ball1);
+                    let ball1 = place_against(w, ball1)?;
+                    let image = wall_image(w, &ball1);
                     (ball1, image, pole1_given)
                 }
             };
@@ -501,112 +492,6 @@ fn read_ball(b: Reader<'_>, dir: &Path) -> Result<(BallScene, bool)> {
         mesh,
     };
     Ok((ball, pole_given))
-}
-
-fn read_material(b: &Reader<'_>) -> Result<(Material, String)> {
-    let path = b.key_path("material");
-    let presets = format!("one of {}", PRESET_NAMES.join(", "));
-    let preset = |name: &str, field: &str| {
-        Material::preset(name)
-            .map_err(|_| Error::invalid(field, format!("\"{name}\""), presets.clone()))
-    };
-    match b.raw("material") {
-        None => Err(b.missing(
-            "material",
-            "a preset name or a table { E, nu, rho, yield, mu, ... }",
-        )),
-        Some(Value::String(name)) => Ok((preset(name, &path)?, name.clone())),
-        Some(Value::Table(t)) => {
-            let m = Reader::new(&path, t);
-            m.only(&MATERIAL_KEYS)?;
-            let base = match m.string("preset")? {
-                Some(name) => Some((preset(name, &m.key_path("preset"))?, name.to_string())),
-                None => None,
-            };
-            let any = |_: f64| true;
-            let o = MaterialOverrides {
-                youngs: m.f64("E", any, "finite")?,
-                nu: m.f64("nu", any, "finite")?,
-                rho: m.f64("rho", any, "finite")?,
-                yield_strength: m.f64("yield", any, "finite")?,
-                tangent: m.f64("tangent", any, "finite")?,
-                mu: m.f64("mu", any, "finite")?,
-                mu_static: m.f64("mu_static", any, "finite")?,
-            };
-            let (base, name) = match base {
-                Some(b) => b,
-                None => {
-                    // No preset: the essential fields are required; E_T = E/100 and μ_s = μ as
-                    // for the presets.
-                    for (key, v) in [
-                        ("E", o.youngs),
-                        ("nu", o.nu),
-                        ("rho", o.rho),
-                        ("yield", o.yield_strength),
-                        ("mu", o.mu),
-                    ] {
-                        if v.is_none() {
-                            return Err(Error::Parse(format!(
-                                "missing required key {path}.{key} (or give {path}.preset)"
-                            )));
-                        }
-                    }
-                    let e = o.youngs.unwrap_or(1.0);
-                    let mu = o.mu.unwrap_or(0.0);
-                    let base = Material {
-                        youngs: e,
-                        nu: 0.0,
-                        rho: 1.0,
-                        yield_strength: 1.0,
-                        tangent: if e.is_finite() && e > 0.0 {
-                            e / 100.0
-                        } else {
-                            0.0
-                        },
-                        mu,
-                        mu_static: mu,
-                        hardening: None,
-                    };
-                    (base, "custom".to_string())
-                }
-            };
-            let mut mat = base
-                .with_overrides(&o)
-                .map_err(|e| e.map_field(|field| field.replacen("material", &path, 1)))?;
-            if let Some(h) = m.table("hardening")? {
-                let hp = m.key_path("hardening");
-                mat.hardening = Some(read_hardening(&h, &hp, mat.yield_strength)?);
-            }
-            if let Some(Law::JohnsonCook(jc)) = mat.hardening {
-                if o.yield_strength.is_some() {
-                    return Err(Error::Parse(format!(
-                        "{path}.yield is the Johnson-Cook law's A: give {path}.hardening.A instead"
-                    )));
-                }
-                mat.yield_strength = jc.a;
-            }
-            Ok((mat, name))
-        }
-        Some(other) => Err(Error::Parse(format!(
-            "{path} = {} has the wrong type: expected a preset name or a table",
-            reader::show(other)
-        ))),
-    }
-}
-
-/// A hardening table `{ law = "...", keys of the law }` named `path`; `yield0` is the
-/// material's yield strength (Pa).
-fn read_hardening(h: &Reader<'_>, path: &str, yield0: f64) -> Result<Law> {
-    let laws = format!("one of {}", LAW_NAMES.join(", "));
-    let name = h.string("law")?.ok_or_else(|| h.missing("law", &laws))?;
-    let keys = Law::keys(name)
-        .ok_or_else(|| Error::invalid(h.key_path("law"), format!("\"{name}\""), laws.clone()))?;
-    let mut allowed = vec!["law"];
-    allowed.extend_from_slice(keys);
-    h.only(&allowed)?;
-    Law::from_keys(name, path, yield0, &mut |key| {
-        h.f64(key, |_| true, "finite")
-    })
 }
 
 /// The mesh settings and whether `pole_size` was given.
@@ -823,4 +708,60 @@ fn read_reduction(r: Option<Reader<'_>>) -> Result<ReductionSettings> {
         out.skip_work = s;
     }
     Ok(out)
+}
+/// Checks ball 1 against the wall and places it: its centre as given, or touching the
+/// wall's face at `position`. Returns ball 1 with its position set.
+///
+/// Errors (one line, naming the field): ball 1 behind or through the wall, not moving
+/// towards it, moving obliquely, or spinning (the FE wall models are head-on only).
+fn place_against(wall: &WallScene, mut ball1: BallScene) -> Result<BallScene> {
+    let r = ball1.diameter / 2.0;
+    let centre = ball1
+        .position
+        .unwrap_or([0, 1, 2].map(|k| wall.position[k] + r * wall.normal[k]));
+    let s = wall.distance(centre);
+    if s < r * (1.0 - 1e-9) {
+        return Err(Error::invalid(
+            "ball1.position",
+            format!("{centre:?} ({s:.6e} m in front of the wall)"),
+            format!("a centre at least the radius {r:.6e} m in front of the wall's face"),
+        ));
+    }
+    let v = ball1.velocity;
+    let vn = dot(v, wall.normal);
+    if vn >= 0.0 {
+        return Err(Error::invalid(
+            "ball1.velocity",
+            format!("{v:?}"),
+            "towards the wall (velocity · wall.normal < 0)",
+        ));
+    }
+    let tangential = [0, 1, 2].map(|k| v[k] - vn * wall.normal[k]);
+    if norm(tangential) > 1e-12 * vn.abs() {
+        return Err(Error::invalid(
+            "ball1.velocity",
+            format!("{v:?}"),
+            "along wall.normal: the wall models are head-on only (no oblique impact)",
+        ));
+    }
+    let w = ball1.angular_velocity;
+    if norm(w) * r > 1e-12 * vn.abs() {
+        return Err(Error::invalid(
+            "ball1.angular_velocity",
+            format!("{w:?}"),
+            "[0, 0, 0]: the wall models are head-on only (no spin)",
+        ));
+    }
+    ball1.position = Some(centre);
+    Ok(ball1)
+}
+
+/// Ball 1's mirror image in the wall: same material, size and mesh, mirrored centre and
+/// velocity, no spin (`ball1` placed by [`place_against`]).
+fn wall_image(wall: &WallScene, ball1: &BallScene) -> BallScene {
+    let mut b = ball1.clone();
+    b.position = ball1.position.map(|p| wall.mirror_point(p));
+    b.velocity = wall.mirror_vector(ball1.velocity);
+    b.angular_velocity = [0.0; 3];
+    b
 }

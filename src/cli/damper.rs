@@ -2,7 +2,7 @@
 //! in parallel, with their report; flags override the laws, friction, frame mass, box and
 //! duration of every case.
 
-use super::laws::parse_params;
+use super::law_params::parse_params;
 use crate::analytic::laws::Registry;
 use crate::damper::file::{read, Overrides};
 use crate::damper::report::{write_report, ReportInput};

@@ -3,6 +3,7 @@
 //! law's parameters to restitution and maximum-approach data and export them for DEM codes.
 
 use super::analytic::{bodies, AnalyticArgs};
+use super::law_params::parse_params;
 use crate::analytic::collision::pair_friction;
 use crate::analytic::friction::{normal_energy_loss, revised_eta, zhang_energy_loss};
 use crate::analytic::impact::{integrate, LawImpact, DEFAULT_TOLERANCE};
@@ -186,23 +187,6 @@ pub struct LawRunArgs {
     /// and event, --samples does not apply).
     #[command(flatten)]
     pub ball: AnalyticArgs,
-}
-
-/// Parses `KEY=VALUE` strings of flag `flag` into (key, value) pairs.
-pub(super) fn parse_params(flag: &str, items: &[String]) -> Result<Vec<(String, f64)>> {
-    items
-        .iter()
-        .map(|s| {
-            let (k, v) = s.split_once('=').ok_or_else(|| {
-                Error::Parse(format!("{flag} {s}: expected KEY=VALUE, e.g. {flag} e=0.7"))
-            })?;
-            let x: f64 = v
-                .trim()
-                .parse()
-                .map_err(|_| Error::Parse(format!("{flag} {s}: value '{v}' is not a number")))?;
-            Ok((k.trim().to_string(), x))
-        })
-        .collect()
 }
 
 /// Finite numbers as JSON numbers, anything else as null.

@@ -2,7 +2,7 @@
 //! `twoball laws dem`: a deck (from `laws fit` or `laws export`) run unedited in its DEM code
 //! and compared with `twoball laws run` of the same law and parameters.
 
-use super::laws::parse_params;
+use super::law_params::parse_params;
 use crate::analytic::laws::{ContactPair, Params, Registry};
 use crate::analytic::Body;
 use crate::atomic::write_atomic;

@@ -2,7 +2,7 @@
 //! files a DEM user needs (fit.json, e_of_v.csv, DEM input snippets) are written by
 //! `study::report::law_fit_files`.
 
-use super::laws::parse_params;
+use super::law_params::parse_params;
 use crate::analytic::law_fit::{fit, read_observations};
 use crate::analytic::laws::{ContactPair, Registry};
 use crate::analytic::Body;

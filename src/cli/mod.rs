@@ -11,6 +11,7 @@ mod bench;
 mod bench_profile;
 mod bench_study;
 mod damper;
+mod law_params;
 mod laws;
 mod laws_export;
 mod laws_fit;

@@ -24,7 +24,6 @@
 //! wall where the image's symmetry plane was, with the wall's own penalty (design.md §6).
 
 use super::reader::Reader;
-use super::BallScene;
 use crate::error::{Error, Result};
 use crate::material::Material;
 use serde::Serialize;
@@ -64,11 +63,11 @@ pub struct WallScene {
 
 pub(crate) const WALL_KEYS: [&str; 5] = ["kind", "position", "normal", "material", "size"];
 
-fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
+pub(crate) fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
     a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
 }
 
-fn norm(a: [f64; 3]) -> f64 {
+pub(crate) fn norm(a: [f64; 3]) -> f64 {
     dot(a, a).sqrt()
 }
 
@@ -104,7 +103,7 @@ pub(crate) fn read_wall(w: Reader<'_>) -> Result<WallScene> {
             (None, None)
         }
         WallKind::Elastic => {
-            let (m, _) = super::read_material(&w)?;
+            let (m, _) = super::material_table::read_material(&w)?;
             let size = w.array::<2>(
                 "size",
                 |x| x > 0.0 && x <= 100.0,
@@ -177,62 +176,5 @@ impl WallScene {
     pub fn mirror_vector(&self, v: [f64; 3]) -> [f64; 3] {
         let s = dot(v, self.normal);
         [0, 1, 2].map(|k| v[k] - 2.0 * s * self.normal[k])
-    }
-
-    /// Checks ball 1 against the wall and places it: its centre as given, or touching the
-    /// wall's face at `position`. Returns ball 1 with its position set.
-    ///
-    /// Errors (one line, naming the field): ball 1 behind or through the wall, not moving
-    /// towards it, moving obliquely, or spinning (the FE wall models are head-on only).
-    pub(crate) fn place(&self, mut ball1: BallScene) -> Result<BallScene> {
-        let r = ball1.diameter / 2.0;
-        let centre = ball1
-            .position
-            .unwrap_or([0, 1, 2].map(|k| self.position[k] + r * self.normal[k]));
-        let s = self.distance(centre);
-        if s < r * (1.0 - 1e-9) {
-            return Err(Error::invalid(
-                "ball1.position",
-                format!("{centre:?} ({s:.6e} m in front of the wall)"),
-                format!("a centre at least the radius {r:.6e} m in front of the wall's face"),
-            ));
-        }
-        let v = ball1.velocity;
-        let vn = dot(v, self.normal);
-        if vn >= 0.0 {
-            return Err(Error::invalid(
-                "ball1.velocity",
-                format!("{v:?}"),
-                "towards the wall (velocity · wall.normal < 0)",
-            ));
-        }
-        let tangential = [0, 1, 2].map(|k| v[k] - vn * self.normal[k]);
-        if norm(tangential) > 1e-12 * vn.abs() {
-            return Err(Error::invalid(
-                "ball1.velocity",
-                format!("{v:?}"),
-                "along wall.normal: the wall models are head-on only (no oblique impact)",
-            ));
-        }
-        let w = ball1.angular_velocity;
-        if norm(w) * r > 1e-12 * vn.abs() {
-            return Err(Error::invalid(
-                "ball1.angular_velocity",
-                format!("{w:?}"),
-                "[0, 0, 0]: the wall models are head-on only (no spin)",
-            ));
-        }
-        ball1.position = Some(centre);
-        Ok(ball1)
-    }
-
-    /// Ball 1's mirror image in the wall: same material, size and mesh, mirrored centre and
-    /// velocity, no spin (`ball1` placed by [`WallScene::place`]).
-    pub fn image(&self, ball1: &BallScene) -> BallScene {
-        let mut b = ball1.clone();
-        b.position = ball1.position.map(|p| self.mirror_point(p));
-        b.velocity = self.mirror_vector(ball1.velocity);
-        b.angular_velocity = [0.0; 3];
-        b
     }
 }

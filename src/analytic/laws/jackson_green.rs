@@ -10,6 +10,7 @@
 //! δ_r/δ_max = 1.02 [1 − ((x_max + 5.9)/6.9)^{−0.54}] (0 for x_max ≤ 1).
 
 use super::quasi_static::max_approach;
+use super::validity::Validity;
 use super::{ClosedForm, ContactPair, NormalLaw, NormalSpec, ParamSpec, Params, Turn};
 use std::f64::consts::PI;
 
@@ -95,7 +96,7 @@ pub const SPEC: NormalSpec = NormalSpec {
     title: "Jackson-Green elastic-plastic FE fit, Jackson-Green-Marghitu unloading",
     source: "R. L. Jackson, I. Green, J. Tribol. 127 (2005) 343-354; R. L. Jackson, I. Green, D. B. Marghitu, Nonlinear Dyn. 60 (2010) 217-229",
     dem_codes: "none of LIGGGHTS, LAMMPS, Yade, MercuryDPM",
-    validity: super::validity::JACKSON_GREEN,
+    validity: VALIDITY,
     params: &[
         ParamSpec {
             key: "S_y",
@@ -120,6 +121,27 @@ pub const SPEC: NormalSpec = NormalSpec {
             radius: pair.hertz.radius,
             yield_strength: p.get("S_y"),
             poisson: p.get("nu"),
+        })
+    },
+};
+
+/// Jackson-Green: the FE fits' range of δ/δ_c.
+pub const VALIDITY: Validity = Validity {
+    range: "elastic-perfectly plastic, delta_max/delta_c <= 110: the residual-approach fit of Etsion, Kligerman & \
+            Kadin (2005, Int. J. Solids Struct. 42, 3716) was made up to about that interference",
+    check: |pair, params, delta_max, _| {
+        let jg = JacksonGreen {
+            modulus: pair.hertz.modulus,
+            radius: pair.hertz.radius,
+            yield_strength: params.get("S_y"),
+            poisson: params.get("nu"),
+        };
+        let x = delta_max / jg.critical_approach();
+        (x > 110.0).then(|| {
+            format!(
+                "delta_max/delta_c = {x:.0} > 110, outside the FE fits (Etsion, Kligerman & Kadin 2005): \
+                 delta_r/delta_max is extrapolated"
+            )
         })
     },
 };

@@ -91,27 +91,6 @@ pub const PERFECTLY_PLASTIC: Validity = Validity {
     check: |_, _, _, _| None,
 };
 
-/// Jackson-Green: the FE fits' range of δ/δ_c.
-pub const JACKSON_GREEN: Validity = Validity {
-    range: "elastic-perfectly plastic, delta_max/delta_c <= 110: the residual-approach fit of Etsion, Kligerman & \
-            Kadin (2005, Int. J. Solids Struct. 42, 3716) was made up to about that interference",
-    check: |pair, params, delta_max, _| {
-        let jg = super::jackson_green::JacksonGreen {
-            modulus: pair.hertz.modulus,
-            radius: pair.hertz.radius,
-            yield_strength: params.get("S_y"),
-            poisson: params.get("nu"),
-        };
-        let x = delta_max / jg.critical_approach();
-        (x > 110.0).then(|| {
-            format!(
-                "delta_max/delta_c = {x:.0} > 110, outside the FE fits (Etsion, Kligerman & Kadin 2005): \
-                 delta_r/delta_max is extrapolated"
-            )
-        })
-    },
-};
-
 /// A composition or model without a published range.
 pub const UNSTATED: Validity = Validity {
     range: "no range stated by its source",

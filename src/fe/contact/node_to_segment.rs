@@ -10,12 +10,12 @@
 use super::friction::StickState;
 use super::law::{respond, stored_energy, Kinematics, NodeLaw};
 use super::output::{ContactOutput, ContactProbe, NodeContact, OutputBuilder, PressureSample};
+use super::params::ContactParams;
 use super::penalty::{damping_constant, effective_mass, stable_step};
 use super::projection::{project, shape, Projection};
 use super::search::{bounding_box, Aabb, BucketSearch};
 use super::step_cache::StepCache;
 use super::surface::ContactSurface;
-use super::ContactParams;
 use crate::error::{Error, Result};
 use crate::fe::interaction::{Interaction, InteractionEnergy, StepContext};
 use crate::fe::tensor::{add, dot, norm, scale, sub, tangential};

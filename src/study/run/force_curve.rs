@@ -7,7 +7,7 @@
 //! they do e (docs/design.md, "The smoothed force history").
 
 use crate::study::records::estimate::estimate;
-use crate::study::run::simulate::HistoryRow;
+use crate::study::run::history::HistoryRow;
 
 /// Points of the grid, evenly spaced in approach from δ_max/N to δ_max.
 pub const POINTS: usize = 50;

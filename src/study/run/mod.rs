@@ -14,11 +14,14 @@
 
 pub mod damper;
 pub mod force_curve;
+pub mod history;
 pub mod ignored;
 pub mod law_compare;
+pub mod reduction;
 pub mod scene;
 pub mod section;
 pub mod section_impact;
 pub mod simulate;
+pub mod simulation;
 pub mod smoothed_force;
 pub mod snapshots;

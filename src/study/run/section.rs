@@ -15,11 +15,13 @@ use crate::mesh::meridian::{ball, block, BlockSpec, MeridianMesh, SectionSpec};
 use crate::scene::{BallScene, MeshSettings, PlaneEnforcement, Scene, Switch, Touch};
 use crate::study::common::progress::{Mode, RunProgress};
 use crate::study::records::outcome::{dissipation_factor, Outcome};
+use crate::study::run::history::HistoryRow;
+use crate::study::run::reduction::Reduction;
 use crate::study::run::section_impact::{
     HeadOn, ImpactRow, OtherBall, PlaneContact, Target, WallBlock,
 };
-use crate::study::run::simulate::{
-    HistoryRow, Kinematics, Reduction, RunOptions, Savings, Simulation, DEFAULT_HOLD_FRACTION,
+use crate::study::run::simulation::{
+    Kinematics, RunOptions, Savings, Simulation, DEFAULT_HOLD_FRACTION,
 };
 use crate::study::run::smoothed_force::smooth_history;
 use crate::study::run::snapshots::Snapshots;
@@ -249,7 +251,7 @@ pub(super) fn simulate_section(run: SectionRun<'_>, opts: &RunOptions) -> Result
         Ok(())
     });
     bar.finish();
-    let r = result.map_err(crate::study::run::simulate::advice)?;
+    let r = result.map_err(crate::study::run::simulation::advice)?;
     let mut history: Vec<HistoryRow> = r.history.iter().map(|row| history_row(row, &run)).collect();
     let force = smooth_history(&mut history, r.contact_duration);
     let frame = run.touch.frame;

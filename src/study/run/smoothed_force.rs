@@ -7,7 +7,7 @@
 //! F_s(t) = (J(t + w) − 2 J(t) + J(t − w)) / w², and ∫F_s dt = ∫F dt exactly when F is zero
 //! before the first sample and after the last (I constant there).
 
-use crate::study::run::simulate::HistoryRow;
+use crate::study::run::history::HistoryRow;
 use serde::Serialize;
 
 /// The contact force of a run in results.json (`fe.force`).
