@@ -709,6 +709,7 @@ fn read_reduction(r: Option<Reader<'_>>) -> Result<ReductionSettings> {
     }
     Ok(out)
 }
+
 /// Checks ball 1 against the wall and places it: its centre as given, or touching the
 /// wall's face at `position`. Returns ball 1 with its position set.
 ///
