@@ -36,7 +36,7 @@ use reader::{parse_table, Reader};
 use serde::Serialize;
 use std::path::{Path, PathBuf};
 use toml::{Table, Value};
-use wall::{dot, norm};
+use wall::dot;
 
 /// The built-in default scene: the paper's Figure 8 case (FE-study copper, D = 20 mm,
 /// +1 and −1 m/s along the line of centres, no tangential speed).
@@ -713,8 +713,8 @@ fn read_reduction(r: Option<Reader<'_>>) -> Result<ReductionSettings> {
 /// Checks ball 1 against the wall and places it: its centre as given, or touching the
 /// wall's face at `position`. Returns ball 1 with its position set.
 ///
-/// Errors (one line, naming the field): ball 1 behind or through the wall, not moving
-/// towards it, moving obliquely, or spinning (the FE wall models are head-on only).
+/// Errors (one line, naming the field): ball 1 behind or through the wall, or not moving
+/// towards it.
 fn place_against(wall: &WallScene, mut ball1: BallScene) -> Result<BallScene> {
     let r = ball1.diameter / 2.0;
     let centre = ball1
@@ -735,22 +735,6 @@ fn place_against(wall: &WallScene, mut ball1: BallScene) -> Result<BallScene> {
             "ball1.velocity",
             format!("{v:?}"),
             "towards the wall (velocity · wall.normal < 0)",
-        ));
-    }
-    let tangential = [0, 1, 2].map(|k| v[k] - vn * wall.normal[k]);
-    if norm(tangential) > 1e-12 * vn.abs() {
-        return Err(Error::invalid(
-            "ball1.velocity",
-            format!("{v:?}"),
-            "along wall.normal: the wall models are head-on only (no oblique impact)",
-        ));
-    }
-    let w = ball1.angular_velocity;
-    if norm(w) * r > 1e-12 * vn.abs() {
-        return Err(Error::invalid(
-            "ball1.angular_velocity",
-            format!("{w:?}"),
-            "[0, 0, 0]: the wall models are head-on only (no spin)",
         ));
     }
     ball1.position = Some(centre);

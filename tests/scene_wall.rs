@@ -157,16 +157,6 @@ fn bad_wall_scenes_get_one_line_errors_naming_the_field() {
         ),
         (
             WALL_SCENE.into(),
-            vec!["ball1.velocity=[1,0.5,0]"],
-            "no oblique impact",
-        ),
-        (
-            WALL_SCENE.into(),
-            vec!["ball1.angular_velocity=[0,0,10]"],
-            "ball1.angular_velocity",
-        ),
-        (
-            WALL_SCENE.into(),
             vec!["ball1.position=[-0.005,0,0]"],
             "ball1.position",
         ),

@@ -133,7 +133,12 @@ pub fn approach(scene: &Scene) -> Result<Approach> {
     // Velocities of the two contact points, their tangential difference is the slip.
     let (w1, w2) = (scene.ball1.angular_velocity, scene.ball2.angular_velocity);
     let p1 = add(v1, cross(w1, scale(n, r1)));
-    let p2 = add(v2, cross(w2, scale(n, -r2)));
+    // A wall's contact point is at rest (ball 2 is then ball 1's image, for the geometry).
+    let p2 = if scene.wall.is_some() {
+        [0.0; 3]
+    } else {
+        add(v2, cross(w2, scale(n, -r2)))
+    };
     let rel = sub(p1, p2);
     let slip = sub(rel, scale(n, dot(rel, n)));
     let slip_speed = norm(slip);

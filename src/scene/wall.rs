@@ -67,7 +67,7 @@ pub(crate) fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
     a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
 }
 
-pub(crate) fn norm(a: [f64; 3]) -> f64 {
+fn norm(a: [f64; 3]) -> f64 {
     dot(a, a).sqrt()
 }
 

@@ -54,11 +54,19 @@ struct Allowed {
     identical: bool,
     /// Tangential motion in one plane and spins normal to it.
     planar: bool,
+    /// Ball 1 meshed by the built-in mesher.
+    builtin: bool,
 }
 
 fn allowed(scene: &Scene, touch: &Touch) -> Allowed {
     let [v1, v2] = touch.v;
-    let [w1, w2] = touch.w;
+    // A wall is at rest and does not spin (ball 2 is ball 1's image, for the geometry only).
+    let (v2, w2) = if scene.wall.is_some() {
+        ([0.0; 3], [0.0; 3])
+    } else {
+        (v2, touch.w[1])
+    };
+    let w1 = touch.w[0];
     let scale = (v1[0] - v2[0]).abs();
     let tiny = |x: f64| x.abs() <= 1e-12 * scale;
     let spin_scale = scale / (scene.ball1.diameter.min(scene.ball2.diameter) / 2.0);
@@ -71,6 +79,7 @@ fn allowed(scene: &Scene, touch: &Touch) -> Allowed {
         head_on: normal && builtin(&scene.ball1) && builtin(&scene.ball2),
         identical: scene.identical_balls() && builtin(&scene.ball1),
         planar: tiny(v1[2] - v2[2]) && planar_spin(w1) && planar_spin(w2),
+        builtin: builtin(&scene.ball1),
     }
 }
 
@@ -187,7 +196,7 @@ fn wall_reduction(scene: &Scene, ok: Allowed) -> Result<(Reduction, String)> {
             ),
         ))
     };
-    if !ok.head_on {
+    if !ok.builtin {
         return Err(Error::invalid(
             "ball1.mesh.file",
             "a mesh file",
@@ -196,6 +205,9 @@ fn wall_reduction(scene: &Scene, ok: Allowed) -> Result<(Reduction, String)> {
     }
     let elastic = scene.wall.is_some_and(|w| w.kind == WallKind::Elastic);
     let symmetry = scene.reduction.symmetry;
+    if !ok.head_on {
+        return oblique_wall_reduction(scene, ok, elastic);
+    }
     if elastic && !matches!(symmetry, Symmetry::Axisymmetric | Symmetry::Auto) {
         return Err(Error::invalid(
             "reduction.symmetry",
@@ -254,6 +266,58 @@ fn wall_reduction(scene: &Scene, ok: Allowed) -> Result<(Reduction, String)> {
 }
 
 /// The scene word of `s`.
+/// The model of an oblique or spinning ball on a wall: the half ball when the motion is
+/// planar (tangential velocity in one plane, spin normal to it), else the whole ball, on the
+/// rigid wall plane with friction. Errors: an elastic wall (its block is meshed on the section
+/// only), and a symmetry that needs a head-on impact.
+fn oblique_wall_reduction(
+    scene: &Scene,
+    ok: Allowed,
+    elastic: bool,
+) -> Result<(Reduction, String)> {
+    let symmetry = scene.reduction.symmetry;
+    if elastic {
+        return Err(Error::invalid(
+            "wall.kind",
+            "\"elastic\"",
+            "\"rigid\" for an oblique or spinning ball (the elastic wall's block is meshed on \
+             the head-on section only)",
+        ));
+    }
+    let half = || {
+        (
+            Reduction::Half,
+            "ball on a rigid wall, motion in one plane: half ball against the frictional wall \
+             plane (penalty of the ball's own stiffness)"
+                .to_string(),
+        )
+    };
+    let full = |why: &str| {
+        (
+            Reduction::Full,
+            format!(
+                "ball on a rigid wall, {why}: whole ball against the frictional wall plane \
+                 (penalty of the ball's own stiffness)"
+            ),
+        )
+    };
+    match symmetry {
+        Symmetry::Off => Ok(full("symmetry reduction switched off")),
+        Symmetry::Half if ok.planar => Ok(half()),
+        Symmetry::Auto | Symmetry::Auto3d if ok.planar => Ok(half()),
+        Symmetry::Auto | Symmetry::Auto3d => Ok(full("motion out of one plane")),
+        s => Err(Error::invalid(
+            "reduction.symmetry",
+            format!("\"{}\"", symmetry_name(s)),
+            if ok.planar {
+                "auto, auto-3d, half or off for an oblique or spinning ball on a wall"
+            } else {
+                "auto, auto-3d or off for a ball on a wall whose motion leaves one plane"
+            },
+        )),
+    }
+}
+
 fn symmetry_name(s: Symmetry) -> &'static str {
     match s {
         Symmetry::Auto => "auto",

@@ -209,6 +209,22 @@ fn ball_states(solver: &Solver, red: Reduction, wall: bool) -> Result<BallStates
                 -2.0 * r.com[0],
             ))
         }
+        Reduction::Half | Reduction::Full if wall => {
+            // Ball 1 alone; the wall at rest on x = 0 (the "centre distance" is the centre's
+            // to the wall).
+            let range = model.part(0)?.nodes.clone();
+            let r = rigid(solver, range.clone());
+            let (v, w) = if red == Reduction::Half {
+                let m = r.momentum;
+                (
+                    [m[0] / r.mass, m[1] / r.mass, 0.0],
+                    [0.0, 0.0, half_spin_z(solver, range, &r)],
+                )
+            } else {
+                solver.part_motion(0)?
+            };
+            Ok(([v, [0.0; 3]], [w, [0.0; 3]], -r.com[0]))
+        }
         Reduction::Half => {
             let mut v = [[0.0; 3]; 2];
             let mut w = [[0.0; 3]; 2];
@@ -290,6 +306,45 @@ fn build(
             // A rigid wall is the plane itself: the 3D rule on the ball's own stiffness, once.
             let part = model.part(p1)?;
             let faces = part.face_sets.get("contact").cloned().unwrap_or_default();
+            let plane = RigidPlane::new(
+                &model.nodes,
+                &model.hexes,
+                &faces,
+                &b1.material,
+                [0.0; 3],
+                [-1.0, 0.0, 0.0],
+                params,
+            )?;
+            let probe = plane.probe();
+            Ok((model, vec![Box::new(plane)], probe))
+        }
+        Reduction::Half | Reduction::Full if scene.wall.is_some() => {
+            // An oblique or spinning ball on a rigid wall: the half ball (motion in its
+            // symmetry plane z = 0) or the whole ball against the frictional wall plane x = 0,
+            // penalty of the ball's own stiffness as on the quarter model.
+            let cut = if red == Reduction::Half {
+                Cut::Half
+            } else {
+                Cut::Full
+            };
+            let c1 = [-r1, 0.0, 0.0];
+            let m1 = ball_mesh("ball1", b1, cut)?
+                .translated(c1)
+                .translated(back(kin.u[0]));
+            let p1 = model.add_part("ball1", &m1, b1.material, form)?;
+            model.part_mut(p1)?.elastic_only = elastic_only[0];
+            if red == Reduction::Half {
+                model.fix_set(p1, "sym_z", 2)?;
+            }
+            let b = back(kin.u[0]);
+            model.set_rigid_velocity(p1, kin.u[0], touch.w[0], [c1[0] + b[0], b[1], b[2]])?;
+            params.friction = (mu > 0.0).then(|| Coulomb::new(mu));
+            let faces = model
+                .part(p1)?
+                .face_sets
+                .get("contact")
+                .cloned()
+                .unwrap_or_default();
             let plane = RigidPlane::new(
                 &model.nodes,
                 &model.hexes,
@@ -438,8 +493,13 @@ pub fn simulate(
             .history_interval
             .unwrap_or(duration / opts.history_rows.max(2) as f64)
             .max(dt0);
-        // A wall scene's system is the one ball: the quarter model is a quarter of it.
-        let scale = if wall { 4.0 } else { 1.0 / red.fraction() };
+        // A wall scene's system is the one ball: the quarter model is a quarter of it, the
+        // half model a half.
+        let scale = match red {
+            Reduction::Quarter if wall => 4.0,
+            Reduction::Half if wall => 2.0,
+            _ => 1.0 / red.fraction(),
+        };
         let frame = touch.frame;
         let to_scene = |v: [f64; 3], add: [f64; 3]| {
             frame.to_global([v[0] + add[0], v[1] + add[1], v[2] + add[2]])

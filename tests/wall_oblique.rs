@@ -1,0 +1,202 @@
+//! An oblique or spinning ball on a rigid wall (issue 50, item 1): the scene picks the 3D half
+//! ball when the motion stays in one plane and the whole ball otherwise, and the runs keep
+//! what a rigid frictional wall must: without friction the tangential velocity and the spin
+//! are untouched and e is the head-on one; in gross sliding the tangential impulse is μ times
+//! the normal one and the spin it leaves is 5 Δv_t/(2R) (a solid ball, I = 2mR²/5).
+
+use std::path::Path;
+use twoball::error::Result;
+use twoball::scene::{approach, Approach, Override, Scene, Touch, WALL_SCENE};
+use twoball::study::records::outcome::Outcome;
+use twoball::study::run::scene::run_scene;
+use twoball::study::run::simulate::{choose_reduction, Reduction, RunOptions};
+
+/// Coarse ball (D/5 bulk, D/50 pole) and an elastic copper (the laws under test are the
+/// wall's, not the metal's).
+const COARSE: [&str; 2] = [
+    "ball1.mesh={size=0.004,pole_size=0.0004}",
+    "ball1.material.yield=1e12",
+];
+
+fn scene(sets: &[&str]) -> Result<Scene> {
+    let sets: Vec<Override> = COARSE
+        .iter()
+        .chain(sets)
+        .map(|s| Override::parse(s).unwrap())
+        .collect();
+    Scene::from_toml(WALL_SCENE, Path::new("."), &sets)
+}
+
+fn touch(s: &Scene) -> Touch {
+    match approach(s).unwrap() {
+        Approach::Impact(t) => t,
+        Approach::NoImpact { reason } => panic!("no impact: {reason}"),
+    }
+}
+
+fn reduction(sets: &[&str]) -> Result<Reduction> {
+    let s = scene(sets)?;
+    choose_reduction(&s, &touch(&s)).map(|(r, _)| r)
+}
+
+/// The FE outcome of the wall scene with `sets`, and the model it ran on.
+fn run(sets: &[&str]) -> (Outcome, Reduction) {
+    let s = scene(sets).unwrap();
+    let opts = RunOptions {
+        history_rows: 50,
+        ..RunOptions::default()
+    };
+    let sim = run_scene(&s, &opts).unwrap().fe.unwrap();
+    assert!(sim.energy_error < 0.02, "energy error {}", sim.energy_error);
+    (sim.outcome, sim.savings.reduction)
+}
+
+#[test]
+fn the_model_follows_the_motion() {
+    assert_eq!(reduction(&[]).unwrap(), Reduction::Axisymmetric);
+    assert_eq!(
+        reduction(&["ball1.velocity=[1,0.5,0]"]).unwrap(),
+        Reduction::Half
+    );
+    // A spin alone is planar in the contact frame (the slip it makes is normal to it); a
+    // spin about the wall normal (twist), or one tilted from the normal of the plane of the
+    // tangential velocity, leaves the plane.
+    for w in ["[0,0,50]", "[0,50,0]"] {
+        let set = format!("ball1.angular_velocity={w}");
+        assert_eq!(reduction(&[&set]).unwrap(), Reduction::Half, "{w}");
+    }
+    for (v, w) in [("[1,0,0]", "[50,0,0]"), ("[1,0.5,0]", "[0,50,0]")] {
+        let (v, w) = (
+            format!("ball1.velocity={v}"),
+            format!("ball1.angular_velocity={w}"),
+        );
+        assert_eq!(reduction(&[&v, &w]).unwrap(), Reduction::Full, "{v} {w}");
+    }
+    assert_eq!(
+        reduction(&["ball1.velocity=[1,0.5,0]", "reduction.symmetry=\"off\""]).unwrap(),
+        Reduction::Full
+    );
+    // Refused in one line, naming the key: the section and the quarter need a head-on
+    // impact, an elastic wall's block is meshed on the section only.
+    for (sets, key) in [
+        (
+            vec![
+                "ball1.velocity=[1,0.5,0]",
+                "reduction.symmetry=\"axisymmetric\"",
+            ],
+            "reduction.symmetry",
+        ),
+        (
+            vec!["ball1.velocity=[1,0.5,0]", "reduction.symmetry=\"quarter\""],
+            "reduction.symmetry",
+        ),
+        (
+            vec![
+                "ball1.angular_velocity=[50,0,0]",
+                "reduction.symmetry=\"half\"",
+            ],
+            "reduction.symmetry",
+        ),
+        (
+            vec![
+                "ball1.velocity=[1,0.5,0]",
+                "wall.kind=\"elastic\"",
+                "wall.material=\"steel\"",
+            ],
+            "wall.kind",
+        ),
+    ] {
+        let e = reduction(&sets).unwrap_err().to_string();
+        assert!(e.contains(key) && !e.contains('\n'), "{sets:?}: {e}");
+    }
+}
+
+/// The contact frame's slip is ball 1's contact point against the wall at rest: its
+/// tangential velocity plus ω × R n.
+#[test]
+fn the_slip_is_the_contact_point_against_the_wall() {
+    let s = scene(&[
+        "ball1.velocity=[1,0.5,0]",
+        "ball1.angular_velocity=[0,0,20]",
+    ])
+    .unwrap();
+    let t = touch(&s);
+    // n = +x (towards the wall), contact point at +R x: ω × R n = (0, R ω_z, 0).
+    let slip = 0.5 + 0.01 * 20.0;
+    assert!((t.slip_speed - slip).abs() < 1e-12, "{}", t.slip_speed);
+    // The approach speed is the image pair's: twice the normal speed.
+    assert!(
+        (t.approach_speed - 2.0).abs() < 1e-12,
+        "{}",
+        t.approach_speed
+    );
+}
+
+#[test]
+fn a_frictionless_wall_keeps_the_tangential_speed_and_the_head_on_e() {
+    let (head_on, _) = run(&["reduction.symmetry=\"auto-3d\"", "contact.friction=\"off\""]);
+    let (o, red) = run(&["ball1.velocity=[1,1,0]", "contact.friction=\"off\""]);
+    assert_eq!(red, Reduction::Half);
+    println!(
+        "e head-on {:.5}, oblique {:.5}; v after {:?}, w after {:?}",
+        head_on.e, o.e, o.v1_after, o.w1_after
+    );
+    assert!((o.v1_after[1] - 1.0).abs() < 1e-3, "{:?}", o.v1_after);
+    assert!(o.w1_after[2].abs() * 0.01 < 1e-3, "{:?}", o.w1_after);
+    assert!(
+        (o.e / head_on.e - 1.0).abs() < 5e-3,
+        "{} vs {}",
+        o.e,
+        head_on.e
+    );
+}
+
+#[test]
+fn gross_sliding_on_a_wall_follows_coulomb_and_spins_the_ball() {
+    // v_t/v_n = 5 above (7/2) μ (1 + e) = 1.4: the contact slides throughout.
+    let mu = 0.2;
+    let (o, red) = run(&["ball1.velocity=[1,5,0]", "contact.friction=0.2"]);
+    assert_eq!(red, Reduction::Half);
+    let (dvn, dvt) = (1.0 - o.v1_after[0], o.v1_after[1] - 5.0);
+    let ratio = -dvt / dvn;
+    // Friction on the contact point (+R x) along −y: ω_z = 5 Δv_t/(2R) (negative).
+    let spin = 5.0 * dvt / (2.0 * 0.01);
+    println!(
+        "J_t/J_n = {ratio:.5} (mu {mu}); w_z = {:.3} rad/s against {spin:.3}; e = {:.5}",
+        o.w1_after[2], o.e
+    );
+    assert!((ratio / mu - 1.0).abs() < 0.02, "J_t/J_n = {ratio}");
+    assert!(
+        (o.w1_after[2] / spin - 1.0).abs() < 0.03,
+        "{:?}",
+        o.w1_after
+    );
+}
+
+/// The whole ball (symmetry off) gives the half ball's answer on a planar impact: the half
+/// model's symmetry plane is exact there.
+#[test]
+fn the_whole_ball_agrees_with_the_half_ball_on_a_planar_impact() {
+    let sets = [
+        "ball1.velocity=[1,0.5,0]",
+        "ball1.angular_velocity=[0,0,-30]",
+    ];
+    let (half, red) = run(&sets);
+    assert_eq!(red, Reduction::Half);
+    let mut off = sets.to_vec();
+    off.push("reduction.symmetry=\"off\"");
+    let (full, red) = run(&off);
+    assert_eq!(red, Reduction::Full);
+    println!(
+        "half: e {:.5} v {:?} w {:?}\nfull: e {:.5} v {:?} w {:?}",
+        half.e, half.v1_after, half.w1_after, full.e, full.v1_after, full.w1_after
+    );
+    assert!((full.e / half.e - 1.0).abs() < 1e-3);
+    for k in 0..3 {
+        assert!((full.v1_after[k] - half.v1_after[k]).abs() < 1e-3, "v{k}");
+        assert!(
+            0.01 * (full.w1_after[k] - half.w1_after[k]).abs() < 1e-3,
+            "w{k}"
+        );
+    }
+}
