@@ -8,7 +8,7 @@ use std::path::Path;
 use twoball::error::Result;
 use twoball::scene::{approach, Approach, Override, Scene, Touch, WALL_SCENE};
 use twoball::study::records::outcome::Outcome;
-use twoball::study::run::scene::run_scene;
+use twoball::study::run::scene::{run_scene, RunReport};
 use twoball::study::run::simulate::{choose_reduction, Reduction, RunOptions};
 
 /// Coarse ball (D/5 bulk, D/50 pole) and an elastic copper (the laws under test are the
@@ -39,15 +39,22 @@ fn reduction(sets: &[&str]) -> Result<Reduction> {
     choose_reduction(&s, &touch(&s)).map(|(r, _)| r)
 }
 
-/// The FE outcome of the wall scene with `sets`, and the model it ran on.
-fn run(sets: &[&str]) -> (Outcome, Reduction) {
+/// The run of the wall scene with `sets`.
+fn report(sets: &[&str]) -> RunReport {
     let s = scene(sets).unwrap();
     let opts = RunOptions {
         history_rows: 50,
         ..RunOptions::default()
     };
-    let sim = run_scene(&s, &opts).unwrap().fe.unwrap();
+    let r = run_scene(&s, &opts).unwrap();
+    let sim = r.fe.as_ref().unwrap();
     assert!(sim.energy_error < 0.02, "energy error {}", sim.energy_error);
+    r
+}
+
+/// The FE outcome of the wall scene with `sets`, and the model it ran on.
+fn run(sets: &[&str]) -> (Outcome, Reduction) {
+    let sim = report(sets).fe.unwrap();
     (sim.outcome, sim.savings.reduction)
 }
 
@@ -155,8 +162,9 @@ fn a_frictionless_wall_keeps_the_tangential_speed_and_the_head_on_e() {
 fn gross_sliding_on_a_wall_follows_coulomb_and_spins_the_ball() {
     // v_t/v_n = 5 above (7/2) μ (1 + e) = 1.4: the contact slides throughout.
     let mu = 0.2;
-    let (o, red) = run(&["ball1.velocity=[1,5,0]", "contact.friction=0.2"]);
-    assert_eq!(red, Reduction::Half);
+    let r = report(&["ball1.velocity=[1,5,0]", "contact.friction=0.2"]);
+    let (o, red) = (r.fe.as_ref().unwrap().outcome, r.reduction.clone());
+    assert_eq!(red, "half");
     let (dvn, dvt) = (1.0 - o.v1_after[0], o.v1_after[1] - 5.0);
     let ratio = -dvt / dvn;
     // Friction on the contact point (+R x) along −y: ω_z = 5 Δv_t/(2R) (negative).
@@ -171,6 +179,29 @@ fn gross_sliding_on_a_wall_follows_coulomb_and_spins_the_ball() {
         "{:?}",
         o.w1_after
     );
+    // The contact point's slip changes by (1 + mR²/I) Δv_t = (7/2) Δv_t: its tangential
+    // restitution is −1 + (7/2) μ (1 + e) v_n/v_t, and the analytical model (a rigid ball in
+    // Coulomb sliding) says the same with its own e.
+    let t = r
+        .tangential
+        .expect("an oblique impact reports its tangential side");
+    let closed = |e: f64| -1.0 + 3.5 * mu * (1.0 + e) / 5.0;
+    let (fe_t, an_t) = (t.fe.restitution.unwrap(), t.analytic.restitution.unwrap());
+    let an_e = r.analytic.unwrap().e;
+    println!(
+        "tangential restitution FE {fe_t:.5} (closed form {:.5}), analytical {an_t:.5} \
+         ({:.5}); incidence {:.5} rad, rebound FE {:.5}, analytical {:.5}",
+        closed(o.e),
+        closed(an_e),
+        t.fe.incidence_angle,
+        t.fe.rebound_angle,
+        t.analytic.rebound_angle
+    );
+    assert!((fe_t - closed(o.e)).abs() < 0.02, "{fe_t}");
+    assert!((an_t - closed(an_e)).abs() < 1e-9, "{an_t}");
+    assert!((t.fe.incidence_angle - 5f64.atan()).abs() < 1e-12);
+    let rebound = o.v1_after[1].atan2(-o.v1_after[0]);
+    assert!((t.fe.rebound_angle - rebound).abs() < 1e-12);
 }
 
 /// The whole ball (symmetry off) gives the half ball's answer on a planar impact: the half

@@ -4,6 +4,7 @@
 //! - [`case`]: a finished FE run as sweep and bench records hold it;
 //! - [`estimate`]: a value with its error bar, from a mesh ladder (Richardson, GCI);
 //! - [`error_estimate`]: a run's error estimate as results.json writes it;
+//! - [`tangential`]: the tangential restitution and the angles of an oblique impact;
 //! - [`warnings`]: results a user should not trust blindly, each said in one line;
 //! - [`number`]: numbers for people.
 
@@ -12,4 +13,5 @@ pub mod error_estimate;
 pub mod estimate;
 pub mod number;
 pub mod outcome;
+pub mod tangential;
 pub mod warnings;

@@ -9,6 +9,7 @@ use crate::study::records::number::sci;
 use crate::study::records::outcome::{
     analytic_outcome, ball_inertia, dissipation_factor, relative_difference, Outcome,
 };
+use crate::study::records::tangential::{is_oblique, tangential, TangentialPair};
 use crate::study::records::warnings::{analytic_warnings, fe_warnings, FeFigures, Warning};
 use crate::study::run::force_curve::ForceCurve;
 use crate::study::run::law_compare::{compare_laws, law_table, LawOutcome};
@@ -87,6 +88,10 @@ pub struct RunReport {
     pub analytic: Option<Outcome>,
     /// FE vs analytical.
     pub relative_difference: Option<Differences>,
+    /// The tangential side of an oblique or spinning impact, FE and analytical (absent for
+    /// a head-on impact).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub tangential: Option<TangentialPair>,
     /// The scene's `[laws]`, each integrated on the same balls and speeds (absent without).
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub laws: Vec<LawOutcome>,
@@ -127,6 +132,7 @@ pub fn run_scene(scene: &Scene, opts: &RunOptions) -> Result<RunReport> {
                 fe: None,
                 analytic: None,
                 relative_difference: None,
+                tangential: None,
                 laws: Vec::new(),
                 warnings: Vec::new(),
                 error_estimate: None,
@@ -163,6 +169,10 @@ pub fn run_scene(scene: &Scene, opts: &RunOptions) -> Result<RunReport> {
         wall_time_s: start.elapsed().as_secs_f64(),
         element_cycles: sim.element_cycles,
         relative_difference: Some(Differences::between(&fe, &an, touch.frame.axes[0])),
+        tangential: is_oblique(scene, &touch).then(|| TangentialPair {
+            fe: tangential(scene, &touch, &fe),
+            analytic: tangential(scene, &touch, &an),
+        }),
         force_curve: ForceCurve::of_run(&sim.history),
         fe: Some(sim),
         analytic: Some(an),
@@ -395,6 +405,29 @@ pub fn side_by_side(r: &RunReport) -> String {
         Some(d.contact_duration),
     );
     row("eta [-]", fe.eta, an.eta, Some(d.eta));
+    if let Some(tp) = &r.tangential {
+        let (f, a) = (tp.fe, tp.analytic);
+        if let (Some(x), Some(y)) = (f.restitution, a.restitution) {
+            row(
+                "tangential restitution [-]",
+                x,
+                y,
+                Some(relative_difference(x, y)),
+            );
+        }
+        row(
+            "rebound angle [rad]",
+            f.rebound_angle,
+            a.rebound_angle,
+            Some(relative_difference(f.rebound_angle, a.rebound_angle)),
+        );
+        row(
+            "ball 1 spin after [rad/s]",
+            f.spin1_after,
+            a.spin1_after,
+            Some(relative_difference(f.spin1_after, a.spin1_after)),
+        );
+    }
     s.push_str(&format!(
         "FE: {} model ({}), {} elements, {} steps, dt = {:.3e} s, energy error {:.2e}, {:.2} s wall; {}\n",
         sim.savings.reduction.name(),
