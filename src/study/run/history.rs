@@ -77,29 +77,6 @@ impl HistoryRow {
     }
 
     pub(super) fn is_finite(&self) -> bool {
-        self.csv_values().all(f64::is_finite)
-    }
-
-    fn csv_values(&self) -> impl Iterator<Item = f64> + '_ {
-        [
-            self.t,
-            self.delta,
-            self.normal_force,
-            self.tangential_force,
-            self.kinetic,
-            self.elastic,
-            self.plastic,
-        ]
-        .into_iter()
-        .chain([
-            self.hourglass,
-            self.contact_stored,
-            self.contact_dissipated,
-            self.total,
-            self.impulse,
-            self.normal_force_smoothed,
-        ])
-        .chain(self.v.iter().flatten().copied())
-        .chain(self.w.iter().flatten().copied())
+        self.values().iter().all(|x| x.is_finite())
     }
 }

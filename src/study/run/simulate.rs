@@ -259,6 +259,33 @@ fn ball_states(solver: &Solver, red: Reduction, wall: bool) -> Result<BallStates
 }
 
 /// Builds the model and interactions for `scene` at `touch` with reduction `red`.
+/// Part `p`'s contact faces against the rigid plane x = 0 (normal −x, towards the part),
+/// penalty from `material` with `params`: the model and its one interaction.
+fn plane_x0(
+    model: Model,
+    p: usize,
+    material: &crate::material::Material,
+    params: ContactParams,
+) -> Result<Built> {
+    let faces = model
+        .part(p)?
+        .face_sets
+        .get("contact")
+        .cloned()
+        .unwrap_or_default();
+    let plane = RigidPlane::new(
+        &model.nodes,
+        &model.hexes,
+        &faces,
+        material,
+        [0.0; 3],
+        [-1.0, 0.0, 0.0],
+        params,
+    )?;
+    let probe = plane.probe();
+    Ok((model, vec![Box::new(plane)], probe))
+}
+
 fn build(
     scene: &Scene,
     touch: &Touch,
@@ -304,19 +331,7 @@ fn build(
                 params.max_penetration *= 0.5;
             }
             // A rigid wall is the plane itself: the 3D rule on the ball's own stiffness, once.
-            let part = model.part(p1)?;
-            let faces = part.face_sets.get("contact").cloned().unwrap_or_default();
-            let plane = RigidPlane::new(
-                &model.nodes,
-                &model.hexes,
-                &faces,
-                &b1.material,
-                [0.0; 3],
-                [-1.0, 0.0, 0.0],
-                params,
-            )?;
-            let probe = plane.probe();
-            Ok((model, vec![Box::new(plane)], probe))
+            plane_x0(model, p1, &b1.material, params)
         }
         Reduction::Half | Reduction::Full if scene.wall.is_some() => {
             // An oblique or spinning ball on a rigid wall: the half ball (motion in its
@@ -339,23 +354,7 @@ fn build(
             let b = back(kin.u[0]);
             model.set_rigid_velocity(p1, kin.u[0], touch.w[0], [c1[0] + b[0], b[1], b[2]])?;
             params.friction = (mu > 0.0).then(|| Coulomb::new(mu));
-            let faces = model
-                .part(p1)?
-                .face_sets
-                .get("contact")
-                .cloned()
-                .unwrap_or_default();
-            let plane = RigidPlane::new(
-                &model.nodes,
-                &model.hexes,
-                &faces,
-                &b1.material,
-                [0.0; 3],
-                [-1.0, 0.0, 0.0],
-                params,
-            )?;
-            let probe = plane.probe();
-            Ok((model, vec![Box::new(plane)], probe))
+            plane_x0(model, p1, &b1.material, params)
         }
         Reduction::Half | Reduction::Full => {
             let cut = if red == Reduction::Half {
