@@ -68,7 +68,8 @@ pub fn tangential(scene: &Scene, touch: &Touch, out: &Outcome) -> Tangential {
     let after = slip_y(scene, g1, w1, w2);
     let scale = touch.approach_speed.abs().max(f64::MIN_POSITIVE);
     Tangential {
-        restitution: (before.abs() > 1e-12 * scale).then(|| -after / before),
+        // `+ 0.0` writes a rolling contact point's −0 as 0.
+        restitution: (before.abs() > 1e-12 * scale).then(|| -after / before + 0.0),
         incidence_angle: g0[1].hypot(g0[2]).atan2(g0[0]),
         rebound_angle: g1[1].hypot(g1[2]).atan2(-g1[0]),
         spin1_after: w1[2],
