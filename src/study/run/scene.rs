@@ -407,13 +407,9 @@ pub fn side_by_side(r: &RunReport) -> String {
     row("eta [-]", fe.eta, an.eta, Some(d.eta));
     if let Some(tp) = &r.tangential {
         let (f, a) = (tp.fe, tp.analytic);
+        // No relative difference: e_t is 0 for a contact point that rolls off.
         if let (Some(x), Some(y)) = (f.restitution, a.restitution) {
-            row(
-                "tangential restitution [-]",
-                x,
-                y,
-                Some(relative_difference(x, y)),
-            );
+            row("tangential restitution [-]", x, y, None);
         }
         row(
             "rebound angle [rad]",
