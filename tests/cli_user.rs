@@ -274,19 +274,20 @@ fn a_default_run_on_a_johnson_cook_metal_floors_its_bar() {
         .collect();
     assert_eq!(lines.len(), 1, "{err}");
     assert!(warnings_of(&root.join("jc")).contains(&"rate_dependent_bar".to_string()));
-    let v: serde_json::Value = serde_json::from_str(
-        &std::fs::read_to_string(root.join("jc").join("results.json")).unwrap(),
-    )
-    .unwrap();
-    let bar = v["error_estimate"]["e"]["relative_error"].as_f64().unwrap();
+    let bar = results_of(&root.join("jc"))["error_estimate"]["e"]["relative_error"]
+        .as_f64()
+        .unwrap();
     assert!(bar >= 0.03 * (1.0 - 1e-12), "relative bar {bar}");
     let _ = std::fs::remove_dir_all(&root);
 }
 
+/// The results.json a run wrote into `dir`.
+fn results_of(dir: &Path) -> serde_json::Value {
+    serde_json::from_str(&std::fs::read_to_string(dir.join("results.json")).unwrap()).unwrap()
+}
+
 fn warnings_of(dir: &Path) -> Vec<String> {
-    let v: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(dir.join("results.json")).unwrap()).unwrap();
-    v["warnings"]
+    results_of(dir)["warnings"]
         .as_array()
         .expect("results.json has `warnings`")
         .iter()
@@ -678,10 +679,7 @@ fn hard_head_on_impacts_complete_by_default() {
         );
         let err = text(&o.stderr);
         assert!(o.status.success(), "±{v} m/s: {err}");
-        let results: serde_json::Value = serde_json::from_str(
-            &std::fs::read_to_string(root.join(&name).join("results.json")).unwrap(),
-        )
-        .unwrap();
+        let results = results_of(&root.join(&name));
         let e = results["e"].as_f64().unwrap();
         assert!(e > 0.0 && e < 1.0, "±{v} m/s: e = {e}");
         let bar = results["error_estimate"].is_object();
