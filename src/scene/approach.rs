@@ -80,6 +80,18 @@ pub struct Touch {
     pub slip_speed: f64,
 }
 
+impl Touch {
+    /// Ball 1's partner at touch, contact frame: ball 2's velocity (m/s) and spin (rad/s), or
+    /// zero for a wall (a wall scene's ball 2 is ball 1's image, for the geometry only).
+    pub fn partner(&self, scene: &Scene) -> ([f64; 3], [f64; 3]) {
+        if scene.wall.is_some() {
+            ([0.0; 3], [0.0; 3])
+        } else {
+            (self.v[1], self.w[1])
+        }
+    }
+}
+
 /// What free flight leads to.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 #[serde(tag = "kind", rename_all = "snake_case")]

@@ -172,8 +172,7 @@ pub fn run_scene_with_estimate(
         // The default levels' bar on a rate-dependent metal understated their error in 3 of
         // 13 cases: it is at least the floor, and the run says so.
         if let Some(est) = report.error_estimate.as_mut() {
-            let e = est.e;
-            est.e = e.with_error(e.error.max(RATE_DEPENDENT_FLOOR * e.extrapolated.abs()));
+            est.e = est.e.with_relative_floor(RATE_DEPENDENT_FLOOR);
         }
         report
             .warnings
@@ -208,8 +207,7 @@ pub fn run_to_tolerance(
     }
     let (mut estimate, report) = two_levels(scene, opts)?;
     // Their bar may understate their error by chance (below): it is at least the floor.
-    let e = estimate.e;
-    estimate.e = e.with_error(e.error.max(floor * e.extrapolated.abs()));
+    estimate.e = estimate.e.with_relative_floor(floor);
     let met = estimate.e.relative_error.is_some_and(|r| r <= tolerance);
     if !met {
         return refine_with_progress(case, report, tolerance, max_refinements, opts);

@@ -91,6 +91,12 @@ pub struct Estimate {
 }
 
 impl Estimate {
+    /// The same estimate with its error raised to at least `floor` (relative) of
+    /// |extrapolated|.
+    pub fn with_relative_floor(self, floor: f64) -> Estimate {
+        self.with_error(self.error.max(floor * self.extrapolated.abs()))
+    }
+
     /// The same estimate with its error set to `error` (the quantity's unit, ≥ 0) and the
     /// relative error recomputed against |extrapolated| (None when that is 0).
     pub fn with_error(self, error: f64) -> Estimate {

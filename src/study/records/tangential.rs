@@ -37,34 +37,32 @@ pub struct TangentialPair {
 /// True when the impact has a tangential side: slip of the contact points, or a tangential
 /// relative velocity of the centres, at touch.
 pub fn is_oblique(scene: &Scene, touch: &Touch) -> bool {
-    let g = relative(scene, touch.v[0], touch.v[1]);
+    let g = sub(touch.v[0], touch.partner(scene).0);
     let scale = touch.approach_speed.abs().max(f64::MIN_POSITIVE);
     touch.slip_speed > 1e-12 * scale || g[1].hypot(g[2]) > 1e-12 * scale
 }
 
-/// Ball 1's velocity relative to its partner (the wall is at rest; a wall scene's ball 2 is
-/// ball 1's image, for the geometry only), contact frame, m/s.
-fn relative(scene: &Scene, v1: [f64; 3], v2: [f64; 3]) -> [f64; 3] {
-    let v2 = if scene.wall.is_some() { [0.0; 3] } else { v2 };
-    [0, 1, 2].map(|k| v1[k] - v2[k])
+fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
 }
 
-/// Slip of ball 1's contact point against ball 2's along the contact frame's y, from the
-/// relative velocity `g` (m/s) and the spins `w1`, `w2` (rad/s, contact frame): the contact
-/// point sits at +R1 x on ball 1 and −R2 x on ball 2, so ω × r adds ω_z R along y.
+/// Slip of ball 1's contact point against its partner's along the contact frame's y, from
+/// the relative velocity `g` (m/s) and the spins `w1`, `w2` (rad/s, contact frame): the
+/// contact point sits at +R1 x on ball 1 and −R2 x on ball 2, so ω × r adds ω_z R along y.
 fn slip_y(scene: &Scene, g: [f64; 3], w1: [f64; 3], w2: [f64; 3]) -> f64 {
     let (r1, r2) = (scene.ball1.diameter / 2.0, scene.ball2.diameter / 2.0);
-    let w2z = if scene.wall.is_some() { 0.0 } else { w2[2] };
-    g[1] + w1[2] * r1 + w2z * r2
+    g[1] + w1[2] * r1 + w2[2] * r2
 }
 
 /// The tangential figures of `out` (scene frame) for `scene` touching as `touch`.
 pub fn tangential(scene: &Scene, touch: &Touch, out: &Outcome) -> Tangential {
     let f = touch.frame;
-    let g0 = relative(scene, touch.v[0], touch.v[1]);
-    let g1 = relative(scene, f.to_local(out.v1_after), f.to_local(out.v2_after));
+    // After the impact a wall's outcome is at rest already; at touch ball 2 is its image.
+    let (v2, w2_touch) = touch.partner(scene);
+    let g0 = sub(touch.v[0], v2);
+    let g1 = sub(f.to_local(out.v1_after), f.to_local(out.v2_after));
     let (w1, w2) = (f.to_local(out.w1_after), f.to_local(out.w2_after));
-    let before = slip_y(scene, g0, touch.w[0], touch.w[1]);
+    let before = slip_y(scene, g0, touch.w[0], w2_touch);
     let after = slip_y(scene, g1, w1, w2);
     let scale = touch.approach_speed.abs().max(f64::MIN_POSITIVE);
     Tangential {

@@ -24,10 +24,11 @@ pub enum Reduction {
 }
 
 impl Reduction {
-    /// Fraction of the whole two-ball system that the 3D models simulate (the section
-    /// model reports whole-system figures itself: 1).
-    pub fn fraction(self) -> f64 {
+    /// Fraction of the whole system the model simulates: of the two balls, or of the one
+    /// ball on a wall (`wall`); the section model reports whole-system figures itself: 1.
+    pub fn fraction(self, wall: bool) -> f64 {
         match self {
+            Reduction::Quarter if wall => 0.25,
             Reduction::Quarter => 1.0 / 8.0,
             Reduction::Half => 0.5,
             Reduction::Axisymmetric | Reduction::Full => 1.0,
@@ -59,14 +60,8 @@ struct Allowed {
 }
 
 fn allowed(scene: &Scene, touch: &Touch) -> Allowed {
-    let [v1, v2] = touch.v;
-    // A wall is at rest and does not spin (ball 2 is ball 1's image, for the geometry only).
-    let (v2, w2) = if scene.wall.is_some() {
-        ([0.0; 3], [0.0; 3])
-    } else {
-        (v2, touch.w[1])
-    };
-    let w1 = touch.w[0];
+    let (v1, w1) = (touch.v[0], touch.w[0]);
+    let (v2, w2) = touch.partner(scene);
     let scale = (v1[0] - v2[0]).abs();
     let tiny = |x: f64| x.abs() <= 1e-12 * scale;
     let spin_scale = scale / (scene.ball1.diameter.min(scene.ball2.diameter) / 2.0);
@@ -182,10 +177,9 @@ fn resolve_auto(scene: &Scene, section: bool) -> Symmetry {
     }
 }
 
-/// The reduction of a ball against a rigid wall (head-on by the scene's checks): the quarter
-/// ball against the wall plane (`auto`, `quarter`) or the ball's meridian section against it
-/// (`axisymmetric`). The wall models have no half or full 3D form; an elastic wall is
-/// modelled on the section only.
+/// The reduction of a ball against a wall. Head-on: the quarter ball against the rigid wall
+/// plane (`auto-3d`, `quarter`) or the ball's meridian section against it (`auto`,
+/// `axisymmetric`; an elastic wall only so); oblique or spinning: [`oblique_wall_reduction`].
 fn wall_reduction(scene: &Scene, ok: Allowed) -> Result<(Reduction, String)> {
     let refuse = |what: &str, needs: &str| {
         Err(Error::invalid(

@@ -189,6 +189,24 @@ fn not_3d() -> Error {
 /// The model, its interactions, and a read handle on the contact's output.
 type Built = (Model, Vec<Box<dyn Interaction>>, ContactProbe);
 
+/// Centre-of-mass velocity (m/s), spin (rad/s) and centre (m) of part `p` on the half model
+/// (in the plane z = 0, spin about z) or the full one.
+fn part_state(solver: &Solver, red: Reduction, p: usize) -> Result<([f64; 3], [f64; 3], [f64; 3])> {
+    let range = solver.model().part(p)?.nodes.clone();
+    let r = rigid(solver, range.clone());
+    if red == Reduction::Half {
+        let m = r.momentum;
+        Ok((
+            [m[0] / r.mass, m[1] / r.mass, 0.0],
+            [0.0, 0.0, half_spin_z(solver, range, &r)],
+            [r.com[0], r.com[1], 0.0],
+        ))
+    } else {
+        let (v, w) = solver.part_motion(p)?;
+        Ok((v, w, r.com))
+    }
+}
+
 fn ball_states(solver: &Solver, red: Reduction, wall: bool) -> Result<BallStates> {
     let model = solver.model();
     match red {
@@ -212,53 +230,52 @@ fn ball_states(solver: &Solver, red: Reduction, wall: bool) -> Result<BallStates
         Reduction::Half | Reduction::Full if wall => {
             // Ball 1 alone; the wall at rest on x = 0 (the "centre distance" is the centre's
             // to the wall).
-            let range = model.part(0)?.nodes.clone();
-            let r = rigid(solver, range.clone());
-            let (v, w) = if red == Reduction::Half {
-                let m = r.momentum;
-                (
-                    [m[0] / r.mass, m[1] / r.mass, 0.0],
-                    [0.0, 0.0, half_spin_z(solver, range, &r)],
-                )
+            let (v, w, c) = part_state(solver, red, 0)?;
+            Ok(([v, [0.0; 3]], [w, [0.0; 3]], -c[0]))
+        }
+        Reduction::Half | Reduction::Full => {
+            let (v1, w1, c1) = part_state(solver, red, 0)?;
+            let (v2, w2, c2) = part_state(solver, red, 1)?;
+            let d = if red == Reduction::Half {
+                ((c2[0] - c1[0]).powi(2) + (c2[1] - c1[1]).powi(2)).sqrt()
             } else {
-                solver.part_motion(0)?
+                (0..3).map(|k| (c2[k] - c1[k]).powi(2)).sum::<f64>().sqrt()
             };
-            Ok(([v, [0.0; 3]], [w, [0.0; 3]], -r.com[0]))
-        }
-        Reduction::Half => {
-            let mut v = [[0.0; 3]; 2];
-            let mut w = [[0.0; 3]; 2];
-            let mut c = [[0.0; 3]; 2];
-            for p in 0..2 {
-                let range = model.part(p)?.nodes.clone();
-                let r = rigid(solver, range.clone());
-                v[p] = [r.momentum[0] / r.mass, r.momentum[1] / r.mass, 0.0];
-                w[p] = [0.0, 0.0, half_spin_z(solver, range, &r)];
-                c[p] = [r.com[0], r.com[1], 0.0];
-            }
-            let d = ((c[1][0] - c[0][0]).powi(2) + (c[1][1] - c[0][1]).powi(2)).sqrt();
-            Ok((v, w, d))
-        }
-        Reduction::Full => {
-            let mut v = [[0.0; 3]; 2];
-            let mut w = [[0.0; 3]; 2];
-            let mut c = [[0.0; 3]; 2];
-            for p in 0..2 {
-                let (vc, om) = solver.part_motion(p)?;
-                v[p] = vc;
-                w[p] = om;
-                c[p] = rigid(solver, model.part(p)?.nodes.clone()).com;
-            }
-            let d = (0..3)
-                .map(|k| (c[1][k] - c[0][k]).powi(2))
-                .sum::<f64>()
-                .sqrt();
-            Ok((v, w, d))
+            Ok(([v1, v2], [w1, w2], d))
         }
     }
 }
 
 /// Builds the model and interactions for `scene` at `touch` with reduction `red`.
+/// The cut of a ball on the half or the full model.
+fn cut_of(red: Reduction) -> Cut {
+    if red == Reduction::Half {
+        Cut::Half
+    } else {
+        Cut::Full
+    }
+}
+
+/// Adds ball `name` (`b`) with its mesh translated by `at.0` and then `at.1` (m), plastic
+/// unless `elastic_only`, held on the symmetry plane z = 0 on the half model: its part.
+fn add_ball(
+    model: &mut Model,
+    (name, b): (&str, &BallScene),
+    mesh: Mesh,
+    at: ([f64; 3], [f64; 3]),
+    red: Reduction,
+    elastic_only: bool,
+    form: crate::fe::Formulation,
+) -> Result<usize> {
+    let mesh = mesh.translated(at.0).translated(at.1);
+    let p = model.add_part(name, &mesh, b.material, form)?;
+    model.part_mut(p)?.elastic_only = elastic_only;
+    if red == Reduction::Half {
+        model.fix_set(p, "sym_z", 2)?;
+    }
+    Ok(p)
+}
+
 /// Part `p`'s contact faces against the rigid plane x = 0 (normal −x, towards the part),
 /// penalty from `material` with `params`: the model and its one interaction.
 fn plane_x0(
@@ -308,6 +325,11 @@ fn build(
     let mut model = Model::new();
     // Free flight simulated (start_at_touch off): start each centre back along its path.
     let back = |u: [f64; 3]| u.map(|c| -c * pre_gap_time);
+    // A centre at (x, 0, 0) at touch, back along the path.
+    let centre = |x: f64, u: [f64; 3]| {
+        let b = back(u);
+        [x + b[0], b[1], b[2]]
+    };
     match red {
         Reduction::Axisymmetric => Err(not_3d()),
         Reduction::Quarter => {
@@ -337,56 +359,48 @@ fn build(
             // An oblique or spinning ball on a rigid wall: the half ball (motion in its
             // symmetry plane z = 0) or the whole ball against the frictional wall plane x = 0,
             // penalty of the ball's own stiffness as on the quarter model.
-            let cut = if red == Reduction::Half {
-                Cut::Half
-            } else {
-                Cut::Full
-            };
-            let c1 = [-r1, 0.0, 0.0];
-            let m1 = ball_mesh("ball1", b1, cut)?
-                .translated(c1)
-                .translated(back(kin.u[0]));
-            let p1 = model.add_part("ball1", &m1, b1.material, form)?;
-            model.part_mut(p1)?.elastic_only = elastic_only[0];
-            if red == Reduction::Half {
-                model.fix_set(p1, "sym_z", 2)?;
-            }
-            let b = back(kin.u[0]);
-            model.set_rigid_velocity(p1, kin.u[0], touch.w[0], [c1[0] + b[0], b[1], b[2]])?;
+            let m1 = ball_mesh("ball1", b1, cut_of(red))?;
+            let at1 = ([-r1, 0.0, 0.0], back(kin.u[0]));
+            let p1 = add_ball(
+                &mut model,
+                ("ball1", b1),
+                m1,
+                at1,
+                red,
+                elastic_only[0],
+                form,
+            )?;
+            let c1 = centre(-r1, kin.u[0]);
+            model.set_rigid_velocity(p1, kin.u[0], touch.w[0], c1)?;
             params.friction = (mu > 0.0).then(|| Coulomb::new(mu));
             plane_x0(model, p1, &b1.material, params)
         }
         Reduction::Half | Reduction::Full => {
-            let cut = if red == Reduction::Half {
-                Cut::Half
-            } else {
-                Cut::Full
-            };
-            let m1 = ball_mesh("ball1", b1, cut)?
-                .translated([-r1, 0.0, 0.0])
-                .translated(back(kin.u[0]));
-            let m2 = ball_mesh("ball2", b2, cut)?
-                .mirrored_x()
-                .translated([r2, 0.0, 0.0])
-                .translated(back(kin.u[1]));
-            let p1 = model.add_part("ball1", &m1, b1.material, form)?;
-            let p2 = model.add_part("ball2", &m2, b2.material, form)?;
-            model.part_mut(p1)?.elastic_only = elastic_only[0];
-            model.part_mut(p2)?.elastic_only = elastic_only[1];
-            if red == Reduction::Half {
-                model.fix_set(p1, "sym_z", 2)?;
-                model.fix_set(p2, "sym_z", 2)?;
-            }
-            let c1 = [
-                -r1 - kin.u[0][0] * pre_gap_time,
-                -kin.u[0][1] * pre_gap_time,
-                -kin.u[0][2] * pre_gap_time,
-            ];
-            let c2 = [
-                r2 - kin.u[1][0] * pre_gap_time,
-                -kin.u[1][1] * pre_gap_time,
-                -kin.u[1][2] * pre_gap_time,
-            ];
+            let m1 = ball_mesh("ball1", b1, cut_of(red))?;
+            let m2 = ball_mesh("ball2", b2, cut_of(red))?.mirrored_x();
+            let (at1, at2) = (
+                ([-r1, 0.0, 0.0], back(kin.u[0])),
+                ([r2, 0.0, 0.0], back(kin.u[1])),
+            );
+            let p1 = add_ball(
+                &mut model,
+                ("ball1", b1),
+                m1,
+                at1,
+                red,
+                elastic_only[0],
+                form,
+            )?;
+            let p2 = add_ball(
+                &mut model,
+                ("ball2", b2),
+                m2,
+                at2,
+                red,
+                elastic_only[1],
+                form,
+            )?;
+            let (c1, c2) = (centre(-r1, kin.u[0]), centre(r2, kin.u[1]));
             model.set_rigid_velocity(p1, kin.u[0], touch.w[0], c1)?;
             model.set_rigid_velocity(p2, kin.u[1], touch.w[1], c2)?;
             params.friction = if mu > 0.0 {
@@ -492,13 +506,8 @@ pub fn simulate(
             .history_interval
             .unwrap_or(duration / opts.history_rows.max(2) as f64)
             .max(dt0);
-        // A wall scene's system is the one ball: the quarter model is a quarter of it, the
-        // half model a half.
-        let scale = match red {
-            Reduction::Quarter if wall => 4.0,
-            Reduction::Half if wall => 2.0,
-            _ => 1.0 / red.fraction(),
-        };
+        // A wall scene's system is the one ball.
+        let scale = 1.0 / red.fraction(wall);
         let frame = touch.frame;
         let to_scene = |v: [f64; 3], add: [f64; 3]| {
             frame.to_global([v[0] + add[0], v[1] + add[1], v[2] + add[2]])
