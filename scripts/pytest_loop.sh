@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # The Python front's pytest suite N times in a row (default 20) while another twoball release
 # run keeps the machine busy beside it: the check that its tests depend on no timing luck.
-# Needs the package built by `cargo test --test python_front -- --ignored` (it makes the
+# Needs the package built by `cargo test --test suite python_front:: -- --ignored` (it makes the
 # virtual environment under target/python-front) and a release build (`cargo build --release`).
 # Usage: bash scripts/pytest_loop.sh [N]. Prints one line a pass and exits non-zero on the first failure.
 set -euo pipefail
@@ -9,7 +9,7 @@ cd "$(dirname "$0")/.."
 n="${1:-20}"
 python="target/python-front/venv/bin/python"
 bin="target/release/twoball"
-[ -x "$python" ] || { echo "pytest_loop.sh: $python missing: run cargo test --test python_front -- --ignored first" >&2; exit 1; }
+[ -x "$python" ] || { echo "pytest_loop.sh: $python missing: first run cargo test --test suite python_front:: -- --ignored" >&2; exit 1; }
 [ -x "$bin" ] || { echo "pytest_loop.sh: $bin missing: run cargo build --release first" >&2; exit 1; }
 load="$(mktemp -d)"
 # The load: the default scene on the 3D quarter model (a single-threaded run of seconds), over and over.

@@ -25,13 +25,13 @@ if ! python3 -c "import meshio" >/dev/null 2>&1; then
   fi
 fi
 if ! command -v ccx >/dev/null 2>&1 && command -v apt-get >/dev/null 2>&1; then apt_install calculix-ccx; fi  # CalculiX peer (scripts/ccx_peer.py)
-# The DEM codes of tests/dem_exports.rs, from Debian's packages.
+# The DEM codes of tests/suite/dem_exports.rs, from Debian's packages.
 if command -v apt-get >/dev/null 2>&1; then
   command -v liggghts >/dev/null 2>&1 || apt_install liggghts
   command -v lmp >/dev/null 2>&1 || apt_install lammps
   command -v yade >/dev/null 2>&1 || apt_install yade
 fi
-# The Python front's test (tests/python_front.rs) makes a virtual environment.
+# The Python front's test (tests/suite/python_front.rs) makes a virtual environment.
 if ! python3 -c 'import venv, ensurepip' >/dev/null 2>&1 && command -v apt-get >/dev/null 2>&1; then apt_install python3-venv; fi
 # Check: every program the tests need is there (CI=true makes a missing one a test failure).
 missing=""

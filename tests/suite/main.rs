@@ -1,0 +1,86 @@
+//! The integration tests, one binary: each module is one subject (its file's doc comment says
+//! which). One harness instead of one binary per file keeps `cargo test`'s build short: the
+//! library's generic code is instantiated and linked once. Run one subject with
+//! `cargo test --test suite NAME::`, for example `cargo test --test suite damper::`.
+
+// Helpers shared by several subjects.
+mod axisym_support;
+mod contact_support;
+mod pvd_support;
+mod run_support;
+mod tool_support;
+
+mod analytic_cli;
+mod analytic_errors;
+mod analytic_friction;
+mod analytic_hertz;
+mod analytic_independent;
+mod analytic_parametric;
+mod analytic_three_phase;
+mod axisym_contact;
+mod axisym_element;
+mod axisym_lanes;
+mod axisym_subcycle;
+mod cli_pipe;
+mod cli_user;
+mod committed_files;
+mod contact_coulomb;
+mod contact_friction_energy;
+mod contact_hertz;
+mod contact_oblique;
+mod contact_static_hertz;
+mod damper;
+mod dem_exports;
+mod edge_band;
+mod error_estimate;
+mod fe_claims;
+mod fe_energy;
+mod fe_failures;
+mod fe_hardening;
+mod fe_lamb;
+mod fe_patch;
+mod fe_plasticity;
+mod fe_reductions;
+mod fe_rigid;
+mod fe_stable_step;
+mod fe_subcycle;
+mod fe_wave;
+mod force_history;
+mod laws_bench;
+mod laws_example;
+mod laws_fit;
+mod laws_integrator;
+mod laws_thornton_yin;
+mod mass_scaling;
+mod mesh_ball;
+mod mesh_cli;
+mod mesh_io;
+mod mesh_meridian;
+mod mesh_section_msh;
+mod mesh_section_vtu;
+mod mesh_vtu;
+mod peer_ccx;
+mod peer_ccx_plastic;
+mod phase_tolerance;
+mod python_front;
+mod scene_axisymmetric;
+mod scene_fuzz;
+mod scene_laws;
+mod scene_parse;
+mod scene_tolerance;
+mod scene_wall;
+mod section_elastic_wall;
+mod section_ladder;
+mod stress_quick;
+mod stress_stop_reasons;
+mod study_bench;
+mod study_fe_pipeline;
+mod study_shards;
+mod study_slurm;
+mod study_snapshots;
+mod study_sweep_resume;
+mod sweep_paper_like;
+mod sweep_similarity;
+mod tolerance_honesty;
+mod vtu_binary;
+mod wall_oblique;
