@@ -121,3 +121,20 @@ fn a_misspelt_key_in_a_committed_kind_is_still_refused() {
         .to_string();
     assert!(err.contains("diameterz"), "{err}");
 }
+
+/// No import cycle of more than two files in `src/` (`python3 scripts/import_cycles.py`
+/// exits 1 and lists them while one exists): layers call down.
+#[test]
+fn the_source_has_no_import_cycle_of_more_than_two_files() {
+    let root = env!("CARGO_MANIFEST_DIR");
+    let out = std::process::Command::new("python3")
+        .arg(format!("{root}/scripts/import_cycles.py"))
+        .arg(format!("{root}/src"))
+        .output()
+        .expect("python3 runs");
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stdout)
+    );
+}

@@ -1,6 +1,7 @@
 //! Acceptance 4: the breathing (n = 0) and lowest quadrupole (n = 2) spheroidal modes of an
 //! elastic ball converge to Lamb's closed-form frequencies within 1 % on the default graded
-//! mesh (D = 20 mm, h = D/10, pole h = D/100), from the modal solve and from an explicit run.
+//! mesh (D = 20 mm, h = D/10, pole h = D/100) in the modal solve; an explicit run on the
+//! uniform D/10 mesh rings at that mesh's modal frequencies within 0.5 %.
 //!
 //! A quarter ball with symmetry planes y = 0 and z = 0 carries both modes (they are even in
 //! y and z). Modes are identified by their shape, not by their frequency: the breathing mode
@@ -16,11 +17,16 @@ use twoball::Material;
 
 const D: f64 = 0.02;
 
-fn quarter_model(formulation: Formulation) -> Model {
+/// Largest relative gap between the explicit run's ringing frequency and the modal solve's
+/// on the same mesh.
+const TOL_EXPLICIT: f64 = 0.005;
+
+/// The quarter ball of element size D/10, graded to `pole` at the poles (`None`: uniform).
+fn quarter_model(formulation: Formulation, pole: Option<f64>) -> Model {
     let mesh = ball(&BallSpec {
         diameter: D,
         size: D / 10.0,
-        pole_size: Some(D / 100.0),
+        pole_size: pole,
         cut: Cut::Quarter,
     })
     .unwrap();
@@ -66,41 +72,37 @@ fn projection(
     pf.abs() / (ff * pp).sqrt()
 }
 
-fn modal_check(formulation: Formulation) {
-    let model = quarter_model(formulation);
-    let mat = model.parts[0].material;
-    let sys = assemble(&model, Settings::default().hourglass).unwrap();
+/// The mode of `model` that projects most on `field`: (ω in rad/s, projection, residual).
+fn modal_omega(model: &Model, field: fn([f64; 3]) -> [f64; 3]) -> (f64, f64, f64) {
+    let sys = assemble(model, Settings::default().hourglass).unwrap();
     // Lumped masses for the projections.
     let solver = Solver::new(model.clone(), vec![], Settings::default()).unwrap();
     let m = solver.mass();
+    // Seed the Krylov space with the field: the modes it excites converge first.
+    let start: Vec<[f64; 3]> = model.nodes.iter().map(|x| field(*x)).collect();
+    let modes = modes_near(&sys, 4, -1e6, Some(&start)).unwrap();
+    let p = |md: &twoball::fe::linear::modal::Mode| projection(&md.shape, &model.nodes, m, field);
+    let best = modes
+        .iter()
+        .filter(|md| md.residual < 1e-6)
+        .max_by(|a, b| p(a).total_cmp(&p(b)))
+        .unwrap();
+    (best.omega, p(best), best.residual)
+}
+
+fn modal_check(formulation: Formulation) {
+    let model = quarter_model(formulation, Some(D / 100.0));
+    let mat = model.parts[0].material;
     for (field, n, name) in [
         (breathing as fn([f64; 3]) -> [f64; 3], 0, "breathing"),
         (quadrupole, 2, "quadrupole"),
     ] {
-        // Seed the Krylov space with the field: the modes it excites converge first.
-        let start: Vec<[f64; 3]> = model.nodes.iter().map(|x| field(*x)).collect();
-        let modes = modes_near(&sys, 4, -1e6, Some(&start)).unwrap();
-        let best = modes
-            .iter()
-            .filter(|md| md.residual < 1e-6)
-            .max_by(|a, b| {
-                projection(&a.shape, &model.nodes, m, field).total_cmp(&projection(
-                    &b.shape,
-                    &model.nodes,
-                    m,
-                    field,
-                ))
-            })
-            .unwrap();
+        let (omega, proj, residual) = modal_omega(&model, field);
         let exact = sphere_frequency(n, D / 2.0, &mat);
-        let err = best.omega / exact - 1.0;
+        let err = omega / exact - 1.0;
         eprintln!(
-            "{formulation:?} {name}: ω = {:.6e} rad/s, Lamb {:.6e}, error {:+.4} %, projection {:.3}, residual {:.1e}",
-            best.omega,
-            exact,
+            "{formulation:?} {name}: ω = {omega:.6e} rad/s, Lamb {exact:.6e}, error {:+.4} %, projection {proj:.3}, residual {residual:.1e}",
             100.0 * err,
-            projection(&best.shape, &model.nodes, m, field),
-            best.residual
         );
         assert!(err.abs() < 0.01, "{formulation:?} {name}: {err}");
     }
@@ -153,14 +155,17 @@ fn peak_frequency(t: &[f64], s: &[f64], lo: f64, hi: f64) -> f64 {
     0.5 * (a + b)
 }
 
+/// The explicit loop on the uniform D/10 mesh (no pole grading: a step ten times longer)
+/// rings at that mesh's modal frequencies: the integrator, not the mesh, is under test here.
 fn explicit_check(formulation: Formulation) {
-    let model0 = quarter_model(formulation);
+    let model0 = quarter_model(formulation, None);
     let mat = model0.parts[0].material;
     for (field, n, name) in [
         (breathing as fn([f64; 3]) -> [f64; 3], 0, "breathing"),
         (quadrupole, 2, "quadrupole"),
     ] {
-        let exact = sphere_frequency(n, D / 2.0, &mat);
+        let lamb = sphere_frequency(n, D / 2.0, &mat);
+        let (exact, _, _) = modal_omega(&model0, field);
         let mut model = model0.clone();
         // 0.1 m/s at the surface: strains ~2e-5, linear regime.
         let amp = 0.1 / (D / 2.0);
@@ -192,12 +197,12 @@ fn explicit_check(formulation: Formulation) {
         let w = peak_frequency(&ts, &ss, 0.2 * exact, 3.0 * exact);
         let err = w / exact - 1.0;
         eprintln!(
-            "{formulation:?} explicit {name}: ω = {w:.6e} rad/s, Lamb {exact:.6e}, error {:+.4} % ({} steps, Δt {:.3e} s)",
+            "{formulation:?} explicit {name}: ω = {w:.6e} rad/s, modal {exact:.6e}, error {:+.4} % (Lamb {lamb:.6e}; {} steps, Δt {:.3e} s)",
             100.0 * err,
             s.step_count(),
             s.dt()
         );
-        assert!(err.abs() < 0.01, "{formulation:?} {name}: {err}");
+        assert!(err.abs() < TOL_EXPLICIT, "{formulation:?} {name}: {err}");
     }
 }
 

@@ -144,8 +144,8 @@ fn a_loose_tolerance_that_the_default_levels_meet_takes_their_answer() {
     let levels: Vec<i32> = est.meshes.iter().map(|m| m.level).collect();
     assert_eq!(levels, [-1, 0]);
     // At ±1.25 m/s the levels' bar is about 1.1 %: under a tolerance of 3 % their answer
-    // carries the floor's 2 % instead; a tolerance of 1.5 % is below the floor, so the banded
-    // family answers although their own bar is within it.
+    // carries the floor's 2 % instead (below it, the banded family answers:
+    // `a_tolerance_below_the_floor_runs_the_banded_family_although_the_levels_meet_it`).
     let faster = scene(&["ball1.velocity=[1.25,0,0]", "ball2.velocity=[-1.25,0,0]"]);
     let own = run_scene_default(&faster, &opts).unwrap();
     let own_bar = own.error_estimate.unwrap().e.relative_error.unwrap();
@@ -159,16 +159,6 @@ fn a_loose_tolerance_that_the_default_levels_meet_takes_their_answer() {
     assert!(matches!(est.method, EstimateMethod::SceneLadder { .. }));
     let floor = LEVELS_TOLERANCE_FLOOR * est.e.extrapolated;
     assert!((est.e.error - floor).abs() < 1e-15, "{}", est.summary());
-    let tight = LadderPlan::Tolerance {
-        tolerance: 0.015,
-        max_refinements: 0,
-    };
-    let r = run_scene_with_estimate(&faster, &opts, tight).unwrap();
-    let method = r.error_estimate.unwrap().method;
-    assert!(
-        matches!(method, EstimateMethod::BandedFamily { .. }),
-        "{method:?}"
-    );
     // A bulk of 6 mm has no coarser level (12 mm is above a quarter of the diameter): there
     // are no default levels to try, so even a loose tolerance runs the family.
     let coarse = scene(&[
@@ -253,4 +243,27 @@ fn the_default_levels_stay_within_the_floor() {
     }
     // The floor is not loose by an order of magnitude either.
     assert!(worst > 0.25 * LEVELS_TOLERANCE_FLOOR, "{worst}");
+}
+
+/// A tolerance of 1.5 %, below the floor, runs the banded family at ±1.25 m/s although the
+/// default levels' own bar (about 1.1 %) is within it (`--ignored`: about 90 s; the branch it
+/// takes is the one the 0.5 % test above takes).
+#[test]
+#[ignore]
+fn a_tolerance_below_the_floor_runs_the_banded_family_although_the_levels_meet_it() {
+    let opts = RunOptions {
+        history_rows: 100,
+        ..RunOptions::default()
+    };
+    let faster = scene(&["ball1.velocity=[1.25,0,0]", "ball2.velocity=[-1.25,0,0]"]);
+    let tight = LadderPlan::Tolerance {
+        tolerance: 0.015,
+        max_refinements: 0,
+    };
+    let r = run_scene_with_estimate(&faster, &opts, tight).unwrap();
+    let method = r.error_estimate.unwrap().method;
+    assert!(
+        matches!(method, EstimateMethod::BandedFamily { .. }),
+        "{method:?}"
+    );
 }

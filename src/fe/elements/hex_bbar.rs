@@ -5,10 +5,10 @@
 //! SOLID185 default the paper used. There is no plain 2x2x2 option on purpose.
 
 use crate::fe::{
+    elements::batch::ElementStateMut,
     elements::hex_one_point::ElementOutput,
     elements::objective::{hughes_winget, rotate_symmetric},
     elements::shape::{gauss_points_2x2x2, natural_derivatives, spatial_gradients},
-    elements::ElementStateMut,
     materials::J2Material,
     solver::timestep::characteristic_length,
     tensor::{ddot, deviator, spin_vector, sym_part, sym_vec, trace},

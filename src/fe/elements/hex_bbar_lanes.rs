@@ -20,11 +20,11 @@
 //! elements are grouped into lanes; they equal the per-element kernel up to round-off
 //! (checked to 1e-11 relative in the tests).
 
-use crate::fe::elements::block::{
-    contiguous, finish_lanes, gather_nodes, time_updates, Batch, BatchResult, ElementBlock,
+use crate::fe::elements::batch::{
+    contiguous, finish_lanes, gather_nodes, time_updates, Batch, BatchResult, BlockState,
     LaneResult, StepInput,
 };
-use crate::fe::elements::formulation::Element;
+use crate::fe::elements::element::Element;
 use crate::fe::simd::{build, prefetch::prefetch_ahead, LaneIsa};
 use std::mem::MaybeUninit;
 
@@ -336,7 +336,7 @@ impl Element for BBarHex {
     fn time_arithmetic<H: Hardening, const W: usize>(
         isa: LaneIsa<W>,
         law: &H,
-        b: &ElementBlock,
+        b: &BlockState<'_>,
         xe: &[Vec3<W>; 8],
         ve: &[Vec3<W>; 8],
         idx: &[usize; W],
@@ -362,9 +362,9 @@ impl Element for BBarHex {
 mod tests {
     use super::*;
     use crate::fe::elements::{
+        batch::{ElementStateMut, IntegrationPoint},
         hex_bbar,
         hex_one_point_lanes::tests::{assert_forces_match, four_elements, lanes},
-        ElementStateMut, IntegrationPoint,
     };
     use crate::material::Material;
 

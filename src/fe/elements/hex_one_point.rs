@@ -10,9 +10,9 @@
 //! strain never excite hourglass forces (patch test passes with hourglass control on).
 
 use crate::fe::{
+    elements::batch::ElementStateMut,
     elements::objective::{hughes_winget, rotate_symmetric},
     elements::shape::NODE_XI,
-    elements::ElementStateMut,
     materials::J2Material,
     solver::timestep::characteristic_length,
     tensor::{ddot, mat_vec, spin_vector, sym_part, sym_vec},

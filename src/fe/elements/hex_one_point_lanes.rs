@@ -22,11 +22,11 @@
 //! are grouped into lanes; they equal the per-element kernel up to round-off (different, not
 //! less accurate, operation order; checked to 1e-12 relative in the tests).
 
-use crate::fe::elements::block::{
-    contiguous, finish_lanes, gather_nodes, time_updates, Batch, BatchResult, ElementBlock,
+use crate::fe::elements::batch::{
+    contiguous, finish_lanes, gather_nodes, time_updates, Batch, BatchResult, BlockState,
     LaneResult, StepInput,
 };
-use crate::fe::elements::formulation::Element;
+use crate::fe::elements::element::Element;
 use crate::fe::simd::{build, prefetch::prefetch_ahead, LaneIsa};
 use crate::fe::{
     materials::{
@@ -505,7 +505,7 @@ impl Element for OnePointHex {
     fn time_arithmetic<H: Hardening, const W: usize>(
         isa: LaneIsa<W>,
         law: &H,
-        b: &ElementBlock,
+        b: &BlockState<'_>,
         xe: &[Vec3<W>; 8],
         ve: &[Vec3<W>; 8],
         idx: &[usize; W],
@@ -540,9 +540,9 @@ impl Element for OnePointHex {
 pub(crate) mod tests {
     use super::*;
     use crate::fe::elements::{
+        batch::ElementStateMut,
         hex_one_point,
         shape::{gauss_points_2x2x2, natural_derivatives, spatial_gradients, NODE_XI},
-        ElementStateMut,
     };
     use crate::material::Material;
 
@@ -710,7 +710,7 @@ pub(crate) mod tests {
             hourglass_energy: z,
         };
         let mut refs = [(
-            [crate::fe::elements::IntegrationPoint::default()],
+            [crate::fe::elements::batch::IntegrationPoint::default()],
             0.0,
             0.0,
             [[0.0; 3]; 4],

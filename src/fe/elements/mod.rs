@@ -1,11 +1,16 @@
-//! Elements: the element block with its loop ([`block`]: gather, kernel, scatter, in lane
-//! groups), and each hexahedron formulation with its scalar reference kernel beside its lane
+//! Elements: the element block with its loop ([`block`]), the seam every element family
+//! implements ([`element`]) and what the loop hands a family and takes back ([`batch`]: the
+//! gather of nodal lanes, the check and scatter of a lane group, written once), and each
+//! hexahedron formulation with its scalar reference kernel beside its lane
 //! kernel ([`hex_one_point`] and [`hex_one_point_lanes`], [`hex_bbar`] and
 //! [`hex_bbar_lanes`]), on the shape functions ([`shape`]) and objective rates
 //! ([`objective`]). A formulation is registered in [`formulation`]: the one place that maps
-//! its name to its code.
+//! its name to its code. Imports run one way: block → formulation → families → element,
+//! batch.
 
+pub mod batch;
 pub mod block;
+pub mod element;
 pub mod formulation;
 pub mod hex_bbar;
 pub mod hex_bbar_lanes;
@@ -16,4 +21,3 @@ pub mod shape;
 
 pub use block::*;
 pub use formulation::Formulation;
-pub(crate) use formulation::{Element, ElementVisitor};
