@@ -1,6 +1,7 @@
 //! `twoball laws bench` end to end on a tiny matrix (copper-fe, D = 20 mm, 3.73 and 10 m/s,
 //! no oblique points): the FE points, the cache (a second run runs no FE and leaves the
-//! files untouched), the report naming every law, and a bad matrix file's one-line error.
+//! files untouched), the report naming every law, the damped laws calibrated, and a bad
+//! matrix file's one-line error.
 
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -90,6 +91,28 @@ fn tiny_matrix_runs_end_to_end_and_reuses_its_cache() {
         );
     }
     assert!(report.contains(&format!("{:+.1}", 100.0 * (1.0 / e[1] - 1.0))));
+    // The damped laws are calibrated at the median point (here the faster of two, 10 m/s) and
+    // judged at the other: a linear dashpot's e is its parameter, so the fit returns the FE's
+    // e there; each law is judged at one point; none enters the material laws' ranking.
+    let cal = &r.calibrated[0];
+    assert_eq!((cal.metal.as_str(), cal.speed), ("copper-fe", 10.0));
+    let dashpot = cal
+        .laws
+        .iter()
+        .find(|c| c.errors.law == "linear-dashpot")
+        .unwrap();
+    assert_eq!(dashpot.parameter.0, "e");
+    assert!(
+        (dashpot.parameter.1 / e[1] - 1.0).abs() < 1e-6,
+        "{dashpot:?}"
+    );
+    // Hunt-Crossley's and Lankarani-Nikravesh's damping, derived for e near 1, cannot reach
+    // a restitution this low: they are named, not ranked.
+    assert_eq!(cal.laws.len() + cal.failed.len(), 6, "{cal:?}");
+    assert!(cal.laws.len() >= 4 && cal.laws.iter().all(|c| c.errors.points == 1));
+    assert!(report.contains("### copper-fe: fitted at 10.0000 m/s, D = 20 mm"));
+    let ranking = &report[report.find("## Ranking").unwrap()..report.find("## Damped").unwrap()];
+    assert!(!ranking.contains("| linear-dashpot |") && ranking.contains("| thornton |"));
     for f in ["e_v_copper-fe.svg", "e_v_over_vy.svg"] {
         assert!(out.join(f).is_file(), "{f} missing");
     }
@@ -272,5 +295,44 @@ fn oblique_points_are_cached_apart_from_the_head_on_plan() {
     // The head-on point reruns on the new plan; the oblique point does not.
     assert_eq!((second[0].computed, second[1].computed), (1, 0));
     assert_eq!(second[1].reused, 1);
+    let _ = std::fs::remove_dir_all(&out);
+}
+
+/// The committed benchmark report (verification/laws/REPORT.md) is what
+/// `twoball laws bench --out verification/laws --jobs 2 --laws-only` writes from the committed
+/// FE cache (verification/laws/fe), to the byte: laws, calibrations, fits and ranking are
+/// rerun, the FE is read.
+#[test]
+fn the_committed_report_is_reproduced_from_the_committed_cache() {
+    let committed = Path::new(env!("CARGO_MANIFEST_DIR")).join("verification/laws");
+    let out = scratch("committed-report");
+    std::fs::create_dir_all(out.join("fe")).unwrap();
+    for f in std::fs::read_dir(committed.join("fe")).unwrap() {
+        let f = f.unwrap().path();
+        std::fs::copy(&f, out.join("fe").join(f.file_name().unwrap())).unwrap();
+    }
+    let run = Command::new(env!("CARGO_BIN_EXE_twoball"))
+        .args(["laws", "bench", "--laws-only", "--jobs", "2", "--out"])
+        .arg(&out)
+        .output()
+        .unwrap();
+    assert!(
+        run.status.success(),
+        "{}",
+        String::from_utf8_lossy(&run.stderr)
+    );
+    let written = std::fs::read_to_string(out.join("REPORT.md"))
+        .unwrap()
+        .replace(&out.display().to_string(), "verification/laws");
+    let expected = std::fs::read_to_string(committed.join("REPORT.md")).unwrap();
+    assert!(
+        written == expected,
+        "the report differs from the committed one, first at byte {}",
+        written
+            .bytes()
+            .zip(expected.bytes())
+            .position(|(a, b)| a != b)
+            .unwrap_or(written.len().min(expected.len()))
+    );
     let _ = std::fs::remove_dir_all(&out);
 }

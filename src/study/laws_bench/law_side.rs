@@ -74,8 +74,21 @@ pub fn head_on_law(
     p: &HeadOnPoint,
     speed: f64,
 ) -> Result<LawImpact> {
+    head_on_law_with(registry, law, &[], p, speed)
+}
+
+/// [`head_on_law`] with the parameters `overrides` (name, value in the parameter's unit).
+///
+/// Errors: as [`head_on_law`]; an unknown parameter or one out of its range.
+pub fn head_on_law_with(
+    registry: &Registry,
+    law: &str,
+    overrides: &[(String, f64)],
+    p: &HeadOnPoint,
+    speed: f64,
+) -> Result<LawImpact> {
     let (b, pair) = pair_of(p.material, p.diameter)?;
-    let (n, _) = registry.build_normal(law, &[], &pair)?;
+    let (n, _) = registry.build_normal(law, overrides, &pair)?;
     integrate(
         &b,
         &b,

@@ -10,11 +10,13 @@
 //! - [`law_side`]: the laws on the same points;
 //! - [`bars`]: the FE error bars in e per metal and the laws within them;
 //! - [`ranking`]: each law's errors against FE and the ranking;
+//! - [`calibrated`]: the damped laws calibrated at one point per metal and ranked;
 //! - [`fit`]: the laws fitted to the FE points;
 //! - [`figures`]: the SVG figures; [`report`]: REPORT.md.
 
 pub mod bars;
 pub mod cache;
+pub mod calibrated;
 pub mod fe;
 pub mod figures;
 pub mod fit;
@@ -113,6 +115,8 @@ pub struct BenchResults {
     pub oblique: Vec<ObliqueResult>,
     /// The fits, one per metal.
     pub fits: Vec<fit::MetalFit>,
+    /// The damped laws calibrated per metal and ranked.
+    pub calibrated: Vec<calibrated::MetalCalibration>,
     /// Cache use of the head-on and oblique FE points.
     pub stats: [CacheStats; 2],
 }
@@ -259,6 +263,8 @@ pub fn run_bench(
         .collect::<Result<Vec<_>>>()?;
     let normal_laws: Vec<String> = registry.normal.iter().map(|s| s.name.into()).collect();
     let rank = ranking::rank_all(&head_on, &normal_laws);
+    progress("damped laws calibrated");
+    let calibrated = calibrated::calibrate_all(registry, &head_on)?;
     let oblique = oblique_points
         .into_iter()
         .zip(ofe)
@@ -296,6 +302,7 @@ pub fn run_bench(
         head_on,
         oblique,
         fits,
+        calibrated,
         stats,
     };
     progress("report and figures");
