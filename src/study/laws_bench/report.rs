@@ -6,7 +6,7 @@ use super::bars::{metal_bars, TARGET_E_BAR};
 use super::calibrated::MetalCalibration;
 use super::figures::Figure;
 use super::fit::{LawFit, MetalFit, FIT_RANGE, TARGET_E_ERROR};
-use super::ranking::{relative_errors, MetalRanking, QUANTITIES};
+use super::ranking::{relative_errors, LawErrors, MetalRanking, QUANTITIES};
 use super::similarity::{check_differences, rate_independent};
 use super::{BenchResults, HeadOnResult};
 use crate::atomic::write_atomic;
@@ -308,6 +308,17 @@ fn fe_section(s: &mut String, r: &BenchResults) {
     let _ = writeln!(s, ".\n");
 }
 
+/// A law's RMS errors as table cells: e, δ_max, t_c, peak force and combined in per cent,
+/// then the points compared.
+fn rms_cells(l: &LawErrors) -> String {
+    let [e, d, t, f] = l.rms.map(|x| format!("{:.1}", 100.0 * x));
+    format!(
+        "{e} | {d} | {t} | {f} | {:.1} | {}",
+        100.0 * l.combined,
+        l.points
+    )
+}
+
 fn ranking_section(s: &mut String, rank: &[MetalRanking]) {
     let _ = writeln!(s, "## Ranking\n");
     let _ = writeln!(
@@ -325,18 +336,7 @@ fn ranking_section(s: &mut String, rank: &[MetalRanking]) {
         );
         let _ = writeln!(s, "|---|---|---|---|---|---|---|---|");
         for (i, l) in m.laws.iter().enumerate() {
-            let _ = writeln!(
-                s,
-                "| {} | {} | {:.1} | {:.1} | {:.1} | {:.1} | {:.1} | {} |",
-                i + 1,
-                l.law,
-                100.0 * l.rms[0],
-                100.0 * l.rms[1],
-                100.0 * l.rms[2],
-                100.0 * l.rms[3],
-                100.0 * l.combined,
-                l.points
-            );
+            let _ = writeln!(s, "| {} | {} | {} |", i + 1, l.law, rms_cells(l));
         }
         let _ = writeln!(s);
     }
@@ -367,19 +367,13 @@ fn calibrated_section(s: &mut String, cal: &[MetalCalibration]) {
         let _ = writeln!(s, "|---|---|---|---|---|---|---|---|---|");
         for (i, c) in m.laws.iter().enumerate() {
             let l = &c.errors;
+            let (name, value) = c.parameter;
+            let cells = rms_cells(l);
             let _ = writeln!(
                 s,
-                "| {} | {} | {} = {:.4e} | {:.1} | {:.1} | {:.1} | {:.1} | {:.1} | {} |",
+                "| {} | {} | {name} = {value:.4e} | {cells} |",
                 i + 1,
-                l.law,
-                c.parameter.0,
-                c.parameter.1,
-                100.0 * l.rms[0],
-                100.0 * l.rms[1],
-                100.0 * l.rms[2],
-                100.0 * l.rms[3],
-                100.0 * l.combined,
-                l.points
+                l.law
             );
         }
         if !m.failed.is_empty() {
