@@ -2,8 +2,8 @@
 //! property of the metal, so its default (e = 0.8, or A = 1e-7 s) says nothing about its
 //! form. Per metal, each law's one damping parameter is set (bisection over its interval; e
 //! is monotone in it) so that its e equals the FE's at one reference point, the metal's
-//! median speed at the largest diameter; the law is then judged at the metal's other points and ranked as
-//! the material laws are ([`super::ranking`]).
+//! median speed at the largest diameter; the law is then judged at the metal's other points
+//! and ranked as the material laws are ([`super::ranking`]).
 
 use super::law_side::head_on_law_with;
 use super::matrix::HeadOnPoint;
@@ -13,15 +13,46 @@ use crate::analytic::laws::Registry;
 use crate::error::Result;
 use rayon::prelude::*;
 
-/// The damped laws, the one parameter a calibration sets (the others at their defaults) and
-/// the interval searched for it: (law, parameter, low, high, searched in ln).
-pub const DAMPED: [(&str, &str, f64, f64, bool); 6] = [
-    ("linear-dashpot", "e", 0.01, 1.0, false),
-    ("hertz-damped", "e", 0.01, 1.0, false),
-    ("hunt-crossley", "e", 0.01, 1.0, false),
-    ("lankarani-nikravesh", "e", 0.01, 1.0, false),
-    ("kuwabara-kono", "A", 1e-12, 1e-4, true),
-    ("walton-braun", "e", 0.01, 1.0, false),
+/// A damped law's one damping parameter and the interval a calibration searches.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Damping {
+    /// Normal law name.
+    pub law: &'static str,
+    /// The parameter a calibration sets (the others stay at their defaults).
+    pub param: &'static str,
+    /// Lower end of the searched interval (the parameter's unit).
+    pub low: f64,
+    /// Upper end of the searched interval.
+    pub high: f64,
+    /// Whether the interval is halved in ln of the parameter (a scale, not a fraction).
+    pub log_scale: bool,
+}
+
+/// A restitution parameter searched over the range its laws accept.
+const fn by_e(law: &'static str) -> Damping {
+    Damping {
+        law,
+        param: "e",
+        low: 0.01,
+        high: 1.0,
+        log_scale: false,
+    }
+}
+
+/// The damped laws.
+pub const DAMPED: [Damping; 6] = [
+    by_e("linear-dashpot"),
+    by_e("hertz-damped"),
+    by_e("hunt-crossley"),
+    by_e("lankarani-nikravesh"),
+    Damping {
+        law: "kuwabara-kono",
+        param: "A",
+        low: 1e-12,
+        high: 1e-4,
+        log_scale: true,
+    },
+    by_e("walton-braun"),
 ];
 
 /// Relative mismatch in e at the reference below which a calibration has converged.
@@ -29,7 +60,7 @@ pub const MATCH: f64 = 1e-9;
 
 /// True for a law of [`DAMPED`].
 pub fn is_damped(law: &str) -> bool {
-    DAMPED.iter().any(|d| d.0 == law)
+    DAMPED.iter().any(|d| d.law == law)
 }
 
 /// One damped law calibrated on one metal.
@@ -88,46 +119,31 @@ fn errors_with(
     )))
 }
 
-/// The value of `param` in [lo, hi] (bisected in ln when `log`) at which `law`'s e equals
-/// `target` at point `p`, within [`MATCH`]; None when e(lo) − target and e(hi) − target have
-/// the same sign (no value in the interval reaches it; e is monotone in a damping parameter)
-/// or the law fails to integrate at a value tried (the balls do not separate).
-fn solve_parameter(
-    registry: &Registry,
-    law: &str,
-    (param, lo, hi, log): (&str, f64, f64, bool),
-    p: &HeadOnPoint,
-    target: f64,
-) -> Result<Option<f64>> {
+/// The value of `d.param` in [low, high] (halved in ln with `log_scale`) at which the law's e
+/// equals `target` at point `p`, within [`MATCH`]; None when e(low) − target and
+/// e(high) − target have the same sign (no value in the interval reaches it; e is monotone in
+/// a damping parameter) or the law fails to integrate at a value tried (the balls do not
+/// separate).
+fn solve_parameter(registry: &Registry, d: Damping, p: &HeadOnPoint, target: f64) -> Option<f64> {
     let gap = |x: f64| -> Option<f64> {
-        let l = head_on_law_with(registry, law, &[(param.to_string(), x)], p, p.speed).ok()?;
+        let l = head_on_law_with(registry, d.law, &[(d.param.to_string(), x)], p, p.speed).ok()?;
         Some(l.e / target - 1.0)
     };
-    let (to, from) = if log {
-        (f64::ln as fn(f64) -> f64, f64::exp as fn(f64) -> f64)
-    } else {
-        (
-            std::convert::identity as fn(f64) -> f64,
-            std::convert::identity as fn(f64) -> f64,
-        )
-    };
-    let (mut a, mut b) = (to(lo), to(hi));
-    let (Some(ga), Some(gb)) = (gap(lo), gap(hi)) else {
-        return Ok(None);
-    };
+    let to = |x: f64| if d.log_scale { x.ln() } else { x };
+    let from = |y: f64| if d.log_scale { y.exp() } else { y };
+    let (ga, gb) = (gap(d.low)?, gap(d.high)?);
     if ga.abs() < MATCH {
-        return Ok(Some(lo));
+        return Some(d.low);
     }
     if ga * gb > 0.0 {
-        return Ok(None);
+        return None;
     }
+    let (mut a, mut b) = (to(d.low), to(d.high));
     for _ in 0..200 {
         let m = 0.5 * (a + b);
-        let Some(gm) = gap(from(m)) else {
-            return Ok(None);
-        };
+        let gm = gap(from(m))?;
         if gm.abs() < MATCH || (b - a).abs() <= 1e-14 * m.abs().max(1.0) {
-            return Ok(Some(from(m)));
+            return Some(from(m));
         }
         if (gm > 0.0) == (ga > 0.0) {
             a = m;
@@ -135,41 +151,35 @@ fn solve_parameter(
             b = m;
         }
     }
-    Ok(Some(from(0.5 * (a + b))))
+    Some(from(0.5 * (a + b)))
 }
 
-/// Sets the damping parameter of `law` so that its e equals the FE's at `reference` and
+/// Sets the damping parameter of `d.law` so that its e equals the FE's at `reference` and
 /// judges the law at the other points of `points`; None when no value reaches it.
+///
+/// Errors: the law fails to integrate at a point with the value found.
 fn calibrate(
     registry: &Registry,
-    (law, param, lo, hi, log): (&str, &'static str, f64, f64, bool),
+    d: Damping,
     reference: &HeadOnResult,
     points: &[&HeadOnResult],
 ) -> Result<Option<Calibrated>> {
     let Some(fe) = reference.fe_done() else {
         return Ok(None);
     };
-    let target = fe.e.value;
-    let Some(value) = solve_parameter(
-        registry,
-        law,
-        (param, lo, hi, log),
-        &reference.point,
-        target,
-    )?
-    else {
+    let Some(value) = solve_parameter(registry, d, &reference.point, fe.e.value) else {
         return Ok(None);
     };
-    let overrides = [(param.to_string(), value)];
+    let overrides = [(d.param.to_string(), value)];
     let mut rows = vec![];
     for h in points.iter().filter(|h| !std::ptr::eq(**h, reference)) {
-        if let Some(r) = errors_with(registry, law, &overrides, h)? {
+        if let Some(r) = errors_with(registry, d.law, &overrides, h)? {
             rows.push(r);
         }
     }
     Ok(Some(Calibrated {
-        errors: LawErrors::from_rows(law, &rows),
-        parameter: (param, value),
+        errors: LawErrors::from_rows(d.law, &rows),
+        parameter: (d.param, value),
     }))
 }
 
@@ -188,9 +198,9 @@ pub fn calibrate_all(
         };
         let points: Vec<&HeadOnResult> =
             head_on.iter().filter(|h| h.point.metal == metal).collect();
-        let present: Vec<(&str, &'static str, f64, f64, bool)> = DAMPED
+        let present: Vec<Damping> = DAMPED
             .into_iter()
-            .filter(|d| registry.normal(d.0).is_ok())
+            .filter(|d| registry.normal(d.law).is_ok())
             .collect();
         let fitted: Vec<Option<Calibrated>> = present
             .par_iter()
@@ -200,7 +210,7 @@ pub fn calibrate_all(
             .iter()
             .zip(&fitted)
             .filter(|(_, f)| f.is_none())
-            .map(|(d, _)| d.0.to_string())
+            .map(|(d, _)| d.law.to_string())
             .collect();
         let mut laws: Vec<Calibrated> = fitted.into_iter().flatten().collect();
         laws.sort_by(|a, b| a.errors.combined.total_cmp(&b.errors.combined));
@@ -213,4 +223,29 @@ pub fn calibrate_all(
         });
     }
     Ok(out)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::analytic::laws::{ContactPair, Params};
+    use crate::analytic::Body;
+    use crate::material::Material;
+
+    /// Every damped law is a law of the registry, and both ends of its interval are values of
+    /// its parameter that the law accepts (a misspelt or out-of-range entry would otherwise
+    /// read as "cannot reach the FE's e").
+    #[test]
+    fn every_damping_entry_names_a_parameter_its_law_accepts() {
+        let registry = Registry::builtin();
+        let b = Body::ball(Material::preset("copper-fe").unwrap(), 0.02, "ball").unwrap();
+        let pair = ContactPair::between(&b, &b, 0.2);
+        for d in DAMPED {
+            let spec = registry.normal(d.law).unwrap();
+            for x in [d.low, d.high] {
+                Params::resolve(spec.name, spec.params, &[(d.param.to_string(), x)], &pair)
+                    .unwrap_or_else(|e| panic!("{}: {e}", d.law));
+            }
+        }
+    }
 }
