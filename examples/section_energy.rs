@@ -20,9 +20,9 @@
 //! CSV, `SECTION_CONTACT=segment` integrates the plane's penalty pressure over each segment
 //! (`fe::contact::meridian::plane_segment`) instead of lumping it at the nodes.
 
-use twoball::fe::axisym::element::QuadFormulation;
 use twoball::fe::axisym::section::SectionSolver;
 use twoball::fe::axisym::subcycle::Integration;
+use twoball::fe::elements::ring::QuadFormulation;
 use twoball::material::Material;
 use twoball::mesh::meridian::{
     ball, ladder_ball, ladder_ball_banded, EdgeBand, MeridianMesh, SectionSpec,

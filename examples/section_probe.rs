@@ -6,8 +6,8 @@
 //! wall time (s) of one run (defaults: D/6 bulk, D/200 pole, one point,
 //! subcycled).
 
-use twoball::fe::axisym::element::QuadFormulation;
 use twoball::fe::axisym::subcycle::Integration;
+use twoball::fe::elements::ring::QuadFormulation;
 use twoball::material::Material;
 use twoball::mesh::meridian::{ball, SectionSpec};
 use twoball::study::run::section_impact::{HeadOn, Target};

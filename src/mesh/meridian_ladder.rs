@@ -187,7 +187,7 @@ pub fn ladder_pole_size(diameter: f64, contact_radius: f64, level: u32) -> Resul
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::fe::axisym::quad::gauss_points;
+    use crate::fe::elements::ring::shape::gauss_points;
     use crate::mesh::section::quad_area;
 
     const D: f64 = 0.02;

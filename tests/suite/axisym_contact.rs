@@ -159,7 +159,7 @@ fn two_balls_with_node_to_segment_contact_agree_with_the_symmetry_plane() {
 #[test]
 #[ignore]
 fn default_scene_ladder() {
-    use twoball::fe::axisym::element::QuadFormulation;
+    use twoball::fe::elements::ring::QuadFormulation;
     use twoball::Material;
     let r = DIAMETER / 2.0;
     for pole in [DIAMETER / 200.0, DIAMETER / 1000.0, DIAMETER / 2000.0] {

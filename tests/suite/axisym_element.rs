@@ -5,8 +5,8 @@
 use crate::axisym_support;
 
 use axisym_support::*;
-use twoball::fe::axisym::element::{update, QuadFormulation, QuadState};
 use twoball::fe::axisym::section::SectionSolver;
+use twoball::fe::elements::ring::{update, QuadFormulation, QuadState};
 use twoball::fe::materials::J2Material;
 
 const FORMS: [QuadFormulation; 2] = [

@@ -1,11 +1,11 @@
-//! The quads on their lane paths (`fe::axisym::quad_lanes`) against the scalar update of
+//! The quads on their lane paths (`fe::elements::ring`, every formulation's lane update) against the scalar update of
 //! each quad: whole impacts give the same bits on every path, for one material (the default
 //! scene's mirror ball, on a coarser pole; one point and B-bar) and for two (steel on
 //! aluminium, both meshed, whose lane groups break at the material change), single rate and
 //! subcycled.
 
-use twoball::fe::axisym::element::QuadFormulation;
 use twoball::fe::axisym::subcycle::Integration;
+use twoball::fe::elements::ring::QuadFormulation;
 use twoball::fe::simd::KernelPath;
 use twoball::material::Material;
 use twoball::mesh::meridian::{ball, MeridianMesh, SectionSpec};

@@ -13,7 +13,7 @@ use crate::contact_support::hertz;
 
 use hertz::{finite_ball_reference, windowed_peak};
 use twoball::analytic::hertz::HertzPair;
-use twoball::fe::axisym::element::QuadFormulation;
+use twoball::fe::elements::ring::QuadFormulation;
 use twoball::material::Material;
 use twoball::mesh::meridian::{ball, ladder_ball, ladder_pole_size, MeridianMesh, SectionSpec};
 use twoball::mesh::section::quad_area;

@@ -15,9 +15,9 @@
 //! A quad's step scales as √s: dt_e = l_e √(s ρ / M) with l_e its characteristic length
 //! and M its P-wave modulus, so s_e = max(1, (T / dt_e)²) for a target step T.
 
-use super::mass::element_masses;
-use super::quad::characteristic_length;
 use crate::error::{Error, Result};
+use crate::fe::elements::ring::mass::element_masses;
+use crate::fe::elements::ring::shape::characteristic_length;
 
 /// Largest mass-scaling budget (added mass over the section's mass) accepted.
 pub const MAX_BUDGET: f64 = 1e-2;

@@ -4,11 +4,14 @@
 //! [`Interaction`]s ([`crate::fe::contact::meridian`]), and the
 //! energy balance (kinetic, internal, plastic, hourglass, contact) checked every step.
 
-use super::element::{update, QuadFormulation, QuadOutput, QuadState};
-use super::mass::element_masses;
-use super::quad_lanes;
 use super::subcycle::{Integration, Schedule};
 use crate::error::{Error, Result};
+use crate::fe::elements::ring::{
+    element::{RingElement, RingVisitor},
+    lanes,
+    mass::element_masses,
+    shape, update, QuadFormulation, QuadOutput, QuadState,
+};
 use crate::fe::interaction::{ContactState, Interaction, Kick, StepContext};
 use crate::fe::materials::J2Material;
 use crate::fe::materials::{Hardening, LawVisitor};
@@ -42,7 +45,7 @@ pub struct SectionModel {
     pub integration: Integration,
     /// Density factor of each quad (≥ 1, [`super::mass_scaling`]); empty: none.
     pub density_scale: Vec<f64>,
-    /// The widest lane path the quads may run on ([`super::quad_lanes`]; the same bits on
+    /// The widest lane path the quads may run on ([`crate::fe::elements::ring::lanes`]; the same bits on
     /// every path), or `None` for the scalar update of each quad.
     pub kernel: Option<KernelPath>,
 }
@@ -86,7 +89,7 @@ impl SectionModel {
                 ));
             }
             let x = q.map(|i| self.nodes[i as usize]);
-            if super::quad::area(&x) <= 0.0 {
+            if shape::area(&x) <= 0.0 {
                 return Err(Error::invalid(
                     format!("mesh.quads[{e}]"),
                     format!("{q:?}"),
@@ -206,7 +209,7 @@ impl SectionSolver {
             let mat = &model.materials[model.material_of[e]];
             let s = model.density_scale.get(e).copied().unwrap_or(1.0);
             let m = element_masses(&x, s * mat.rho);
-            let w = 2.0 * mat.wave_speed / (s.sqrt() * super::quad::characteristic_length(&x));
+            let w = 2.0 * mat.wave_speed / (s.sqrt() * shape::characteristic_length(&x));
             for (k, &i) in q.iter().enumerate() {
                 mass[i as usize] += m[k];
                 omega[i as usize] = omega[i as usize].max(w);
@@ -350,7 +353,7 @@ impl SectionSolver {
     /// Updates the quads `list` in order, quad e over `dt` (s) times 2^`level[e]` (`level`
     /// empty: all over `dt`), adding their forces into `f_int`; returns the smallest Courant
     /// step (s). Quads of one material and step run W at a time on the lane path
-    /// ([`super::quad_lanes`]), with the same bits as one by one.
+    /// ([`crate::fe::elements::ring::lanes`]), with the same bits as one by one.
     pub(super) fn update_elements(&mut self, list: &[u32], level: &[u8], dt: f64) -> Result<f64> {
         let step = |e: u32| match level.get(e as usize) {
             Some(&l) => f64::from(1u32 << l) * dt,
@@ -655,25 +658,42 @@ impl<F: Fn(u32) -> f64> LaneKernel for QuadLoop<'_, F> {
     type Output = Result<f64>;
     #[inline(always)]
     fn run<const W: usize>(self, isa: LaneIsa<W>) -> Result<f64> {
+        let form = self.s.model.formulation;
+        form.with(FamilyLoop { isa, run: self })
+    }
+}
+
+/// [`QuadLoop`] on lane width W, for its model's element type.
+struct FamilyLoop<'a, F: Fn(u32) -> f64, const W: usize> {
+    isa: LaneIsa<W>,
+    run: QuadLoop<'a, F>,
+}
+
+impl<F: Fn(u32) -> f64, const W: usize> RingVisitor for FamilyLoop<'_, F, W> {
+    type Output = Result<f64>;
+    #[inline(always)]
+    fn visit<E: RingElement>(self, element: E) -> Result<f64> {
+        let QuadLoop { s, list, step } = self.run;
         let mut dt_min = f64::INFINITY;
         let mut start = 0;
-        while start < self.list.len() {
-            let first = self.list[start];
-            let m = self.s.model.material_of[first as usize];
-            let dt = (self.step)(first);
+        while start < list.len() {
+            let first = list[start];
+            let m = s.model.material_of[first as usize];
+            let dt = step(first);
             let mut end = start + 1;
-            while end < self.list.len()
+            while end < list.len()
                 && end - start < W
-                && self.s.model.material_of[self.list[end] as usize] == m
-                && (self.step)(self.list[end]) == dt
+                && s.model.material_of[list[end] as usize] == m
+                && step(list[end]) == dt
             {
                 end += 1;
             }
-            let mat = self.s.model.materials[m];
+            let mat = s.model.materials[m];
             let group = Group {
-                isa,
-                s: &mut *self.s,
-                quads: &self.list[start..end],
+                isa: self.isa,
+                element,
+                s: &mut *s,
+                quads: &list[start..end],
                 dt,
                 mat: &mat,
             };
@@ -684,16 +704,19 @@ impl<F: Fn(u32) -> f64> LaneKernel for QuadLoop<'_, F> {
     }
 }
 
-/// One lane group of [`QuadLoop`] (1..=W quads), for its material's hardening law.
-struct Group<'a, const W: usize> {
+/// One lane group of [`QuadLoop`] (1..=W quads of element `E`), for its material's
+/// hardening law: the nodes and states gathered into lanes, the update, the states
+/// scattered back and the forces added quad by quad.
+struct Group<'a, E: RingElement, const W: usize> {
     isa: LaneIsa<W>,
+    element: E,
     s: &'a mut SectionSolver,
     quads: &'a [u32],
     dt: f64,
     mat: &'a J2Material,
 }
 
-impl<const W: usize> LawVisitor for Group<'_, W> {
+impl<E: RingElement, const W: usize> LawVisitor for Group<'_, E, W> {
     type Output = Result<f64>;
     #[inline(always)]
     fn visit<H: Hardening>(self, law: &H) -> Result<f64> {
@@ -712,23 +735,14 @@ impl<const W: usize> LawVisitor for Group<'_, W> {
                 }
             }
         }
-        let points = match s.model.formulation {
-            QuadFormulation::OnePoint { .. } => 1,
-            QuadFormulation::SelectiveReduced => 4,
-        };
         let states = build(|l| &s.states[lane_quad(l)]);
-        let mut st = quad_lanes::State::gather(self.isa, states, points);
-        let out = match s.model.formulation {
-            QuadFormulation::OnePoint { hourglass } => {
-                quad_lanes::update_one_point(&x, &v, self.dt, self.mat, law, hourglass, &mut st)
-            }
-            QuadFormulation::SelectiveReduced => {
-                quad_lanes::update_selective_reduced(&x, &v, self.dt, self.mat, law, &mut st)
-            }
-        };
+        let mut st = lanes::State::gather(self.isa, states, E::POINTS);
+        let out = self
+            .element
+            .update_lanes(&x, &v, self.dt, self.mat, law, &mut st);
         let mut dt_min = f64::INFINITY;
         for (l, &e) in self.quads.iter().enumerate() {
-            st.scatter(l, &mut s.states[e as usize], points);
+            st.scatter(l, &mut s.states[e as usize], E::POINTS);
             dt_min = dt_min.min(s.finish_element(e as usize, &out.lane(l))?);
         }
         Ok(dt_min)

@@ -17,6 +17,7 @@ pub mod hex_bbar_lanes;
 pub mod hex_one_point;
 pub mod hex_one_point_lanes;
 pub mod objective;
+pub mod ring;
 pub mod shape;
 
 pub use block::*;

@@ -276,7 +276,7 @@ fn contact_segment_sizes(mesh: &MeridianMesh) -> (f64, f64) {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::fe::axisym::element::QuadFormulation;
+    use crate::fe::elements::ring::QuadFormulation;
     use crate::scene::{Override, DEFAULT_SCENE, WALL_SCENE};
     use std::path::Path;
 

@@ -20,8 +20,8 @@
 
 use crate::analytic::hertz::HertzPair;
 use crate::error::{Error, Result};
-use crate::fe::axisym::element::QuadFormulation;
 use crate::fe::axisym::subcycle::Integration;
+use crate::fe::elements::ring::QuadFormulation;
 use crate::material::Material;
 use crate::mesh::meridian::{ladder_ball, MeridianMesh};
 use crate::study::convergence::ladder::refine;

@@ -7,7 +7,7 @@
 use super::matrix::{HeadOnPoint, ObliquePoint};
 use crate::analytic::{Body, HertzPair};
 use crate::error::{Error, Result};
-use crate::fe::axisym::element::QuadFormulation;
+use crate::fe::elements::ring::QuadFormulation;
 use crate::mesh::meridian_band::depth_for;
 use crate::scene::Scene;
 use crate::study::convergence::phase_ensemble::{

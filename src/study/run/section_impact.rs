@@ -8,7 +8,6 @@
 //! the contact duration, the peak force, the energy terms, the energy error and history rows.
 
 use crate::error::{Error, Result};
-use crate::fe::axisym::element::QuadFormulation;
 use crate::fe::axisym::mass_scaling;
 use crate::fe::axisym::section::{SectionModel, SectionSolver};
 use crate::fe::axisym::subcycle::Integration;
@@ -17,6 +16,7 @@ use crate::fe::contact::meridian::plane_nodal::{ring_areas_and_thickness, NodalP
 use crate::fe::contact::meridian::plane_segment::SegmentPlane;
 use crate::fe::contact::meridian::segment::{Boundary, SegmentPair};
 use crate::fe::contact::pulse::pulse_duration;
+use crate::fe::elements::ring::QuadFormulation;
 use crate::fe::interaction::Interaction;
 use crate::fe::materials::J2Material;
 use crate::fe::simd::KernelPath;

@@ -103,7 +103,9 @@ impl Estimator {
             .quads
             .iter()
             .map(|q| {
-                crate::fe::axisym::quad::characteristic_length(&q.map(|n| mesh.nodes[n as usize]))
+                crate::fe::elements::ring::shape::characteristic_length(
+                    &q.map(|n| mesh.nodes[n as usize]),
+                )
             })
             .fold(f64::INFINITY, f64::min);
         let stats = (mesh.quads.len(), length);

@@ -27,7 +27,7 @@ pub fn mapped(
         for i in 0..ns {
             let mut q = [id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1)];
             let x = q.map(|k| nodes[k as usize]);
-            if twoball::fe::axisym::quad::area(&x) < 0.0 {
+            if twoball::fe::elements::ring::shape::area(&x) < 0.0 {
                 q = [q[0], q[3], q[2], q[1]];
             }
             quads.push(q);
@@ -195,7 +195,7 @@ pub fn test_ball(radius: f64, pole: f64, far: f64) -> twoball::mesh::meridian::M
     let mut quads = Vec::new();
     let mut push = |q: [u32; 4], nodes: &Vec<[f64; 2]>| {
         let x = q.map(|i| nodes[i as usize]);
-        if twoball::fe::axisym::quad::area(&x) > 0.0 {
+        if twoball::fe::elements::ring::shape::area(&x) > 0.0 {
             quads.push(q);
         } else {
             quads.push([q[0], q[3], q[2], q[1]]);

@@ -52,7 +52,7 @@ pub fn segment_length_and_thickness(mesh: &MeridianMesh, s: [u32; 2]) -> Result<
     let l = (pb[0] - pa[0]).hypot(pb[1] - pa[1]);
     Ok((
         l,
-        crate::fe::axisym::quad::area(&q.map(|n| mesh.nodes[n as usize])) / l,
+        crate::fe::elements::ring::shape::area(&q.map(|n| mesh.nodes[n as usize])) / l,
     ))
 }
 

@@ -7,13 +7,13 @@
 //! every element exact and gives the axis nodes the mass of the material next to them
 //! (Hughes 1987, §7.3; Belytschko, Liu & Moran 2000, §4.5).
 
-use super::quad::{shape, GAUSS_2X2};
+use super::shape::{shape, GAUSS_2X2};
 
 /// Lumped masses (kg) of the quad `x` (m) of density `rho` (kg/m³), in node order.
 pub fn element_masses(x: &[[f64; 2]; 4], rho: f64) -> [f64; 4] {
     let mut m = [0.0; 4];
     for xi in GAUSS_2X2 {
-        let p = super::quad::point(x, xi, 1.0);
+        let p = super::shape::point(x, xi, 1.0);
         let (n, _) = shape(xi);
         for i in 0..4 {
             m[i] += rho * n[i] * p.grad.volume;

@@ -1,15 +1,16 @@
-//! The quad of [`super::element`], in both formulations, on W elements at once (SIMD lanes).
+//! What the ring elements' lane updates share (W quads at once, SIMD lanes): the lane-wise
+//! state and output, the geometry of [`super::shape`], the mid-step configuration, the
+//! velocity gradient and rotation, and the update of one integration point.
 //!
 //! Each lane runs the scalar update's operations in the scalar update's order, with only
 //! the terms dropped that are zero on the section (the out-of-plane shear and spin of the
-//! 3D tensors: x + 0 = x and x · 0 = 0 exactly). So a quad gets the same bits from this
-//! kernel, on every kernel path, as from [`super::element::update`], which stays the
-//! reference.
+//! 3D tensors: x + 0 = x and x · 0 = 0 exactly). So a quad gets the same bits from an
+//! element's lane update, on every kernel path, as from its scalar update
+//! ([`super::element::RingElement::update`]), which stays the reference; the test below
+//! checks it for every registered element.
 
-use super::element::{PointState, QuadOutput, QuadState};
-use super::quad::{GAUSS_SHAPE, HOURGLASS_BASE};
-#[cfg(test)]
-use crate::fe::materials::Law;
+use super::shape::GAUSS_SHAPE;
+use super::state::{PointState, QuadOutput, QuadState};
 use crate::fe::materials::{
     j2::{ddot_lanes, update_lanes},
     Hardening, J2Material,
@@ -20,15 +21,15 @@ use std::f64::consts::{PI, SQRT_2};
 /// Nodal (r, z) pairs of W quads, lane-wise: `[node][component]`.
 pub type Nodes<const W: usize> = [[Lanes<W>; 2]; 4];
 
-/// The volume-averaged operator of W quads (see [`super::quad::Gradient`]).
+/// The volume-averaged operator of W quads (see [`super::shape::Gradient`]).
 #[derive(Clone, Copy)]
-struct Gradient<const W: usize> {
+pub(super) struct Gradient<const W: usize> {
     /// ∂N_I/∂r, ∂N_I/∂z, 1/m.
-    b: [[Lanes<W>; 2]; 4],
+    pub(super) b: [[Lanes<W>; 2]; 4],
     /// N_I / r averaged, 1/m.
-    hoop: [Lanes<W>; 4],
+    pub(super) hoop: [Lanes<W>; 4],
     /// Ring volume, m³.
-    volume: Lanes<W>,
+    pub(super) volume: Lanes<W>,
 }
 
 /// The state of W quads, lane-wise (the scalar [`QuadState`]; the one-point form uses the
@@ -128,7 +129,7 @@ impl<const W: usize> Output<W> {
 }
 
 /// The radius r (m) and the Jacobian jac[a][c] = ∂x_a/∂ξ_c (m) of W quads `x` at the point
-/// with shape values `n` and natural derivatives `d` (quad::radius_and_jacobian).
+/// with shape values `n` and natural derivatives `d` (shape::radius_and_jacobian).
 #[inline(always)]
 fn radius_and_jacobian<const W: usize>(
     x: &Nodes<W>,
@@ -149,9 +150,9 @@ fn radius_and_jacobian<const W: usize>(
     (r, jac)
 }
 
-/// [`super::quad::mean_gradient`] of W quads: the operator and the smallest Jacobian.
+/// [`super::shape::mean_gradient`] of W quads: the operator and the smallest Jacobian.
 #[inline(always)]
-fn mean_gradient<const W: usize>(x: &Nodes<W>) -> (Gradient<W>, Lanes<W>) {
+pub(super) fn mean_gradient<const W: usize>(x: &Nodes<W>) -> (Gradient<W>, Lanes<W>) {
     let z = x[0][0].splat_like(0.0);
     let mut b = [[z; 2]; 4];
     let mut hoop = [z; 4];
@@ -181,7 +182,7 @@ fn mean_gradient<const W: usize>(x: &Nodes<W>) -> (Gradient<W>, Lanes<W>) {
 /// The mid-step nodes x^{n+1/2} = x^{n+1} − Δt/2 v^{n+1/2} of W quads (m), from `x1` (m),
 /// `v` (m/s) and `dt` (s).
 #[inline(always)]
-fn mid_step<const W: usize>(x1: &Nodes<W>, v: &Nodes<W>, dt: f64) -> Nodes<W> {
+pub(super) fn mid_step<const W: usize>(x1: &Nodes<W>, v: &Nodes<W>, dt: f64) -> Nodes<W> {
     let half = 0.5 * dt;
     let mut xm = *x1;
     for i in 0..4 {
@@ -194,7 +195,7 @@ fn mid_step<const W: usize>(x1: &Nodes<W>, v: &Nodes<W>, dt: f64) -> Nodes<W> {
 
 /// The section's velocity gradient of W quads: (L_rr, L_rz, L_zr, L_zz, L_θθ), 1/s.
 #[inline(always)]
-fn velocity_gradient<const W: usize>(v: &Nodes<W>, g: &Gradient<W>) -> [Lanes<W>; 5] {
+pub(super) fn velocity_gradient<const W: usize>(v: &Nodes<W>, g: &Gradient<W>) -> [Lanes<W>; 5] {
     let z = v[0][0].splat_like(0.0);
     let mut l = [z; 5];
     for i in 0..4 {
@@ -209,7 +210,7 @@ fn velocity_gradient<const W: usize>(v: &Nodes<W>, g: &Gradient<W>) -> [Lanes<W>
 
 /// The in-plane Hughes-Winget rotation (r_rr, r_rz, r_zr, r_zz) of the spin of `l` over `dt`.
 #[inline(always)]
-fn rotation<const W: usize>(l: &[Lanes<W>; 5], dt: f64) -> [Lanes<W>; 4] {
+pub(super) fn rotation<const W: usize>(l: &[Lanes<W>; 5], dt: f64) -> [Lanes<W>; 4] {
     let w = (0.5 * (l[2] - l[1])) * dt;
     let a = 0.5 * w;
     let f = a.splat_like(2.0) / (1.0 + a * a);
@@ -219,59 +220,16 @@ fn rotation<const W: usize>(l: &[Lanes<W>; 5], dt: f64) -> [Lanes<W>; 4] {
     [diag, f * (zero - a), f * a, diag]
 }
 
-/// One-point update of W quads: nodal coordinates `x1` = x^{n+1} (m), velocities `v` =
-/// v^{n+1/2} (m/s), step `dt` (s, shared by the lanes), hourglass coefficient `hourglass`
-/// (≥ 0), state `st`; as [`super::element::update`] with `QuadFormulation::OnePoint`.
-#[inline(always)]
-pub fn update_one_point<H: Hardening, const W: usize>(
-    x1: &Nodes<W>,
-    v: &Nodes<W>,
-    dt: f64,
-    mat: &J2Material,
-    law: &H,
-    hourglass: f64,
-    st: &mut State<W>,
-) -> Output<W> {
-    let zero = x1[0][0].splat_like(0.0);
-    let xm = mid_step(x1, v, dt);
-    let (gm, _) = mean_gradient(&xm);
-    let (g1, min_j) = mean_gradient(x1);
-    let l = velocity_gradient(v, &gm);
-    // The point's update (element::advance_point): rotate, return, account.
-    let d = [
-        l[0] * dt,
-        l[3] * dt,
-        l[4] * dt,
-        (0.5 * (l[1] + l[2])) * dt,
-        zero,
-        zero,
-    ];
-    let r = rotation(&l, dt);
-    advance_point(mat, law, &r, &d, dt, gm.volume, 0, st);
-    // Forces V B̄ᵀσ on x^{n+1} (quad::add_stress_forces onto zero).
-    let mut force = [[zero; 2]; 4];
-    add_stress_forces(&mut force, &st.stress[0], &g1);
-    if hourglass > 0.0 {
-        hourglass_forces(x1, v, &g1, mat, hourglass, [r[0], r[2]], dt, st, &mut force);
-    }
-    Output {
-        force,
-        volume: g1.volume,
-        min_jacobian: min_j,
-        dt_crit: characteristic_length(x1) / mat.wave_speed,
-    }
-}
-
 /// One 2x2 Gauss point of W quads: its operator (ring-volume weight 2π r det J) and det J.
 #[derive(Clone, Copy)]
-struct Point<const W: usize> {
-    grad: Gradient<W>,
-    det_j: Lanes<W>,
+pub(super) struct Point<const W: usize> {
+    pub(super) grad: Gradient<W>,
+    pub(super) det_j: Lanes<W>,
 }
 
-/// [`super::quad::gauss_points`] of W quads.
+/// [`super::shape::gauss_points`] of W quads.
 #[inline(always)]
-fn gauss_points<const W: usize>(x: &Nodes<W>) -> [Point<W>; 4] {
+pub(super) fn gauss_points<const W: usize>(x: &Nodes<W>) -> [Point<W>; 4] {
     let z = x[0][0].splat_like(0.0);
     let mut pts = [Point {
         grad: Gradient {
@@ -298,10 +256,10 @@ fn gauss_points<const W: usize>(x: &Nodes<W>) -> [Point<W>; 4] {
     pts
 }
 
-/// [`super::quad::mean_of`] of W quads: the volume-weighted mean operator and the smallest
+/// [`super::shape::mean_of`] of W quads: the volume-weighted mean operator and the smallest
 /// Jacobian.
 #[inline(always)]
-fn mean_of<const W: usize>(pts: &[Point<W>; 4]) -> (Gradient<W>, Lanes<W>) {
+pub(super) fn mean_of<const W: usize>(pts: &[Point<W>; 4]) -> (Gradient<W>, Lanes<W>) {
     let z = pts[0].det_j.splat_like(0.0);
     let mut g = Gradient {
         b: [[z; 2]; 4],
@@ -328,67 +286,12 @@ fn mean_of<const W: usize>(pts: &[Point<W>; 4]) -> (Gradient<W>, Lanes<W>) {
     (g, min_j)
 }
 
-/// Selectively reduced (B-bar) update of W quads, as [`super::element::update`] with
-/// `QuadFormulation::SelectiveReduced`: four Gauss points for the deviator, the element's
-/// mean dilatation for the volume; arguments as [`update_one_point`].
-#[inline(always)]
-pub fn update_selective_reduced<H: Hardening, const W: usize>(
-    x1: &Nodes<W>,
-    v: &Nodes<W>,
-    dt: f64,
-    mat: &J2Material,
-    law: &H,
-    st: &mut State<W>,
-) -> Output<W> {
-    let zero = x1[0][0].splat_like(0.0);
-    let xm = mid_step(x1, v, dt);
-    let pm = gauss_points(&xm);
-    let (gm, _) = mean_of(&pm);
-    let p1 = gauss_points(x1);
-    let (g1, min_j) = mean_of(&p1);
-    let lbar = velocity_gradient(v, &gm);
-    let vol_bar = lbar[0] + lbar[3] + lbar[4];
-    for (k, p) in pm.iter().enumerate() {
-        let l = velocity_gradient(v, &p.grad);
-        let shift = (vol_bar - (l[0] + l[3] + l[4])) / 3.0;
-        let d = [
-            (l[0] + shift) * dt,
-            (l[3] + shift) * dt,
-            (l[4] + shift) * dt,
-            (0.5 * (l[1] + l[2])) * dt,
-            zero,
-            zero,
-        ];
-        let r = rotation(&l, dt);
-        advance_point(mat, law, &r, &d, dt, p.grad.volume, k, st);
-    }
-    let mut force = [[zero; 2]; 4];
-    for (k, p) in p1.iter().enumerate() {
-        // element::bbar_forces: W_g (B_gᵀσ + p (B̄_vol − B_g,vol)).
-        let s = st.stress[k];
-        add_stress_forces(&mut force, &s, &p.grad);
-        let pressure = (s[0] + s[1] + s[2]) / 3.0;
-        for i in 0..4 {
-            let dr = (g1.b[i][0] + g1.hoop[i]) - (p.grad.b[i][0] + p.grad.hoop[i]);
-            let dz = g1.b[i][1] - p.grad.b[i][1];
-            force[i][0] += p.grad.volume * pressure * dr;
-            force[i][1] += p.grad.volume * pressure * dz;
-        }
-    }
-    Output {
-        force,
-        volume: g1.volume,
-        min_jacobian: min_j,
-        dt_crit: characteristic_length(x1) / mat.wave_speed,
-    }
-}
-
 /// Rotates point `k`'s stress by `r` (the in-plane rotation of [`rotation`]), advances it by
 /// the strain increment `d` through the material, and accounts its energies over the ring
-/// volume `volume` (element::advance_point).
+/// volume `volume` (scalar::advance_point).
 #[allow(clippy::too_many_arguments)]
 #[inline(always)]
-fn advance_point<H: Hardening, const W: usize>(
+pub(super) fn advance_point<H: Hardening, const W: usize>(
     mat: &J2Material,
     law: &H,
     r: &[Lanes<W>; 4],
@@ -420,9 +323,9 @@ fn advance_point<H: Hardening, const W: usize>(
 }
 
 /// Adds V Bᵀσ of the stress `s` = [rr, zz, θθ, rz] through the operator `g` to `f`
-/// (quad::add_stress_forces).
+/// (shape::add_stress_forces).
 #[inline(always)]
-fn add_stress_forces<const W: usize>(
+pub(super) fn add_stress_forces<const W: usize>(
     f: &mut [[Lanes<W>; 2]; 4],
     s: &[Lanes<W>; 4],
     g: &Gradient<W>,
@@ -434,61 +337,9 @@ fn add_stress_forces<const W: usize>(
     }
 }
 
-/// The Flanagan-Belytschko stiffness hourglass forces of W quads added to `force`
-/// (element::hourglass_stiffness, quad::hourglass_gamma, element::hourglass_update); `rot`
-/// is the in-plane rotation (cos, sin) of the step.
-#[allow(clippy::too_many_arguments)]
+/// [`super::shape::characteristic_length`] of W quads, m.
 #[inline(always)]
-fn hourglass_forces<const W: usize>(
-    x1: &Nodes<W>,
-    v: &Nodes<W>,
-    g: &Gradient<W>,
-    mat: &J2Material,
-    coeff: f64,
-    rot: [Lanes<W>; 2],
-    dt: f64,
-    st: &mut State<W>,
-    force: &mut [[Lanes<W>; 2]; 4],
-) {
-    let zero = x1[0][0].splat_like(0.0);
-    let mut bb = zero.splat_like(-0.0);
-    for b in &g.b {
-        bb += b[0] * b[0] + b[1] * b[1];
-    }
-    let k = coeff * mat.p_modulus() * g.volume * bb / 2.0;
-    let mut hx = [zero; 2];
-    for i in 0..4 {
-        hx[0] += HOURGLASS_BASE[i] * x1[i][0];
-        hx[1] += HOURGLASS_BASE[i] * x1[i][1];
-    }
-    let gam: [Lanes<W>; 4] = std::array::from_fn(|i| {
-        0.25 * (zero.splat_like(HOURGLASS_BASE[i]) - hx[0] * g.b[i][0] - hx[1] * g.b[i][1])
-    });
-    let [c, s] = rot;
-    let q = st.hourglass;
-    let mut q = [c * q[0] - s * q[1], s * q[0] + c * q[1]];
-    let mut rate = [zero; 2];
-    for i in 0..4 {
-        rate[0] += gam[i] * v[i][0];
-        rate[1] += gam[i] * v[i][1];
-    }
-    let mut e = zero;
-    for a in 0..2 {
-        let old = q[a];
-        q[a] += k * dt * rate[a];
-        e += 0.5 * (old + q[a]) * rate[a] * dt;
-    }
-    for i in 0..4 {
-        force[i][0] += gam[i] * q[0];
-        force[i][1] += gam[i] * q[1];
-    }
-    st.hourglass = q;
-    st.hourglass_energy += e;
-}
-
-/// [`super::quad::characteristic_length`] of W quads, m.
-#[inline(always)]
-fn characteristic_length<const W: usize>(x: &Nodes<W>) -> Lanes<W> {
+pub(super) fn characteristic_length<const W: usize>(x: &Nodes<W>) -> Lanes<W> {
     let mut l2max = x[0][0].splat_like(0.0);
     let mut rmin = x[0][0].splat_like(f64::INFINITY);
     for i in 0..4 {
@@ -505,8 +356,10 @@ fn characteristic_length<const W: usize>(x: &Nodes<W>) -> Lanes<W> {
 
 #[cfg(test)]
 mod tests {
+    use super::super::element::{RingElement, RingVisitor};
+    use super::super::formulation::{update, QuadFormulation};
     use super::*;
-    use crate::fe::axisym::element::{update, QuadFormulation};
+    use crate::fe::materials::Law;
     use crate::fe::simd::{Avx2, Avx512, LaneKernel, Portable, Simd};
     use crate::material::Material;
 
@@ -534,6 +387,23 @@ mod tests {
         (x, v, st)
     }
 
+    /// One lane update of step 2e-8 s as a visitor.
+    struct LaneUpdate<'a, H: Hardening, const W: usize> {
+        x: &'a Nodes<W>,
+        v: &'a Nodes<W>,
+        mat: &'a J2Material,
+        law: &'a H,
+        st: &'a mut State<W>,
+    }
+
+    impl<H: Hardening, const W: usize> RingVisitor for LaneUpdate<'_, H, W> {
+        type Output = Output<W>;
+        fn visit<E: RingElement>(self, e: E) -> Output<W> {
+            e.update_lanes(self.x, self.v, 2e-8, self.mat, self.law, self.st)
+        }
+    }
+
+    /// Every lane of W quads against the scalar update of formulation `.0`.
     struct Check(QuadFormulation);
     impl LaneKernel for Check {
         type Output = ();
@@ -543,12 +413,9 @@ mod tests {
                 panic!("copper-fe is bilinear")
             };
             let form = self.0;
-            let points = match form {
-                QuadFormulation::OnePoint { .. } => 1,
-                QuadFormulation::SelectiveReduced => 4,
-            };
+            let points = form.points();
             let mut scalar: [_; W] = std::array::from_fn(quads);
-            if points == 4 {
+            if points > 1 {
                 for (_, _, st) in &mut scalar {
                     let first = st.points[0];
                     for (k, p) in st.points.iter_mut().enumerate() {
@@ -569,14 +436,13 @@ mod tests {
             }
             let mut st = State::gather(isa, std::array::from_fn(|l| &scalar[l].2), points);
             for _ in 0..3 {
-                let out = match form {
-                    QuadFormulation::OnePoint { hourglass } => {
-                        update_one_point(&x, &v, 2e-8, &mat, &law, hourglass, &mut st)
-                    }
-                    QuadFormulation::SelectiveReduced => {
-                        update_selective_reduced(&x, &v, 2e-8, &mat, &law, &mut st)
-                    }
-                };
+                let out = form.with(LaneUpdate {
+                    x: &x,
+                    v: &v,
+                    mat: &mat,
+                    law: &law,
+                    st: &mut st,
+                });
                 for (l, (xl, vl, sl)) in scalar.iter_mut().enumerate() {
                     let want = update(xl, vl, 2e-8, &mat, form, sl);
                     assert_eq!(out.lane(l), want, "lane {l}");
@@ -593,11 +459,8 @@ mod tests {
     }
 
     #[test]
-    fn every_lane_path_gives_the_scalar_update_s_bits() {
-        for form in [
-            QuadFormulation::default(),
-            QuadFormulation::SelectiveReduced,
-        ] {
+    fn every_element_on_every_lane_path_gives_its_scalar_update_s_bits() {
+        for form in QuadFormulation::ALL {
             Portable.vectorize(Check(form));
             if let Some(t) = Avx2::detect() {
                 t.vectorize(Check(form));
