@@ -142,13 +142,20 @@ pub enum PlaneEnforcement {
     Penalty,
 }
 
+pub use crate::fe::elements::ring::QuadFormulation;
 pub use crate::fe::Formulation;
 
 /// Explicit solver settings.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct SolverSettings {
-    /// Element formulation.
+    /// Element formulation (of the 3D model; the section's counterpart unless
+    /// `section_element` is set).
     pub element: Formulation,
+    /// The section's ring element (`solver.section_element`, a name of
+    /// [`QuadFormulation::NAMES`]); `None`: the counterpart of `element` (one point with
+    /// hourglass control, or B-bar).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub section_element: Option<QuadFormulation>,
     /// Safety factor on the critical time step, in (0, 1].
     pub time_step_factor: f64,
     /// Fixed end time after touch, s; `None` = stop by the separation rule.
@@ -268,8 +275,9 @@ const BALL_KEYS: [&str; 6] = [
 ];
 const MESH_KEYS: [&str; 3] = ["size", "pole_size", "file"];
 const CONTACT_KEYS: [&str; 3] = ["penalty_factor", "friction", "plane"];
-const SOLVER_KEYS: [&str; 6] = [
+const SOLVER_KEYS: [&str; 7] = [
     "element",
+    "section_element",
     "time_step_factor",
     "end_time",
     "hold_time",
@@ -609,6 +617,7 @@ fn read_contact(c: Option<Reader<'_>>) -> Result<ContactSettings> {
 fn read_solver(s: Option<Reader<'_>>) -> Result<SolverSettings> {
     let mut out = SolverSettings {
         element: Formulation::OnePoint,
+        section_element: None,
         time_step_factor: 0.9,
         end_time: None,
         hold_time: None,
@@ -619,6 +628,9 @@ fn read_solver(s: Option<Reader<'_>>) -> Result<SolverSettings> {
     s.only(&SOLVER_KEYS)?;
     if let Some(e) = s.choice("element", &Formulation::NAMES)? {
         out.element = Formulation::from_name(e).expect("a choice of Formulation::NAMES");
+    }
+    if let Some(e) = s.choice("section_element", &QuadFormulation::NAMES)? {
+        out.section_element = QuadFormulation::from_name(e);
     }
     if let Some(f) = s.f64(
         "time_step_factor",

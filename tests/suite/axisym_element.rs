@@ -1,6 +1,7 @@
-//! The axisymmetric quad against what it must reproduce: constant-strain patches (including
-//! pure hoop strain u_r = c r) with zero hourglass force, rigid translation along the axis,
-//! Lamé's pressurised thick sphere, and Hill's partly plastic thick sphere.
+//! Every registered ring-element formulation against what it must reproduce: constant-strain
+//! patches (including pure hoop strain u_r = c r) with zero hourglass force, rigid
+//! translation along the axis, Lamé's pressurised thick sphere at order 2 in the mesh size,
+//! and Hill's partly plastic thick sphere.
 
 use crate::axisym_support;
 
@@ -9,10 +10,14 @@ use twoball::fe::axisym::section::SectionSolver;
 use twoball::fe::elements::ring::{update, QuadFormulation, QuadState};
 use twoball::fe::materials::J2Material;
 
-const FORMS: [QuadFormulation; 2] = [
-    QuadFormulation::OnePoint { hourglass: 0.1 },
-    QuadFormulation::SelectiveReduced,
-];
+/// Every registered formulation, the one-point quad with a stiffer hourglass control than
+/// its default.
+fn forms() -> impl Iterator<Item = QuadFormulation> {
+    QuadFormulation::ALL.into_iter().map(|f| match f {
+        QuadFormulation::OnePoint { .. } => QuadFormulation::OnePoint { hourglass: 0.1 },
+        f => f,
+    })
+}
 
 /// A distorted 3x3 patch on r ∈ [0, 2], z ∈ [1, 3] with the first column on the axis.
 fn patch() -> (Vec<[f64; 2]>, Vec<[u32; 4]>) {
@@ -38,7 +43,7 @@ fn constant_strain_patches_are_exact_with_zero_hourglass_force() {
     let (lam, g) = (mat.lambda, mat.shear);
     // (a, b): u_r = a r (pure hoop and radial strain), u_z = b z, as velocity fields.
     for (a, b) in [(1.0, 0.0), (0.0, 1.0), (0.7, -0.4)] {
-        for form in FORMS {
+        for form in forms() {
             let dt = 1e-4;
             let mut f = vec![[0.0f64; 2]; nodes.len()];
             for q in &quads {
@@ -57,12 +62,7 @@ fn constant_strain_patches_are_exact_with_zero_hourglass_force() {
                     lam * (2.0 * er + ez) + 2.0 * g * er,
                     0.0,
                 ];
-                let n = if form == QuadFormulation::SelectiveReduced {
-                    4
-                } else {
-                    1
-                };
-                for p in &st.points[..n] {
+                for p in &st.points[..form.points()] {
                     for (c, (got, w)) in p.stress.iter().zip(&want).enumerate() {
                         assert!(
                             (got - w).abs() < 1e-9 * g * dt,
@@ -100,7 +100,7 @@ fn constant_strain_patches_are_exact_with_zero_hourglass_force() {
 #[test]
 fn rigid_translation_along_the_axis_gives_no_stress() {
     let (nodes, quads) = patch();
-    for form in FORMS {
+    for form in forms() {
         let mut model = model(nodes.clone(), quads.clone(), &perfect_steel());
         model.formulation = form;
         model.velocity = vec![[0.0, 3.0]; nodes.len()];
@@ -195,13 +195,19 @@ fn lame_thick_sphere_converges_to_the_closed_form() {
     m.yield_strength = 1e15;
     let p = 100e6;
     let exact = |rho: f64| lame_u(0.01, 0.02, p, m.youngs, m.nu, rho);
-    for form in FORMS {
+    for form in forms() {
         let errs = [(4, 8), (8, 16), (16, 32)].map(|(nr, nc)| relax(nr, nc, form, &m, p, exact));
-        println!("Lamé {form:?}: surface displacement error 4x8, 8x16, 16x32: {errs:?}");
+        let order = [(errs[0] / errs[1]).log2(), (errs[1] / errs[2]).log2()];
+        println!(
+            "Lamé {}: surface displacement error 4x8, 8x16, 16x32: {errs:?}, observed order {order:.2?}",
+            form.name()
+        );
         assert!(errs[2] < 5e-3, "{form:?}: {errs:?}");
+        // Bilinear elements converge at order 2 in displacement; observed 1.57 (B-bar) to
+        // 1.92 (full integration) on these three meshes.
         assert!(
-            errs[1] < 0.5 * errs[0] && errs[2] < 0.5 * errs[1],
-            "{form:?}: no convergence {errs:?}"
+            order.iter().all(|&o| o > 1.5),
+            "{form:?}: order {order:?} below 1.5, errors {errs:?}"
         );
     }
 }
@@ -217,7 +223,7 @@ fn partly_plastic_thick_sphere_matches_hill() {
     let ub = sy * c.powi(3) * (1.0 - m.nu) / (m.youngs * b * b);
     let p_lim = 2.0 * sy * (b / a).ln();
     assert!(p < p_lim);
-    for form in FORMS {
+    for form in forms() {
         // Only the outer surface has a closed form here; the inner one is checked against
         // the elastic bound (it must exceed the elastic displacement).
         let err = relax_outer(16, 24, form, &m, p, ub);

@@ -74,6 +74,10 @@ pub const SETTINGS: &[Setting] = &[
         rule: Rule::Ignored(plane_note),
     },
     used("solver.element"),
+    Setting {
+        key: "solver.section_element",
+        rule: Rule::Ignored(section_element_note),
+    },
     used("solver.time_step_factor"),
     used("solver.end_time"),
     Setting {
@@ -213,6 +217,18 @@ fn plane_note(scene: &Scene, model: Reduction) -> Option<String> {
         _ => "only the axisymmetric model has a kinematic plane; the 3D models' contact is always the penalty",
     };
     Some(format!("contact.plane has no effect: {why}"))
+}
+
+/// `solver.section_element` on the 3D models (their element is `solver.element`).
+fn section_element_note(scene: &Scene, model: Reduction) -> Option<String> {
+    let f = scene.solver.section_element?;
+    (model != Reduction::Axisymmetric).then(|| {
+        format!(
+            "solver.section_element = \"{}\" has no effect: the {} model's element is solver.element",
+            f.name(),
+            model.name()
+        )
+    })
 }
 
 /// `solver.hold_time` when the run stops at a fixed end time instead of by separation.

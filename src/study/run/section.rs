@@ -106,9 +106,13 @@ pub fn wall_block(scene: &Scene) -> Result<Option<WallBlock>> {
     }))
 }
 
-/// The section element of the scene's 3D element choice: one point with hourglass control
-/// for the one-point hexahedron, selectively reduced (B-bar) for B-bar.
+/// The section element: `solver.section_element` when set, else the counterpart of the 3D
+/// element choice (one point with hourglass control for the one-point hexahedron,
+/// selectively reduced (B-bar) for B-bar).
 pub(crate) fn formulation(scene: &Scene) -> QuadFormulation {
+    if let Some(f) = scene.solver.section_element {
+        return f;
+    }
     match scene.solver.element {
         Formulation::OnePoint => QuadFormulation::default(),
         Formulation::BBar => QuadFormulation::SelectiveReduced,

@@ -65,6 +65,7 @@ pub fn scaled(scene: &Scene, k: f64) -> Option<Scene> {
     } = scene.clone();
     let SolverSettings {
         element,
+        section_element,
         time_step_factor,
         end_time,
         hold_time,
@@ -93,6 +94,7 @@ pub fn scaled(scene: &Scene, k: f64) -> Option<Scene> {
         contact,
         solver: SolverSettings {
             element,
+            section_element,
             time_step_factor,
             end_time: end_time.map(|t| k * t),
             hold_time: hold_time.map(|t| k * t),

@@ -10,6 +10,7 @@
 
 use super::bbar::BBarQuad;
 use super::element::{RingElement, RingVisitor};
+use super::full::FullQuad;
 use super::one_point::{OnePointQuad, DEFAULT_HOURGLASS};
 use super::state::{QuadOutput, QuadState};
 use crate::fe::materials::J2Material;
@@ -26,6 +27,9 @@ pub enum QuadFormulation {
     /// 2x2 Gauss points for the deviator, mean dilatation for the volume (`b-bar`,
     /// [`BBarQuad`]).
     SelectiveReduced,
+    /// 2x2 Gauss points for the whole strain rate (`full`, [`FullQuad`]; locks in plastic
+    /// flow).
+    Full,
 }
 
 impl Default for QuadFormulation {
@@ -39,21 +43,23 @@ impl Default for QuadFormulation {
 impl QuadFormulation {
     /// Every formulation with its default parameters, in the order of
     /// [`QuadFormulation::NAMES`].
-    pub const ALL: [QuadFormulation; 2] = [
+    pub const ALL: [QuadFormulation; 3] = [
         QuadFormulation::OnePoint {
             hourglass: DEFAULT_HOURGLASS,
         },
         QuadFormulation::SelectiveReduced,
+        QuadFormulation::Full,
     ];
 
     /// The scene names, in the order of [`QuadFormulation::ALL`].
-    pub const NAMES: [&'static str; 2] = ["one-point", "b-bar"];
+    pub const NAMES: [&'static str; 3] = ["one-point", "b-bar", "full"];
 
     /// The scene name.
     pub fn name(self) -> &'static str {
         match self {
             QuadFormulation::OnePoint { .. } => Self::NAMES[0],
             QuadFormulation::SelectiveReduced => Self::NAMES[1],
+            QuadFormulation::Full => Self::NAMES[2],
         }
     }
 
@@ -75,7 +81,15 @@ impl QuadFormulation {
         match self {
             QuadFormulation::OnePoint { hourglass } => v.visit(OnePointQuad { hourglass }),
             QuadFormulation::SelectiveReduced => v.visit(BBarQuad),
+            QuadFormulation::Full => v.visit(FullQuad),
         }
+    }
+}
+
+impl serde::Serialize for QuadFormulation {
+    /// As its scene name.
+    fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        s.serialize_str(self.name())
     }
 }
 

@@ -6,7 +6,7 @@
 //! - [`mass`]: lumped ring masses;
 //! - [`element`]: the seam every formulation implements (scalar update, lane update,
 //!   integration points), and [`formulation`]: the registry that names them;
-//! - [`one_point`], [`bbar`]: the formulations, each with its scalar reference update beside
+//! - [`one_point`], [`bbar`], [`full`]: the formulations, each with its scalar reference update beside
 //!   its lane update;
 //! - [`state`], [`scalar`], [`lanes`]: the state a quad keeps and what the formulations'
 //!   scalar and lane updates share (the lane updates give the scalar bits on every kernel
@@ -18,6 +18,7 @@
 pub mod bbar;
 pub mod element;
 pub mod formulation;
+pub mod full;
 pub mod lanes;
 pub mod mass;
 pub mod one_point;

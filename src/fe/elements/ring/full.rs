@@ -1,0 +1,98 @@
+//! The fully integrated ring quad: four 2x2 Gauss points, each with its own strain rate
+//! (deviatoric and volumetric), stress and plastic strain; forces Σ_g W_g B_gᵀσ_g. No
+//! hourglass modes and no hourglass control, the classical element of implicit codes
+//! (Zienkiewicz & Taylor, vol. 1, §9; Hughes 1987, §4.5).
+//!
+//! Its limit is volumetric locking: four points each holding its own dilatation over-
+//! constrain isochoric (plastic) flow, so a plastic run comes out too stiff (Nagtegaal,
+//! Parks & Rice 1974) — the reason the B-bar quad ([`super::bbar`]) keeps the element's
+//! mean dilatation instead. Elastic runs with ν well below ½ do not lock. Objective update
+//! and material seam as the other formulations', at each Gauss point.
+
+use super::element::RingElement;
+use super::lanes::{self, rotation, Nodes, Output, State};
+use super::scalar::{advance_point, mid_step};
+use super::shape::{
+    add_stress_forces, characteristic_length, gauss_points, mean_of, velocity_gradient,
+};
+use super::state::{QuadOutput, QuadState};
+use crate::fe::materials::{Hardening, J2Material};
+
+/// The fully integrated (2x2 Gauss) quad.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct FullQuad;
+
+impl RingElement for FullQuad {
+    const POINTS: usize = 4;
+
+    #[inline]
+    fn update(
+        &self,
+        x1: &[[f64; 2]; 4],
+        v: &[[f64; 2]; 4],
+        dt: f64,
+        mat: &J2Material,
+        st: &mut QuadState,
+    ) -> QuadOutput {
+        let xm = mid_step(x1, v, dt);
+        let mut force = [[0.0; 2]; 4];
+        let pm = gauss_points(&xm);
+        let p1 = gauss_points(x1);
+        let (g1, min_j) = mean_of(&p1);
+        for (k, p) in pm.iter().enumerate() {
+            let l = velocity_gradient(v, &p.grad);
+            let (wi, wp) = advance_point(&mut st.points[k], &l, None, dt, p.grad.volume, mat);
+            st.internal_energy += wi;
+            st.plastic_work += wp;
+        }
+        for (k, p) in p1.iter().enumerate() {
+            add_stress_forces(&mut force, &st.points[k].stress, &p.grad);
+        }
+        QuadOutput {
+            force,
+            volume: g1.volume,
+            min_jacobian: min_j,
+            dt_crit: characteristic_length(x1) / mat.wave_speed,
+        }
+    }
+
+    #[inline(always)]
+    fn update_lanes<H: Hardening, const W: usize>(
+        &self,
+        x1: &Nodes<W>,
+        v: &Nodes<W>,
+        dt: f64,
+        mat: &J2Material,
+        law: &H,
+        st: &mut State<W>,
+    ) -> Output<W> {
+        let zero = x1[0][0].splat_like(0.0);
+        let xm = lanes::mid_step(x1, v, dt);
+        let pm = lanes::gauss_points(&xm);
+        let p1 = lanes::gauss_points(x1);
+        let (g1, min_j) = lanes::mean_of(&p1);
+        for (k, p) in pm.iter().enumerate() {
+            let l = lanes::velocity_gradient(v, &p.grad);
+            let d = [
+                l[0] * dt,
+                l[3] * dt,
+                l[4] * dt,
+                (0.5 * (l[1] + l[2])) * dt,
+                zero,
+                zero,
+            ];
+            let r = rotation(&l, dt);
+            lanes::advance_point(mat, law, &r, &d, dt, p.grad.volume, k, st);
+        }
+        let mut force = [[zero; 2]; 4];
+        for (k, p) in p1.iter().enumerate() {
+            lanes::add_stress_forces(&mut force, &st.stress[k], &p.grad);
+        }
+        Output {
+            force,
+            volume: g1.volume,
+            min_jacobian: min_j,
+            dt_crit: lanes::characteristic_length(x1) / mat.wave_speed,
+        }
+    }
+}
