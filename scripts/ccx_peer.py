@@ -56,7 +56,7 @@ from pathlib import Path
 
 import numpy as np
 
-# Material presets, as twoball's src/material.rs (Table 1 of Li, Yang & Shi 2019 and the
+# Material presets, as twoball's src/material/mod.rs (Table 1 of Li, Yang & Shi 2019 and the
 # copper of their ANSYS study): E (GPa), yield (MPa), rho (kg/m^3), mu, nu; tangent = E/100.
 PRESETS = {
     "copper": (120.0, 100.0, 8500.0, 0.20, 0.34),

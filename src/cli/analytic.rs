@@ -527,7 +527,7 @@ pub fn materials_json() -> Result<Value> {
 
 /// The hardening of a preset in one line (SI units).
 pub fn hardening_text(m: &Material) -> String {
-    use crate::fe::materials::Law;
+    use crate::material::hardening::Law;
     match m.hardening {
         Some(Law::JohnsonCook(j)) => format!(
             "Johnson-Cook: sigma = (A + B eps_p^n)(1 + C ln(rate/rate0)), A = {:.4e} Pa, B = {:.4e} Pa, n = {}, C = {}, rate0 = {} 1/s",

@@ -3,7 +3,7 @@
 
 use super::reader::{self, Reader};
 use crate::error::{Error, Result};
-use crate::fe::materials::{law::LAW_NAMES, Law};
+use crate::material::hardening::{Law, LAW_NAMES};
 use crate::material::{Material, MaterialOverrides, PRESET_NAMES};
 use toml::Value;
 

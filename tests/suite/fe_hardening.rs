@@ -11,7 +11,7 @@
 
 use twoball::fe::elements::ElementBlock;
 use twoball::fe::materials::{j2::update_lanes, Bilinear, J2Material, JohnsonCook, Law, Power};
-use twoball::fe::materials::{Hardening, LawVisitor};
+use twoball::fe::materials::{Hardening, LawDispatch, LawVisitor};
 use twoball::fe::simd::{LaneIsa, Lanes};
 use twoball::fe::Formulation;
 use twoball::mesh::ball::{ball, BallSpec, Cut};

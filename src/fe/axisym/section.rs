@@ -14,7 +14,7 @@ use crate::fe::elements::ring::{
 };
 use crate::fe::interaction::{ContactState, Interaction, Kick, StepContext};
 use crate::fe::materials::J2Material;
-use crate::fe::materials::{Hardening, LawVisitor};
+use crate::fe::materials::{Hardening, LawDispatch, LawVisitor};
 use crate::fe::simd::{build, Kernel, KernelPath, LaneIsa, LaneKernel};
 
 /// The meridian model: nodes, quads with their materials, initial velocities, supports and

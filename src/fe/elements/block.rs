@@ -9,7 +9,7 @@ pub use super::batch::{ElementFailure, ElementStateMut, IntegrationPoint};
 use super::element::{Element, ElementVisitor};
 use super::formulation::Formulation;
 use crate::fe::{
-    materials::{Hardening, J2Material, LawVisitor},
+    materials::{Hardening, J2Material, LawDispatch, LawVisitor},
     simd::{Kernel, KernelPath, LaneIsa, LaneKernel, Vec3},
     tensor::Sym,
 };

@@ -1,18 +1,12 @@
 //! Linear isotropic hardening, σ_y = σ_y0 + H ε_p (a bilinear uniaxial stress-strain curve
 //! with tangent modulus E_T, H = E E_T/(E − E_T)): the radial return is exact in one step
 //! (Wilkins 1964; Simo & Hughes 1998, Box 3.1).
+//!
+//! The parameters are [`crate::material::hardening::Bilinear`], re-exported here.
 
 use super::hardening::Hardening;
 use crate::fe::simd::{select, Lanes};
-
-/// Linear hardening from the initial yield strength and the plastic hardening modulus.
-#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
-pub struct Bilinear {
-    /// Initial yield strength σ_y0, Pa.
-    pub yield0: f64,
-    /// Plastic hardening modulus H, Pa (0 = perfectly plastic).
-    pub h: f64,
-}
+pub use crate::material::hardening::Bilinear;
 
 impl Hardening for Bilinear {
     fn rate_independent(&self) -> bool {

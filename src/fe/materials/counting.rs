@@ -2,15 +2,12 @@
 //! each integration point, the steps in which the point flowed plastically and keeps the
 //! highest plastic strain rate it saw. It proves the history seam: the block sizes its
 //! history array from [`Hardening::HISTORY`] and the element loop feeds every point's step
-//! to [`Hardening::update_history`], on every kernel path.
+//! to [`Hardening::update_history`], on every kernel path. The parameters are
+//! [`crate::material::hardening::Counting`], re-exported here.
 
-use super::{bilinear::Bilinear, hardening::Hardening};
+use super::hardening::Hardening;
 use crate::fe::simd::Lanes;
-
-/// [`Bilinear`] hardening with two history values per point: plastic steps (a count) and
-/// the highest plastic strain rate Δε_p/Δt, 1/s.
-#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
-pub struct Counting(pub Bilinear);
+pub use crate::material::hardening::Counting;
 
 impl Hardening for Counting {
     const HISTORY: usize = 2;

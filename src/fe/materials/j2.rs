@@ -8,7 +8,7 @@
 use super::{
     bilinear::Bilinear,
     hardening::Hardening,
-    law::{Law, LawVisitor},
+    law::{Law, LawDispatch, LawVisitor},
 };
 use crate::fe::simd::{select, Lanes};
 use crate::fe::tensor::{ddot, deviator, trace, Sym};

@@ -8,92 +8,29 @@
 //! heats by about 4 K, T* = ΔT/(T_m − T_r) ≈ 4/1058 = 0.004, and with m = 1.09 the flow
 //! stress falls by 1 − T*^m ≈ 0.3 %. The collisions modelled here, at metres per second,
 //! reach far smaller plastic strains.
+//!
+//! The parameters and the published presets are [`crate::material::hardening::JohnsonCook`],
+//! [`OFHC_COPPER`] and [`STEEL_4340`], re-exported here.
 
 use super::hardening::{newton_root, Hardening};
-use crate::error::{Error, Result};
+pub use crate::material::hardening::{JohnsonCook, OFHC_COPPER, STEEL_4340};
 
-/// Johnson-Cook parameters (thermal term off).
-#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
-pub struct JohnsonCook {
-    /// Yield strength A, Pa (> 0).
-    #[serde(rename = "A")]
-    pub a: f64,
-    /// Strain-hardening coefficient B, Pa (≥ 0).
-    #[serde(rename = "B")]
-    pub b: f64,
-    /// Strain-hardening exponent n (0 < n ≤ 1).
-    pub n: f64,
-    /// Strain-rate coefficient C (≥ 0).
-    #[serde(rename = "C")]
-    pub c: f64,
-    /// Reference plastic strain rate ε̇_0, 1/s (> 0).
-    pub rate0: f64,
-}
-
-/// OFHC copper, Johnson & Cook (1983), Table 1: A = 90 MPa, B = 292 MPa, n = 0.31,
-/// C = 0.025, reference rate 1/s.
-pub const OFHC_COPPER: JohnsonCook = JohnsonCook {
-    a: 90e6,
-    b: 292e6,
-    n: 0.31,
-    c: 0.025,
-    rate0: 1.0,
-};
-
-/// 4340 steel (Rockwell C30), Johnson & Cook (1983), Table 1: A = 792 MPa, B = 510 MPa,
-/// n = 0.26, C = 0.014, reference rate 1/s.
-pub const STEEL_4340: JohnsonCook = JohnsonCook {
-    a: 792e6,
-    b: 510e6,
-    n: 0.26,
-    c: 0.014,
-    rate0: 1.0,
-};
-
-impl JohnsonCook {
-    /// Checks the parameters; `path` names the hardening table in messages.
-    pub fn validated(self, path: &str) -> Result<Self> {
-        let check = |key: &str, v: f64, ok: bool, allowed: &str| {
-            if v.is_finite() && ok {
-                Ok(())
-            } else {
-                Err(Error::invalid(format!("{path}.{key}"), v, allowed))
-            }
-        };
-        check("A", self.a, self.a > 0.0, "A > 0 Pa, finite")?;
-        check("B", self.b, self.b >= 0.0, "B >= 0 Pa, finite")?;
-        check("n", self.n, self.n > 0.0 && self.n <= 1.0, "0 < n <= 1")?;
-        check("C", self.c, self.c >= 0.0, "C >= 0, finite")?;
-        check(
-            "rate0",
-            self.rate0,
-            self.rate0 > 0.0,
-            "rate0 > 0 1/s, finite",
-        )?;
-        Ok(self)
-    }
-
-    /// σ_y and dσ_y/dΔε_p for the increment `dp` from `eps_p` over the step `dt` (s).
-    fn flow(&self, eps_p: f64, dp: f64, dt: f64) -> (f64, f64) {
-        let e = eps_p + dp;
-        let en = e.powf(self.n);
-        let h = self.a + self.b * en;
-        // n B e^(n−1) as n B e^n / e: one power per evaluation. At e = 0 the slope is not
-        // finite either way (NaN here, ∞ as a power), and the Newton solve bisects.
-        let dh = self.n * self.b * en / e;
-        let ratio = if dt > 0.0 {
-            dp / (dt * self.rate0)
-        } else {
-            0.0
-        };
-        // At the knee itself the slope is the right-hand one (m = 1 either way): the upper
-        // bracket of [`Hardening::plastic_increment`] starts there.
-        if ratio >= 1.0 {
-            let m = 1.0 + self.c * ratio.ln();
-            (h * m, dh * m + h * self.c / dp)
-        } else {
-            (h, dh)
-        }
+/// σ_y and dσ_y/dΔε_p of `jc` for the increment `dp` from `eps_p` over the step `dt` (s).
+fn flow(jc: &JohnsonCook, eps_p: f64, dp: f64, dt: f64) -> (f64, f64) {
+    let e = eps_p + dp;
+    let en = e.powf(jc.n);
+    let h = jc.a + jc.b * en;
+    // n B e^(n−1) as n B e^n / e: one power per evaluation. At e = 0 the slope is not
+    // finite either way (NaN here, ∞ as a power), and the Newton solve bisects.
+    let dh = jc.n * jc.b * en / e;
+    let ratio = if dt > 0.0 { dp / (dt * jc.rate0) } else { 0.0 };
+    // At the knee itself the slope is the right-hand one (m = 1 either way): the upper
+    // bracket of [`Hardening::plastic_increment`] starts there.
+    if ratio >= 1.0 {
+        let m = 1.0 + jc.c * ratio.ln();
+        (h * m, dh * m + h * jc.c / dp)
+    } else {
+        (h, dh)
     }
 }
 
@@ -122,7 +59,7 @@ impl Hardening for JohnsonCook {
         let hi = (q - sy) / three_g;
         let knee = dt * self.rate0;
         let bracket = if dt > 0.0 && self.c > 0.0 && knee < hi {
-            if q - three_g * knee - self.flow(eps_p, knee, dt).0 > 0.0 {
+            if q - three_g * knee - flow(self, eps_p, knee, dt).0 > 0.0 {
                 (knee, hi)
             } else {
                 (0.0, knee)
@@ -136,8 +73,8 @@ impl Hardening for JohnsonCook {
         } else {
             bracket.1
         };
-        let x = newton_root(q, shear, bracket, start, |dp| self.flow(eps_p, dp, dt));
-        (x, 0.5 * x * (sy + self.flow(eps_p, x, dt).0))
+        let x = newton_root(q, shear, bracket, start, |dp| flow(self, eps_p, dp, dt));
+        (x, 0.5 * x * (sy + flow(self, eps_p, x, dt).0))
     }
 }
 
@@ -160,13 +97,13 @@ mod tests {
                     let sy = jc.static_yield(eps_p);
                     let q = sy + over;
                     let (dp, work) = jc.plastic_increment(q, sy, eps_p, g, dt);
-                    let s = jc.flow(eps_p, dp, dt).0;
+                    let s = flow(&jc, eps_p, dp, dt).0;
                     let residual = (q - 3.0 * g * dp - s).abs() / q;
                     assert!(
                         dp > 0.0 && residual < 1e-12,
                         "{eps_p} {over} {dt}: {residual:e}"
                     );
-                    let (old, _) = newton_return(q, sy, g, |x| jc.flow(eps_p, x, dt));
+                    let (old, _) = newton_return(q, sy, g, |x| flow(&jc, eps_p, x, dt));
                     assert!(
                         (dp / old - 1.0).abs() < 1e-9,
                         "{eps_p} {over} {dt}: {dp} {old}"
@@ -194,7 +131,7 @@ mod tests {
             let n = std::cell::Cell::new(0);
             let x = newton_root(q, g, (dt, hi), start, |dp| {
                 n.set(n.get() + 1);
-                jc.flow(eps_p, dp, dt)
+                flow(&jc, eps_p, dp, dt)
             });
             (x, n.get())
         };

@@ -1,31 +1,16 @@
-//! The registry of hardening laws: the one enum a part's material stores, its scene keys,
-//! and the dispatch from a stored law to code compiled for that law's type.
+//! The dispatch from a stored hardening law ([`Law`], a constant of the material layer) to
+//! kernel code compiled for that law's type ([`LawDispatch::with`]), what the kernels say of
+//! a law through it, and whether a material's response has a time scale.
 //!
-//! Registering a law: a variant of [`Law`], its name in [`LAW_NAMES`], its keys and
-//! constructor in [`Law::from_keys`], and its arm in [`Law::with`].
+//! Registering a law: its parameters, its name and keys in [`crate::material::hardening`],
+//! its kernel (a [`Hardening`] implementation) in a file of its own here, and its arm in
+//! [`LawDispatch::with`].
 
-use super::{bilinear::Bilinear, hardening::Hardening, johnson_cook::JohnsonCook, power::Power};
-use crate::error::{Error, Result};
+use super::hardening::Hardening;
+pub use crate::material::hardening::{Law, LAW_NAMES};
+use crate::material::Material;
 
-/// The names of the laws a scene's `hardening = { law = ... }` selects.
-pub const LAW_NAMES: [&str; 2] = ["power", "johnson-cook"];
-
-/// A hardening law with its parameters (SI units).
-#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
-#[serde(tag = "law", rename_all = "kebab-case")]
-pub enum Law {
-    /// Linear hardening (bilinear stress-strain curve), from `yield` and `tangent`.
-    Bilinear(Bilinear),
-    /// Ludwik/Swift power law.
-    Power(Power),
-    /// Johnson-Cook with its strain-rate term.
-    JohnsonCook(JohnsonCook),
-    /// Linear hardening that keeps history (tests of the history seam only).
-    #[cfg(test)]
-    Counting(super::counting::Counting),
-}
-
-/// Code generic over the hardening law, run by [`Law::with`] for the stored law's type.
+/// Code generic over the hardening law, run by [`LawDispatch::with`] for the stored law's type.
 pub trait LawVisitor {
     /// What the visit returns.
     type Output;
@@ -33,79 +18,26 @@ pub trait LawVisitor {
     fn visit<H: Hardening>(self, law: &H) -> Self::Output;
 }
 
-impl Law {
-    /// The keys of law `name` in a scene's hardening table (besides `law`), or `None` for an
-    /// unknown name.
-    pub fn keys(name: &str) -> Option<&'static [&'static str]> {
-        match name {
-            "power" => Some(&["K", "n"]),
-            "johnson-cook" => Some(&["A", "B", "n", "C", "rate0"]),
-            _ => None,
-        }
-    }
-
-    /// The law `name` from its keys: `get(key)` reads one (`None` if absent), `path` names
-    /// the table in messages, `yield0` is the material's initial yield strength (Pa; the
-    /// power law's σ_0). Every key is required.
-    pub fn from_keys(
-        name: &str,
-        path: &str,
-        yield0: f64,
-        get: &mut dyn FnMut(&str) -> Result<Option<f64>>,
-    ) -> Result<Law> {
-        let mut need = |key: &str| -> Result<f64> {
-            get(key)?.ok_or_else(|| {
-                Error::Parse(format!(
-                    "missing required key {path}.{key} (law \"{name}\")"
-                ))
-            })
-        };
-        match name {
-            "power" => Ok(Law::Power(
-                Power {
-                    sigma0: yield0,
-                    k: need("K")?,
-                    n: need("n")?,
-                }
-                .validated(path)?,
-            )),
-            "johnson-cook" => Ok(Law::JohnsonCook(
-                JohnsonCook {
-                    a: need("A")?,
-                    b: need("B")?,
-                    n: need("n")?,
-                    c: need("C")?,
-                    rate0: need("rate0")?,
-                }
-                .validated(path)?,
-            )),
-            _ => Err(Error::invalid(
-                format!("{path}.law"),
-                format!("\"{name}\""),
-                format!("one of {}", LAW_NAMES.join(", ")),
-            )),
-        }
-    }
+/// The kernel side of a stored [`Law`]: the one match from the enum to its concrete type,
+/// and what the law's [`Hardening`] implementation says of it.
+pub trait LawDispatch {
+    /// Runs `v` with this law's concrete type (one match, here, for every generic caller).
+    fn with<V: LawVisitor>(&self, v: V) -> V::Output;
 
     /// The initial yield strength σ_y(0) at the reference rate, Pa.
-    pub fn initial_yield(&self) -> f64 {
-        self.with(InitialYield)
-    }
+    fn initial_yield(&self) -> f64;
 
     /// True when the law's flow stress does not depend on the strain rate
     /// ([`Hardening::rate_independent`]).
-    pub fn rate_independent(&self) -> bool {
-        self.with(RateIndependent)
-    }
+    fn rate_independent(&self) -> bool;
 
     /// History values the law keeps per integration point ([`Hardening::HISTORY`]).
-    pub fn history_per_point(&self) -> usize {
-        self.with(HistoryPerPoint)
-    }
+    fn history_per_point(&self) -> usize;
+}
 
-    /// Runs `v` with this law's concrete type (one match, here, for every generic caller).
+impl LawDispatch for Law {
     #[inline(always)]
-    pub fn with<V: LawVisitor>(&self, v: V) -> V::Output {
+    fn with<V: LawVisitor>(&self, v: V) -> V::Output {
         match self {
             Law::Bilinear(h) => v.visit(h),
             Law::Power(h) => v.visit(h),
@@ -114,9 +46,27 @@ impl Law {
             Law::Counting(h) => v.visit(h),
         }
     }
+
+    fn initial_yield(&self) -> f64 {
+        self.with(InitialYield)
+    }
+
+    fn rate_independent(&self) -> bool {
+        self.with(RateIndependent)
+    }
+
+    fn history_per_point(&self) -> usize {
+        self.with(HistoryPerPoint)
+    }
 }
 
-/// [`Law::initial_yield`] as a visitor.
+/// Whether `material`'s response has no time scale: no hardening law, or one without a
+/// strain-rate term ([`LawDispatch::rate_independent`]).
+pub fn rate_independent(material: &Material) -> bool {
+    material.hardening.is_none_or(|law| law.rate_independent())
+}
+
+/// [`LawDispatch::initial_yield`] as a visitor.
 struct InitialYield;
 
 impl LawVisitor for InitialYield {
@@ -126,7 +76,7 @@ impl LawVisitor for InitialYield {
     }
 }
 
-/// [`Law::rate_independent`] as a visitor.
+/// [`LawDispatch::rate_independent`] as a visitor.
 struct RateIndependent;
 
 impl LawVisitor for RateIndependent {
@@ -136,7 +86,7 @@ impl LawVisitor for RateIndependent {
     }
 }
 
-/// [`Law::history_per_point`] as a visitor.
+/// [`LawDispatch::history_per_point`] as a visitor.
 struct HistoryPerPoint;
 
 impl LawVisitor for HistoryPerPoint {

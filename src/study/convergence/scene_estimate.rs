@@ -4,6 +4,7 @@
 //! run the way `twoball run` runs it.
 
 use crate::error::{Error, Result};
+use crate::fe::materials;
 use crate::scene::{approach, Approach, MeshSettings, Scene};
 use crate::study::convergence::converged_scene::{converge_report, family_case};
 use crate::study::convergence::ladder::{
@@ -269,7 +270,8 @@ pub const RATE_DEPENDENT_FLOOR: f64 = 0.03;
 
 /// True when both balls' flow stress is independent of the strain rate.
 fn rate_independent(scene: &Scene) -> bool {
-    scene.ball1.material.rate_independent() && scene.ball2.material.rate_independent()
+    materials::rate_independent(&scene.ball1.material)
+        && materials::rate_independent(&scene.ball2.material)
 }
 
 /// The floor of the default levels' relative bar on e when they answer a tolerance:

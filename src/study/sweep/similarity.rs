@@ -11,6 +11,7 @@
 //! similarity check, 3.2e-10 relative; docs/contact-laws.md). A sweep over diameters with
 //! per-diameter meshes derives its similar cases from one run ([`crate::study::sweep`]).
 
+use crate::fe::materials::rate_independent;
 use crate::scene::{BallScene, MeshSettings, OutputSettings, Scene, SolverSettings};
 use crate::study::records::case::FeCase;
 use serde_json::Value;
@@ -38,7 +39,7 @@ fn scaled_ball(b: &BallScene, k: f64) -> Option<BallScene> {
         },
         MeshSettings::File { .. } => return None,
     };
-    material.rate_independent().then(|| BallScene {
+    rate_independent(&material).then(|| BallScene {
         material,
         material_name,
         diameter: k * diameter,
@@ -78,7 +79,7 @@ pub fn scaled(scene: &Scene, k: f64) -> Option<Scene> {
     } = output;
     let wall = match wall {
         Some(mut w) => {
-            if w.material.is_some_and(|m| !m.rate_independent()) {
+            if w.material.is_some_and(|m| !rate_independent(&m)) {
                 return None;
             }
             w.position = w.position.map(|x| k * x);

@@ -5,10 +5,15 @@
 //! (`copper-fe`). The paper never gives a hardening (tangent) modulus; these presets use
 //! `tangent = E / 100`, a common bilinear choice for metals, and say so in docs/design.md.
 //! Two presets harden by Johnson & Cook's (1983) published laws: `ofhc-copper` and
-//! `steel-4340` (see [`crate::fe::materials::johnson_cook`]).
+//! `steel-4340` ([`hardening::OFHC_COPPER`], [`hardening::STEEL_4340`]).
+//!
+//! The hardening laws' parameters are in [`hardening`]. These are constants and know no
+//! solver: `fe::materials` implements the laws' flow stress and return mapping on them.
+
+pub mod hardening;
 
 use crate::error::{Error, Result};
-use crate::fe::materials::{johnson_cook, JohnsonCook, Law};
+use hardening::{JohnsonCook, Law, OFHC_COPPER, STEEL_4340};
 use serde::{Deserialize, Serialize};
 
 /// An elastic-plastic ball material in SI units.
@@ -76,12 +81,6 @@ pub const PRESET_NAMES: [&str; 12] = [
 ];
 
 impl Material {
-    /// Whether the response has no time scale: no hardening law, or one without a strain-rate
-    /// term ([`Law::rate_independent`]).
-    pub fn rate_independent(&self) -> bool {
-        self.hardening.is_none_or(|law| law.rate_independent())
-    }
-
     /// Builds a material from engineering units (E in GPa, yield in MPa) with `tangent = E/100`
     /// and μ_s = μ_d; used for the presets.
     const fn table(e_gpa: f64, yield_mpa: f64, rho: f64, mu: f64, nu: f64) -> Material {
@@ -128,10 +127,8 @@ impl Material {
             "copper-fe" => Self::copper_fe(),
             // Johnson & Cook (1983, 1985): OFHC copper and 4340 steel, with their densities;
             // E and ν are handbook values (124 GPa, 0.34; 200 GPa, 0.29), μ Table 1's.
-            "ofhc-copper" => {
-                Self::johnson_cook(124.0, 8960.0, 0.20, 0.34, johnson_cook::OFHC_COPPER)
-            }
-            "steel-4340" => Self::johnson_cook(200.0, 7830.0, 0.10, 0.29, johnson_cook::STEEL_4340),
+            "ofhc-copper" => Self::johnson_cook(124.0, 8960.0, 0.20, 0.34, OFHC_COPPER),
+            "steel-4340" => Self::johnson_cook(200.0, 7830.0, 0.10, 0.29, STEEL_4340),
             _ => {
                 return Err(Error::invalid(
                     "material",
