@@ -3,7 +3,7 @@
 //! member, and the answer with its error bars (verification/contact-penalty.md, "The section's
 //! converged answer").
 //!
-//! `cargo run --release --example phase_ensemble -- LEVEL MESHES V_REL [MATERIAL] [one-point|b-bar] [D]`
+//! `cargo run --release --example phase_ensemble -- LEVEL MESHES V_REL [MATERIAL] [one-point|b-bar|full] [D]`
 //! (LEVEL −2..7, MESHES even, V_REL the relative speed in m/s, MATERIAL a preset, default
 //! copper-fe, D the diameter in m, default 0.02). `PHASE_CONTACT=nodal` enforces the symmetry
 //! plane by the penalty springs instead of the kinematic constraint. `PHASE_ONLY=1` runs the
@@ -38,7 +38,7 @@ fn arg<T: std::str::FromStr>(
             .map_err(|_| format!("argument {i} ({what}): {s:?} is not valid")),
         (None, Some(d)) => Ok(d),
         (None, None) => Err(format!(
-            "argument {i} ({what}) is missing: LEVEL MESHES V_REL [MATERIAL] [one-point|b-bar] [D]"
+            "argument {i} ({what}) is missing: LEVEL MESHES V_REL [MATERIAL] [one-point|b-bar|full] [D]"
         )),
     }
 }
@@ -65,10 +65,14 @@ fn run(args: &[String]) -> Result<(), String> {
     let meshes: usize = arg(args, 2, "MESHES", None)?;
     let v: f64 = arg(args, 3, "V_REL", None)?;
     let name: String = arg(args, 4, "MATERIAL", Some("copper-fe".to_string()))?;
-    let formulation = match args.get(5).map(String::as_str) {
-        None | Some("one-point") => QuadFormulation::default(),
-        Some("b-bar") => QuadFormulation::SelectiveReduced,
-        Some(o) => return Err(format!("argument 5: {o:?} is not one of one-point, b-bar")),
+    let formulation = match args.get(5) {
+        None => QuadFormulation::default(),
+        Some(o) => QuadFormulation::from_name(o).ok_or_else(|| {
+            format!(
+                "argument 5: {o:?} is not one of {}",
+                QuadFormulation::NAMES.join(", ")
+            )
+        })?,
     };
     let diameter: f64 = arg(args, 6, "D", Some(0.02))?;
     let material = Material::preset(&name).map_err(|e| e.to_string())?;

@@ -5,11 +5,9 @@
 //! one-point quad's ([`super::one_point`]), at each Gauss point.
 
 use super::element::RingElement;
-use super::lanes::{self, rotation, Nodes, Output, State};
-use super::scalar::{advance_point, mid_step};
-use super::shape::{
-    add_stress_forces, characteristic_length, gauss_points, mean_of, velocity_gradient, Gradient,
-};
+use super::lanes::{self, Nodes, Output, State};
+use super::scalar::{advance_gauss_points, mid_step, output};
+use super::shape::{add_stress_forces, gauss_points, mean_of, velocity_gradient, Gradient};
 use super::state::{QuadOutput, QuadState};
 use crate::fe::{
     materials::{Hardening, J2Material},
@@ -40,22 +38,11 @@ impl RingElement for BBarQuad {
         let (g1, min_j) = mean_of(&p1);
         let lbar = velocity_gradient(v, &gm);
         let vol_bar = lbar[0][0] + lbar[1][1] + lbar[2][2];
-        for (k, p) in pm.iter().enumerate() {
-            let l = velocity_gradient(v, &p.grad);
-            let (wi, wp) =
-                advance_point(&mut st.points[k], &l, Some(vol_bar), dt, p.grad.volume, mat);
-            st.internal_energy += wi;
-            st.plastic_work += wp;
-        }
+        advance_gauss_points(st, &pm, v, Some(vol_bar), dt, mat);
         for (k, p) in p1.iter().enumerate() {
             bbar_forces(&mut force, &st.points[k].stress, &p.grad, &g1);
         }
-        QuadOutput {
-            force,
-            volume: g1.volume,
-            min_jacobian: min_j,
-            dt_crit: characteristic_length(x1) / mat.wave_speed,
-        }
+        output(x1, force, g1.volume, min_j, mat)
     }
 
     #[inline(always)]
@@ -68,7 +55,29 @@ impl RingElement for BBarQuad {
         law: &H,
         st: &mut State<W>,
     ) -> Output<W> {
-        update_lanes(x1, v, dt, mat, law, st)
+        let zero = x1[0][0].splat_like(0.0);
+        let xm = lanes::mid_step(x1, v, dt);
+        let pm = lanes::gauss_points(&xm);
+        let (gm, _) = lanes::mean_of(&pm);
+        let p1 = lanes::gauss_points(x1);
+        let (g1, min_j) = lanes::mean_of(&p1);
+        let lbar = lanes::velocity_gradient(v, &gm);
+        let vol_bar = lbar[0] + lbar[3] + lbar[4];
+        lanes::advance_gauss_points(&pm, v, Some(vol_bar), dt, mat, law, st);
+        let mut force = [[zero; 2]; 4];
+        for (k, p) in p1.iter().enumerate() {
+            // bbar_forces: W_g (B_gᵀσ + p (B̄_vol − B_g,vol)).
+            let s = st.stress[k];
+            lanes::add_stress_forces(&mut force, &s, &p.grad);
+            let pressure = (s[0] + s[1] + s[2]) / 3.0;
+            for i in 0..4 {
+                let dr = (g1.b[i][0] + g1.hoop[i]) - (p.grad.b[i][0] + p.grad.hoop[i]);
+                let dz = g1.b[i][1] - p.grad.b[i][1];
+                force[i][0] += p.grad.volume * pressure * dr;
+                force[i][1] += p.grad.volume * pressure * dz;
+            }
+        }
+        lanes::output(x1, force, g1.volume, min_j, mat)
     }
 }
 
@@ -83,58 +92,5 @@ fn bbar_forces(f: &mut [[f64; 2]; 4], s: &Sym, g: &Gradient, mean: &Gradient) {
         let dz = mean.b[i][1] - g.b[i][1];
         f[i][0] += g.volume * p * dr;
         f[i][1] += g.volume * p * dz;
-    }
-}
-
-/// [`BBarQuad`]'s update of W quads (its [`RingElement::update_lanes`]).
-#[inline(always)]
-fn update_lanes<H: Hardening, const W: usize>(
-    x1: &Nodes<W>,
-    v: &Nodes<W>,
-    dt: f64,
-    mat: &J2Material,
-    law: &H,
-    st: &mut State<W>,
-) -> Output<W> {
-    let zero = x1[0][0].splat_like(0.0);
-    let xm = lanes::mid_step(x1, v, dt);
-    let pm = lanes::gauss_points(&xm);
-    let (gm, _) = lanes::mean_of(&pm);
-    let p1 = lanes::gauss_points(x1);
-    let (g1, min_j) = lanes::mean_of(&p1);
-    let lbar = lanes::velocity_gradient(v, &gm);
-    let vol_bar = lbar[0] + lbar[3] + lbar[4];
-    for (k, p) in pm.iter().enumerate() {
-        let l = lanes::velocity_gradient(v, &p.grad);
-        let shift = (vol_bar - (l[0] + l[3] + l[4])) / 3.0;
-        let d = [
-            (l[0] + shift) * dt,
-            (l[3] + shift) * dt,
-            (l[4] + shift) * dt,
-            (0.5 * (l[1] + l[2])) * dt,
-            zero,
-            zero,
-        ];
-        let r = rotation(&l, dt);
-        lanes::advance_point(mat, law, &r, &d, dt, p.grad.volume, k, st);
-    }
-    let mut force = [[zero; 2]; 4];
-    for (k, p) in p1.iter().enumerate() {
-        // element::bbar_forces: W_g (B_gᵀσ + p (B̄_vol − B_g,vol)).
-        let s = st.stress[k];
-        lanes::add_stress_forces(&mut force, &s, &p.grad);
-        let pressure = (s[0] + s[1] + s[2]) / 3.0;
-        for i in 0..4 {
-            let dr = (g1.b[i][0] + g1.hoop[i]) - (p.grad.b[i][0] + p.grad.hoop[i]);
-            let dz = g1.b[i][1] - p.grad.b[i][1];
-            force[i][0] += p.grad.volume * pressure * dr;
-            force[i][1] += p.grad.volume * pressure * dz;
-        }
-    }
-    Output {
-        force,
-        volume: g1.volume,
-        min_jacobian: min_j,
-        dt_crit: lanes::characteristic_length(x1) / mat.wave_speed,
     }
 }

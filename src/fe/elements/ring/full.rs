@@ -10,11 +10,9 @@
 //! and material seam as the other formulations', at each Gauss point.
 
 use super::element::RingElement;
-use super::lanes::{self, rotation, Nodes, Output, State};
-use super::scalar::{advance_point, mid_step};
-use super::shape::{
-    add_stress_forces, characteristic_length, gauss_points, mean_of, velocity_gradient,
-};
+use super::lanes::{self, Nodes, Output, State};
+use super::scalar::{advance_gauss_points, mid_step, output};
+use super::shape::{add_stress_forces, gauss_points, mean_of};
 use super::state::{QuadOutput, QuadState};
 use crate::fe::materials::{Hardening, J2Material};
 
@@ -34,26 +32,15 @@ impl RingElement for FullQuad {
         mat: &J2Material,
         st: &mut QuadState,
     ) -> QuadOutput {
-        let xm = mid_step(x1, v, dt);
-        let mut force = [[0.0; 2]; 4];
-        let pm = gauss_points(&xm);
+        let pm = gauss_points(&mid_step(x1, v, dt));
         let p1 = gauss_points(x1);
         let (g1, min_j) = mean_of(&p1);
-        for (k, p) in pm.iter().enumerate() {
-            let l = velocity_gradient(v, &p.grad);
-            let (wi, wp) = advance_point(&mut st.points[k], &l, None, dt, p.grad.volume, mat);
-            st.internal_energy += wi;
-            st.plastic_work += wp;
-        }
+        advance_gauss_points(st, &pm, v, None, dt, mat);
+        let mut force = [[0.0; 2]; 4];
         for (k, p) in p1.iter().enumerate() {
             add_stress_forces(&mut force, &st.points[k].stress, &p.grad);
         }
-        QuadOutput {
-            force,
-            volume: g1.volume,
-            min_jacobian: min_j,
-            dt_crit: characteristic_length(x1) / mat.wave_speed,
-        }
+        output(x1, force, g1.volume, min_j, mat)
     }
 
     #[inline(always)]
@@ -66,33 +53,14 @@ impl RingElement for FullQuad {
         law: &H,
         st: &mut State<W>,
     ) -> Output<W> {
-        let zero = x1[0][0].splat_like(0.0);
-        let xm = lanes::mid_step(x1, v, dt);
-        let pm = lanes::gauss_points(&xm);
+        let pm = lanes::gauss_points(&lanes::mid_step(x1, v, dt));
         let p1 = lanes::gauss_points(x1);
         let (g1, min_j) = lanes::mean_of(&p1);
-        for (k, p) in pm.iter().enumerate() {
-            let l = lanes::velocity_gradient(v, &p.grad);
-            let d = [
-                l[0] * dt,
-                l[3] * dt,
-                l[4] * dt,
-                (0.5 * (l[1] + l[2])) * dt,
-                zero,
-                zero,
-            ];
-            let r = rotation(&l, dt);
-            lanes::advance_point(mat, law, &r, &d, dt, p.grad.volume, k, st);
-        }
-        let mut force = [[zero; 2]; 4];
+        lanes::advance_gauss_points(&pm, v, None, dt, mat, law, st);
+        let mut force = [[x1[0][0].splat_like(0.0); 2]; 4];
         for (k, p) in p1.iter().enumerate() {
             lanes::add_stress_forces(&mut force, &st.stress[k], &p.grad);
         }
-        Output {
-            force,
-            volume: g1.volume,
-            min_jacobian: min_j,
-            dt_crit: lanes::characteristic_length(x1) / mat.wave_speed,
-        }
+        lanes::output(x1, force, g1.volume, min_j, mat)
     }
 }

@@ -286,6 +286,73 @@ pub(super) fn mean_of<const W: usize>(pts: &[Point<W>; 4]) -> (Gradient<W>, Lane
     (g, min_j)
 }
 
+/// The strain increment D Δt (Voigt [rr, zz, θθ, rz, 0, 0]) of the velocity gradient `l`
+/// (1/s, as [`velocity_gradient`]) over `dt` (s), its volumetric part replaced by `vol_bar`
+/// (1/s) when given (scalar::advance_point).
+#[inline(always)]
+pub(super) fn strain_increment<const W: usize>(
+    l: &[Lanes<W>; 5],
+    vol_bar: Option<Lanes<W>>,
+    dt: f64,
+) -> [Lanes<W>; 6] {
+    let zero = l[0].splat_like(0.0);
+    let diag = match vol_bar {
+        Some(vb) => {
+            let shift = (vb - (l[0] + l[3] + l[4])) / 3.0;
+            [l[0] + shift, l[3] + shift, l[4] + shift]
+        }
+        None => [l[0], l[3], l[4]],
+    };
+    [
+        diag[0] * dt,
+        diag[1] * dt,
+        diag[2] * dt,
+        (0.5 * (l[1] + l[2])) * dt,
+        zero,
+        zero,
+    ]
+}
+
+/// Advances the four Gauss points `pm` (on the mid-step configuration) of W quads with the
+/// nodal velocities `v` (m/s) over `dt` (s), each on its own strain rate with its volumetric
+/// part replaced by `vol_bar` (1/s) when given (scalar::advance_gauss_points).
+#[inline(always)]
+pub(super) fn advance_gauss_points<H: Hardening, const W: usize>(
+    pm: &[Point<W>; 4],
+    v: &Nodes<W>,
+    vol_bar: Option<Lanes<W>>,
+    dt: f64,
+    mat: &J2Material,
+    law: &H,
+    st: &mut State<W>,
+) {
+    for (k, p) in pm.iter().enumerate() {
+        let l = velocity_gradient(v, &p.grad);
+        let d = strain_increment(&l, vol_bar, dt);
+        let r = rotation(&l, dt);
+        advance_point(mat, law, &r, &d, dt, p.grad.volume, k, st);
+    }
+}
+
+/// The output of W updates: nodal forces `force` (N) on the quads `x1` (m) of ring volumes
+/// `volume` (m³) and smallest Jacobians `min_jacobian` (m²), with their Courant steps
+/// (scalar::output).
+#[inline(always)]
+pub(super) fn output<const W: usize>(
+    x1: &Nodes<W>,
+    force: [[Lanes<W>; 2]; 4],
+    volume: Lanes<W>,
+    min_jacobian: Lanes<W>,
+    mat: &J2Material,
+) -> Output<W> {
+    Output {
+        force,
+        volume,
+        min_jacobian,
+        dt_crit: characteristic_length(x1) / mat.wave_speed,
+    }
+}
+
 /// Rotates point `k`'s stress by `r` (the in-plane rotation of [`rotation`]), advances it by
 /// the strain increment `d` through the material, and accounts its energies over the ring
 /// volume `volume` (scalar::advance_point).

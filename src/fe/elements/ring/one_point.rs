@@ -11,10 +11,9 @@
 
 use super::element::RingElement;
 use super::lanes::{self, rotation, Nodes, Output, State};
-use super::scalar::{advance_point, mid_step};
+use super::scalar::{advance_point, mid_step, output};
 use super::shape::{
-    add_stress_forces, characteristic_length, hourglass_gamma, mean_gradient, velocity_gradient,
-    Gradient, HOURGLASS_BASE,
+    add_stress_forces, hourglass_gamma, mean_gradient, velocity_gradient, Gradient, HOURGLASS_BASE,
 };
 use super::state::{QuadOutput, QuadState};
 use crate::fe::{
@@ -51,9 +50,7 @@ impl RingElement for OnePointQuad {
         let (gm, _) = mean_gradient(&xm);
         let (g1, min_j) = mean_gradient(x1);
         let l = velocity_gradient(v, &gm);
-        let (wi, wp) = advance_point(&mut st.points[0], &l, None, dt, gm.volume, mat);
-        st.internal_energy += wi;
-        st.plastic_work += wp;
+        advance_point(st, 0, &l, None, dt, gm.volume, mat);
         add_stress_forces(&mut force, &st.points[0].stress, &g1);
         if self.hourglass > 0.0 {
             let k = hourglass_stiffness(self.hourglass, mat.p_modulus(), &g1);
@@ -62,12 +59,7 @@ impl RingElement for OnePointQuad {
             let e = hourglass_update(&mut st.hourglass, &gam, v, k, rot, dt, &mut force);
             st.hourglass_energy += e;
         }
-        QuadOutput {
-            force,
-            volume: g1.volume,
-            min_jacobian: min_j,
-            dt_crit: characteristic_length(x1) / mat.wave_speed,
-        }
+        output(x1, force, g1.volume, min_j, mat)
     }
 
     #[inline(always)]
@@ -80,7 +72,32 @@ impl RingElement for OnePointQuad {
         law: &H,
         st: &mut State<W>,
     ) -> Output<W> {
-        update_lanes(x1, v, dt, mat, law, self.hourglass, st)
+        let zero = x1[0][0].splat_like(0.0);
+        let xm = lanes::mid_step(x1, v, dt);
+        let (gm, _) = lanes::mean_gradient(&xm);
+        let (g1, min_j) = lanes::mean_gradient(x1);
+        let l = lanes::velocity_gradient(v, &gm);
+        // The point's update (scalar::advance_point): rotate, return, account.
+        let d = lanes::strain_increment(&l, None, dt);
+        let r = rotation(&l, dt);
+        lanes::advance_point(mat, law, &r, &d, dt, gm.volume, 0, st);
+        // Forces V B̄ᵀσ on x^{n+1} (shape::add_stress_forces onto zero).
+        let mut force = [[zero; 2]; 4];
+        lanes::add_stress_forces(&mut force, &st.stress[0], &g1);
+        if self.hourglass > 0.0 {
+            hourglass_forces(
+                x1,
+                v,
+                &g1,
+                mat,
+                self.hourglass,
+                [r[0], r[2]],
+                dt,
+                st,
+                &mut force,
+            );
+        }
+        lanes::output(x1, force, g1.volume, min_j, mat)
     }
 }
 
@@ -130,50 +147,8 @@ fn hourglass_update(
     e
 }
 
-/// [`OnePointQuad`]'s update of W quads (its [`RingElement::update_lanes`]), with the
-/// hourglass coefficient `hourglass` (≥ 0).
-#[inline(always)]
-fn update_lanes<H: Hardening, const W: usize>(
-    x1: &Nodes<W>,
-    v: &Nodes<W>,
-    dt: f64,
-    mat: &J2Material,
-    law: &H,
-    hourglass: f64,
-    st: &mut State<W>,
-) -> Output<W> {
-    let zero = x1[0][0].splat_like(0.0);
-    let xm = lanes::mid_step(x1, v, dt);
-    let (gm, _) = lanes::mean_gradient(&xm);
-    let (g1, min_j) = lanes::mean_gradient(x1);
-    let l = lanes::velocity_gradient(v, &gm);
-    // The point's update (element::advance_point): rotate, return, account.
-    let d = [
-        l[0] * dt,
-        l[3] * dt,
-        l[4] * dt,
-        (0.5 * (l[1] + l[2])) * dt,
-        zero,
-        zero,
-    ];
-    let r = rotation(&l, dt);
-    lanes::advance_point(mat, law, &r, &d, dt, gm.volume, 0, st);
-    // Forces V B̄ᵀσ on x^{n+1} (quad::add_stress_forces onto zero).
-    let mut force = [[zero; 2]; 4];
-    lanes::add_stress_forces(&mut force, &st.stress[0], &g1);
-    if hourglass > 0.0 {
-        hourglass_forces(x1, v, &g1, mat, hourglass, [r[0], r[2]], dt, st, &mut force);
-    }
-    Output {
-        force,
-        volume: g1.volume,
-        min_jacobian: min_j,
-        dt_crit: lanes::characteristic_length(x1) / mat.wave_speed,
-    }
-}
-
 /// The Flanagan-Belytschko stiffness hourglass forces of W quads added to `force`
-/// (element::hourglass_stiffness, quad::hourglass_gamma, element::hourglass_update); `rot`
+/// ([`hourglass_stiffness`], [`shape::hourglass_gamma`], [`hourglass_update`]); `rot`
 /// is the in-plane rotation (cos, sin) of the step.
 #[allow(clippy::too_many_arguments)]
 #[inline(always)]
