@@ -12,18 +12,20 @@
 //! ([`penalty`]), optionally with a dashpot; friction is Coulomb with regularised stick and a
 //! return mapping ([`friction`]); candidates come from a bounding-box and bucket search
 //! ([`search`]); each step's resultants, area, penetration and energies are in
-//! [`output::ContactOutput`].
+//! [`output::ContactOutput`]; the contact duration is read from the force pulse
+//! ([`duration`]); [`mass_damping`] is the dynamic-relaxation damping that settles a slow
+//! load to its static answer.
 
+pub mod duration;
 pub mod friction;
 pub mod law;
+pub mod mass_damping;
 pub mod meridian;
 pub mod node_to_segment;
 pub mod output;
 pub mod params;
 pub mod penalty;
 pub mod projection;
-pub mod pulse;
-pub mod relaxation;
 pub mod rigid_plane;
 pub mod search;
 pub mod step_cache;

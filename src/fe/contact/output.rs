@@ -209,11 +209,11 @@ pub struct ProbeData {
 }
 
 impl ProbeData {
-    /// Contact duration, s: from the force pulse ([`super::pulse::pulse_duration`]), or
+    /// Contact duration, s: from the force pulse ([`super::duration::pulse_duration`]), or
     /// first to last step with contact when the pulse is too short to fit; 0 without
     /// contact.
     pub fn contact_duration(&self) -> f64 {
-        super::pulse::pulse_duration(&self.pulse).unwrap_or(
+        super::duration::pulse_duration(&self.pulse).unwrap_or(
             match (self.first_contact, self.last_contact) {
                 (Some(a), Some(b)) => b - a,
                 _ => 0.0,

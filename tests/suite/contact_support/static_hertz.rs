@@ -2,7 +2,7 @@
 //! rigid frictionless plane moving slowly into its pole, then left to settle under
 //! mass-proportional damping.
 
-use twoball::fe::contact::relaxation::MassDamping;
+use twoball::fe::contact::mass_damping::MassDamping;
 use twoball::fe::contact::{ContactParams, PressureSample, RigidPlane};
 use twoball::fe::interaction::Interaction;
 use twoball::fe::{Formulation, Model, Settings, Solver};
