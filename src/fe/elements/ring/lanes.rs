@@ -6,8 +6,8 @@
 //! the terms dropped that are zero on the section (the out-of-plane shear and spin of the
 //! 3D tensors: x + 0 = x and x · 0 = 0 exactly). So a quad gets the same bits from an
 //! element's lane update, on every kernel path, as from its scalar update
-//! ([`super::element::RingElement::update`]), which stays the reference; the test below
-//! checks it for every registered element.
+//! ([`super::element::RingElement::update`]), which stays the reference; the test in
+//! [`super::formulation`] checks it for every registered element.
 
 use super::shape::GAUSS_SHAPE;
 use super::state::{PointState, QuadOutput, QuadState};
@@ -419,122 +419,4 @@ pub(super) fn characteristic_length<const W: usize>(x: &Nodes<W>) -> Lanes<W> {
         * ((x[2][0] - x[0][0]) * (x[3][1] - x[1][1]) - (x[3][0] - x[1][0]) * (x[2][1] - x[0][1]));
     let l = area / l2max.sqrt();
     select(l.gt(rmin), l / SQRT_2, l)
-}
-
-#[cfg(test)]
-mod tests {
-    use super::super::element::{RingElement, RingVisitor};
-    use super::super::formulation::{update, QuadFormulation};
-    use super::*;
-    use crate::fe::materials::Law;
-    use crate::fe::simd::{Avx2, Avx512, LaneKernel, Portable, Simd};
-    use crate::material::Material;
-
-    /// W quads distorted and moving differently, with stresses past yield.
-    fn quads(k: usize) -> ([[f64; 2]; 4], [[f64; 2]; 4], QuadState) {
-        let f = k as f64;
-        let r0 = if k.is_multiple_of(3) { 0.0 } else { 1e-3 * f };
-        let x = [
-            [r0, 0.0],
-            [r0 + 1e-3 + 1e-5 * f, -2e-5 * f],
-            [r0 + 1.1e-3, 0.9e-3 + 1e-5 * f],
-            [r0 + 1e-5 * f, 1e-3],
-        ];
-        let v = [
-            [0.0, -1.0],
-            [0.3 - 0.05 * f, -0.7],
-            [0.2, 0.4 + 0.1 * f],
-            [0.01 * f, 0.5],
-        ];
-        let mut st = QuadState::default();
-        st.points[0].stress = [3e8 + 1e7 * f, -2e8, 1e8, 5e7 * (f - 2.0), 0.0, 0.0];
-        st.points[0].eps_p = 1e-3 * f;
-        st.hourglass = [1.0 + f, -2.0];
-        st.internal_energy = 1e-3;
-        (x, v, st)
-    }
-
-    /// One lane update of step 2e-8 s as a visitor.
-    struct LaneUpdate<'a, H: Hardening, const W: usize> {
-        x: &'a Nodes<W>,
-        v: &'a Nodes<W>,
-        mat: &'a J2Material,
-        law: &'a H,
-        st: &'a mut State<W>,
-    }
-
-    impl<H: Hardening, const W: usize> RingVisitor for LaneUpdate<'_, H, W> {
-        type Output = Output<W>;
-        fn visit<E: RingElement>(self, e: E) -> Output<W> {
-            e.update_lanes(self.x, self.v, 2e-8, self.mat, self.law, self.st)
-        }
-    }
-
-    /// Every lane of W quads against the scalar update of formulation `.0`.
-    struct Check(QuadFormulation);
-    impl LaneKernel for Check {
-        type Output = ();
-        fn run<const W: usize>(self, isa: LaneIsa<W>) {
-            let mat = J2Material::new(&Material::preset("copper-fe").unwrap(), false);
-            let Law::Bilinear(law) = mat.law else {
-                panic!("copper-fe is bilinear")
-            };
-            let form = self.0;
-            let points = form.points();
-            let mut scalar: [_; W] = std::array::from_fn(quads);
-            if points > 1 {
-                for (_, _, st) in &mut scalar {
-                    let first = st.points[0];
-                    for (k, p) in st.points.iter_mut().enumerate() {
-                        *p = first;
-                        p.stress[3] *= 1.0 + 0.1 * k as f64;
-                    }
-                }
-            }
-            let z = isa.splat(0.0);
-            let (mut x, mut v) = ([[z; 2]; 4], [[z; 2]; 4]);
-            for (l, (xl, vl, _)) in scalar.iter().enumerate() {
-                for k in 0..4 {
-                    for c in 0..2 {
-                        x[k][c].0[l] = xl[k][c];
-                        v[k][c].0[l] = vl[k][c];
-                    }
-                }
-            }
-            let mut st = State::gather(isa, std::array::from_fn(|l| &scalar[l].2), points);
-            for _ in 0..3 {
-                let out = form.with(LaneUpdate {
-                    x: &x,
-                    v: &v,
-                    mat: &mat,
-                    law: &law,
-                    st: &mut st,
-                });
-                for (l, (xl, vl, sl)) in scalar.iter_mut().enumerate() {
-                    let want = update(xl, vl, 2e-8, &mat, form, sl);
-                    assert_eq!(out.lane(l), want, "lane {l}");
-                    let mut got = *sl;
-                    st.scatter(l, &mut got, points);
-                    assert_eq!(got, *sl, "lane {l}");
-                }
-            }
-            assert!(
-                scalar.iter().any(|q| q.2.plastic_work > 0.0),
-                "no lane yielded"
-            );
-        }
-    }
-
-    #[test]
-    fn every_element_on_every_lane_path_gives_its_scalar_update_s_bits() {
-        for form in QuadFormulation::ALL {
-            Portable.vectorize(Check(form));
-            if let Some(t) = Avx2::detect() {
-                t.vectorize(Check(form));
-            }
-            if let Some(t) = Avx512::detect() {
-                t.vectorize(Check(form));
-            }
-        }
-    }
 }
