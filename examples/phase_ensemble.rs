@@ -141,11 +141,13 @@ fn run(args: &[String]) -> Result<(), String> {
     for (label, en) in [("coarse", &ans.coarse), ("fine", &ans.fine)] {
         print_ensemble(label, en);
     }
-    let pct = |b: &twoball::study::convergence::phase_ensemble::Bar| 100.0 * b.relative_error();
+    let pct = |b: &twoball::study::records::estimate::Estimate| {
+        100.0 * b.relative_error.unwrap_or(f64::NAN)
+    };
     println!(
         "e {:.5} ± {:.5} ({:.2} %); δ_max {:.4} µm ± {:.2} %; t_c {:.3} µs ± {:.2} %; F_peak {:.1} N ± {:.2} %; {:.1} s CPU",
-        ans.e.value, ans.e.error, pct(&ans.e), ans.delta_max.value * 1e6, pct(&ans.delta_max),
-        ans.contact_duration.value * 1e6, pct(&ans.contact_duration), ans.peak_force.value,
+        ans.e.finest, ans.e.error, pct(&ans.e), ans.delta_max.finest * 1e6, pct(&ans.delta_max),
+        ans.contact_duration.finest * 1e6, pct(&ans.contact_duration), ans.peak_force.finest,
         pct(&ans.peak_force), ans.cpu_time_s
     );
     Ok(())

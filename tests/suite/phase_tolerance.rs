@@ -26,12 +26,12 @@ fn a_tolerance_refines_one_level_and_keeps_the_fine_ensemble_as_the_coarse_one()
     let (level_0, _) = ensemble_at(&case, 0, 2).unwrap();
     assert_eq!(refined.coarse.e.mean, level_m1.e.mean);
     assert_eq!(refined.fine.e.mean, level_0.e.mean);
-    assert_eq!(refined.e.value, level_0.e.mean);
+    assert_eq!(refined.e.finest, level_0.e.mean);
     // A tolerance every bar meets, and no tolerance: the plan's level answers.
     for p in [plan(Some(0.5), 1), plan(None, 3)] {
         let a = converged_head_on(&case, &p).unwrap();
         assert_eq!(a.fine_level, -1);
-        assert_eq!(a.e.value, level_m1.e.mean);
+        assert_eq!(a.e.finest, level_m1.e.mean);
     }
 }
 

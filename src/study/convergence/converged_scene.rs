@@ -24,7 +24,7 @@ use crate::mesh::meridian::MeridianMesh;
 use crate::scene::{approach, Approach, PlaneEnforcement, Scene, Switch, WallKind};
 use crate::study::convergence::phase_band::banded_mesh;
 use crate::study::convergence::phase_ensemble::{
-    converged_head_on, Bar, HeadOnAnswer, HeadOnCase, HeadOnTarget, PhaseEnsemble, PhasePlan,
+    converged_head_on, HeadOnAnswer, HeadOnCase, HeadOnTarget, PhaseEnsemble, PhasePlan,
     MASS_SCALING_BIAS,
 };
 use crate::study::records::error_estimate::{
@@ -221,14 +221,14 @@ fn estimate_of(case: &HeadOnCase, answer: &HeadOnAnswer, tolerance: f64) -> Resu
         level(&answer.coarse, answer.fine_level - 1)?,
         level(&answer.fine, answer.fine_level)?,
     ];
-    let e = estimate_from_bar(&answer.e);
+    let e = answer.e;
     let tolerance_met = Some(e.relative_error.is_some_and(|r| r <= tolerance));
     Ok(ErrorEstimate {
         ratio: LADDER_RATIO,
         e,
-        delta_max: estimate_from_bar(&answer.delta_max),
-        contact_duration: estimate_from_bar(&answer.contact_duration),
-        peak_force: estimate_from_bar(&answer.peak_force),
+        delta_max: answer.delta_max,
+        contact_duration: answer.contact_duration,
+        peak_force: answer.peak_force,
         meshes,
         tolerance: Some(tolerance),
         tolerance_met,
@@ -241,22 +241,6 @@ fn estimate_of(case: &HeadOnCase, answer: &HeadOnAnswer, tolerance: f64) -> Resu
             cpu_time_s: answer.cpu_time_s,
         },
     })
-}
-
-/// A bar of [`converged_head_on`] as a two-level estimate: the fine mean, the extrapolated
-/// value (order 2 assumed) and the bar (level difference, sampling error, mass-scaling bias).
-fn estimate_from_bar(bar: &Bar) -> crate::study::records::estimate::Estimate {
-    use crate::study::records::estimate::{Behaviour, Estimate, ASSUMED_ORDER};
-    Estimate {
-        finest: bar.value,
-        extrapolated: bar.extrapolated,
-        observed_order: None,
-        order_used: Some(ASSUMED_ORDER),
-        error: 0.0,
-        relative_error: None,
-        behaviour: Behaviour::TwoLevels,
-    }
-    .with_error(bar.error)
 }
 
 /// The lengths (m) of the contact surface's segment at the pole (on the axis) and of its

@@ -14,7 +14,7 @@
 //! The ensemble runs the pilot (s = 1) first, reads q at the pilot's largest contact radius
 //! ([`ring_ratio`]), then the other M − 1 meshes in parallel (rayon). [`converged_head_on`]
 //! runs one ensemble on ladder level L and one on the next coarser mesh and combines them
-//! into an error bar ([`Bar`]): the two-level Richardson estimate of
+//! into an error bar (an [`Estimate`]): the two-level Richardson estimate of
 //! [`crate::study::records::estimate`] (the coarse-to-fine difference, an honest bound for order ≥ 1)
 //! plus the sampling error of the fine mean.
 
@@ -25,7 +25,7 @@ use crate::fe::elements::ring::QuadFormulation;
 use crate::material::Material;
 use crate::mesh::meridian::{ladder_ball, MeridianMesh};
 use crate::study::convergence::ladder::refine;
-use crate::study::records::estimate::{estimate, Estimate};
+use crate::study::records::estimate::{estimate, Behaviour, Estimate, ASSUMED_ORDER};
 use crate::study::run::section_impact::{HeadOn, ImpactResult, PlaneContact, Target};
 use rayon::prelude::*;
 use serde::Serialize;
@@ -113,52 +113,46 @@ pub struct PhaseEnsemble {
 /// verification/contact-penalty.md, "Mass scaling of the contact region").
 pub const MASS_SCALING_BIAS: f64 = 10.0;
 
-/// A value with its error bar (same unit).
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
-pub struct Bar {
-    /// The fine ensemble's mean.
-    pub value: f64,
-    /// Estimate of |value − exact|: the two-level estimate plus the sampling error (plus the
-    /// mass-scaling bias bound of a mass-scaled case), ≥ 0.
-    pub error: f64,
-    /// The Richardson-extrapolated value (order 2 assumed), for reference.
-    pub extrapolated: f64,
-}
-
-impl Bar {
-    /// `error` relative to |value| (infinite when the value is 0).
-    pub fn relative_error(&self) -> f64 {
-        self.error / self.value.abs()
+/// The two-level estimate of one quantity from the `coarse` and `fine` ensembles' means:
+/// the fine mean with the Richardson-extrapolated value (order 2 assumed) and the bar, the
+/// two-level estimate plus the fine mean's sampling error plus, for a case mass-scaled
+/// within `mass_scaling` (added mass over the section's), the bias bound
+/// [`MASS_SCALING_BIAS`] · budget · |mean|. Same unit as the quantity; the relative error is
+/// the bar over |extrapolated|, as every [`Estimate`]'s.
+///
+/// Errors: a non-finite mean.
+fn estimate_of(coarse: &PhaseMean, fine: &PhaseMean, mass_scaling: f64) -> Result<Estimate> {
+    let est: Estimate = estimate(&[coarse.mean, fine.mean], RATIO).ok_or_else(|| {
+        Error::Numerical(format!(
+            "phase ensemble: non-finite means {} and {}",
+            coarse.mean, fine.mean
+        ))
+    })?;
+    let error =
+        est.error + fine.sampling_error + MASS_SCALING_BIAS * mass_scaling * fine.mean.abs();
+    Ok(Estimate {
+        finest: fine.mean,
+        extrapolated: est.extrapolated,
+        observed_order: None,
+        order_used: Some(ASSUMED_ORDER),
+        error: 0.0,
+        relative_error: None,
+        behaviour: Behaviour::TwoLevels,
     }
-
-    fn of(coarse: &PhaseMean, fine: &PhaseMean, mass_scaling: f64) -> Result<Bar> {
-        let est: Estimate = estimate(&[coarse.mean, fine.mean], RATIO).ok_or_else(|| {
-            Error::Numerical(format!(
-                "phase ensemble: non-finite means {} and {}",
-                coarse.mean, fine.mean
-            ))
-        })?;
-        Ok(Bar {
-            value: fine.mean,
-            error: est.error
-                + fine.sampling_error
-                + MASS_SCALING_BIAS * mass_scaling * fine.mean.abs(),
-            extrapolated: est.extrapolated,
-        })
-    }
+    .with_error(error))
 }
 
 /// What [`converged_head_on`] returns.
 #[derive(Debug, Clone, Serialize)]
 pub struct HeadOnAnswer {
     /// Coefficient of restitution, -.
-    pub e: Bar,
+    pub e: Estimate,
     /// Maximum approach, m.
-    pub delta_max: Bar,
+    pub delta_max: Estimate,
     /// Contact duration, s.
-    pub contact_duration: Bar,
+    pub contact_duration: Estimate,
     /// Peak normal force, N.
-    pub peak_force: Bar,
+    pub peak_force: Estimate,
     /// The coarse ensemble.
     pub coarse: PhaseEnsemble,
     /// The fine ensemble.
@@ -607,16 +601,11 @@ pub fn converged_head_on(case: &HeadOnCase, plan: &PhasePlan) -> Result<HeadOnAn
     let (mut coarse, (mut fine, mut pilot)) = (coarse?.0, fine?);
     let mut level = plan.level;
     let mut cpu_time_s = edge.as_ref().map_or(0.0, |(_, r)| r.wall_time_s) + cpu_of(&coarse);
-    let bar_e = |c: &PhaseEnsemble, f: &PhaseEnsemble| Bar::of(&c.e, &f.e, case.mass_scaling);
+    let bar_e = |c: &PhaseEnsemble, f: &PhaseEnsemble| estimate_of(&c.e, &f.e, case.mass_scaling);
     if let Some(tol) = plan.tolerance {
-        // Met unless the relative bar of e exceeds the tolerance (a NaN bar stops refining).
-        let met = |(c, f, ..): &Refined| {
-            let r = bar_e(c, f)?.relative_error();
-            Ok(!matches!(
-                r.partial_cmp(&tol),
-                Some(std::cmp::Ordering::Greater)
-            ))
-        };
+        // Met unless the relative bar of e exceeds the tolerance (no relative bar, a zero
+        // extrapolated e, stops refining).
+        let met = |(c, f, ..): &Refined| Ok(bar_e(c, f)?.relative_error.is_none_or(|r| r <= tol));
         let finer = |(_, f, _, l, cpu): Refined| -> Result<Refined> {
             if let Some(c) = crate::study::common::progress::members() {
                 c.add_total(plan.meshes);
@@ -632,10 +621,10 @@ pub fn converged_head_on(case: &HeadOnCase, plan: &PhasePlan) -> Result<HeadOnAn
     cpu_time_s += cpu_of(&fine);
     let ms = case.mass_scaling;
     Ok(HeadOnAnswer {
-        e: Bar::of(&coarse.e, &fine.e, ms)?,
-        delta_max: Bar::of(&coarse.delta_max, &fine.delta_max, ms)?,
-        contact_duration: Bar::of(&coarse.contact_duration, &fine.contact_duration, ms)?,
-        peak_force: Bar::of(&coarse.peak_force, &fine.peak_force, ms)?,
+        e: estimate_of(&coarse.e, &fine.e, ms)?,
+        delta_max: estimate_of(&coarse.delta_max, &fine.delta_max, ms)?,
+        contact_duration: estimate_of(&coarse.contact_duration, &fine.contact_duration, ms)?,
+        peak_force: estimate_of(&coarse.peak_force, &fine.peak_force, ms)?,
         coarse,
         fine,
         pilot,

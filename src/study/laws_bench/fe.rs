@@ -11,8 +11,9 @@ use crate::fe::elements::ring::QuadFormulation;
 use crate::mesh::meridian_band::depth_for;
 use crate::scene::Scene;
 use crate::study::convergence::phase_ensemble::{
-    converged_head_on, Bar as EnsembleBar, HeadOnCase, HeadOnTarget, PhasePlan, MIN_LEVEL,
+    converged_head_on, HeadOnCase, HeadOnTarget, PhasePlan, MIN_LEVEL,
 };
+use crate::study::records::estimate::Estimate;
 use crate::study::run::scene::run_scene;
 use crate::study::run::section_impact::PlaneContact;
 use crate::study::run::simulate::RunOptions;
@@ -325,10 +326,11 @@ pub fn head_on_case(point: &HeadOnPoint) -> HeadOnCase {
     }
 }
 
-/// A bar of `study::convergence::phase_ensemble` as a bench bar.
-fn bar_of(b: &EnsembleBar) -> Bar {
+/// An estimate of `study::convergence::phase_ensemble` as the cache's record: its finest
+/// value and its bar.
+fn bar_of(b: &Estimate) -> Bar {
     Bar {
-        value: b.value,
+        value: b.finest,
         error: b.error,
     }
 }
