@@ -47,9 +47,9 @@ pub struct ElementBlock {
     pub plastic_work: Vec<f64>,
     /// Internal energy ∫ V σ:D dt per element (elastic stored + plastic), J.
     pub internal_energy: Vec<f64>,
-    /// Hourglass forces per element (zero for B-bar).
+    /// Hourglass forces per element (empty for a formulation without hourglass modes).
     pub hourglass: Vec<[[f64; 3]; 4]>,
-    /// Hourglass energy per element, J.
+    /// Hourglass energy per element, J (empty as `hourglass`).
     pub hourglass_energy: Vec<f64>,
     /// Volume per element, m³.
     pub volume: Vec<f64>,
@@ -71,6 +71,7 @@ impl ElementBlock {
     ) -> Self {
         let n = conn.len();
         let npe = Self::points_for(formulation);
+        let nhg = if formulation.has_hourglass() { n } else { 0 };
         ElementBlock {
             part,
             first,
@@ -82,8 +83,8 @@ impl ElementBlock {
             history: vec![0.0; n * npe * material.law.history_per_point()],
             plastic_work: vec![0.0; n],
             internal_energy: vec![0.0; n],
-            hourglass: vec![[[0.0; 3]; 4]; n],
-            hourglass_energy: vec![0.0; n],
+            hourglass: vec![[[0.0; 3]; 4]; nhg],
+            hourglass_energy: vec![0.0; nhg],
             volume: vec![0.0; n],
             dt_crit: vec![f64::INFINITY; n],
             kernel: Kernel::widest(KernelPath::Avx512),
@@ -173,25 +174,26 @@ impl ElementBlock {
         let r = range.clone();
         let rp = range.start * npe..range.end * npe;
         self.assert_nodes_below(r.clone(), x.len().min(v.len()));
-        // The law's history per batch; a law without history gets an empty slice per batch.
+        // The law's history and the hourglass state per batch; a law without history, a
+        // formulation without hourglass modes, gets an empty slice per batch.
         let nh = self.history_per_point();
-        let hist = if nh == 0 {
-            Either::Left(
-                (0..range.len().div_ceil(BATCH))
-                    .into_par_iter()
-                    .map(|_| <&mut [f64]>::default()),
-            )
-        } else {
-            Either::Right(self.history[rp.start * nh..rp.end * nh].par_chunks_mut(BATCH * npe * nh))
-        };
+        let batches = range.len().div_ceil(BATCH);
+        let hist = batches_of(
+            &mut self.history,
+            rp.start * nh..rp.end * nh,
+            BATCH * npe * nh,
+            batches,
+        );
+        let hgq = batches_of(&mut self.hourglass, r.clone(), BATCH, batches);
+        let ehg = batches_of(&mut self.hourglass_energy, r.clone(), BATCH, batches);
         let res = (
             self.conn[r.clone()].par_chunks(BATCH),
             self.points[rp].par_chunks_mut(BATCH * npe),
             hist,
             self.plastic_work[r.clone()].par_chunks_mut(BATCH),
             self.internal_energy[r.clone()].par_chunks_mut(BATCH),
-            self.hourglass[r.clone()].par_chunks_mut(BATCH),
-            self.hourglass_energy[r.clone()].par_chunks_mut(BATCH),
+            hgq,
+            ehg,
             self.volume[r.clone()].par_chunks_mut(BATCH),
             self.dt_crit[r].par_chunks_mut(BATCH),
             forces.par_chunks_mut(BATCH),
@@ -292,8 +294,8 @@ impl ElementBlock {
                 hist: &mut self.history[k * npe * nh..e * npe * nh],
                 wp: &mut self.plastic_work[k..e],
                 ie: &mut self.internal_energy[k..e],
-                hgq: &mut self.hourglass[k..e],
-                ehg: &mut self.hourglass_energy[k..e],
+                hgq: range_of(&mut self.hourglass, k..e),
+                ehg: range_of(&mut self.hourglass_energy, k..e),
                 vol: &mut self.volume[k..e],
                 dtc: &mut self.dt_crit[k..e],
                 f: Forces::Nodes(&mut *f_int),
@@ -573,6 +575,30 @@ fn record_history<H: Hardening>(law: &H, b: &mut Batch<'_>, start: &[f64], dt: f
         .zip(start)
     {
         law.update_history(h, e0, p.eps_p - e0, dt);
+    }
+}
+
+/// The slices of `s[range]` a batch of `per_batch` values at a time, or `batches` empty
+/// slices when `s` is empty (a state array the block does not keep).
+fn batches_of<T: Send>(
+    s: &mut [T],
+    range: std::ops::Range<usize>,
+    per_batch: usize,
+    batches: usize,
+) -> impl IndexedParallelIterator<Item = &mut [T]> {
+    if s.is_empty() {
+        Either::Left((0..batches).into_par_iter().map(|_| <&mut [T]>::default()))
+    } else {
+        Either::Right(s[range].par_chunks_mut(per_batch))
+    }
+}
+
+/// `s[range]`, or the empty slice when `s` is empty (a state array the block does not keep).
+fn range_of<T>(s: &mut [T], range: std::ops::Range<usize>) -> &mut [T] {
+    if s.is_empty() {
+        &mut []
+    } else {
+        &mut s[range]
     }
 }
 

@@ -14,6 +14,10 @@ pub(crate) trait Element {
     /// Integration points per element (rows of the block's point array).
     const POINTS: usize;
 
+    /// Whether the family keeps hourglass forces and energy per element (the block
+    /// allocates its hourglass arrays only then; a family without them gets empty slices).
+    const HOURGLASS: bool;
+
     /// Advances the batch `b` W elements at a time with hardening law `law`: gathers nodes
     /// and state into lanes, updates, scatters state and forces back, checks each element.
     #[allow(clippy::too_many_arguments)]

@@ -45,6 +45,11 @@ impl Formulation {
         self.with(Points)
     }
 
+    /// Whether its elements keep hourglass forces and energy.
+    pub fn has_hourglass(self) -> bool {
+        self.with(HasHourglass)
+    }
+
     /// Runs `v` with this formulation's element type (one match, here, for every generic
     /// caller: the element loop, its kernel timing, the point count).
     #[inline(always)]
@@ -63,5 +68,15 @@ impl ElementVisitor for Points {
     type Output = usize;
     fn visit<E: Element>(self) -> usize {
         E::POINTS
+    }
+}
+
+/// [`Formulation::has_hourglass`] as a visitor.
+struct HasHourglass;
+
+impl ElementVisitor for HasHourglass {
+    type Output = bool;
+    fn visit<E: Element>(self) -> bool {
+        E::HOURGLASS
     }
 }

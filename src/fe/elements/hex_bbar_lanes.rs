@@ -240,6 +240,7 @@ pub struct BBarHex;
 
 impl Element for BBarHex {
     const POINTS: usize = 8;
+    const HOURGLASS: bool = false;
 
     /// B-bar elements W at a time: gather nodes and the eight points' state into lanes,
     /// update ([`update`]), scatter state and forces back. Lanes past the batch end repeat

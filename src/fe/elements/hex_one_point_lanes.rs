@@ -395,6 +395,7 @@ pub struct OnePointHex;
 
 impl Element for OnePointHex {
     const POINTS: usize = 1;
+    const HOURGLASS: bool = true;
 
     /// Gathers W elements (`idx`: local element per lane) into lanes, updates them
     /// ([`update`]), scatters state and forces back. Lanes past the batch end repeat its last

@@ -1055,7 +1055,10 @@ impl Solver {
                 pe.internal += b.internal_energy[k];
                 pe.elastic_from_stress += b.element_elastic_energy(k);
                 pe.plastic += b.plastic_work[k];
-                pe.hourglass += b.hourglass_energy[k];
+            }
+            // Empty for a formulation without hourglass modes.
+            for e in &b.hourglass_energy {
+                pe.hourglass += e;
             }
             pe.elastic = pe.internal - pe.plastic;
             parts.push(pe);
