@@ -7,7 +7,7 @@
 use super::subcycle::{Integration, Schedule};
 use crate::error::{Error, Result};
 use crate::fe::elements::ring::{
-    element::{RingElement, RingVisitor},
+    element::{LaneStep, RingElement, RingVisitor, Step},
     lanes,
     mass::element_masses,
     shape, update, QuadFormulation, QuadOutput, QuadState,
@@ -737,9 +737,13 @@ impl<E: RingElement, const W: usize> LawVisitor for Group<'_, E, W> {
         }
         let states = build(|l| &s.states[lane_quad(l)]);
         let mut st = lanes::State::gather(self.isa, states, E::POINTS);
-        let out = self
-            .element
-            .update_lanes(&x, &v, self.dt, self.mat, law, &mut st);
+        let step = Step {
+            x1: &x,
+            v: &v,
+            dt: self.dt,
+            mat: self.mat,
+        };
+        let out = self.element.update_lanes(LaneStep { step, law }, &mut st);
         let mut dt_min = f64::INFINITY;
         for (l, &e) in self.quads.iter().enumerate() {
             st.scatter(l, &mut s.states[e as usize], E::POINTS);

@@ -4,15 +4,12 @@
 //! section's counterpart of the B-bar hexahedron; objective update and forces as the
 //! one-point quad's ([`super::one_point`]), at each Gauss point.
 
-use super::element::RingElement;
-use super::lanes::{self, Nodes, Output, State};
+use super::element::{LaneStep, Quad, RingElement, Step};
+use super::lanes::{self, Output, State};
 use super::scalar::{advance_gauss_points, mid_step, output};
 use super::shape::{add_stress_forces, gauss_points, mean_of, velocity_gradient, Gradient};
 use super::state::{QuadOutput, QuadState};
-use crate::fe::{
-    materials::{Hardening, J2Material},
-    tensor::Sym,
-};
+use crate::fe::{materials::Hardening, tensor::Sym};
 
 /// The selectively reduced (B-bar) quad.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -22,14 +19,8 @@ impl RingElement for BBarQuad {
     const POINTS: usize = 4;
 
     #[inline]
-    fn update(
-        &self,
-        x1: &[[f64; 2]; 4],
-        v: &[[f64; 2]; 4],
-        dt: f64,
-        mat: &J2Material,
-        st: &mut QuadState,
-    ) -> QuadOutput {
+    fn update(&self, s: Step<'_, Quad>, st: &mut QuadState) -> QuadOutput {
+        let Step { x1, v, dt, mat } = s;
         let xm = mid_step(x1, v, dt);
         let mut force = [[0.0; 2]; 4];
         let pm = gauss_points(&xm);
@@ -48,13 +39,11 @@ impl RingElement for BBarQuad {
     #[inline(always)]
     fn update_lanes<H: Hardening, const W: usize>(
         &self,
-        x1: &Nodes<W>,
-        v: &Nodes<W>,
-        dt: f64,
-        mat: &J2Material,
-        law: &H,
+        s: LaneStep<'_, H, W>,
         st: &mut State<W>,
     ) -> Output<W> {
+        let LaneStep { step, law } = s;
+        let Step { x1, v, dt, mat } = step;
         let zero = x1[0][0].splat_like(0.0);
         let xm = lanes::mid_step(x1, v, dt);
         let pm = lanes::gauss_points(&xm);

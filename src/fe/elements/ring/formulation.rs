@@ -9,7 +9,7 @@
 //! patch tests, the thick spheres) then runs it.
 
 use super::bbar::BBarQuad;
-use super::element::{RingElement, RingVisitor};
+use super::element::{RingElement, RingVisitor, Step};
 use super::full::FullQuad;
 use super::one_point::{OnePointQuad, DEFAULT_HOURGLASS};
 use super::state::{QuadOutput, QuadState};
@@ -122,7 +122,13 @@ impl RingVisitor for Scalar<'_> {
     type Output = QuadOutput;
     #[inline(always)]
     fn visit<E: RingElement>(self, element: E) -> QuadOutput {
-        element.update(self.x1, self.v, self.dt, self.mat, self.st)
+        let s = Step {
+            x1: self.x1,
+            v: self.v,
+            dt: self.dt,
+            mat: self.mat,
+        };
+        element.update(s, self.st)
     }
 }
 
@@ -138,6 +144,7 @@ impl RingVisitor for Points {
 
 #[cfg(test)]
 mod tests {
+    use super::super::element::LaneStep;
     use super::super::lanes::{Nodes, Output, State};
     use super::*;
     use crate::fe::materials::{Hardening, Law};
@@ -180,7 +187,19 @@ mod tests {
     impl<H: Hardening, const W: usize> RingVisitor for LaneUpdate<'_, H, W> {
         type Output = Output<W>;
         fn visit<E: RingElement>(self, e: E) -> Output<W> {
-            e.update_lanes(self.x, self.v, 2e-8, self.mat, self.law, self.st)
+            let step = Step {
+                x1: self.x,
+                v: self.v,
+                dt: 2e-8,
+                mat: self.mat,
+            };
+            e.update_lanes(
+                LaneStep {
+                    step,
+                    law: self.law,
+                },
+                self.st,
+            )
         }
     }
 

@@ -9,12 +9,12 @@
 //! mean dilatation instead. Elastic runs with ν well below ½ do not lock. Objective update
 //! and material seam as the other formulations', at each Gauss point.
 
-use super::element::RingElement;
-use super::lanes::{self, Nodes, Output, State};
+use super::element::{LaneStep, Quad, RingElement, Step};
+use super::lanes::{self, Output, State};
 use super::scalar::{advance_gauss_points, mid_step, output};
 use super::shape::{add_stress_forces, gauss_points, mean_of};
 use super::state::{QuadOutput, QuadState};
-use crate::fe::materials::{Hardening, J2Material};
+use crate::fe::materials::Hardening;
 
 /// The fully integrated (2x2 Gauss) quad.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -24,14 +24,8 @@ impl RingElement for FullQuad {
     const POINTS: usize = 4;
 
     #[inline]
-    fn update(
-        &self,
-        x1: &[[f64; 2]; 4],
-        v: &[[f64; 2]; 4],
-        dt: f64,
-        mat: &J2Material,
-        st: &mut QuadState,
-    ) -> QuadOutput {
+    fn update(&self, s: Step<'_, Quad>, st: &mut QuadState) -> QuadOutput {
+        let Step { x1, v, dt, mat } = s;
         let pm = gauss_points(&mid_step(x1, v, dt));
         let p1 = gauss_points(x1);
         let (g1, min_j) = mean_of(&p1);
@@ -46,13 +40,11 @@ impl RingElement for FullQuad {
     #[inline(always)]
     fn update_lanes<H: Hardening, const W: usize>(
         &self,
-        x1: &Nodes<W>,
-        v: &Nodes<W>,
-        dt: f64,
-        mat: &J2Material,
-        law: &H,
+        s: LaneStep<'_, H, W>,
         st: &mut State<W>,
     ) -> Output<W> {
+        let LaneStep { step, law } = s;
+        let Step { x1, v, dt, mat } = step;
         let pm = lanes::gauss_points(&lanes::mid_step(x1, v, dt));
         let p1 = lanes::gauss_points(x1);
         let (g1, min_j) = lanes::mean_of(&p1);

@@ -9,7 +9,7 @@
 //! [`J2Material::update`] (every hardening law of the material seam), and the nodal forces
 //! are V B̄ᵀσ on x^{n+1}. Forces are those of the whole ring (2π r weighting).
 
-use super::element::RingElement;
+use super::element::{LaneStep, Quad, RingElement, Step};
 use super::lanes::{self, rotation, Nodes, Output, State};
 use super::scalar::{advance_point, mid_step, output};
 use super::shape::{
@@ -37,14 +37,8 @@ impl RingElement for OnePointQuad {
     const POINTS: usize = 1;
 
     #[inline]
-    fn update(
-        &self,
-        x1: &[[f64; 2]; 4],
-        v: &[[f64; 2]; 4],
-        dt: f64,
-        mat: &J2Material,
-        st: &mut QuadState,
-    ) -> QuadOutput {
+    fn update(&self, s: Step<'_, Quad>, st: &mut QuadState) -> QuadOutput {
+        let Step { x1, v, dt, mat } = s;
         let xm = mid_step(x1, v, dt);
         let mut force = [[0.0; 2]; 4];
         let (gm, _) = mean_gradient(&xm);
@@ -65,13 +59,11 @@ impl RingElement for OnePointQuad {
     #[inline(always)]
     fn update_lanes<H: Hardening, const W: usize>(
         &self,
-        x1: &Nodes<W>,
-        v: &Nodes<W>,
-        dt: f64,
-        mat: &J2Material,
-        law: &H,
+        s: LaneStep<'_, H, W>,
         st: &mut State<W>,
     ) -> Output<W> {
+        let LaneStep { step, law } = s;
+        let Step { x1, v, dt, mat } = step;
         let zero = x1[0][0].splat_like(0.0);
         let xm = lanes::mid_step(x1, v, dt);
         let (gm, _) = lanes::mean_gradient(&xm);
