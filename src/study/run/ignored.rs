@@ -297,6 +297,9 @@ mod tests {
         let mu = ["ball1.material={preset=\"copper-fe\",mu=0.5}"];
         assert!(notes(&mu, Reduction::Axisymmetric)[0].starts_with("ball1.material.mu"));
         assert!(notes(&mu, Reduction::Full).is_empty());
+        let ring = ["solver.section_element=\"full\""];
+        assert!(notes(&ring, Reduction::Quarter)[0].starts_with("solver.section_element"));
+        assert!(notes(&ring, Reduction::Axisymmetric).is_empty());
         let hold = ["solver.hold_time=1e-5", "solver.end_time=1e-4"];
         assert!(notes(&hold, Reduction::Full)[0].starts_with("solver.hold_time"));
         assert!(notes(&hold[..1], Reduction::Full).is_empty());
