@@ -9,6 +9,8 @@
 //! - [`simd`]: lanes, instruction-set tokens and kernel dispatch, row layouts, prefetch;
 //! - [`contact`]: contact search and laws, rigid planes, the meridian section's contacts (the
 //!   interactions the loops call);
+//! - [`implicit`]: the quasi-static implicit solver of the section (Newton-Raphson, element
+//!   tangents from the elements' own updates, sparse LU, an exact rigid plane);
 //! - [`linear`]: small-strain linear tools for verification (modal analysis, Lamb's modes);
 //! - [`axisym`]: the meridian section of a head-on impact: ring quads, ring masses, mass
 //!   scaling, its loop and subcycling;
@@ -18,6 +20,7 @@
 pub mod axisym;
 pub mod contact;
 pub mod elements;
+pub mod implicit;
 pub mod linear;
 pub mod materials;
 pub mod model;

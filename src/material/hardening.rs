@@ -95,6 +95,17 @@ pub const STEEL_4340: JohnsonCook = JohnsonCook {
 };
 
 impl Law {
+    /// The law at the reference strain rate, for quasi-static loading: Johnson-Cook without
+    /// its rate term (C = 0); every other law unchanged (they have no rate term).
+    pub fn quasi_static(self) -> Law {
+        match self {
+            Law::JohnsonCook(jc) => Law::JohnsonCook(JohnsonCook { c: 0.0, ..jc }),
+            Law::Bilinear(_) | Law::Power(_) => self,
+            #[cfg(test)]
+            Law::Counting(_) => self,
+        }
+    }
+
     /// The keys of law `name` in a scene's hardening table (besides `law`), or `None` for an
     /// unknown name.
     pub fn keys(name: &str) -> Option<&'static [&'static str]> {

@@ -71,7 +71,8 @@ impl SectionModel {
         }
     }
 
-    fn check(&self) -> Result<()> {
+    /// Checks every field, naming the bad one.
+    pub(crate) fn check(&self) -> Result<()> {
         let n = self.nodes.len();
         if let Some(p) = self
             .nodes

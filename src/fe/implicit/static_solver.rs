@@ -1,0 +1,563 @@
+//! The quasi-static implicit solver of a meridian section: equilibrium f_int(x) = f_ext at
+//! each load increment by Newton-Raphson with a backtracking line search, the tangent of
+//! every element from its own update ([`super::element_tangent`]), the sparse LU of
+//! [`super::system`], and a rigid frictionless plane enforced exactly by an active set
+//! ([`super::plane`]). Geometrically nonlinear (updated Lagrangian, the explicit elements'
+//! objective update); rate-dependent laws at their reference rate ([`Law::quasi_static`]).
+//!
+//! An increment is driven by a [`Target`]: the factor on the model's nodal loads, prescribed
+//! total displacements of some nodes (a held support pushed towards the plane) and the
+//! plane's position. Each increment's relative residual norms are kept, so the quadratic
+//! convergence of Newton near the solution can be seen.
+//!
+//! [`Law::quasi_static`]: crate::material::hardening::Law::quasi_static
+
+use super::element_tangent::{increment_forces, increment_tangent};
+use super::plane::RigidPlane;
+use super::system::Assembly;
+use crate::error::{Error, Result};
+use crate::fe::axisym::section::SectionModel;
+use crate::fe::elements::ring::element::Quad;
+use crate::fe::elements::ring::QuadState;
+use crate::fe::materials::J2Material;
+use rayon::prelude::*;
+
+/// A prescribed total displacement of one nodal component from the initial position.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Prescribed {
+    /// Node index.
+    pub node: u32,
+    /// Component: 0 = r, 1 = z.
+    pub dir: usize,
+    /// Displacement from the initial position, m.
+    pub displacement: f64,
+}
+
+/// What an increment drives the model to.
+#[derive(Debug, Clone, Default)]
+pub struct Target {
+    /// Factor on the model's nodal loads (dimensionless).
+    pub load_factor: f64,
+    /// Prescribed total displacements.
+    pub prescribed: Vec<Prescribed>,
+    /// The plane's axial position, m (`None`: where it is).
+    pub plane_z: Option<f64>,
+}
+
+/// Newton and active-set settings.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Settings {
+    /// Converged when the residual norm on the free degrees of freedom falls below this
+    /// fraction of the force scale (the loads' and reactions' norm); default 1e-10.
+    pub residual_tol: f64,
+    /// Newton iterations allowed per active set (default 40).
+    pub max_iterations: usize,
+    /// Active-set changes allowed per increment (default 20).
+    pub max_active_changes: usize,
+}
+
+impl Default for Settings {
+    fn default() -> Self {
+        Settings {
+            residual_tol: 1e-10,
+            max_iterations: 40,
+            max_active_changes: 20,
+        }
+    }
+}
+
+/// How one increment converged.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct Increment {
+    /// Relative residual norm before each Newton iteration, over every active set tried
+    /// (the last one below [`Settings::residual_tol`]).
+    pub residuals: Vec<f64>,
+    /// Newton iterations taken (tangent solves).
+    pub iterations: usize,
+    /// Times the contact's active set changed.
+    pub active_changes: usize,
+    /// Times the increment was cut in half.
+    pub cuts: usize,
+}
+
+/// Halvings of one increment before it is given up.
+pub const MAX_CUTS: u32 = 6;
+
+/// The static solver of a section at its last converged state.
+pub struct StaticSolver {
+    model: SectionModel,
+    plane: Option<RigidPlane>,
+    settings: Settings,
+    x: Vec<[f64; 2]>,
+    states: Vec<QuadState>,
+    f_int: Vec<[f64; 2]>,
+    active: Vec<bool>,
+    load_factor: f64,
+    gap_tol: f64,
+}
+
+/// The forces and trial states of every quad for one displacement increment.
+struct Evaluation {
+    f_int: Vec<[f64; 2]>,
+    states: Vec<QuadState>,
+}
+
+impl StaticSolver {
+    /// A solver at the unloaded initial state of `model` (its loads are the reference loads
+    /// a [`Target::load_factor`] scales), with an optional rigid plane; nodes touching the
+    /// plane start in contact. Fails on an invalid model or a node across the plane.
+    pub fn new(
+        mut model: SectionModel,
+        plane: Option<RigidPlane>,
+        settings: Settings,
+    ) -> Result<Self> {
+        model.check()?;
+        if let Some(p) = plane {
+            if !(p.z.is_finite() && (p.side == 1.0 || p.side == -1.0)) {
+                return Err(Error::invalid(
+                    "static.plane",
+                    format!("z = {}, side = {}", p.z, p.side),
+                    "finite z, side +1 or -1",
+                ));
+            }
+        }
+        for m in model.materials.iter_mut() {
+            *m = J2Material {
+                law: m.law.quasi_static(),
+                ..*m
+            };
+        }
+        let size = bounding_size(&model.nodes);
+        let gap_tol = 1e-10 * size;
+        let n = model.nodes.len();
+        let mut active = vec![false; n];
+        if let Some(p) = plane {
+            for (i, x) in model.nodes.iter().enumerate() {
+                let g = p.gap(x[1]);
+                if g < -gap_tol {
+                    return Err(Error::invalid(
+                        format!("static.nodes[{i}].z"),
+                        x[1],
+                        "on the body's side of the plane",
+                    ));
+                }
+                active[i] = g <= gap_tol;
+            }
+        }
+        Ok(StaticSolver {
+            x: model.nodes.clone(),
+            states: vec![QuadState::default(); model.quads.len()],
+            f_int: vec![[0.0; 2]; n],
+            active,
+            load_factor: 0.0,
+            gap_tol,
+            plane,
+            settings,
+            model,
+        })
+    }
+
+    /// Solves the increment from the last converged state to `target` and commits it; an
+    /// increment that does not converge is cut in halves (at most [`MAX_CUTS`] times over).
+    /// Fails (leaving the last converged state) when it still does not: Newton or the active
+    /// set not converging, an element inverting, a singular tangent.
+    pub fn solve(&mut self, target: &Target) -> Result<Increment> {
+        self.solve_cut(target, 0)
+    }
+
+    fn solve_cut(&mut self, target: &Target, depth: u32) -> Result<Increment> {
+        match self.solve_once(target) {
+            Err(Error::Numerical(why)) if depth < MAX_CUTS => {
+                let mid = self.midway(target);
+                let mut first = self
+                    .solve_cut(&mid, depth + 1)
+                    .map_err(|_| Error::Numerical(why))?;
+                let second = self.solve_cut(target, depth + 1)?;
+                first.residuals.extend(second.residuals);
+                first.iterations += second.iterations;
+                first.active_changes += second.active_changes;
+                first.cuts += 1 + second.cuts;
+                Ok(first)
+            }
+            other => other,
+        }
+    }
+
+    /// The target halfway from the last converged state to `target`.
+    fn midway(&self, target: &Target) -> Target {
+        let half = |from: f64, to: f64| from + 0.5 * (to - from);
+        Target {
+            load_factor: half(self.load_factor, target.load_factor),
+            prescribed: target
+                .prescribed
+                .iter()
+                .map(|p| {
+                    let i = p.node as usize;
+                    let now = self.x[i][p.dir] - self.model.nodes[i][p.dir];
+                    Prescribed {
+                        displacement: half(now, p.displacement),
+                        ..*p
+                    }
+                })
+                .collect(),
+            plane_z: match (self.plane, target.plane_z) {
+                (Some(p), Some(z)) => Some(half(p.z, z)),
+                _ => target.plane_z,
+            },
+        }
+    }
+
+    fn solve_once(&mut self, target: &Target) -> Result<Increment> {
+        let n = self.x.len();
+        for p in &target.prescribed {
+            if p.node as usize >= n || p.dir > 1 || !p.displacement.is_finite() {
+                return Err(Error::invalid(
+                    "static.prescribed",
+                    format!("{p:?}"),
+                    format!("node < {n}, dir 0 or 1, finite displacement"),
+                ));
+            }
+        }
+        let plane = match (self.plane, target.plane_z) {
+            (Some(p), Some(z)) => Some(RigidPlane { z, ..p }),
+            (p, _) => p,
+        };
+        let f_ext: Vec<[f64; 2]> = self
+            .model
+            .loads
+            .iter()
+            .map(|l| [target.load_factor * l[0], target.load_factor * l[1]])
+            .collect();
+        let mut active = self.active.clone();
+        let mut du = vec![[0.0; 2]; n];
+        let mut report = Increment::default();
+        let eval = loop {
+            let (constrained, values) = self.constraints(target, plane, &active);
+            for (d, v) in values.iter().enumerate() {
+                if constrained[d] {
+                    du[d / 2][d % 2] = *v;
+                }
+            }
+            let eval = self.newton(&mut du, &constrained, &f_ext, &mut report)?;
+            let changes = match plane {
+                Some(p) => self.settle(p, &mut active, &du, &eval.f_int, &f_ext),
+                None => 0,
+            };
+            if changes == 0 {
+                break eval;
+            }
+            report.active_changes += changes;
+            if report.active_changes > self.settings.max_active_changes {
+                return Err(Error::Numerical(format!(
+                    "static contact: the active set did not settle after {} changes at load \
+                     factor {}",
+                    report.active_changes, target.load_factor
+                )));
+            }
+        };
+        for (x, d) in self.x.iter_mut().zip(&du) {
+            x[0] += d[0];
+            x[1] += d[1];
+        }
+        self.states = eval.states;
+        self.f_int = eval.f_int;
+        self.active = active;
+        self.load_factor = target.load_factor;
+        self.plane = plane;
+        Ok(report)
+    }
+
+    /// The constrained degrees of freedom (2 per node) and the increments they take: the
+    /// axis (r), the model's supports, the prescribed displacements and the nodes on the
+    /// plane (z).
+    fn constraints(
+        &self,
+        target: &Target,
+        plane: Option<RigidPlane>,
+        active: &[bool],
+    ) -> (Vec<bool>, Vec<f64>) {
+        let n = self.x.len();
+        let (mut c, mut v) = (vec![false; 2 * n], vec![0.0; 2 * n]);
+        for i in 0..n {
+            let fx = self.model.fixed[i];
+            c[2 * i] = self.model.nodes[i][0] == 0.0 || fx[0];
+            c[2 * i + 1] = fx[1];
+        }
+        for p in &target.prescribed {
+            let i = p.node as usize;
+            let d = 2 * i + p.dir;
+            c[d] = true;
+            v[d] = self.model.nodes[i][p.dir] + p.displacement - self.x[i][p.dir];
+        }
+        if let Some(p) = plane {
+            for (i, &a) in active.iter().enumerate() {
+                if a {
+                    c[2 * i + 1] = true;
+                    v[2 * i + 1] = p.z - self.x[i][1];
+                }
+            }
+        }
+        (c, v)
+    }
+
+    /// Newton-Raphson on the free degrees of freedom of `du` (constrained ones already at
+    /// their values) with a backtracking line search; returns the converged evaluation.
+    fn newton(
+        &self,
+        du: &mut [[f64; 2]],
+        constrained: &[bool],
+        f_ext: &[[f64; 2]],
+        report: &mut Increment,
+    ) -> Result<Evaluation> {
+        let mut eval = self.evaluate(du)?;
+        let mut r = residual(&eval.f_int, f_ext, constrained);
+        let mut rel = norm(&r) / force_scale(&eval.f_int, f_ext, constrained);
+        for _ in 0..self.settings.max_iterations {
+            report.residuals.push(rel);
+            if rel <= self.settings.residual_tol {
+                return Ok(eval);
+            }
+            let d = self.tangent(du, constrained).solve(&r)?;
+            report.iterations += 1;
+            let mut alpha = 1.0;
+            loop {
+                let trial: Vec<[f64; 2]> = du
+                    .iter()
+                    .enumerate()
+                    .map(|(i, u)| [u[0] + alpha * d[2 * i], u[1] + alpha * d[2 * i + 1]])
+                    .collect();
+                match self.evaluate(&trial) {
+                    Ok(e) => {
+                        let r1 = residual(&e.f_int, f_ext, constrained);
+                        let rel1 = norm(&r1) / force_scale(&e.f_int, f_ext, constrained);
+                        if rel1 < rel || alpha < 1.0 / 64.0 {
+                            du.copy_from_slice(&trial);
+                            (eval, r, rel) = (e, r1, rel1);
+                            break;
+                        }
+                    }
+                    Err(e) if alpha < 1.0 / 64.0 => return Err(e),
+                    Err(_) => {}
+                }
+                alpha *= 0.5;
+            }
+        }
+        report.residuals.push(rel);
+        if rel <= self.settings.residual_tol {
+            return Ok(eval);
+        }
+        Err(Error::Numerical(format!(
+            "static Newton: relative residual {rel:.3e} after {} iterations (tolerance {:.1e}); \
+             take smaller increments",
+            self.settings.max_iterations, self.settings.residual_tol
+        )))
+    }
+
+    /// Every quad's forces and trial state for the increment `du` (m); an inverted quad is
+    /// an error.
+    fn evaluate(&self, du: &[[f64; 2]]) -> Result<Evaluation> {
+        let outs: Vec<_> = (0..self.model.quads.len())
+            .into_par_iter()
+            .map(|e| {
+                let (x0, d) = self.element_nodes(e, du);
+                increment_forces(
+                    self.model.formulation,
+                    self.material(e),
+                    &x0,
+                    &d,
+                    &self.states[e],
+                )
+            })
+            .collect();
+        let mut f_int = vec![[0.0; 2]; self.x.len()];
+        let mut states = Vec::with_capacity(outs.len());
+        for (e, (out, st)) in outs.into_iter().enumerate() {
+            if !(out.min_jacobian > 0.0) {
+                return Err(Error::Numerical(format!(
+                    "static: quad {e} inverted in the increment; take smaller increments"
+                )));
+            }
+            for (k, &i) in self.model.quads[e].iter().enumerate() {
+                f_int[i as usize][0] += out.force[k][0];
+                f_int[i as usize][1] += out.force[k][1];
+            }
+            states.push(st);
+        }
+        Ok(Evaluation { f_int, states })
+    }
+
+    /// The assembled tangent at the increment `du` with `constrained` rows and columns
+    /// replaced by the identity.
+    fn tangent(&self, du: &[[f64; 2]], constrained: &[bool]) -> Assembly {
+        let blocks: Vec<_> = (0..self.model.quads.len())
+            .into_par_iter()
+            .map(|e| {
+                let (x0, d) = self.element_nodes(e, du);
+                increment_tangent(
+                    self.model.formulation,
+                    self.material(e),
+                    &x0,
+                    &d,
+                    &self.states[e],
+                )
+            })
+            .collect();
+        let mut a = Assembly::new(constrained.to_vec(), blocks.len());
+        for (q, k) in self.model.quads.iter().zip(&blocks) {
+            a.add(q, k);
+        }
+        a
+    }
+
+    /// Adds nodes across the plane to the active set and releases nodes the plane pulls;
+    /// returns the number of changes.
+    fn settle(
+        &self,
+        plane: RigidPlane,
+        active: &mut [bool],
+        du: &[[f64; 2]],
+        f_int: &[[f64; 2]],
+        f_ext: &[[f64; 2]],
+    ) -> usize {
+        let scale = f_int
+            .iter()
+            .map(|f| f[1].abs())
+            .fold(0.0f64, f64::max)
+            .max(1e-300);
+        let mut changes = 0;
+        for i in 0..active.len() {
+            let z = self.x[i][1] + du[i][1];
+            if active[i] {
+                let pressure = plane.pressure_of(f_int[i][1] - f_ext[i][1]);
+                if pressure < -1e-12 * scale {
+                    active[i] = false;
+                    changes += 1;
+                }
+            } else if plane.gap(z) < -self.gap_tol {
+                active[i] = true;
+                changes += 1;
+            }
+        }
+        changes
+    }
+
+    fn element_nodes(&self, e: usize, du: &[[f64; 2]]) -> (Quad, Quad) {
+        let q = self.model.quads[e];
+        (q.map(|i| self.x[i as usize]), q.map(|i| du[i as usize]))
+    }
+
+    fn material(&self, e: usize) -> &J2Material {
+        &self.model.materials[self.model.material_of[e]]
+    }
+
+    /// The plane's normal force on the body, N (whole ring; 0 without a plane).
+    pub fn contact_force(&self) -> f64 {
+        let Some(p) = self.plane else { return 0.0 };
+        let mut f = 0.0;
+        for (i, &a) in self.active.iter().enumerate() {
+            if a {
+                let fe = self.load_factor * self.model.loads[i][1];
+                f += p.pressure_of(self.f_int[i][1] - fe);
+            }
+        }
+        f
+    }
+
+    /// The radius of the outermost node on the plane, m (0 without contact).
+    pub fn contact_radius(&self) -> f64 {
+        self.active
+            .iter()
+            .zip(&self.x)
+            .filter(|(a, _)| **a)
+            .map(|(_, x)| x[0])
+            .fold(0.0, f64::max)
+    }
+
+    /// Nodes on the plane.
+    pub fn active(&self) -> &[bool] {
+        &self.active
+    }
+
+    /// The plane at the last converged increment.
+    pub fn plane(&self) -> Option<RigidPlane> {
+        self.plane
+    }
+
+    /// Current coordinates (r, z), m.
+    pub fn positions(&self) -> &[[f64; 2]] {
+        &self.x
+    }
+
+    /// Coordinates at the start, (r, z), m.
+    pub fn initial_positions(&self) -> &[[f64; 2]] {
+        &self.model.nodes
+    }
+
+    /// Internal nodal forces (whole rings), N.
+    pub fn internal_forces(&self) -> &[[f64; 2]] {
+        &self.f_int
+    }
+
+    /// Element states (stresses, plastic strains, energies).
+    pub fn states(&self) -> &[QuadState] {
+        &self.states
+    }
+
+    /// Plastic work so far, J.
+    pub fn plastic_work(&self) -> f64 {
+        self.states.iter().map(|s| s.plastic_work).sum()
+    }
+
+    /// Stress work so far (elastic + plastic), J.
+    pub fn internal_energy(&self) -> f64 {
+        self.states.iter().map(|s| s.internal_energy).sum()
+    }
+}
+
+/// f_ext − f_int flattened (N), zero on constrained degrees of freedom.
+fn residual(f_int: &[[f64; 2]], f_ext: &[[f64; 2]], constrained: &[bool]) -> Vec<f64> {
+    (0..2 * f_int.len())
+        .map(|d| {
+            if constrained[d] {
+                0.0
+            } else {
+                f_ext[d / 2][d % 2] - f_int[d / 2][d % 2]
+            }
+        })
+        .collect()
+}
+
+/// The force scale of a residual (N): the norm of the loads and of the reactions of the
+/// constrained degrees of freedom (1 N when both vanish).
+fn force_scale(f_int: &[[f64; 2]], f_ext: &[[f64; 2]], constrained: &[bool]) -> f64 {
+    let mut s = 0.0;
+    for d in 0..2 * f_int.len() {
+        let (fi, fe) = (f_int[d / 2][d % 2], f_ext[d / 2][d % 2]);
+        s += fe * fe;
+        if constrained[d] {
+            s += (fi - fe) * (fi - fe);
+        }
+    }
+    if s > 0.0 {
+        s.sqrt()
+    } else {
+        1.0
+    }
+}
+
+fn norm(r: &[f64]) -> f64 {
+    r.iter().map(|v| v * v).sum::<f64>().sqrt()
+}
+
+/// The diagonal of the nodes' bounding box, m.
+fn bounding_size(nodes: &[[f64; 2]]) -> f64 {
+    let mut lo = [f64::INFINITY; 2];
+    let mut hi = [f64::NEG_INFINITY; 2];
+    for p in nodes {
+        for c in 0..2 {
+            lo[c] = lo[c].min(p[c]);
+            hi[c] = hi[c].max(p[c]);
+        }
+    }
+    ((hi[0] - lo[0]).powi(2) + (hi[1] - lo[1]).powi(2)).sqrt()
+}

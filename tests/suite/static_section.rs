@@ -1,0 +1,212 @@
+//! The quasi-static implicit solver of the section against what it must reproduce: Lamé's
+//! pressurised thick sphere at order 2 in the mesh size with Newton converging
+//! quadratically, Hill's partly plastic thick sphere, and a free elastic ball pressed on a
+//! rigid plane against the finite-ball reference of docs/contact-penalty.md ("The free
+//! ball") and Hertz's law.
+
+use crate::axisym_support;
+
+use axisym_support::*;
+use twoball::fe::axisym::section::SectionModel;
+use twoball::fe::elements::ring::mass::element_masses;
+use twoball::fe::elements::ring::QuadFormulation;
+use twoball::fe::implicit::plane::RigidPlane;
+use twoball::fe::implicit::static_solver::{Increment, Settings, StaticSolver, Target};
+use twoball::material::Material;
+
+/// Lamé's radial displacement of a thick sphere (inner radius a, outer b, inner pressure p).
+fn lame_u(a: f64, b: f64, p: f64, e: f64, nu: f64, rho: f64) -> f64 {
+    p * a.powi(3) * ((1.0 - 2.0 * nu) * rho + (1.0 + nu) * b.powi(3) / (2.0 * rho * rho))
+        / (e * (b.powi(3) - a.powi(3)))
+}
+
+/// The quarter thick sphere a = 10 mm, b = 20 mm of `nr` x `nc` quads in formulation
+/// `form`, equator held axially, loaded by an inner pressure `p` (Pa) in `steps` equal
+/// increments; returns the solver and each increment's convergence.
+fn thick_sphere(
+    nr: usize,
+    nc: usize,
+    form: QuadFormulation,
+    m: &Material,
+    p: f64,
+    steps: usize,
+) -> (StaticSolver, Vec<Increment>) {
+    let (nodes, quads) = quarter_annulus(0.01, 0.02, nr, nc);
+    let mut model = model(nodes.clone(), quads, m);
+    model.formulation = form;
+    for (i, x) in nodes.iter().enumerate() {
+        if x[1] == 0.0 {
+            model.fixed[i][1] = true;
+        }
+    }
+    inner_pressure(&mut model, nr, nc, p);
+    let mut s = StaticSolver::new(model, None, Settings::default()).unwrap();
+    let incs = (1..=steps)
+        .map(|k| {
+            let t = Target {
+                load_factor: k as f64 / steps as f64,
+                ..Default::default()
+            };
+            s.solve(&t).unwrap()
+        })
+        .collect();
+    (s, incs)
+}
+
+/// Radial displacement of node `i` (m).
+fn radial_u(s: &StaticSolver, i: usize) -> f64 {
+    let (x0, x) = (s.initial_positions()[i], s.positions()[i]);
+    x.iter().map(|c| c * c).sum::<f64>().sqrt() - x0.iter().map(|c| c * c).sum::<f64>().sqrt()
+}
+
+/// `v` in scientific notation, 2 decimals.
+fn sci(v: &[f64]) -> String {
+    let s: Vec<String> = v.iter().map(|x| format!("{x:.2e}")).collect();
+    format!("[{}]", s.join(", "))
+}
+
+/// Every registered formulation, the one-point quad with a stiffer hourglass control.
+fn forms() -> impl Iterator<Item = QuadFormulation> {
+    QuadFormulation::ALL.into_iter().map(|f| match f {
+        QuadFormulation::OnePoint { .. } => QuadFormulation::OnePoint { hourglass: 0.1 },
+        f => f,
+    })
+}
+
+#[test]
+fn lame_thick_sphere_converges_at_order_two_and_newton_quadratically() {
+    let mut m = perfect_steel();
+    m.yield_strength = 1e15;
+    let p = 100e6;
+    for form in forms() {
+        let mut errs = [0.0; 3];
+        for (k, (nr, nc)) in [(4, 8), (8, 16), (16, 32)].into_iter().enumerate() {
+            let (s, incs) = thick_sphere(nr, nc, form, &m, p, 1);
+            for (i, x0) in s.initial_positions().iter().enumerate() {
+                let rho0 = (x0[0] * x0[0] + x0[1] * x0[1]).sqrt();
+                if (rho0 - 0.01).abs() < 1e-9 || (rho0 - 0.02).abs() < 1e-9 {
+                    let exact = lame_u(0.01, 0.02, p, m.youngs, m.nu, rho0);
+                    errs[k] = f64::max(errs[k], (radial_u(&s, i) / exact - 1.0).abs());
+                }
+            }
+            let r = &incs[0].residuals;
+            println!(
+                "Lamé static {} {nr}x{nc}: residual norms {}",
+                form.name(),
+                sci(r)
+            );
+            // Quadratic convergence: below 1e-3 each residual is at most about the square
+            // of the one before (a factor 100 of slack for the constant).
+            for w in r.windows(2) {
+                if w[0] < 1e-3 && w[1] > 1e-13 {
+                    assert!(w[1] < 100.0 * w[0] * w[0], "{form:?}: {r:?}");
+                }
+            }
+            assert!(incs[0].iterations <= 6, "{form:?}: {r:?}");
+        }
+        let order = [(errs[0] / errs[1]).log2(), (errs[1] / errs[2]).log2()];
+        println!(
+            "Lamé static {}: errors {}, order {order:.2?}",
+            form.name(),
+            sci(&errs)
+        );
+        assert!(errs[2] < 5e-3, "{form:?}: {errs:?}");
+        assert!(order.iter().all(|&o| o > 1.5), "{form:?}: {order:?}");
+    }
+}
+
+#[test]
+fn partly_plastic_thick_sphere_matches_hill() {
+    let m = perfect_steel();
+    let (a, b, c) = (0.01f64, 0.02f64, 0.015f64);
+    let sy = m.yield_strength;
+    let p = 2.0 * sy * (c / a).ln() + 2.0 * sy / 3.0 * (1.0 - (c / b).powi(3));
+    let ub = sy * c.powi(3) * (1.0 - m.nu) / (m.youngs * b * b);
+    for form in forms() {
+        let (s, incs) = thick_sphere(16, 24, form, &m, p, 8);
+        let outer: Vec<usize> = (0..s.positions().len())
+            .filter(|&i| {
+                let x0 = s.initial_positions()[i];
+                ((x0[0] * x0[0] + x0[1] * x0[1]).sqrt() - b).abs() < 1e-9
+            })
+            .collect();
+        let u = outer.iter().map(|&i| radial_u(&s, i)).sum::<f64>() / outer.len() as f64;
+        let iters: Vec<usize> = incs.iter().map(|i| i.iterations).collect();
+        println!(
+            "Hill static {}: u(b) error {:+.3e}, Newton iterations per increment {iters:?}",
+            form.name(),
+            u / ub - 1.0
+        );
+        assert!((u / ub - 1.0).abs() < 1.5e-2, "{form:?}: {}", u / ub - 1.0);
+        assert!(s.plastic_work() > 0.0);
+    }
+}
+
+/// A free elastic ball (ladder mesh `level` for the contact radius `a`) pressed on a rigid
+/// plane at its pole by the uniform body force that balances a contact force `force` (N),
+/// in `steps` increments: returns (approach of the centre of mass, contact force, contact
+/// radius of the outermost node on the plane), m, N, m.
+fn free_ball(m: &Material, radius: f64, a: f64, level: u32, force: f64) -> (f64, f64, f64) {
+    let mesh = twoball::mesh::meridian_ladder::ladder_ball(2.0 * radius, a, level).unwrap();
+    let mut model: SectionModel = model(mesh.nodes.clone(), mesh.quads.clone(), m);
+    model.formulation = QuadFormulation::Full;
+    let mut mass = vec![0.0; mesh.nodes.len()];
+    for q in &mesh.quads {
+        let me = element_masses(&q.map(|i| mesh.nodes[i as usize]), m.rho);
+        for (k, &i) in q.iter().enumerate() {
+            mass[i as usize] += me[k];
+        }
+    }
+    let total: f64 = mass.iter().sum();
+    // One newton of body force, towards the plane above the ball.
+    for (l, mi) in model.loads.iter_mut().zip(&mass) {
+        *l = [0.0, mi / total];
+    }
+    let plane = RigidPlane {
+        z: radius,
+        side: -1.0,
+    };
+    let mut s = StaticSolver::new(model, Some(plane), Settings::default()).unwrap();
+    let steps = 6;
+    for k in 1..=steps {
+        let f = force * (k as f64 / steps as f64).powf(1.5);
+        s.solve(&Target {
+            load_factor: f,
+            ..Default::default()
+        })
+        .unwrap();
+    }
+    let approach = mass
+        .iter()
+        .zip(s.positions().iter().zip(s.initial_positions()))
+        .map(|(mi, (x, x0))| mi * (x[1] - x0[1]))
+        .sum::<f64>()
+        / total;
+    (approach, s.contact_force(), s.contact_radius())
+}
+
+#[test]
+fn free_elastic_ball_meets_the_finite_ball_reference() {
+    let mut m = Material::preset("copper").unwrap();
+    m.yield_strength = 1e15;
+    let radius: f64 = 0.01;
+    let e_star = m.youngs / (1.0 - m.nu * m.nu);
+    for a_over_r in [0.02, 0.04] {
+        let a = a_over_r * radius;
+        let delta = a * a / radius;
+        let force = 4.0 / 3.0 * e_star * radius.sqrt() * delta.powf(1.5);
+        for level in [0, 1, 2] {
+            let (d, f, ac) = free_ball(&m, radius, a, level, force);
+            let a_h = (radius * d).sqrt();
+            let f_h = 4.0 / 3.0 * e_star * radius.sqrt() * d.powf(1.5);
+            let reference = 1.0 - 0.0019 + 0.955 * a_h / radius;
+            println!(
+                "free ball a/R = {a_over_r} level {level}: δ = {d:.6e} m, F = {f:.3} N, F/F_H - 1 = {:+.3}%, \
+                 reference {:+.3}%, gap {:+.3}%, contact radius {ac:.4e} m (Hertz {a_h:.4e})",
+                100.0 * (f / f_h - 1.0),
+                100.0 * (reference - 1.0),
+                100.0 * (f / f_h / reference - 1.0)
+            );
+        }
+    }
+}
