@@ -14,7 +14,7 @@
 
 use super::element_tangent::{increment_forces, increment_tangent};
 use super::plane::RigidPlane;
-use super::system::Assembly;
+use super::system::Pattern;
 use crate::error::{Error, Result};
 use crate::fe::axisym::section::SectionModel;
 use crate::fe::elements::ring::element::Quad;
@@ -88,6 +88,7 @@ pub struct StaticSolver {
     model: SectionModel,
     plane: Option<RigidPlane>,
     settings: Settings,
+    pattern: Pattern,
     x: Vec<[f64; 2]>,
     states: Vec<QuadState>,
     f_int: Vec<[f64; 2]>,
@@ -145,6 +146,7 @@ impl StaticSolver {
             }
         }
         Ok(StaticSolver {
+            pattern: Pattern::new(n, &model.quads)?,
             x: model.nodes.clone(),
             states: vec![QuadState::default(); model.quads.len()],
             f_int: vec![[0.0; 2]; n],
@@ -317,7 +319,7 @@ impl StaticSolver {
             if rel <= self.settings.residual_tol {
                 return Ok(eval);
             }
-            let d = self.tangent(du, constrained).solve(&r)?;
+            let d = self.pattern.solve(&self.tangents(du), constrained, &r)?;
             report.iterations += 1;
             let mut alpha = 1.0;
             loop {
@@ -386,10 +388,9 @@ impl StaticSolver {
         Ok(Evaluation { f_int, states })
     }
 
-    /// The assembled tangent at the increment `du` with `constrained` rows and columns
-    /// replaced by the identity.
-    fn tangent(&self, du: &[[f64; 2]], constrained: &[bool]) -> Assembly {
-        let blocks: Vec<_> = (0..self.model.quads.len())
+    /// Every quad's tangent (N/m) at the increment `du`, in mesh order.
+    fn tangents(&self, du: &[[f64; 2]]) -> Vec<[[f64; 8]; 8]> {
+        (0..self.model.quads.len())
             .into_par_iter()
             .map(|e| {
                 let (x0, d) = self.element_nodes(e, du);
@@ -401,12 +402,7 @@ impl StaticSolver {
                     &self.states[e],
                 )
             })
-            .collect();
-        let mut a = Assembly::new(constrained.to_vec(), blocks.len());
-        for (q, k) in self.model.quads.iter().zip(&blocks) {
-            a.add(q, k);
-        }
-        a
+            .collect()
     }
 
     /// Adds nodes across the plane to the active set and releases nodes the plane pulls;

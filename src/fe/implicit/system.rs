@@ -2,80 +2,105 @@
 //! matrix over every degree of freedom (2 per node: r, z), the rows and columns of
 //! constrained ones replaced by the identity, solved by faer's sparse LU.
 //!
-//! LU, not Cholesky: the tangent of the objective (Hughes-Winget) update is not symmetric
-//! away from the reference configuration (its geometric and rotational terms), so a
-//! symmetric factorisation would not be the consistent tangent.
+//! The sparsity pattern (every element block and the diagonal) is fixed by the mesh, so its
+//! ordering and symbolic factorisation ([`Pattern`]) are computed once per solver; a
+//! constraint only changes values. LU, not Cholesky: the tangent of the objective
+//! (Hughes-Winget) update is not symmetric away from the reference configuration (its
+//! geometric and rotational terms), so a symmetric factorisation would not be the
+//! consistent tangent.
 
 use crate::error::{Error, Result};
 use faer::prelude::Solve;
-use sprs::TriMat;
+use faer::sparse::linalg::solvers::{Lu, SymbolicLu};
+use faer::sparse::{Pair, SparseColMat, SymbolicSparseColMat};
+use faer::Mat;
 
-/// A sparse square matrix being assembled from 8 × 8 element blocks (N/m).
-pub struct Assembly {
-    tri: TriMat<f64>,
-    constrained: Vec<bool>,
+/// The fixed structure of a mesh's tangent: the entries' positions, their order in the
+/// compressed matrix and the symbolic LU.
+pub struct Pattern {
+    dofs: usize,
+    quads: Vec<[u32; 4]>,
+    symbolic: SymbolicSparseColMat<usize>,
+    argsort: faer::sparse::Argsort<usize>,
+    lu: SymbolicLu<usize>,
 }
 
-impl Assembly {
-    /// An empty matrix over `constrained.len()` degrees of freedom; those marked get an
-    /// identity row and column.
-    pub fn new(constrained: Vec<bool>, blocks: usize) -> Self {
-        let n = constrained.len();
-        let mut tri = TriMat::with_capacity((n, n), 64 * blocks + n);
-        for (d, &c) in constrained.iter().enumerate() {
-            if c {
-                tri.add_triplet(d, d, 1.0);
-            }
-        }
-        Assembly { tri, constrained }
-    }
+/// The degree of freedom of entry `i` (0..8: node i / 2, component i % 2) of quad `q`.
+fn dof(q: &[u32; 4], i: usize) -> usize {
+    2 * q[i / 2] as usize + i % 2
+}
 
-    /// Adds the block `k` (N/m) of the quad with nodes `nodes` (row and column 2k + c).
-    pub fn add(&mut self, nodes: &[u32; 4], k: &[[f64; 8]; 8]) {
-        let dof = |i: usize| 2 * nodes[i / 2] as usize + i % 2;
-        for i in 0..8 {
-            let r = dof(i);
-            if self.constrained[r] {
-                continue;
-            }
-            for j in 0..8 {
-                let c = dof(j);
-                if !self.constrained[c] && k[i][j] != 0.0 {
-                    self.tri.add_triplet(r, c, k[i][j]);
+impl Pattern {
+    /// The pattern of `quads` over `nodes` nodes. Fails if faer cannot build it (memory).
+    pub fn new(nodes: usize, quads: &[[u32; 4]]) -> Result<Self> {
+        let n = 2 * nodes;
+        let mut idx = Vec::with_capacity(64 * quads.len() + n);
+        for q in quads {
+            for i in 0..8 {
+                for j in 0..8 {
+                    idx.push(Pair::new(dof(q, i), dof(q, j)));
                 }
             }
         }
+        idx.extend((0..n).map(|d| Pair::new(d, d)));
+        let fail = |e: String| Error::Numerical(format!("static tangent pattern: {e}"));
+        let (symbolic, argsort) = SymbolicSparseColMat::try_new_from_indices(n, n, &idx)
+            .map_err(|e| fail(format!("{e:?}")))?;
+        let lu = SymbolicLu::try_new(symbolic.as_ref()).map_err(|e| fail(format!("{e:?}")))?;
+        Ok(Pattern {
+            dofs: n,
+            quads: quads.to_vec(),
+            symbolic,
+            argsort,
+            lu,
+        })
     }
 
-    /// Solves K d = `rhs` (N; zero on constrained rows), returning d (m). Fails with a
-    /// numerical error when the matrix is singular (a body free to move rigidly).
-    pub fn solve(self, rhs: &[f64]) -> Result<Vec<f64>> {
-        let n = self.constrained.len();
-        let csc = self.tri.to_csc::<usize>();
-        let mut t = Vec::with_capacity(csc.nnz());
-        for (v, (r, c)) in csc.iter() {
-            t.push(faer::sparse::Triplet::new(r, c, *v));
+    /// Degrees of freedom (2 per node).
+    pub fn dofs(&self) -> usize {
+        self.dofs
+    }
+
+    /// Solves K d = `rhs` (N; zero on constrained rows) for the element tangents `blocks`
+    /// (N/m, one 8 × 8 block per quad, in mesh order) with the `constrained` degrees of
+    /// freedom replaced by the identity; returns d (m). Fails with a numerical error when the
+    /// matrix is singular (a body free to move rigidly).
+    pub fn solve(
+        &self,
+        blocks: &[[[f64; 8]; 8]],
+        constrained: &[bool],
+        rhs: &[f64],
+    ) -> Result<Vec<f64>> {
+        let n = self.dofs;
+        let mut val = Vec::with_capacity(64 * blocks.len() + n);
+        for (q, k) in self.quads.iter().zip(blocks) {
+            for i in 0..8 {
+                let r = dof(q, i);
+                for j in 0..8 {
+                    let free = !constrained[r] && !constrained[dof(q, j)];
+                    val.push(if free { k[i][j] } else { 0.0 });
+                }
+            }
         }
-        let a = faer::sparse::SparseColMat::try_new_from_triplets(n, n, &t)
-            .map_err(|e| Error::Numerical(format!("static tangent assembly failed: {e:?}")))?;
-        let lu = a.sp_lu().map_err(|e| {
+        val.extend(constrained.iter().map(|&c| if c { 1.0 } else { 0.0 }));
+        let singular = |why: String| {
             Error::Numerical(format!(
-                "static tangent singular ({e:?}): the body is free to move rigidly; hold it or \
+                "static tangent singular ({why}): the body is free to move rigidly; hold it or \
                  put it in contact"
             ))
-        })?;
-        let mut b = faer::Mat::<f64>::zeros(n, 1);
+        };
+        let a = SparseColMat::new_from_argsort(self.symbolic.clone(), &self.argsort, &val)
+            .map_err(|e| Error::Numerical(format!("static tangent assembly: {e:?}")))?;
+        let lu = Lu::try_new_with_symbolic(self.lu.clone(), a.as_ref())
+            .map_err(|e| singular(format!("{e:?}")))?;
+        let mut b = Mat::<f64>::zeros(n, 1);
         for (i, v) in rhs.iter().enumerate() {
             b[(i, 0)] = *v;
         }
         lu.solve_in_place(b.as_mut());
         let d: Vec<f64> = (0..n).map(|i| b[(i, 0)]).collect();
         if d.iter().any(|v| !v.is_finite()) {
-            return Err(Error::Numerical(
-                "static tangent singular: the Newton correction is not finite; hold the body or \
-                 put it in contact"
-                    .into(),
-            ));
+            return Err(singular("a correction that is not finite".into()));
         }
         Ok(d)
     }
