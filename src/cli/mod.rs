@@ -18,6 +18,7 @@ mod laws_fit;
 mod mesh;
 mod report;
 mod run;
+mod static_loop;
 mod stress;
 mod sweep;
 
@@ -60,6 +61,10 @@ pub enum Command {
     Laws(laws::LawsArgs),
     /// Particle damper: the frame's free decay with balls in the box (paper Section 6).
     Damper(damper::DamperArgs),
+    /// The quasi-static loading-unloading loop of the scene's ball on a rigid plane, by the
+    /// implicit static solver, with error bars from a mesh ladder.
+    #[command(name = "static")]
+    Static(static_loop::StaticArgs),
 }
 
 /// Whether `arg` takes a number (its value parser is that of a numeric type).
@@ -175,6 +180,7 @@ where
         Command::Parametric(a) => analytic::run_parametric(a),
         Command::Mesh(a) => mesh::run(a),
         Command::Run(a) => run::run(a),
+        Command::Static(a) => static_loop::run(a),
         Command::Sweep(a) => sweep::run(a),
         Command::Bench(a) => bench::run(a),
         Command::Report(a) => report::run(a),

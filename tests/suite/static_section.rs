@@ -213,7 +213,8 @@ fn free_elastic_ball_meets_the_finite_ball_reference() {
         let a = a_over_r * radius;
         let delta = a * a / radius;
         let force = 4.0 / 3.0 * e_star * radius.sqrt() * delta.powf(1.5);
-        for level in [1] {
+        {
+            let level = 1;
             let (d, f, ac) = free_ball(&m, radius, a, level, force);
             let a_h = (radius * d).sqrt();
             let f_h = 4.0 / 3.0 * e_star * radius.sqrt() * d.powf(1.5);

@@ -19,7 +19,7 @@ pub const INCREMENT_TIME: f64 = 1.0;
 /// Relative size of the central-difference step on a nodal displacement (of the element's
 /// characteristic length): about the cube root of the machine epsilon, where truncation and
 /// round-off errors of a central difference balance.
-const STEP: f64 = 5e-6;
+const STEP: f64 = 1e-7;
 
 /// The forces (N, whole ring, (r, z) per node) of a quad whose nodes `x0` (m) at the start of
 /// the increment move by `du` (m), from its committed state `st0`; returns the update's

@@ -21,6 +21,7 @@ use crate::fe::elements::ring::element::Quad;
 use crate::fe::elements::ring::QuadState;
 use crate::fe::materials::J2Material;
 use rayon::prelude::*;
+use std::sync::Arc;
 
 /// A prescribed total displacement of one nodal component from the initial position.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -80,15 +81,20 @@ pub struct Increment {
     pub cuts: usize,
 }
 
+/// The relative residual an active set that may still change is solved to.
+const LOOSE_TOL: f64 = 1e-6;
+
 /// Halvings of one increment before it is given up.
 pub const MAX_CUTS: u32 = 6;
 
-/// The static solver of a section at its last converged state.
+/// The static solver of a section at its last converged state (a clone is a snapshot to
+/// solve again from; the tangent's pattern is shared).
+#[derive(Clone)]
 pub struct StaticSolver {
     model: SectionModel,
     plane: Option<RigidPlane>,
     settings: Settings,
-    pattern: Pattern,
+    pattern: Arc<Pattern>,
     x: Vec<[f64; 2]>,
     states: Vec<QuadState>,
     f_int: Vec<[f64; 2]>,
@@ -146,7 +152,7 @@ impl StaticSolver {
             }
         }
         Ok(StaticSolver {
-            pattern: Pattern::new(n, &model.quads)?,
+            pattern: Arc::new(Pattern::new(n, &model.quads)?),
             x: model.nodes.clone(),
             states: vec![QuadState::default(); model.quads.len()],
             f_int: vec![[0.0; 2]; n],
@@ -233,20 +239,22 @@ impl StaticSolver {
         let mut active = self.active.clone();
         let mut du = vec![[0.0; 2]; n];
         let mut report = Increment::default();
+        // While the active set moves, each set is solved to a loose tolerance only; the set
+        // that stays is solved to the full one (and checked again).
+        let mut tol = self.settings.residual_tol.max(LOOSE_TOL);
         let eval = loop {
             let (constrained, values) = self.constraints(target, plane, &active);
-            for (d, v) in values.iter().enumerate() {
-                if constrained[d] {
-                    du[d / 2][d % 2] = *v;
-                }
-            }
-            let eval = self.newton(&mut du, &constrained, &f_ext, &mut report)?;
+            let eval = self.newton(&mut du, &constrained, &values, &f_ext, tol, &mut report)?;
             let changes = match plane {
                 Some(p) => self.settle(p, &mut active, &du, &eval.f_int, &f_ext),
                 None => 0,
             };
             if changes == 0 {
-                break eval;
+                if tol <= self.settings.residual_tol {
+                    break eval;
+                }
+                tol = self.settings.residual_tol;
+                continue;
             }
             report.active_changes += changes;
             if report.active_changes > self.settings.max_active_changes {
@@ -302,24 +310,46 @@ impl StaticSolver {
         (c, v)
     }
 
-    /// Newton-Raphson on the free degrees of freedom of `du` (constrained ones already at
-    /// their values) with a backtracking line search; returns the converged evaluation.
+    /// Newton-Raphson for the increment `du` (m): the free degrees of freedom in
+    /// equilibrium, the constrained ones at `values`. A constrained value not yet reached
+    /// enters the linear system as a prescribed correction, so the first iteration is the
+    /// tangent's prediction of the whole increment (the displacement a held support or a
+    /// node landing on the plane imposes spreads through the body, instead of straining the
+    /// elements next to it alone). A backtracking line search on the free residual guards
+    /// the iterations that meet every constraint. Returns the evaluation once the relative
+    /// residual is at most `tol`.
     fn newton(
         &self,
         du: &mut [[f64; 2]],
         constrained: &[bool],
+        values: &[f64],
         f_ext: &[[f64; 2]],
+        tol: f64,
         report: &mut Increment,
     ) -> Result<Evaluation> {
+        let gap = |du: &[[f64; 2]]| -> Vec<f64> {
+            (0..values.len())
+                .map(|d| {
+                    if constrained[d] {
+                        values[d] - du[d / 2][d % 2]
+                    } else {
+                        0.0
+                    }
+                })
+                .collect()
+        };
         let mut eval = self.evaluate(du)?;
         let mut r = residual(&eval.f_int, f_ext, constrained);
         let mut rel = norm(&r) / force_scale(&eval.f_int, f_ext, constrained);
         for _ in 0..self.settings.max_iterations {
+            let open = gap(du);
+            let met = open.iter().all(|g| g.abs() <= 1e-3 * self.gap_tol);
             report.residuals.push(rel);
-            if rel <= self.settings.residual_tol {
+            if met && rel <= tol {
                 return Ok(eval);
             }
-            let d = self.pattern.solve(&self.tangents(du), constrained, &r)?;
+            let rhs: Vec<f64> = r.iter().zip(&open).map(|(a, b)| a + b).collect();
+            let d = self.pattern.solve(&self.tangents(du), constrained, &rhs)?;
             report.iterations += 1;
             let mut alpha = 1.0;
             loop {
@@ -332,7 +362,7 @@ impl StaticSolver {
                     Ok(e) => {
                         let r1 = residual(&e.f_int, f_ext, constrained);
                         let rel1 = norm(&r1) / force_scale(&e.f_int, f_ext, constrained);
-                        if rel1 < rel || alpha < 1.0 / 64.0 {
+                        if !met || rel1 < rel || alpha < 1.0 / 64.0 {
                             du.copy_from_slice(&trial);
                             (eval, r, rel) = (e, r1, rel1);
                             break;
@@ -345,9 +375,6 @@ impl StaticSolver {
             }
         }
         report.residuals.push(rel);
-        if rel <= self.settings.residual_tol {
-            return Ok(eval);
-        }
         Err(Error::Numerical(format!(
             "static Newton: relative residual {rel:.3e} after {} iterations (tolerance {:.1e}); \
              take smaller increments",
@@ -374,7 +401,7 @@ impl StaticSolver {
         let mut f_int = vec![[0.0; 2]; self.x.len()];
         let mut states = Vec::with_capacity(outs.len());
         for (e, (out, st)) in outs.into_iter().enumerate() {
-            if !(out.min_jacobian > 0.0) {
+            if out.min_jacobian.is_nan() || out.min_jacobian <= 0.0 {
                 return Err(Error::Numerical(format!(
                     "static: quad {e} inverted in the increment; take smaller increments"
                 )));
@@ -497,6 +524,11 @@ impl StaticSolver {
     /// Element states (stresses, plastic strains, energies).
     pub fn states(&self) -> &[QuadState] {
         &self.states
+    }
+
+    /// The load factor of the last converged increment.
+    pub fn load_factor(&self) -> f64 {
+        self.load_factor
     }
 
     /// Plastic work so far, J.

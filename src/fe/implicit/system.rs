@@ -61,9 +61,10 @@ impl Pattern {
         self.dofs
     }
 
-    /// Solves K d = `rhs` (N; zero on constrained rows) for the element tangents `blocks`
-    /// (N/m, one 8 × 8 block per quad, in mesh order) with the `constrained` degrees of
-    /// freedom replaced by the identity; returns d (m). Fails with a numerical error when the
+    /// Solves K d = `rhs` for the element tangents `blocks` (N/m, one 8 × 8 block per quad,
+    /// in mesh order) with the rows of the `constrained` degrees of freedom replaced by the
+    /// identity; `rhs` holds the free rows' residual forces (N) and the constrained rows'
+    /// prescribed corrections (m). Returns d (m). Fails with a numerical error when the
     /// matrix is singular (a body free to move rigidly).
     pub fn solve(
         &self,
@@ -75,9 +76,8 @@ impl Pattern {
         let mut val = Vec::with_capacity(64 * blocks.len() + n);
         for (q, k) in self.quads.iter().zip(blocks) {
             for i in 0..8 {
-                let r = dof(q, i);
+                let free = !constrained[dof(q, i)];
                 for j in 0..8 {
-                    let free = !constrained[r] && !constrained[dof(q, j)];
                     val.push(if free { k[i][j] } else { 0.0 });
                 }
             }

@@ -5,6 +5,7 @@
 //! - [`phase_band`]: the banded family of the converged answers;
 //! - [`converged_scene`]: `--tolerance` on a head-on section scene, on the banded family;
 //! - [`scene_estimate`]: a scene's run with its error bar (default levels, plan, tolerance);
+//! - [`static_ladder`]: a quasi-static loop's numbers with their error bars from a ladder;
 //! - [`honesty`]: whether the error estimates hold over a set of head-on cases.
 
 pub mod converged_scene;
@@ -13,3 +14,4 @@ pub mod ladder;
 pub mod phase_band;
 pub mod phase_ensemble;
 pub mod scene_estimate;
+pub mod static_ladder;

@@ -9,6 +9,7 @@
 //! - [`ignored`]: the scene settings the chosen model does not use, one note each;
 //! - [`scene`]: one scene, both models side by side, results.json and history.csv;
 //! - [`law_compare`]: the scene's `[laws]`, integrated on the run's balls and speeds;
+//! - [`quasi_static`]: the static loading-unloading loop of a ball on a rigid plane;
 //! - [`snapshots`]: `.vtu` snapshots of a run for ParaView;
 //! - [`damper`]: the particle-damper cases of a command, with progress and Ctrl-C.
 
@@ -17,6 +18,7 @@ pub mod force_curve;
 pub mod history;
 pub mod ignored;
 pub mod law_compare;
+pub mod quasi_static;
 pub mod reduction;
 pub mod scene;
 pub mod section;

@@ -1,0 +1,477 @@
+//! The quasi-static loading-unloading loop of one ball on a rigid frictionless plane, on one
+//! mesh: the F(δ) curve contact laws are fitted to, by the static implicit solver
+//! ([`crate::fe::implicit`]).
+//!
+//! Two ways to hold the ball, which give different δ at equal force (the far field of a
+//! held hemisphere cannot move):
+//! - [`Support::Held`]: the hemisphere above its equator, the equator on a roller pushed
+//!   towards the plane; δ is the equator's travel (CalculiX's `--support held`);
+//! - [`Support::Free`]: the whole ball under the uniform body force that balances the
+//!   contact; δ is the approach of the centre of mass (the static image of an impact whose
+//!   pulse is long against the ball's vibration; `--support free`).
+//!
+//! Loading runs to a prescribed approach, force or stored work (the last increment solved
+//! again until it meets the target to 1e-6), unloading to zero force: held, the release
+//! point is bisected; free, the last two points below 1 % of the peak are extrapolated along
+//! F ∝ (δ − δ_res)^{3/2} (the body has no support at zero force).
+
+use crate::error::{Error, Result};
+use crate::fe::axisym::section::SectionModel;
+use crate::fe::elements::ring::mass::element_masses;
+use crate::fe::elements::ring::QuadFormulation;
+use crate::fe::implicit::plane::RigidPlane;
+use crate::fe::implicit::static_solver::{Prescribed, Settings, StaticSolver, Target};
+use crate::fe::materials::J2Material;
+use crate::material::Material;
+use crate::mesh::meridian::ladder_ball;
+use serde::Serialize;
+
+/// How the ball is held against the plane.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Support {
+    /// The hemisphere, its equator on a roller driven towards the plane.
+    Held,
+    /// The whole ball under the body force that balances the contact.
+    Free,
+}
+
+impl Support {
+    /// The names `--support` takes.
+    pub const NAMES: [&'static str; 2] = ["held", "free"];
+
+    /// The support named `name`.
+    pub fn from_name(name: &str) -> Option<Support> {
+        match name {
+            "held" => Some(Support::Held),
+            "free" => Some(Support::Free),
+            _ => None,
+        }
+    }
+}
+
+/// Where loading stops.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[serde(rename_all = "snake_case", tag = "to", content = "value")]
+pub enum LoadTo {
+    /// An approach δ_max, m.
+    Approach(f64),
+    /// A contact force, N.
+    Force(f64),
+    /// A stored work ∫F dδ (the kinetic energy one ball brings to the plane), J.
+    Work(f64),
+}
+
+/// One loop's case.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct StaticCase {
+    /// Ball diameter, m.
+    pub diameter: f64,
+    /// Ball material.
+    pub material: Material,
+    /// Ring element.
+    pub formulation: QuadFormulation,
+    /// How the ball is held.
+    pub support: Support,
+    /// Where loading stops.
+    pub to: LoadTo,
+    /// Contact radius the mesh is sized from, m (an estimate of the largest).
+    pub sizing_radius: f64,
+    /// Ladder level of the mesh (`mesh::meridian::ladder_ball`).
+    pub level: u32,
+    /// Increments of loading (and as many of unloading), ≥ 4.
+    pub increments: usize,
+}
+
+/// One point of a loop.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct LoopPoint {
+    /// Approach δ, m.
+    pub approach: f64,
+    /// Contact force, N.
+    pub force: f64,
+    /// Radius of the outermost node on the plane, m.
+    pub contact_radius: f64,
+    /// Plastic work, J.
+    pub plastic_work: f64,
+    /// Stress work ∫σ:dε dV (elastic + plastic), J.
+    pub stress_work: f64,
+}
+
+/// What a loop gives.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct LoopSummary {
+    /// Largest approach, m.
+    pub delta_max: f64,
+    /// Contact force at δ_max / 2 on loading, N.
+    pub force_at_half: f64,
+    /// Contact force at δ_max, N.
+    pub force_at_max: f64,
+    /// Approach left after unloading, m.
+    pub residual_approach: f64,
+    /// Work put in on loading, J.
+    pub work_in: f64,
+    /// Work returned on unloading, J.
+    pub work_returned: f64,
+    /// √(work returned / work in), the quasi-static coefficient of restitution.
+    pub e: f64,
+    /// Contact radius at δ_max, m.
+    pub contact_radius: f64,
+    /// Plastic work at the end, J.
+    pub plastic_work: f64,
+}
+
+/// A loop on one mesh.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct StaticLoop {
+    /// Quads of the mesh.
+    pub quads: usize,
+    /// Newton iterations over the loop.
+    pub iterations: usize,
+    /// Loading points, from touch to δ_max.
+    pub loading: Vec<LoopPoint>,
+    /// Unloading points, from δ_max to release.
+    pub unloading: Vec<LoopPoint>,
+    /// The loop's numbers.
+    pub summary: LoopSummary,
+}
+
+/// The ball's section and how to drive and measure it.
+struct Rig {
+    solver: StaticSolver,
+    support: Support,
+    /// Nodes on the equator (held).
+    equator: Vec<u32>,
+    /// Nodal masses (free), kg.
+    mass: Vec<f64>,
+    iterations: usize,
+}
+
+impl Rig {
+    fn new(case: &StaticCase) -> Result<Rig> {
+        let radius = case.diameter / 2.0;
+        let mesh = ladder_ball(case.diameter, case.sizing_radius, case.level)?;
+        let (nodes, quads) = match case.support {
+            Support::Free => (mesh.nodes, mesh.quads),
+            Support::Held => upper_half(&mesh.nodes, &mesh.quads),
+        };
+        let mut mass = vec![0.0; nodes.len()];
+        for q in &quads {
+            let m = element_masses(&q.map(|i| nodes[i as usize]), case.material.rho);
+            for (k, &i) in q.iter().enumerate() {
+                mass[i as usize] += m[k];
+            }
+        }
+        let total: f64 = mass.iter().sum();
+        let mut model = SectionModel::new(
+            nodes.clone(),
+            quads,
+            J2Material::new(&case.material, false),
+        );
+        model.formulation = case.formulation;
+        let mut equator = Vec::new();
+        match case.support {
+            // One newton of body force towards the plane above the ball.
+            Support::Free => {
+                for (l, m) in model.loads.iter_mut().zip(&mass) {
+                    *l = [0.0, m / total];
+                }
+            }
+            Support::Held => {
+                equator = (0..nodes.len() as u32)
+                    .filter(|&i| nodes[i as usize][1] == 0.0)
+                    .collect();
+            }
+        }
+        let plane = RigidPlane {
+            z: radius,
+            side: -1.0,
+        };
+        Ok(Rig {
+            solver: StaticSolver::new(model, Some(plane), Settings::default())?,
+            support: case.support,
+            equator,
+            mass,
+            iterations: 0,
+        })
+    }
+
+    /// Drives the ball to control value `c` (held: the equator's travel, m; free: the body
+    /// force, N).
+    fn drive(&mut self, c: f64) -> Result<()> {
+        let target = match self.support {
+            Support::Held => Target {
+                prescribed: self
+                    .equator
+                    .iter()
+                    .map(|&node| Prescribed {
+                        node,
+                        dir: 1,
+                        displacement: c,
+                    })
+                    .collect(),
+                ..Default::default()
+            },
+            Support::Free => Target {
+                load_factor: c,
+                ..Default::default()
+            },
+        };
+        let inc = self.solver.solve(&target)?;
+        if std::env::var_os("TB_DEBUG").is_some() { eprintln!("c={c:.4e} it={} ch={} cuts={} res={:?}", inc.iterations, inc.active_changes, inc.cuts, inc.residuals.iter().map(|r| format!("{r:.0e}")).collect::<Vec<_>>()); }
+        self.iterations += inc.iterations;
+        Ok(())
+    }
+
+    /// The current point of the loop.
+    fn point(&self) -> LoopPoint {
+        let s = &self.solver;
+        let approach = match self.support {
+            Support::Held => {
+                let i = self.equator[0] as usize;
+                s.positions()[i][1] - s.initial_positions()[i][1]
+            }
+            Support::Free => {
+                let (mut m, mut mz) = (0.0, 0.0);
+                for ((mi, x), x0) in self.mass.iter().zip(s.positions()).zip(s.initial_positions()) {
+                    m += mi;
+                    mz += mi * (x[1] - x0[1]);
+                }
+                mz / m
+            }
+        };
+        LoopPoint {
+            approach,
+            force: s.contact_force(),
+            contact_radius: s.contact_radius(),
+            plastic_work: s.plastic_work(),
+            stress_work: s.internal_energy(),
+        }
+    }
+}
+
+/// The quads of the upper half z ≥ 0 of a section with its nodes renumbered.
+fn upper_half(nodes: &[[f64; 2]], quads: &[[u32; 4]]) -> (Vec<[f64; 2]>, Vec<[u32; 4]>) {
+    let keep: Vec<[u32; 4]> = quads
+        .iter()
+        .filter(|q| q.iter().all(|&i| nodes[i as usize][1] >= 0.0))
+        .copied()
+        .collect();
+    let mut new_of = vec![u32::MAX; nodes.len()];
+    let mut out = Vec::new();
+    for q in &keep {
+        for &i in q {
+            if new_of[i as usize] == u32::MAX {
+                new_of[i as usize] = out.len() as u32;
+                out.push(nodes[i as usize]);
+            }
+        }
+    }
+    let quads = keep.iter().map(|q| q.map(|i| new_of[i as usize])).collect();
+    (out, quads)
+}
+
+/// The loaded quantity a target names, of `p`.
+fn measure(to: LoadTo, p: &LoopPoint) -> (f64, f64) {
+    match to {
+        LoadTo::Approach(v) => (p.approach, v),
+        LoadTo::Force(v) => (p.force, v),
+        LoadTo::Work(v) => (p.stress_work, v),
+    }
+}
+
+/// An estimate of the control value (equator travel or body force) that meets `to`, from
+/// Hertz's elastic law of the ball on a rigid plane.
+fn control_estimate(case: &StaticCase) -> f64 {
+    let r = case.diameter / 2.0;
+    let e_star = case.material.plane_strain_modulus();
+    let k = 4.0 / 3.0 * e_star * r.sqrt();
+    let delta = match case.to {
+        LoadTo::Approach(d) => d,
+        LoadTo::Force(f) => (f / k).powf(2.0 / 3.0),
+        LoadTo::Work(w) => (2.5 * w / k).powf(0.4),
+    };
+    match case.support {
+        Support::Held => delta,
+        Support::Free => k * delta.powf(1.5),
+    }
+}
+
+/// Checks a case's numbers.
+fn check(case: &StaticCase) -> Result<()> {
+    let (name, v) = match case.to {
+        LoadTo::Approach(v) => ("static.approach", v),
+        LoadTo::Force(v) => ("static.force", v),
+        LoadTo::Work(v) => ("static.work", v),
+    };
+    if !(v.is_finite() && v > 0.0) {
+        return Err(Error::invalid(name, v, "> 0, finite"));
+    }
+    if case.increments < 4 {
+        return Err(Error::invalid(
+            "static.increments",
+            case.increments,
+            "at least 4",
+        ));
+    }
+    Ok(())
+}
+
+/// Runs the loop of `case`: loading to its target, unloading to release.
+///
+/// Errors: a bad case, a mesh out of range, a static solve that does not converge.
+pub fn run_loop(case: &StaticCase) -> Result<StaticLoop> {
+    check(case)?;
+    let mut rig = Rig::new(case)?;
+    let n = case.increments;
+    let c_est = control_estimate(case);
+    // Loading in equal steps of the control towards the estimate, on in the same steps
+    // past it until the target is met.
+    let control = |k: usize| c_est * k as f64 / n as f64;
+    let mut loading = vec![rig.point()];
+    let mut k = 1;
+    loop {
+        let before = rig.solver.clone();
+        let (c0, p0) = (control(k - 1), *loading.last().expect("a first point"));
+        let c1 = control(k);
+        rig.drive(c1)?;
+        let p1 = rig.point();
+        let (q1, goal) = measure(case.to, &p1);
+        if q1 < goal {
+            loading.push(p1);
+            k += 1;
+            if k > 40 * n {
+                return Err(Error::Numerical(format!(
+                    "static loop: the target {goal:.4e} not reached after {} increments",
+                    40 * n
+                )));
+            }
+            continue;
+        }
+        // The target lies in (c0, c1]: regula falsi from the state at c0.
+        let (mut lo, mut hi) = ((c0, measure(case.to, &p0).0), (c1, q1));
+        let mut best = (rig.solver.clone(), p1);
+        for _ in 0..30 {
+            let (q, _) = measure(case.to, &best.1);
+            if (q - goal).abs() <= 1e-6 * goal {
+                break;
+            }
+            let c = lo.0 + (goal - lo.1) * (hi.0 - lo.0) / (hi.1 - lo.1);
+            rig.solver = before.clone();
+            rig.drive(c)?;
+            let p = rig.point();
+            let qc = measure(case.to, &p).0;
+            if qc < goal {
+                lo = (c, qc);
+            } else {
+                hi = (c, qc);
+            }
+            best = (rig.solver.clone(), p);
+        }
+        rig.solver = best.0;
+        loading.push(best.1);
+        break;
+    }
+    let peak = *loading.last().expect("the peak");
+    let c_peak = match case.support {
+        Support::Held => peak.approach,
+        Support::Free => rig.solver.load_factor(),
+    };
+    let unloading = unload(&mut rig, case, c_peak, peak)?;
+    let end = *unloading.last().expect("the release");
+    let work_in = peak.stress_work;
+    let work_returned = peak.stress_work - end.stress_work;
+    let summary = LoopSummary {
+        delta_max: peak.approach,
+        force_at_half: interpolate(&loading, 0.5 * peak.approach),
+        force_at_max: peak.force,
+        residual_approach: end.approach,
+        work_in,
+        work_returned,
+        e: (work_returned / work_in).max(0.0).sqrt(),
+        contact_radius: peak.contact_radius,
+        plastic_work: end.plastic_work,
+    };
+    Ok(StaticLoop {
+        quads: rig.solver.states().len(),
+        iterations: rig.iterations,
+        loading,
+        unloading,
+        summary,
+    })
+}
+
+/// Unloads from the peak (control `c_peak`) to release; the last point has zero force.
+fn unload(rig: &mut Rig, case: &StaticCase, c_peak: f64, peak: LoopPoint) -> Result<Vec<LoopPoint>> {
+    let n = case.increments;
+    let mut points = vec![peak];
+    match case.support {
+        Support::Held => {
+            // Equal steps of travel until the contact lets go, then bisection of the release.
+            let step = c_peak / n as f64;
+            let mut c = c_peak;
+            loop {
+                let before = rig.solver.clone();
+                rig.drive(c - step)?;
+                let p = rig.point();
+                if p.force > 0.0 {
+                    points.push(p);
+                    c -= step;
+                    continue;
+                }
+                let (mut lo, mut hi) = (c - step, c);
+                for _ in 0..12 {
+                    let mid = 0.5 * (lo + hi);
+                    rig.solver = before.clone();
+                    rig.drive(mid)?;
+                    if rig.point().force > 0.0 {
+                        hi = mid;
+                    } else {
+                        lo = mid;
+                    }
+                }
+                rig.solver = before;
+                rig.drive(hi)?;
+                let mut last = rig.point();
+                last.force = 0.0;
+                last.approach = lo;
+                points.push(last);
+                return Ok(points);
+            }
+        }
+        Support::Free => {
+            // The body force down to 1 % of the peak in steps equal in F^{2/3}, then the
+            // release along F ∝ (δ − δ_res)^{3/2} through the last two points.
+            for k in 1..=n {
+                let t = 1.0 - 0.99 * k as f64 / n as f64;
+                rig.drive(c_peak * t.powf(1.5))?;
+                points.push(rig.point());
+            }
+            let (a, b) = (points[points.len() - 2], points[points.len() - 1]);
+            let ratio = (a.force / b.force).powf(2.0 / 3.0);
+            let release = b.approach - (a.approach - b.approach) / (ratio - 1.0);
+            // The elastic work still stored at b along that law, (2/5) F_b (δ_b − δ_res).
+            let mut last = b;
+            last.force = 0.0;
+            last.approach = release;
+            last.stress_work -= 0.4 * b.force * (b.approach - release);
+            points.push(last);
+            Ok(points)
+        }
+    }
+}
+
+/// The force at approach `delta` on a rising curve, by quadratic interpolation through the
+/// three points around it.
+fn interpolate(points: &[LoopPoint], delta: f64) -> f64 {
+    let k = points
+        .iter()
+        .position(|p| p.approach >= delta)
+        .unwrap_or(points.len() - 1)
+        .clamp(1, points.len() - 2);
+    let (a, b, c) = (points[k - 1], points[k], points[k + 1]);
+    let l = |x0: f64, x1: f64, x2: f64| (delta - x1) * (delta - x2) / ((x0 - x1) * (x0 - x2));
+    a.force * l(a.approach, b.approach, c.approach)
+        + b.force * l(b.approach, a.approach, c.approach)
+        + c.force * l(c.approach, a.approach, b.approach)
+}
