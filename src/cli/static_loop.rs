@@ -57,9 +57,8 @@ pub fn run(a: StaticArgs) -> Result<()> {
         Some(p) => Scene::from_file(p, &sets)?,
         None => Scene::from_toml(DEFAULT_SCENE, Path::new("."), &sets)?,
     };
-    let support = Support::from_name(&a.support).ok_or_else(|| {
-        Error::invalid("--support", &a.support, Support::NAMES.join(" or "))
-    })?;
+    let support = Support::from_name(&a.support)
+        .ok_or_else(|| Error::invalid("--support", &a.support, Support::NAMES.join(" or ")))?;
     let to = match (a.to.as_deref(), a.value) {
         (None, _) => None,
         (Some("approach"), Some(v)) => Some(LoadTo::Approach(v)),
@@ -108,15 +107,29 @@ fn summary(case: &StaticCase, loops: &[StaticLoop], est: &LoopEstimate) -> Strin
             levels.join(", ")
         );
     };
-    row(&mut s, "delta_max", "m", &est.delta_max, |l| l.summary.delta_max);
-    row(&mut s, "F(delta_max/2)", "N", &est.force_at_half, |l| l.summary.force_at_half);
-    row(&mut s, "F(delta_max)", "N", &est.force_at_max, |l| l.summary.force_at_max);
-    row(&mut s, "residual approach", "m", &est.residual_approach, |l| {
-        l.summary.residual_approach
+    row(&mut s, "delta_max", "m", &est.delta_max, |l| {
+        l.summary.delta_max
     });
-    row(&mut s, "work returned", "J", &est.work_returned, |l| l.summary.work_returned);
+    row(&mut s, "F(delta_max/2)", "N", &est.force_at_half, |l| {
+        l.summary.force_at_half
+    });
+    row(&mut s, "F(delta_max)", "N", &est.force_at_max, |l| {
+        l.summary.force_at_max
+    });
+    row(
+        &mut s,
+        "residual approach",
+        "m",
+        &est.residual_approach,
+        |l| l.summary.residual_approach,
+    );
+    row(&mut s, "work returned", "J", &est.work_returned, |l| {
+        l.summary.work_returned
+    });
     row(&mut s, "e (quasi-static)", "-", &est.e, |l| l.summary.e);
-    row(&mut s, "contact radius", "m", &est.contact_radius, |l| l.summary.contact_radius);
+    row(&mut s, "contact radius", "m", &est.contact_radius, |l| {
+        l.summary.contact_radius
+    });
     let quads: Vec<String> = loops.iter().map(|l| l.quads.to_string()).collect();
     let iters: Vec<String> = loops.iter().map(|l| l.iterations.to_string()).collect();
     let _ = writeln!(
@@ -130,9 +143,8 @@ fn summary(case: &StaticCase, loops: &[StaticLoop], est: &LoopEstimate) -> Strin
 
 /// loop.csv: the loading then the unloading points.
 fn loop_csv(l: &StaticLoop) -> String {
-    let mut s = String::from(
-        "phase,approach_m,force_N,contact_radius_m,plastic_work_J,stress_work_J\n",
-    );
+    let mut s =
+        String::from("phase,approach_m,force_N,contact_radius_m,plastic_work_J,stress_work_J\n");
     for (phase, points) in [("loading", &l.loading), ("unloading", &l.unloading)] {
         for p in points.iter() {
             let _ = writeln!(

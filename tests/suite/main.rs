@@ -71,6 +71,7 @@ mod scene_tolerance;
 mod scene_wall;
 mod section_elastic_wall;
 mod section_ladder;
+mod static_loop;
 mod static_section;
 mod stress_quick;
 mod stress_stop_reasons;

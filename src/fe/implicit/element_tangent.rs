@@ -94,7 +94,10 @@ mod tests {
                     f[i / 2][i % 2]
                 );
                 for j in 0..8 {
-                    assert!((k[i][j] - k[j][i]).abs() < 1e-6 * scale, "{form:?} K[{i}][{j}]");
+                    assert!(
+                        (k[i][j] - k[j][i]).abs() < 1e-6 * scale,
+                        "{form:?} K[{i}][{j}]"
+                    );
                 }
             }
         }

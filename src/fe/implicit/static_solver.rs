@@ -244,15 +244,18 @@ impl StaticSolver {
         let mut tol = self.settings.residual_tol.max(LOOSE_TOL);
         let eval = loop {
             let (constrained, values) = self.constraints(target, plane, &active);
-            let eval = self.newton(&mut du, &constrained, &values, &f_ext, tol, &mut report)?;
+            let (eval, rel) =
+                self.newton(&mut du, &constrained, &values, &f_ext, tol, &mut report)?;
             let changes = match plane {
                 Some(p) => self.settle(p, &mut active, &du, &eval.f_int, &f_ext),
                 None => 0,
             };
             if changes == 0 {
-                if tol <= self.settings.residual_tol {
+                if rel <= self.settings.residual_tol {
                     break eval;
                 }
+                // The same state starts the next solve: list its residual once.
+                report.residuals.pop();
                 tol = self.settings.residual_tol;
                 continue;
             }
@@ -316,8 +319,8 @@ impl StaticSolver {
     /// tangent's prediction of the whole increment (the displacement a held support or a
     /// node landing on the plane imposes spreads through the body, instead of straining the
     /// elements next to it alone). A backtracking line search on the free residual guards
-    /// the iterations that meet every constraint. Returns the evaluation once the relative
-    /// residual is at most `tol`.
+    /// the iterations that meet every constraint. Returns the evaluation and its relative
+    /// residual once that is at most `tol`.
     fn newton(
         &self,
         du: &mut [[f64; 2]],
@@ -326,7 +329,7 @@ impl StaticSolver {
         f_ext: &[[f64; 2]],
         tol: f64,
         report: &mut Increment,
-    ) -> Result<Evaluation> {
+    ) -> Result<(Evaluation, f64)> {
         let gap = |du: &[[f64; 2]]| -> Vec<f64> {
             (0..values.len())
                 .map(|d| {
@@ -346,7 +349,7 @@ impl StaticSolver {
             let met = open.iter().all(|g| g.abs() <= 1e-3 * self.gap_tol);
             report.residuals.push(rel);
             if met && rel <= tol {
-                return Ok(eval);
+                return Ok((eval, rel));
             }
             let rhs: Vec<f64> = r.iter().zip(&open).map(|(a, b)| a + b).collect();
             let d = self.pattern.solve(&self.tangents(du), constrained, &rhs)?;

@@ -163,11 +163,8 @@ impl Rig {
             }
         }
         let total: f64 = mass.iter().sum();
-        let mut model = SectionModel::new(
-            nodes.clone(),
-            quads,
-            J2Material::new(&case.material, false),
-        );
+        let mut model =
+            SectionModel::new(nodes.clone(), quads, J2Material::new(&case.material, false));
         model.formulation = case.formulation;
         let mut equator = Vec::new();
         match case.support {
@@ -217,9 +214,7 @@ impl Rig {
                 ..Default::default()
             },
         };
-        let inc = self.solver.solve(&target)?;
-        if std::env::var_os("TB_DEBUG").is_some() { eprintln!("c={c:.4e} it={} ch={} cuts={} res={:?}", inc.iterations, inc.active_changes, inc.cuts, inc.residuals.iter().map(|r| format!("{r:.0e}")).collect::<Vec<_>>()); }
-        self.iterations += inc.iterations;
+        self.iterations += self.solver.solve(&target)?.iterations;
         Ok(())
     }
 
@@ -233,7 +228,12 @@ impl Rig {
             }
             Support::Free => {
                 let (mut m, mut mz) = (0.0, 0.0);
-                for ((mi, x), x0) in self.mass.iter().zip(s.positions()).zip(s.initial_positions()) {
+                for ((mi, x), x0) in self
+                    .mass
+                    .iter()
+                    .zip(s.positions())
+                    .zip(s.initial_positions())
+                {
                     m += mi;
                     mz += mi * (x[1] - x0[1]);
                 }
@@ -402,7 +402,12 @@ pub fn run_loop(case: &StaticCase) -> Result<StaticLoop> {
 }
 
 /// Unloads from the peak (control `c_peak`) to release; the last point has zero force.
-fn unload(rig: &mut Rig, case: &StaticCase, c_peak: f64, peak: LoopPoint) -> Result<Vec<LoopPoint>> {
+fn unload(
+    rig: &mut Rig,
+    case: &StaticCase,
+    c_peak: f64,
+    peak: LoopPoint,
+) -> Result<Vec<LoopPoint>> {
     let n = case.increments;
     let mut points = vec![peak];
     match case.support {

@@ -1,0 +1,134 @@
+//! The quasi-static loop (`twoball static`, `study::run::quasi_static`) against what it
+//! must reproduce: an elastic loop returns all its work and leaves no dent, a plastic loop
+//! meets its work target and balances its energy (work in = work returned + plastic work +
+//! the elastic energy locked in by residual stresses), the held and the free ball give
+//! different approaches at equal force, and the command writes its files and refuses bad
+//! input in one line.
+
+use std::process::Command;
+use twoball::fe::elements::ring::QuadFormulation;
+use twoball::material::Material;
+use twoball::study::run::quasi_static::{run_loop, LoadTo, StaticCase, Support};
+
+fn case(material: Material, support: Support, to: LoadTo) -> StaticCase {
+    StaticCase {
+        diameter: 0.02,
+        material,
+        formulation: QuadFormulation::default(),
+        support,
+        to,
+        sizing_radius: 5e-4,
+        level: 0,
+        increments: 8,
+    }
+}
+
+#[test]
+fn an_elastic_loop_returns_its_work_and_leaves_no_dent() {
+    let mut m = Material::copper_fe();
+    m.yield_strength = 1e12;
+    for support in [Support::Held, Support::Free] {
+        let l = run_loop(&case(m, support, LoadTo::Approach(1.5e-5))).unwrap();
+        let s = l.summary;
+        println!("elastic {support:?}: {s:?}");
+        assert!((s.delta_max / 1.5e-5 - 1.0).abs() < 1e-6, "{s:?}");
+        assert!((s.e - 1.0).abs() < 2e-3, "{s:?}");
+        assert!(s.residual_approach.abs() < 2e-2 * s.delta_max, "{s:?}");
+        assert_eq!(s.plastic_work, 0.0);
+        // Work in = ∫F dδ along the loading points (trapezoid) to the rule's accuracy.
+        let w: f64 = l
+            .loading
+            .windows(2)
+            .map(|p| 0.5 * (p[0].force + p[1].force) * (p[1].approach - p[0].approach))
+            .sum();
+        assert!((w / s.work_in - 1.0).abs() < 2e-2, "{w} vs {}", s.work_in);
+    }
+}
+
+#[test]
+fn a_plastic_loop_meets_its_work_and_balances_its_energy() {
+    let m = Material::copper_fe();
+    let target = 0.5 * m.rho * std::f64::consts::PI * 0.02f64.powi(3) / 6.0;
+    let held = run_loop(&case(m, Support::Held, LoadTo::Work(target))).unwrap();
+    let free = run_loop(&case(
+        m,
+        Support::Free,
+        LoadTo::Force(held.summary.force_at_max),
+    ))
+    .unwrap();
+    for (name, l) in [("held", &held), ("free", &free)] {
+        let s = l.summary;
+        println!("plastic {name}: {s:?}, {} Newton iterations", l.iterations);
+        assert!(s.e > 0.2 && s.e < 0.5, "{s:?}");
+        assert!(s.residual_approach > 0.5 * s.delta_max, "{s:?}");
+        assert!(s.plastic_work > 0.5 * s.work_in, "{s:?}");
+        assert!(s.plastic_work + s.work_returned < s.work_in, "{s:?}");
+    }
+    assert!((held.summary.work_in / target - 1.0).abs() < 1e-6);
+    let (fh, ff) = (held.summary.force_at_max, free.summary.force_at_max);
+    assert!((ff / fh - 1.0).abs() < 1e-6, "{ff} vs {fh}");
+    // The free ball's far field moves too: a larger approach at the same force.
+    assert!(free.summary.delta_max > held.summary.delta_max);
+}
+
+fn twoball() -> Command {
+    Command::new(env!("CARGO_BIN_EXE_twoball"))
+}
+
+#[test]
+fn the_command_writes_the_loop_with_units_and_its_bars() {
+    let out = std::env::temp_dir().join(format!("twoball-static-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&out);
+    let run = twoball()
+        .args([
+            "static",
+            "--level",
+            "1",
+            "--increments",
+            "6",
+            "--to",
+            "approach",
+        ])
+        .args(["--value", "1e-5", "--out"])
+        .arg(&out)
+        .output()
+        .unwrap();
+    let stdout = String::from_utf8_lossy(&run.stdout);
+    assert!(
+        run.status.success(),
+        "{}",
+        String::from_utf8_lossy(&run.stderr)
+    );
+    assert!(stdout.contains("e (quasi-static)"), "{stdout}");
+    let csv = std::fs::read_to_string(out.join("loop.csv")).unwrap();
+    assert_eq!(
+        csv.lines().next().unwrap(),
+        "phase,approach_m,force_N,contact_radius_m,plastic_work_J,stress_work_J"
+    );
+    assert!(csv.lines().any(|l| l.starts_with("unloading,")));
+    let v: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("results.json")).unwrap()).unwrap();
+    let e = &v["estimate"]["e"];
+    assert!(e["finest"].as_f64().unwrap() > 0.0 && e["error"].as_f64().unwrap() >= 0.0);
+    assert_eq!(v["levels"].as_array().unwrap().len(), 2);
+    let _ = std::fs::remove_dir_all(&out);
+}
+
+#[test]
+fn bad_input_gets_one_line() {
+    for (args, needle) in [
+        (vec!["static", "--support", "sideways"], "--support"),
+        (vec!["static", "--to", "speed", "--value", "1"], "--to"),
+        (
+            vec!["static", "--to", "force", "--value", "-3"],
+            "static.force",
+        ),
+        (vec!["static", "--level", "0"], "static.levels"),
+    ] {
+        let run = twoball().args(&args).output().unwrap();
+        let err = String::from_utf8_lossy(&run.stderr);
+        assert!(!run.status.success(), "{args:?}");
+        assert_eq!(err.trim().lines().count(), 1, "{args:?}: {err}");
+        assert!(err.contains(needle), "{args:?}: {err}");
+    }
+}
