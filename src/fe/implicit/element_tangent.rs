@@ -17,8 +17,9 @@ use crate::fe::materials::J2Material;
 pub const INCREMENT_TIME: f64 = 1.0;
 
 /// Relative size of the central-difference step on a nodal displacement (of the element's
-/// characteristic length): about the cube root of the machine epsilon, where truncation and
-/// round-off errors of a central difference balance.
+/// characteristic length): strains of 1e-7, small enough that few integration points
+/// straddle the yield surface (a straddling difference averages the elastic and plastic
+/// slopes), large against the round-off of forces that are sums of stresses of 1e8 Pa.
 const STEP: f64 = 1e-7;
 
 /// The forces (N, whole ring, (r, z) per node) of a quad whose nodes `x0` (m) at the start of
@@ -39,7 +40,7 @@ pub fn increment_forces(
 }
 
 /// The tangent ∂f/∂Δu of [`increment_forces`] (N/m, 8 × 8, row and column 2k + c for node k
-/// and component c = r, z), by central differences of step 5e-6 of the element size.
+/// and component c = r, z), by central differences of step 1e-7 of the element size.
 pub fn increment_tangent(
     form: QuadFormulation,
     mat: &J2Material,

@@ -170,7 +170,12 @@ impl StaticSolver {
     /// Fails (leaving the last converged state) when it still does not: Newton or the active
     /// set not converging, an element inverting, a singular tangent.
     pub fn solve(&mut self, target: &Target) -> Result<Increment> {
-        self.solve_cut(target, 0)
+        let start = self.clone();
+        let done = self.solve_cut(target, 0);
+        if done.is_err() {
+            *self = start;
+        }
+        done
     }
 
     fn solve_cut(&mut self, target: &Target, depth: u32) -> Result<Increment> {
@@ -247,7 +252,7 @@ impl StaticSolver {
             let (eval, rel) =
                 self.newton(&mut du, &constrained, &values, &f_ext, tol, &mut report)?;
             let changes = match plane {
-                Some(p) => self.settle(p, &mut active, &du, &eval.f_int, &f_ext),
+                Some(p) => self.settle(p, &mut active, &du, &eval.f_int, &f_ext, tol),
                 None => 0,
             };
             if changes == 0 {
@@ -379,9 +384,9 @@ impl StaticSolver {
         }
         report.residuals.push(rel);
         Err(Error::Numerical(format!(
-            "static Newton: relative residual {rel:.3e} after {} iterations (tolerance {:.1e}); \
+            "static Newton: relative residual {rel:.3e} after {} iterations (tolerance {tol:.1e}); \
              take smaller increments",
-            self.settings.max_iterations, self.settings.residual_tol
+            self.settings.max_iterations
         )))
     }
 
@@ -435,7 +440,8 @@ impl StaticSolver {
             .collect()
     }
 
-    /// Adds nodes across the plane to the active set and releases nodes the plane pulls;
+    /// Adds nodes across the plane to the active set and releases nodes the plane pulls by
+    /// more than the residual `tol` allows (relative to the largest axial nodal force);
     /// returns the number of changes.
     fn settle(
         &self,
@@ -444,6 +450,7 @@ impl StaticSolver {
         du: &[[f64; 2]],
         f_int: &[[f64; 2]],
         f_ext: &[[f64; 2]],
+        tol: f64,
     ) -> usize {
         let scale = f_int
             .iter()
@@ -455,7 +462,7 @@ impl StaticSolver {
             let z = self.x[i][1] + du[i][1];
             if active[i] {
                 let pressure = plane.pressure_of(f_int[i][1] - f_ext[i][1]);
-                if pressure < -1e-12 * scale {
+                if pressure < -tol.max(1e-12) * scale {
                     active[i] = false;
                     changes += 1;
                 }
@@ -539,9 +546,13 @@ impl StaticSolver {
         self.states.iter().map(|s| s.plastic_work).sum()
     }
 
-    /// Stress work so far (elastic + plastic), J.
-    pub fn internal_energy(&self) -> f64 {
-        self.states.iter().map(|s| s.internal_energy).sum()
+    /// Work of the internal forces so far, J: the stress work ∫σ:dε dV (elastic + plastic)
+    /// and the energy of the hourglass control.
+    pub fn internal_work(&self) -> f64 {
+        self.states
+            .iter()
+            .map(|s| s.internal_energy + s.hourglass_energy)
+            .sum()
     }
 }
 

@@ -32,7 +32,7 @@ pub struct LoopEstimate {
 ///
 /// Errors: a level count outside 2..=3 or a first level below 0; those of [`run_loop`].
 pub fn run_ladder(case: &StaticCase, levels: u32) -> Result<(Vec<StaticLoop>, LoopEstimate)> {
-    if !(2..=3).contains(&levels) || case.level + 1 < levels {
+    if !(2..=3).contains(&levels) || case.level.saturating_add(1) < levels {
         return Err(Error::invalid(
             "static.levels",
             format!("{levels} levels ending at level {}", case.level),
@@ -42,18 +42,22 @@ pub fn run_ladder(case: &StaticCase, levels: u32) -> Result<(Vec<StaticLoop>, Lo
     let loops = (case.level + 1 - levels..=case.level)
         .map(|level| run_loop(&StaticCase { level, ..*case }))
         .collect::<Result<Vec<_>>>()?;
-    let of = |f: fn(&LoopSummary) -> f64| -> Estimate {
+    let of = |name: &str, f: fn(&LoopSummary) -> f64| -> Result<Estimate> {
         let v: Vec<f64> = loops.iter().map(|l| f(&l.summary)).collect();
-        estimate(&v, 2.0).expect("finite values of a loop")
+        estimate(&v, 2.0).ok_or_else(|| {
+            Error::Numerical(format!(
+                "static loop: {name} not finite on every level: {v:?}"
+            ))
+        })
     };
     let est = LoopEstimate {
-        delta_max: of(|s| s.delta_max),
-        force_at_half: of(|s| s.force_at_half),
-        force_at_max: of(|s| s.force_at_max),
-        residual_approach: of(|s| s.residual_approach),
-        work_returned: of(|s| s.work_returned),
-        e: of(|s| s.e),
-        contact_radius: of(|s| s.contact_radius),
+        delta_max: of("delta_max", |s| s.delta_max)?,
+        force_at_half: of("F(delta_max/2)", |s| s.force_at_half)?,
+        force_at_max: of("F(delta_max)", |s| s.force_at_max)?,
+        residual_approach: of("residual approach", |s| s.residual_approach)?,
+        work_returned: of("work returned", |s| s.work_returned)?,
+        e: of("e", |s| s.e)?,
+        contact_radius: of("contact radius", |s| s.contact_radius)?,
     };
     Ok((loops, est))
 }

@@ -12,8 +12,8 @@
 //!
 //! Loading runs to a prescribed approach, force or stored work (the last increment solved
 //! again until it meets the target to 1e-6), unloading to zero force: held, the release
-//! point is bisected; free, the last two points below 1 % of the peak are extrapolated along
-//! F ∝ (δ − δ_res)^{3/2} (the body has no support at zero force).
+//! point is bisected; free, the release is extrapolated along F ∝ (δ − δ_res)^{3/2} through
+//! the last two points, the last at 1 % of the peak (the body has no support at zero force).
 
 use crate::error::{Error, Result};
 use crate::fe::axisym::section::SectionModel;
@@ -94,7 +94,8 @@ pub struct LoopPoint {
     pub contact_radius: f64,
     /// Plastic work, J.
     pub plastic_work: f64,
-    /// Stress work ∫σ:dε dV (elastic + plastic), J.
+    /// Work of the internal forces (stress work ∫σ:dε dV, elastic + plastic, and the
+    /// hourglass control's), J.
     pub stress_work: f64,
 }
 
@@ -245,7 +246,7 @@ impl Rig {
             force: s.contact_force(),
             contact_radius: s.contact_radius(),
             plastic_work: s.plastic_work(),
-            stress_work: s.internal_energy(),
+            stress_work: s.internal_work(),
         }
     }
 }
@@ -322,56 +323,19 @@ fn check(case: &StaticCase) -> Result<()> {
 /// Errors: a bad case, a mesh out of range, a static solve that does not converge.
 pub fn run_loop(case: &StaticCase) -> Result<StaticLoop> {
     check(case)?;
-    let mut rig = Rig::new(case)?;
-    let n = case.increments;
-    let c_est = control_estimate(case);
-    // Loading in equal steps of the control towards the estimate, on in the same steps
-    // past it until the target is met.
-    let control = |k: usize| c_est * k as f64 / n as f64;
-    let mut loading = vec![rig.point()];
-    let mut k = 1;
-    loop {
-        let before = rig.solver.clone();
-        let (c0, p0) = (control(k - 1), *loading.last().expect("a first point"));
-        let c1 = control(k);
-        rig.drive(c1)?;
-        let p1 = rig.point();
-        let (q1, goal) = measure(case.to, &p1);
-        if q1 < goal {
-            loading.push(p1);
-            k += 1;
-            if k > 40 * n {
-                return Err(Error::Numerical(format!(
-                    "static loop: the target {goal:.4e} not reached after {} increments",
-                    40 * n
-                )));
-            }
-            continue;
+    // The loading takes about `increments` steps of the control towards Hertz's estimate;
+    // a ball that meets its target within the first quarter of them (much softer than
+    // Hertz) starts again with the estimate scaled to where the target was met.
+    let mut c_est = control_estimate(case);
+    let (mut rig, loading) = loop {
+        let mut rig = Rig::new(case)?;
+        let loading = load(&mut rig, case, c_est)?;
+        let steps = loading.len() - 1;
+        if 4 * steps >= case.increments {
+            break (rig, loading);
         }
-        // The target lies in (c0, c1]: regula falsi from the state at c0.
-        let (mut lo, mut hi) = ((c0, measure(case.to, &p0).0), (c1, q1));
-        let mut best = (rig.solver.clone(), p1);
-        for _ in 0..30 {
-            let (q, _) = measure(case.to, &best.1);
-            if (q - goal).abs() <= 1e-6 * goal {
-                break;
-            }
-            let c = lo.0 + (goal - lo.1) * (hi.0 - lo.0) / (hi.1 - lo.1);
-            rig.solver = before.clone();
-            rig.drive(c)?;
-            let p = rig.point();
-            let qc = measure(case.to, &p).0;
-            if qc < goal {
-                lo = (c, qc);
-            } else {
-                hi = (c, qc);
-            }
-            best = (rig.solver.clone(), p);
-        }
-        rig.solver = best.0;
-        loading.push(best.1);
-        break;
-    }
+        c_est *= steps as f64 / case.increments as f64;
+    };
     let peak = *loading.last().expect("the peak");
     let c_peak = match case.support {
         Support::Held => peak.approach,
@@ -381,6 +345,12 @@ pub fn run_loop(case: &StaticCase) -> Result<StaticLoop> {
     let end = *unloading.last().expect("the release");
     let work_in = peak.stress_work;
     let work_returned = peak.stress_work - end.stress_work;
+    let e = (work_returned / work_in).sqrt();
+    if !e.is_finite() {
+        return Err(Error::Numerical(format!(
+            "static loop: work returned {work_returned:.4e} J of {work_in:.4e} J in gives no e"
+        )));
+    }
     let summary = LoopSummary {
         delta_max: peak.approach,
         force_at_half: interpolate(&loading, 0.5 * peak.approach),
@@ -388,7 +358,7 @@ pub fn run_loop(case: &StaticCase) -> Result<StaticLoop> {
         residual_approach: end.approach,
         work_in,
         work_returned,
-        e: (work_returned / work_in).max(0.0).sqrt(),
+        e,
         contact_radius: peak.contact_radius,
         plastic_work: end.plastic_work,
     };
@@ -399,6 +369,59 @@ pub fn run_loop(case: &StaticCase) -> Result<StaticLoop> {
         unloading,
         summary,
     })
+}
+
+/// Loads in steps of `c_est` / increments of the control until the target is met, the last
+/// step solved again (Illinois regula falsi from the state before it) until it meets the
+/// target to 1e-6; returns the points from touch to the target.
+fn load(rig: &mut Rig, case: &StaticCase, c_est: f64) -> Result<Vec<LoopPoint>> {
+    let n = case.increments;
+    let control = |k: usize| c_est * k as f64 / n as f64;
+    let mut loading = vec![rig.point()];
+    for k in 1..=40 * n {
+        let before = rig.solver.clone();
+        let p0 = *loading.last().expect("a first point");
+        rig.drive(control(k))?;
+        let p1 = rig.point();
+        let (q1, goal) = measure(case.to, &p1);
+        if q1 < goal {
+            loading.push(p1);
+            continue;
+        }
+        let (mut lo, mut hi) = ((control(k - 1), measure(case.to, &p0).0), (control(k), q1));
+        let mut side = 0i8;
+        let mut last = p1;
+        for _ in 0..40 {
+            if (measure(case.to, &last).0 - goal).abs() <= 1e-6 * goal {
+                loading.push(last);
+                return Ok(loading);
+            }
+            let c = lo.0 + (goal - lo.1) * (hi.0 - lo.0) / (hi.1 - lo.1);
+            rig.solver = before.clone();
+            rig.drive(c)?;
+            last = rig.point();
+            let q = measure(case.to, &last).0;
+            // Illinois: halve the stale end's offset when the same end moves twice.
+            if q < goal {
+                if side == -1 {
+                    hi.1 = goal + 0.5 * (hi.1 - goal);
+                }
+                (lo, side) = ((c, q), -1);
+            } else {
+                if side == 1 {
+                    lo.1 = goal - 0.5 * (goal - lo.1);
+                }
+                (hi, side) = ((c, q), 1);
+            }
+        }
+        return Err(Error::Numerical(format!(
+            "static loop: the last loading increment did not meet the target {goal:.6e} to 1e-6"
+        )));
+    }
+    Err(Error::Numerical(format!(
+        "static loop: the target not reached after {} increments",
+        40 * n
+    )))
 }
 
 /// Unloads from the peak (control `c_peak`) to release; the last point has zero force.
@@ -436,19 +459,17 @@ fn unload(
                     }
                 }
                 rig.solver = before;
-                rig.drive(hi)?;
-                let mut last = rig.point();
-                last.force = 0.0;
-                last.approach = lo;
-                points.push(last);
+                rig.drive(lo)?;
+                points.push(rig.point());
                 return Ok(points);
             }
         }
         Support::Free => {
             // The body force down to 1 % of the peak in steps equal in F^{2/3}, then the
             // release along F ∝ (δ − δ_res)^{3/2} through the last two points.
+            let end = RELEASE_FORCE.powf(2.0 / 3.0);
             for k in 1..=n {
-                let t = 1.0 - 0.99 * k as f64 / n as f64;
+                let t = 1.0 - (1.0 - end) * k as f64 / n as f64;
                 rig.drive(c_peak * t.powf(1.5))?;
                 points.push(rig.point());
             }
@@ -466,9 +487,16 @@ fn unload(
     }
 }
 
+/// The share of the peak force a free ball is unloaded to before its release is
+/// extrapolated.
+const RELEASE_FORCE: f64 = 0.01;
+
 /// The force at approach `delta` on a rising curve, by quadratic interpolation through the
-/// three points around it.
+/// three points around it (NaN with fewer than three points; the loop has at least five).
 fn interpolate(points: &[LoopPoint], delta: f64) -> f64 {
+    if points.len() < 3 {
+        return f64::NAN;
+    }
     let k = points
         .iter()
         .position(|p| p.approach >= delta)
