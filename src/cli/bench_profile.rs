@@ -2,9 +2,8 @@
 //! `study::bench::profile`.
 
 use crate::error::Result;
-use crate::scene::{Override, Scene, DEFAULT_SCENE};
 use clap::Args;
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 /// Arguments of `twoball bench profile`.
 #[derive(Debug, Args)]
@@ -21,14 +20,6 @@ pub struct ProfileArgs {
 
 /// Reads the scene and runs it once with profiling on.
 pub fn profile(a: ProfileArgs) -> Result<()> {
-    let sets = a
-        .sets
-        .iter()
-        .map(|s| Override::parse(s))
-        .collect::<Result<Vec<_>>>()?;
-    let scene = match &a.scene {
-        Some(p) => Scene::from_file(p, &sets)?,
-        None => Scene::from_toml(DEFAULT_SCENE, Path::new("."), &sets)?,
-    };
+    let scene = super::read_scene(a.scene.as_deref(), &a.sets)?;
     crate::study::bench::profile::profile(&scene, a.threads, &mut std::io::stdout().lock())
 }

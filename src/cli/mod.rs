@@ -67,6 +67,23 @@ pub enum Command {
     Static(static_loop::StaticArgs),
 }
 
+/// The scene file `path` (the built-in default scene when `None`) with the `--set`
+/// overrides `sets` applied.
+fn read_scene(
+    path: Option<&std::path::Path>,
+    sets: &[String],
+) -> crate::error::Result<crate::scene::Scene> {
+    use crate::scene::{Override, Scene, DEFAULT_SCENE};
+    let sets = sets
+        .iter()
+        .map(|s| Override::parse(s))
+        .collect::<crate::error::Result<Vec<_>>>()?;
+    match path {
+        Some(p) => Scene::from_file(p, &sets),
+        None => Scene::from_toml(DEFAULT_SCENE, std::path::Path::new("."), &sets),
+    }
+}
+
 /// Whether `arg` takes a number (its value parser is that of a numeric type).
 fn takes_number(arg: &clap::Arg) -> bool {
     let id = arg.get_value_parser().type_id();

@@ -3,7 +3,7 @@
 //! analytical model, optionally with its error bar from a mesh ladder.
 
 use crate::error::{Error, Result};
-use crate::scene::{Override, Scene, DEFAULT_SCENE};
+use crate::scene::Scene;
 use crate::study::convergence::ladder::{LadderPlan, DEFAULT_MAX_REFINEMENTS};
 use crate::study::convergence::scene_estimate::{
     default_plan, run_scene_alone, run_scene_with_estimate,
@@ -92,15 +92,7 @@ fn parse_tolerance(text: &str) -> Result<f64> {
 
 /// Runs `twoball run`.
 pub fn run(a: RunArgs) -> Result<()> {
-    let sets = a
-        .sets
-        .iter()
-        .map(|s| Override::parse(s))
-        .collect::<Result<Vec<_>>>()?;
-    let scene = match &a.scene {
-        Some(p) => Scene::from_file(p, &sets)?,
-        None => Scene::from_toml(DEFAULT_SCENE, Path::new("."), &sets)?,
-    };
+    let scene = super::read_scene(a.scene.as_deref(), &a.sets)?;
     let opts = RunOptions {
         history_rows: 400,
         progress: true,

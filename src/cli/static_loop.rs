@@ -3,13 +3,12 @@
 //! unloading loop of the scene's ball on a rigid plane, with error bars from a mesh ladder.
 
 use crate::error::{Error, Result};
-use crate::scene::{Override, Scene, DEFAULT_SCENE};
 use crate::study::convergence::static_ladder::{case_of_scene, run_ladder, LoopEstimate};
 use crate::study::records::estimate::Estimate;
 use crate::study::run::quasi_static::{LoadTo, StaticCase, StaticLoop, Support};
 use clap::Args;
 use std::fmt::Write as _;
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 /// Arguments of `twoball static`.
 #[derive(Debug, Args)]
@@ -48,15 +47,7 @@ pub struct StaticArgs {
 
 /// Runs `twoball static`.
 pub fn run(a: StaticArgs) -> Result<()> {
-    let sets = a
-        .sets
-        .iter()
-        .map(|s| Override::parse(s))
-        .collect::<Result<Vec<_>>>()?;
-    let scene = match &a.scene {
-        Some(p) => Scene::from_file(p, &sets)?,
-        None => Scene::from_toml(DEFAULT_SCENE, Path::new("."), &sets)?,
-    };
+    let scene = super::read_scene(a.scene.as_deref(), &a.sets)?;
     let support = Support::from_name(&a.support)
         .ok_or_else(|| Error::invalid("--support", &a.support, Support::NAMES.join(" or ")))?;
     let to = match (a.to.as_deref(), a.value) {

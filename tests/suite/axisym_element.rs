@@ -129,13 +129,6 @@ fn rigid_translation_along_the_axis_gives_no_stress() {
     }
 }
 
-/// Radial displacement of Lamé's thick sphere (inner radius a, outer b, inner pressure p):
-/// u(ρ) = p a³ ((1 − 2ν) ρ + (1 + ν) b³ / (2ρ²)) / (E (b³ − a³)).
-fn lame_u(a: f64, b: f64, p: f64, e: f64, nu: f64, rho: f64) -> f64 {
-    p * a.powi(3) * ((1.0 - 2.0 * nu) * rho + (1.0 + nu) * b.powi(3) / (2.0 * rho * rho))
-        / (e * (b.powi(3) - a.powi(3)))
-}
-
 /// Damped dynamic relaxation of the quarter thick sphere under a pressure ramped over
 /// `ramp` s; returns the largest relative error of the radial displacement over the nodes
 /// of the inner and outer surfaces, against `exact(ρ)`.

@@ -14,12 +14,6 @@ use twoball::fe::implicit::plane::RigidPlane;
 use twoball::fe::implicit::static_solver::{Increment, Settings, StaticSolver, Target};
 use twoball::material::Material;
 
-/// Lamé's radial displacement of a thick sphere (inner radius a, outer b, inner pressure p).
-fn lame_u(a: f64, b: f64, p: f64, e: f64, nu: f64, rho: f64) -> f64 {
-    p * a.powi(3) * ((1.0 - 2.0 * nu) * rho + (1.0 + nu) * b.powi(3) / (2.0 * rho * rho))
-        / (e * (b.powi(3) - a.powi(3)))
-}
-
 /// The quarter thick sphere a = 10 mm, b = 20 mm of `nr` x `nc` quads in formulation
 /// `form`, equator held axially, loaded by an inner pressure `p` (Pa) in `steps` equal
 /// increments; returns the solver and each increment's convergence.

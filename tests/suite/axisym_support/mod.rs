@@ -48,6 +48,14 @@ pub fn quarter_annulus(a: f64, b: f64, nr: usize, nc: usize) -> (Vec<[f64; 2]>, 
     })
 }
 
+/// Radial displacement (m) at radius `rho` of Lamé's thick sphere (inner radius a, outer b,
+/// inner pressure p, Young's modulus e, Poisson's ratio nu):
+/// u(ρ) = p a³ ((1 − 2ν) ρ + (1 + ν) b³ / (2ρ²)) / (E (b³ − a³)).
+pub fn lame_u(a: f64, b: f64, p: f64, e: f64, nu: f64, rho: f64) -> f64 {
+    p * a.powi(3) * ((1.0 - 2.0 * nu) * rho + (1.0 + nu) * b.powi(3) / (2.0 * rho * rho))
+        / (e * (b.powi(3) - a.powi(3)))
+}
+
 /// Elastic-perfectly plastic steel-like material (E = 200 GPa, ν = 0.3, σ_y = 400 MPa).
 pub fn perfect_steel() -> Material {
     let mut m = Material::preset("steel").unwrap();
