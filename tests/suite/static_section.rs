@@ -112,10 +112,8 @@ fn lame_thick_sphere_converges_at_order_two_and_newton_quadratically() {
 #[test]
 fn partly_plastic_thick_sphere_matches_hill() {
     let m = perfect_steel();
-    let (a, b, c) = (0.01f64, 0.02f64, 0.015f64);
-    let sy = m.yield_strength;
-    let p = 2.0 * sy * (c / a).ln() + 2.0 * sy / 3.0 * (1.0 - (c / b).powi(3));
-    let ub = sy * c.powi(3) * (1.0 - m.nu) / (m.youngs * b * b);
+    let (p, ub) = hill(&m);
+    let b = 0.02;
     let mut errors = Vec::new();
     for form in forms() {
         let (s, incs) = thick_sphere(16, 24, form, &m, p, 16);

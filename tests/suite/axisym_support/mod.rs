@@ -56,6 +56,18 @@ pub fn lame_u(a: f64, b: f64, p: f64, e: f64, nu: f64, rho: f64) -> f64 {
         / (e * (b.powi(3) - a.powi(3)))
 }
 
+/// Hill's (1950) partly plastic thick sphere a = 10 mm, b = 20 mm of elastic-perfectly
+/// plastic `m` with its plastic zone out to c = 15 mm: the inner pressure
+/// p = 2σ_y ln(c/a) + (2σ_y/3)(1 − c³/b³) (Pa) and the outer surface's displacement
+/// u(b) = σ_y c³ (1 − ν)/(E b²) (m).
+pub fn hill(m: &Material) -> (f64, f64) {
+    let (a, b, c) = (0.01f64, 0.02f64, 0.015f64);
+    let sy = m.yield_strength;
+    let p = 2.0 * sy * (c / a).ln() + 2.0 * sy / 3.0 * (1.0 - (c / b).powi(3));
+    let ub = sy * c.powi(3) * (1.0 - m.nu) / (m.youngs * b * b);
+    (p, ub)
+}
+
 /// Elastic-perfectly plastic steel-like material (E = 200 GPa, ν = 0.3, σ_y = 400 MPa).
 pub fn perfect_steel() -> Material {
     let mut m = Material::preset("steel").unwrap();
