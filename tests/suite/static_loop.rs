@@ -48,7 +48,8 @@ fn an_elastic_loop_returns_its_work_and_leaves_no_dent() {
 #[test]
 fn a_plastic_loop_meets_its_work_and_balances_its_energy() {
     let m = Material::copper_fe();
-    let target = 0.5 * m.rho * std::f64::consts::PI * 0.02f64.powi(3) / 6.0;
+    // The kinetic energy of the ball at 1 m/s.
+    let target = 0.5 * case(m, Support::Held, LoadTo::Work(1.0)).ball_mass();
     let held = run_loop(&case(m, Support::Held, LoadTo::Work(target))).unwrap();
     let free = run_loop(&case(
         m,

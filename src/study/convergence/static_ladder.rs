@@ -3,9 +3,14 @@
 //! with the estimate of [`crate::study::records::estimate`] (two levels: order 2 assumed,
 //! safety factor 3; three: the observed order).
 
+use super::converged_scene::head_on_case;
+use super::phase_ensemble::{hertz_contact_radius, HeadOnTarget};
 use crate::error::{Error, Result};
+use crate::scene::Scene;
 use crate::study::records::estimate::{estimate, Estimate};
-use crate::study::run::quasi_static::{run_loop, LoopSummary, StaticCase, StaticLoop};
+use crate::study::run::quasi_static::{
+    run_loop, LoadTo, LoopSummary, StaticCase, StaticLoop, Support,
+};
 use serde::Serialize;
 
 /// Each number of [`LoopSummary`] with its bar.
@@ -70,15 +75,12 @@ pub fn run_ladder(case: &StaticCase, levels: u32) -> Result<(Vec<StaticLoop>, Lo
 /// Errors: a scene the section does not run head-on (one line saying why); those of the
 /// scene's approach.
 pub fn case_of_scene(
-    scene: &crate::scene::Scene,
-    support: crate::study::run::quasi_static::Support,
-    to: Option<crate::study::run::quasi_static::LoadTo>,
+    scene: &Scene,
+    support: Support,
+    to: Option<LoadTo>,
     level: u32,
     increments: usize,
 ) -> Result<StaticCase> {
-    use super::converged_scene::head_on_case;
-    use super::phase_ensemble::{hertz_contact_radius, HeadOnTarget};
-    use crate::study::run::quasi_static::LoadTo;
     let case = head_on_case(scene, 0.0)?.map_err(|why| {
         Error::invalid(
             "scene",
@@ -90,15 +92,16 @@ pub fn case_of_scene(
         HeadOnTarget::IdenticalBall => case.relative_speed / 2.0,
         HeadOnTarget::RigidWall => case.relative_speed,
     };
-    let mass = case.material.rho * std::f64::consts::PI * case.diameter.powi(3) / 6.0;
-    Ok(StaticCase {
+    let mut loop_case = StaticCase {
         diameter: case.diameter,
         material: case.material,
         formulation: case.formulation,
         support,
-        to: to.unwrap_or(LoadTo::Work(0.5 * mass * speed * speed)),
+        to: LoadTo::Work(0.0),
         sizing_radius: hertz_contact_radius(&case),
         level,
         increments,
-    })
+    };
+    loop_case.to = to.unwrap_or(LoadTo::Work(0.5 * loop_case.ball_mass() * speed * speed));
+    Ok(loop_case)
 }

@@ -15,6 +15,7 @@
 //! point is bisected; free, the release is extrapolated along F ∝ (δ − δ_res)^{3/2} through
 //! the last two points, the last at 1 % of the peak (the body has no support at zero force).
 
+use crate::analytic::hertz::HertzPair;
 use crate::error::{Error, Result};
 use crate::fe::axisym::section::SectionModel;
 use crate::fe::elements::ring::mass::element_masses;
@@ -81,6 +82,13 @@ pub struct StaticCase {
     pub level: u32,
     /// Increments of loading (and as many of unloading), ≥ 4.
     pub increments: usize,
+}
+
+impl StaticCase {
+    /// The ball's mass ρ π D³ / 6, kg.
+    pub fn ball_mass(&self) -> f64 {
+        self.material.rho * std::f64::consts::PI * self.diameter.powi(3) / 6.0
+    }
 }
 
 /// One point of a loop.
@@ -284,9 +292,9 @@ fn measure(to: LoadTo, p: &LoopPoint) -> (f64, f64) {
 /// An estimate of the control value (equator travel or body force) that meets `to`, from
 /// Hertz's elastic law of the ball on a rigid plane.
 fn control_estimate(case: &StaticCase) -> f64 {
-    let r = case.diameter / 2.0;
-    let e_star = case.material.plane_strain_modulus();
-    let k = 4.0 / 3.0 * e_star * r.sqrt();
+    let modulus = case.material.plane_strain_modulus();
+    let hertz = HertzPair::new(modulus, case.diameter / 2.0, case.ball_mass());
+    let k = hertz.stiffness();
     let delta = match case.to {
         LoadTo::Approach(d) => d,
         LoadTo::Force(f) => (f / k).powf(2.0 / 3.0),
@@ -294,7 +302,7 @@ fn control_estimate(case: &StaticCase) -> f64 {
     };
     match case.support {
         Support::Held => delta,
-        Support::Free => k * delta.powf(1.5),
+        Support::Free => hertz.force(delta),
     }
 }
 
