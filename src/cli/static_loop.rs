@@ -37,7 +37,7 @@ pub struct StaticArgs {
     /// Levels of the ladder behind the error bars (2 or 3, the finest --level).
     #[arg(long, default_value_t = 2)]
     pub levels: u32,
-    /// Increments of loading (and of unloading).
+    /// Increments of loading (and of unloading) at level 0; each level doubles them.
     #[arg(long, default_value_t = 20)]
     pub increments: usize,
     /// Folder for loop.csv (the finest level's loop) and results.json.

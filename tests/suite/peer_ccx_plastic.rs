@@ -1,10 +1,13 @@
 //! The independent quasi-static check of the default scene (scripts/ccx_static_plastic.py):
 //! CalculiX loads an axisymmetric copper-fe hemisphere against a rigid plane to the 3D
-//! model's delta_max and unloads it; the 3D model's dynamic loading branch must match the
-//! static force at delta_max / 2 within 2 % (inertia is small there), and the quasi-static e
-//! from the returned work must lie within 5 % of the dynamic e (the dynamic run keeps some
-//! elastic and hourglass energy in the balls, docs/peer.md). Ignored: the ccx run takes
-//! minutes (`cargo test --test suite peer_ccx_plastic:: -- --ignored`). Needs ccx, gmsh and numpy.
+//! model's delta_max (80 increments a step: fewer move the loop by percents, docs/peer.md)
+//! and unloads it. Energy decides: the static loading work to the dynamic delta_max is the
+//! impact energy per ball within 1 % (the waves an impact this slow leaves are smaller), and
+//! the dynamic e lies below the quasi-static one (the vibrations the balls leave with are a
+//! loss the static loop does not have) by at most 1 %. The branches are printed, not
+//! compared point by point: the held hemisphere's delta is its equator's travel, the dynamic
+//! one the approach of the mass centres. Ignored: the ccx run takes minutes
+//! (`cargo test --test suite peer_ccx_plastic:: -- --ignored`). Needs ccx, gmsh and numpy.
 
 use std::path::PathBuf;
 use std::process::Command;
@@ -46,7 +49,7 @@ fn static_ccx_loop_matches_the_dynamic_loading_branch() {
     let out = Command::new("python3")
         .arg(script)
         .args(["--delta-max", &delta_max.to_string(), "--per-a", "10"])
-        .args(["--increments", "10", "--history"])
+        .args(["--increments", "80", "--history"])
         .arg(dir.join("default/history.csv"))
         .arg("--json")
         .arg(&json)
@@ -62,19 +65,17 @@ fn static_ccx_loop_matches_the_dynamic_loading_branch() {
     let r: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
     let num = |k: &str| r[k].as_f64().unwrap();
-    let half = num("F_dynamic_half_N") / num("F_static_half_N") - 1.0;
-    assert!(
-        half.abs() < 0.02,
-        "F at delta_max/2: dynamic/static - 1 = {half}"
-    );
     let e_qs = num("e_quasi_static");
+    let gap = e_dynamic / e_qs - 1.0;
     assert!(
-        (e_qs / e_dynamic - 1.0).abs() < 0.05,
+        (-0.01..=0.001).contains(&gap),
         "e: quasi-static {e_qs}, dynamic {e_dynamic}"
     );
-    // The static loading work of one ball is close to its share of the impact energy.
-    let ke_ball = 0.5 * 7900.0 * 4.0 / 3.0 * std::f64::consts::PI * 0.01f64.powi(3);
-    let w = num("W_load_J") / ke_ball - 1.0;
-    assert!(w.abs() < 0.1, "W_load / (m v^2 / 2) - 1 = {w}");
+    // One ball's share of the 3D mesh's kinetic energy before touch (history.csv, both balls).
+    let history = std::fs::read_to_string(dir.join("default/history.csv")).unwrap();
+    let first = history.lines().nth(1).unwrap();
+    let kinetic: f64 = first.split(',').nth(16).unwrap().parse().unwrap();
+    let w = num("W_load_J") / (0.5 * kinetic) - 1.0;
+    assert!(w.abs() < 0.01, "W_load / (m v^2 / 2) - 1 = {w}");
     let _ = std::fs::remove_dir_all(&dir);
 }

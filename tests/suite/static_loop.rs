@@ -125,6 +125,7 @@ fn bad_input_gets_one_line() {
             "static.force",
         ),
         (vec!["static", "--level", "0"], "static.levels"),
+        (vec!["static", "--increments", "2"], "static.increments"),
     ] {
         let run = twoball().args(&args).output().unwrap();
         let err = String::from_utf8_lossy(&run.stderr);
@@ -132,4 +133,31 @@ fn bad_input_gets_one_line() {
         assert_eq!(err.trim().lines().count(), 1, "{args:?}: {err}");
         assert!(err.contains(needle), "{args:?}: {err}");
     }
+}
+
+/// A loop the solver cannot follow (an approach of half the diameter inverts the pole's
+/// quads however the increment is cut) ends in one line and writes no file.
+#[test]
+fn a_loop_that_cannot_converge_fails_in_one_line_and_writes_nothing() {
+    let out = std::env::temp_dir().join(format!("twoball-static-fail-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&out);
+    let run = twoball()
+        .args([
+            "static",
+            "--increments",
+            "4",
+            "--to",
+            "approach",
+            "--value",
+            "0.01",
+        ])
+        .arg("--out")
+        .arg(&out)
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&run.stderr);
+    assert!(!run.status.success());
+    assert_eq!(err.trim().lines().count(), 1, "{err}");
+    assert!(err.contains("static"), "{err}");
+    assert!(!out.join("loop.csv").exists() && !out.join("results.json").exists());
 }

@@ -4,16 +4,19 @@
 //!
 //! The sparsity pattern (every element block and the diagonal) is fixed by the mesh, so its
 //! ordering and symbolic factorisation ([`Pattern`]) are computed once per solver; a
-//! constraint only changes values. LU, not Cholesky: the tangent of the objective
+//! constraint only changes values. The factorisation is supernodal (dense blocks for the
+//! separators a 2D mesh's elimination creates) and sequential, so a loop's numbers do not
+//! depend on the thread count. LU, not Cholesky: the tangent of the objective
 //! (Hughes-Winget) update is not symmetric away from the reference configuration (its
 //! geometric and rotational terms), so a symmetric factorisation would not be the
 //! consistent tangent.
 
 use crate::error::{Error, Result};
-use faer::prelude::Solve;
-use faer::sparse::linalg::solvers::{Lu, SymbolicLu};
+use faer::dyn_stack::{MemBuffer, MemStack};
+use faer::sparse::linalg::lu::{factorize_symbolic_lu, LuSymbolicParams, NumericLu, SymbolicLu};
+use faer::sparse::linalg::SupernodalThreshold;
 use faer::sparse::{Pair, SparseColMat, SymbolicSparseColMat};
-use faer::Mat;
+use faer::{Conj, Mat, Par};
 
 /// The fixed structure of a mesh's tangent: the entries' positions, their order in the
 /// compressed matrix and the symbolic LU.
@@ -46,7 +49,12 @@ impl Pattern {
         let fail = |e: String| Error::Numerical(format!("static tangent pattern: {e}"));
         let (symbolic, argsort) = SymbolicSparseColMat::try_new_from_indices(n, n, &idx)
             .map_err(|e| fail(format!("{e:?}")))?;
-        let lu = SymbolicLu::try_new(symbolic.as_ref()).map_err(|e| fail(format!("{e:?}")))?;
+        let params = LuSymbolicParams {
+            supernodal_flop_ratio_threshold: SupernodalThreshold::FORCE_SUPERNODAL,
+            ..Default::default()
+        };
+        let lu =
+            factorize_symbolic_lu(symbolic.as_ref(), params).map_err(|e| fail(format!("{e:?}")))?;
         Ok(Pattern {
             dofs: n,
             quads: quads.to_vec(),
@@ -91,13 +99,29 @@ impl Pattern {
         };
         let a = SparseColMat::new_from_argsort(self.symbolic.clone(), &self.argsort, &val)
             .map_err(|e| Error::Numerical(format!("static tangent assembly: {e:?}")))?;
-        let lu = Lu::try_new_with_symbolic(self.lu.clone(), a.as_ref())
+        let scratch = self
+            .lu
+            .factorize_numeric_lu_scratch::<f64>(Par::Seq, Default::default())
+            .or(self.lu.solve_in_place_scratch::<f64>(1, Par::Seq));
+        let mut buffer = MemBuffer::try_new(scratch)
+            .map_err(|_| Error::Numerical("static tangent: out of memory".into()))?;
+        let stack = MemStack::new(&mut buffer);
+        let mut numeric = NumericLu::new();
+        let lu = self
+            .lu
+            .factorize_numeric_lu(
+                &mut numeric,
+                a.as_ref(),
+                Par::Seq,
+                stack,
+                Default::default(),
+            )
             .map_err(|e| singular(format!("{e:?}")))?;
         let mut b = Mat::<f64>::zeros(n, 1);
         for (i, v) in rhs.iter().enumerate() {
             b[(i, 0)] = *v;
         }
-        lu.solve_in_place(b.as_mut());
+        lu.solve_in_place_with_conj(Conj::No, b.as_mut(), Par::Seq, stack);
         let d: Vec<f64> = (0..n).map(|i| b[(i, 0)]).collect();
         if d.iter().any(|v| !v.is_finite()) {
             return Err(singular("a correction that is not finite".into()));

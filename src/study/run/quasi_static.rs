@@ -11,9 +11,10 @@
 //!   pulse is long against the ball's vibration; `--support free`).
 //!
 //! Loading runs to a prescribed approach, force or stored work (the last increment solved
-//! again until it meets the target to 1e-6), unloading to zero force: held, the release
-//! point is bisected; free, the release is extrapolated along F ∝ (δ − δ_res)^{3/2} through
-//! the last two points, the last at 1 % of the peak (the body has no support at zero force).
+//! again until it meets the target to 1e-6), unloading to zero force in steps sized by Hertz's
+//! unloading law through the peak, the release extrapolated along F ∝ (δ − δ_res)^{3/2}
+//! through the last two points (near 1 % of the peak; a free body has no support at zero
+//! force).
 
 use crate::analytic::hertz::HertzPair;
 use crate::error::{Error, Result};
@@ -80,11 +81,19 @@ pub struct StaticCase {
     pub sizing_radius: f64,
     /// Ladder level of the mesh (`mesh::meridian::ladder_ball`).
     pub level: u32,
-    /// Increments of loading (and as many of unloading), ≥ 4.
+    /// Increments of loading (and as many of unloading) at level 0, ≥ 4; each level
+    /// doubles them ([`StaticCase::steps`]), so that a ladder refines the load path with the
+    /// mesh (the return mapping's straight strain path per increment is an error of the
+    /// loop, of order one in the increment).
     pub increments: usize,
 }
 
 impl StaticCase {
+    /// Increments of loading (and of unloading) on this case's level: `increments` · 2^level.
+    pub fn steps(&self) -> usize {
+        self.increments << self.level
+    }
+
     /// The ball's mass ρ π D³ / 6, kg.
     pub fn ball_mass(&self) -> f64 {
         self.material.rho * std::f64::consts::PI * self.diameter.powi(3) / 6.0
@@ -306,6 +315,9 @@ fn control_estimate(case: &StaticCase) -> f64 {
     }
 }
 
+/// The most increments at level 0.
+const MAX_INCREMENTS: usize = 10_000;
+
 /// Checks a case's numbers.
 fn check(case: &StaticCase) -> Result<()> {
     let (name, v) = match case.to {
@@ -316,11 +328,11 @@ fn check(case: &StaticCase) -> Result<()> {
     if !(v.is_finite() && v > 0.0) {
         return Err(Error::invalid(name, v, "> 0, finite"));
     }
-    if case.increments < 4 {
+    if !(4..=MAX_INCREMENTS).contains(&case.increments) {
         return Err(Error::invalid(
             "static.increments",
             case.increments,
-            "at least 4",
+            format!("4 to {MAX_INCREMENTS}"),
         ));
     }
     Ok(())
@@ -339,10 +351,10 @@ pub fn run_loop(case: &StaticCase) -> Result<StaticLoop> {
         let mut rig = Rig::new(case)?;
         let loading = load(&mut rig, case, c_est)?;
         let steps = loading.len() - 1;
-        if 4 * steps >= case.increments {
+        if 4 * steps >= case.steps() {
             break (rig, loading);
         }
-        c_est *= steps as f64 / case.increments as f64;
+        c_est *= steps as f64 / case.steps() as f64;
     };
     let peak = *loading.last().expect("the peak");
     let c_peak = match case.support {
@@ -383,7 +395,7 @@ pub fn run_loop(case: &StaticCase) -> Result<StaticLoop> {
 /// step solved again (Illinois regula falsi from the state before it) until it meets the
 /// target to 1e-6; returns the points from touch to the target.
 fn load(rig: &mut Rig, case: &StaticCase, c_est: f64) -> Result<Vec<LoopPoint>> {
-    let n = case.increments;
+    let n = case.steps();
     let control = |k: usize| c_est * k as f64 / n as f64;
     let mut loading = vec![rig.point()];
     for k in 1..=40 * n {
@@ -433,67 +445,97 @@ fn load(rig: &mut Rig, case: &StaticCase, c_est: f64) -> Result<Vec<LoopPoint>> 
 }
 
 /// Unloads from the peak (control `c_peak`) to release; the last point has zero force.
+///
+/// Both supports step towards the point where Hertz's unloading law through the peak,
+/// F = F_p ((δ − δ_r) / (δ_p − δ_r))^{3/2}, falls to [`RELEASE_FORCE`] of the peak, in steps
+/// equal in F^{2/3} (equal in travel for the held ball, whose recovery δ_p − δ_r = 3 F_p / 2k
+/// comes from the slope k of a probe step), and extrapolate the release along that law
+/// through the last two points. A held step that lets go is halved (up to
+/// [`RELEASE_CUTS`] times), so the points crowd towards the release.
 fn unload(
     rig: &mut Rig,
     case: &StaticCase,
     c_peak: f64,
     peak: LoopPoint,
 ) -> Result<Vec<LoopPoint>> {
-    let n = case.increments;
+    let n = case.steps();
     let mut points = vec![peak];
+    let share = 1.0 - RELEASE_FORCE.powf(2.0 / 3.0);
     match case.support {
         Support::Held => {
-            // Equal steps of travel until the contact lets go, then bisection of the release.
-            let step = c_peak / n as f64;
-            let mut c = c_peak;
-            loop {
+            let probe = PROBE * c_peak;
+            let before = rig.solver.clone();
+            rig.drive(c_peak - probe)?;
+            let slope = (peak.force - rig.point().force) / probe;
+            rig.solver = before;
+            if !(slope > 0.0 && slope.is_finite()) {
+                return Err(Error::Numerical(format!(
+                    "static loop: the force does not fall on unloading (slope {slope:.3e} N/m)"
+                )));
+            }
+            let end = c_peak - share * 1.5 * peak.force / slope;
+            let mut step = (c_peak - end) / n as f64;
+            let (mut c, mut cuts) = (c_peak, 0);
+            while c - end > 1e-6 * step {
+                let next = (c - step).max(end);
                 let before = rig.solver.clone();
-                rig.drive(c - step)?;
+                rig.drive(next)?;
                 let p = rig.point();
                 if p.force > 0.0 {
                     points.push(p);
-                    c -= step;
-                    continue;
+                    c = next;
+                } else if cuts < RELEASE_CUTS {
+                    rig.solver = before;
+                    cuts += 1;
+                    step *= 0.5;
+                } else {
+                    rig.solver = before;
+                    break;
                 }
-                let (mut lo, mut hi) = (c - step, c);
-                for _ in 0..12 {
-                    let mid = 0.5 * (lo + hi);
-                    rig.solver = before.clone();
-                    rig.drive(mid)?;
-                    if rig.point().force > 0.0 {
-                        hi = mid;
-                    } else {
-                        lo = mid;
-                    }
-                }
-                rig.solver = before;
-                rig.drive(lo)?;
-                points.push(rig.point());
-                return Ok(points);
             }
         }
         Support::Free => {
-            // The body force down to 1 % of the peak in steps equal in F^{2/3}, then the
-            // release along F ∝ (δ − δ_res)^{3/2} through the last two points.
-            let end = RELEASE_FORCE.powf(2.0 / 3.0);
             for k in 1..=n {
-                let t = 1.0 - (1.0 - end) * k as f64 / n as f64;
+                let t = 1.0 - share * k as f64 / n as f64;
                 rig.drive(c_peak * t.powf(1.5))?;
                 points.push(rig.point());
             }
-            let (a, b) = (points[points.len() - 2], points[points.len() - 1]);
-            let ratio = (a.force / b.force).powf(2.0 / 3.0);
-            let release = b.approach - (a.approach - b.approach) / (ratio - 1.0);
-            // The elastic work still stored at b along that law, (2/5) F_b (δ_b − δ_res).
-            let mut last = b;
-            last.force = 0.0;
-            last.approach = release;
-            last.stress_work -= 0.4 * b.force * (b.approach - release);
-            points.push(last);
-            Ok(points)
         }
     }
+    let release = release_point(&points)?;
+    points.push(release);
+    Ok(points)
 }
+
+/// The release after the last two unloading points, along F ∝ (δ − δ_res)^{3/2} through
+/// them; its stress work is the last point's less the elastic work (2/5) F (δ − δ_res)
+/// that law still stores there.
+fn release_point(points: &[LoopPoint]) -> Result<LoopPoint> {
+    let (a, b) = match points {
+        [.., a, b] => (*a, *b),
+        _ => unreachable!("the peak and at least one unloading point"),
+    };
+    let ratio = (a.force / b.force).powf(2.0 / 3.0);
+    if !(ratio > 1.0 && ratio.is_finite()) {
+        return Err(Error::Numerical(format!(
+            "static loop: no release after unloading forces {:.4e} and {:.4e} N",
+            a.force, b.force
+        )));
+    }
+    let release = b.approach - (a.approach - b.approach) / (ratio - 1.0);
+    Ok(LoopPoint {
+        force: 0.0,
+        approach: release,
+        stress_work: b.stress_work - 0.4 * b.force * (b.approach - release),
+        ..b
+    })
+}
+
+/// The probe step that measures the unloading stiffness at the peak, of the peak's travel.
+const PROBE: f64 = 1e-4;
+
+/// Halvings of a held unloading step that lets go, before the release is extrapolated.
+const RELEASE_CUTS: u32 = 6;
 
 /// The share of the peak force a free ball is unloaded to before its release is
 /// extrapolated.
