@@ -1,9 +1,11 @@
 //! `twoball run [SCENE] [--out DIR] [--set PATH=VALUE]... [--vtu-ascii] [--error-estimate
-//! [--observed-order]] [--tolerance T [--max-refinements N]]`: one scene, FE beside the
-//! analytical model, optionally with its error bar from a mesh ladder.
+//! [--observed-order]] [--tolerance T [--max-refinements N]] [--compare-static]`: one scene,
+//! FE beside the analytical model, optionally with its error bar from a mesh ladder and its
+//! quasi-static loop.
 
 use crate::error::{Error, Result};
 use crate::scene::Scene;
+use crate::study::convergence::dynamic_static;
 use crate::study::convergence::ladder::{LadderPlan, DEFAULT_MAX_REFINEMENTS};
 use crate::study::convergence::scene_estimate::{
     default_plan, run_scene_alone, run_scene_with_estimate,
@@ -52,6 +54,12 @@ pub struct RunArgs {
     /// meridian section gets by default.
     #[arg(long, conflicts_with_all = ["error_estimate", "tolerance"])]
     pub no_error_estimate: bool,
+    /// Also load the scene's ball quasi-statically (`twoball static --support free`, to the
+    /// kinetic energy it brings) and print both e and δ_max and where the energy went on
+    /// each side (vibration after separation from a run held longer); with --out,
+    /// compare_static.json. Head-on scenes of identical balls or of a ball on a rigid wall.
+    #[arg(long)]
+    pub compare_static: bool,
 }
 
 /// The ladder `--error-estimate`, `--observed-order` and `--tolerance` ask for, else the
@@ -102,6 +110,15 @@ pub fn run(a: RunArgs) -> Result<()> {
     };
     // Everything that can be refused is read before the output folder is made.
     let plan = ladder_plan(&a, &scene)?;
+    if a.compare_static {
+        if let Err(why) = dynamic_static::pair_of(&scene)? {
+            return Err(Error::invalid(
+                "--compare-static",
+                why,
+                "a head-on scene of identical balls or of a ball on a rigid wall",
+            ));
+        }
+    }
     let created = a.out.as_ref().is_some_and(|d| !d.exists());
     if let Some(dir) = &a.out {
         crate::atomic::ensure_dir(dir)?;
@@ -142,6 +159,17 @@ pub fn run(a: RunArgs) -> Result<()> {
             dir.join("results.json").display(),
             dir.join("history.csv").display()
         );
+    }
+    if a.compare_static {
+        let cmp = dynamic_static::run_compare(&report.scene, &report)?;
+        print!("{}", cmp.summary());
+        if let Some(dir) = &a.out {
+            let json = serde_json::to_string_pretty(&cmp)
+                .map_err(|e| Error::Numerical(format!("compare_static.json: {e}")))?;
+            let path = dir.join("compare_static.json");
+            crate::atomic::write_atomic(&path, (json + "\n").as_bytes())?;
+            println!("wrote {}", path.display());
+        }
     }
     Ok(())
 }

@@ -161,3 +161,52 @@ fn a_loop_that_cannot_converge_fails_in_one_line_and_writes_nothing() {
     assert!(err.contains("static"), "{err}");
     assert!(!out.join("loop.csv").exists() && !out.join("results.json").exists());
 }
+
+/// The vibration account of `--compare-static` on an elastic impact: nothing plastic and
+/// nothing locked in (the virial split of the elastic energy after separation finds the
+/// residual state stress-free), and rigid-body, vibration and hourglass energy add up to
+/// the energy before touch within the run's energy error.
+#[test]
+fn an_elastic_impact_leaves_only_vibration() {
+    use twoball::scene::Scene;
+    use twoball::study::convergence::dynamic_static::{energy_after, vibration_hold};
+    use twoball::study::convergence::scene_estimate::run_scene_alone;
+    use twoball::study::run::simulation::RunOptions;
+    let mut scene = Scene::default();
+    scene.ball1.material.yield_strength = 1e12;
+    scene.ball2.material.yield_strength = 1e12;
+    scene.solver.hold_time = Some(vibration_hold(&scene));
+    let opts = RunOptions {
+        history_rows: 2000,
+        ..RunOptions::default()
+    };
+    let run = run_scene_alone(&scene, &opts).unwrap();
+    let fe = run.fe.unwrap();
+    let first = fe.history[0];
+    let mass = 2.0 * first.kinetic / (first.v[0][0].powi(2) + first.v[1][0].powi(2));
+    let d = energy_after(&fe.history, mass).unwrap();
+    println!("{d:?}, energy error {}", fe.energy_error);
+    assert_eq!(d.plastic, 0.0);
+    assert!(d.vibration > 0.0 && d.vibration < 0.05, "{d:?}");
+    assert!(d.locked_elastic.abs() < 0.1 * d.vibration, "{d:?}");
+    let sum = d.rigid_body + d.vibration + d.locked_elastic + d.hourglass;
+    assert!((sum - 1.0).abs() < 2.0 * fe.energy_error + 1e-4, "{sum}");
+    assert!(d.window > 0.9 * vibration_hold(&scene), "{d:?}");
+}
+
+#[test]
+fn compare_static_refuses_an_oblique_scene_in_one_line() {
+    let run = twoball()
+        .args([
+            "run",
+            "--compare-static",
+            "--set",
+            "ball1.velocity=[1.0, 0.3, 0.0]",
+        ])
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&run.stderr);
+    assert!(!run.status.success());
+    assert_eq!(err.trim().lines().count(), 1, "{err}");
+    assert!(err.contains("--compare-static"), "{err}");
+}

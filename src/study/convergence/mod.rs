@@ -6,9 +6,11 @@
 //! - [`converged_scene`]: `--tolerance` on a head-on section scene, on the banded family;
 //! - [`scene_estimate`]: a scene's run with its error bar (default levels, plan, tolerance);
 //! - [`static_ladder`]: a quasi-static loop's numbers with their error bars from a ladder;
+//! - [`dynamic_static`]: a head-on impact beside its quasi-static loop, the gap in energies;
 //! - [`honesty`]: whether the error estimates hold over a set of head-on cases.
 
 pub mod converged_scene;
+pub mod dynamic_static;
 pub mod honesty;
 pub mod ladder;
 pub mod phase_band;

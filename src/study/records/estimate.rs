@@ -97,6 +97,17 @@ impl Estimate {
         self.with_error(self.error.max(floor * self.extrapolated.abs()))
     }
 
+    /// The estimate of k times the quantity (k > 0): values and error scaled, the relative
+    /// error and the order unchanged.
+    pub fn scaled(self, k: f64) -> Estimate {
+        Estimate {
+            finest: k * self.finest,
+            extrapolated: k * self.extrapolated,
+            error: k * self.error,
+            ..self
+        }
+    }
+
     /// The same estimate with its error set to `error` (the quantity's unit, ≥ 0) and the
     /// relative error recomputed against |extrapolated| (None when that is 0).
     pub fn with_error(self, error: f64) -> Estimate {

@@ -391,12 +391,18 @@ pub fn run_loop(case: &StaticCase) -> Result<StaticLoop> {
     })
 }
 
-/// Loads in steps of `c_est` / increments of the control until the target is met, the last
-/// step solved again (Illinois regula falsi from the state before it) until it meets the
-/// target to 1e-6; returns the points from touch to the target.
+/// Loads in steps of the approach of about `c_est` / increments (held: of the travel; free:
+/// of the body force, equal in F^{2/3}, so that the first load is not carried by the pole
+/// node alone) until the target is met, the last step solved again (Illinois regula falsi
+/// from the state before it) until it meets the target to 1e-6; returns the points from touch
+/// to the target.
 fn load(rig: &mut Rig, case: &StaticCase, c_est: f64) -> Result<Vec<LoopPoint>> {
     let n = case.steps();
-    let control = |k: usize| c_est * k as f64 / n as f64;
+    let exponent = match case.support {
+        Support::Held => 1.0,
+        Support::Free => 1.5,
+    };
+    let control = |k: usize| c_est * (k as f64 / n as f64).powf(exponent);
     let mut loading = vec![rig.point()];
     for k in 1..=40 * n {
         let before = rig.solver.clone();

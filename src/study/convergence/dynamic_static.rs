@@ -1,0 +1,312 @@
+//! A head-on impact beside its quasi-static image (`twoball run --compare-static`): the
+//! dynamic e and δ_max with their bars, the free ball's static loop to the same work with
+//! its bars, and where the impact energy ends up on each side, so that the gap in e is
+//! accounted for in energies.
+//!
+//! The static image of a head-on impact is one ball pressed against a rigid plane by the
+//! uniform body force of its own deceleration ([`Support::Free`]), loaded to the kinetic
+//! energy it brings, W_in = ½ m v², and unloaded: e_qs² = W_returned / W_in. The impact
+//! ends with the same split of that energy into plastic work and the elastic energy locked
+//! in by residual stresses, plus what only a dynamic run has: the vibration the ball leaves
+//! with. With E_vib that energy, the quasi-static loop predicts
+//! e_dyn ≈ √(e_qs² − E_vib / KE₀); what remains of the gap is the difference in plastic
+//! work and locked-in energy between the two load paths and both discretisations.
+//!
+//! E_vib is measured on a run held [`HOLD_SHEAR_TRANSITS`] shear-wave transits of the
+//! diameter past separation (about eight periods of the ball's lowest mode): its kinetic
+//! energy less the rigid-body part, K_int, and its elastic energy oscillate about their
+//! means, and for small vibrations about the residual state the two vibration parts have
+//! equal means (virial theorem), so E_vib = 2 ⟨K_int⟩ and the locked-in energy is
+//! ⟨E_el⟩ − ⟨K_int⟩.
+
+use super::converged_scene::head_on_case;
+use super::phase_ensemble::HeadOnTarget;
+use super::scene_estimate::run_scene_alone;
+use super::static_ladder::{case_of_scene, run_ladder, LoopEstimate};
+use crate::error::{Error, Result};
+use crate::scene::Scene;
+use crate::study::records::estimate::{estimate, Estimate};
+use crate::study::run::history::HistoryRow;
+use crate::study::run::quasi_static::{StaticLoop, Support};
+use crate::study::run::scene::RunReport;
+use crate::study::run::simulation::RunOptions;
+use serde::Serialize;
+
+/// The hold after separation of the vibration run, in shear-wave transits D / c_s.
+pub const HOLD_SHEAR_TRANSITS: f64 = 10.0;
+
+/// Where the impact energy is after separation, each a share of the kinetic energy before
+/// touch (of both balls, or of the ball on a wall).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct EnergyAfter {
+    /// Kinetic energy before touch, J.
+    pub initial_kinetic: f64,
+    /// Rigid-body kinetic energy after separation (e² for a head-on impact), share.
+    pub rigid_body: f64,
+    /// Vibration energy 2 ⟨K_int⟩, share.
+    pub vibration: f64,
+    /// Elastic energy locked in by residual stresses ⟨E_el⟩ − ⟨K_int⟩, share.
+    pub locked_elastic: f64,
+    /// Plastic work, share.
+    pub plastic: f64,
+    /// Hourglass energy (the one-point quads' control), share.
+    pub hourglass: f64,
+    /// The window after separation the means are taken over, s.
+    pub window: f64,
+}
+
+/// The split of the loop's work in: returned, plastic, locked in; shares of W_in.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct StaticSplit {
+    /// Work in, J.
+    pub work_in: f64,
+    /// Work returned on unloading (e_qs²), share.
+    pub returned: f64,
+    /// Plastic work, share.
+    pub plastic: f64,
+    /// Elastic energy (and hourglass work) left at release, share.
+    pub locked_elastic: f64,
+}
+
+/// The comparison.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct DynamicStatic {
+    /// The dynamic e (the run's estimate).
+    pub e_dynamic: Estimate,
+    /// The quasi-static e of the free ball.
+    pub e_static: Estimate,
+    /// The dynamic approach of one ball to the mirror plane or the wall, m (half the centres'
+    /// approach for two identical balls).
+    pub delta_dynamic: Estimate,
+    /// The free ball's largest approach, m.
+    pub delta_static: Estimate,
+    /// The dynamic run's energies after separation (one run on the scene's mesh).
+    pub dynamic_energy: EnergyAfter,
+    /// The finest static loop's split.
+    pub static_split: StaticSplit,
+    /// √(e_qs² − E_vib / KE₀).
+    pub e_predicted: f64,
+    /// The static loops' numbers.
+    pub static_estimate: LoopEstimate,
+}
+
+/// The energies after separation of a head-on run's history: rows after the last one with
+/// a contact force. `ball_mass` is each ball's mass, kg (identical balls; the wall's
+/// velocity is zero).
+///
+/// Errors: fewer than ten rows after separation.
+pub fn energy_after(history: &[HistoryRow], ball_mass: f64) -> Result<EnergyAfter> {
+    let first = history
+        .first()
+        .ok_or_else(|| Error::Numerical("compare-static: an empty history".into()))?;
+    let last_contact = history
+        .iter()
+        .rposition(|r| r.normal_force != 0.0)
+        .unwrap_or(0);
+    let window = &history[last_contact + 1..];
+    if window.len() < 10 {
+        return Err(Error::Numerical(format!(
+            "compare-static: {} history rows after separation, at least 10 needed",
+            window.len()
+        )));
+    }
+    let rigid = |r: &HistoryRow| 0.5 * ball_mass * (r.v[0][0].powi(2) + r.v[1][0].powi(2));
+    let mean =
+        |f: &dyn Fn(&HistoryRow) -> f64| window.iter().map(f).sum::<f64>() / window.len() as f64;
+    let k_int = mean(&|r| r.kinetic - rigid(r));
+    let elastic = mean(&|r| r.elastic);
+    let end = window[window.len() - 1];
+    let ke0 = first.kinetic;
+    Ok(EnergyAfter {
+        initial_kinetic: ke0,
+        rigid_body: rigid(&end) / ke0,
+        vibration: 2.0 * k_int / ke0,
+        locked_elastic: (elastic - k_int) / ke0,
+        plastic: end.plastic / ke0,
+        hourglass: mean(&|r| r.hourglass) / ke0,
+        window: end.t - window[0].t,
+    })
+}
+
+/// The split of a loop's work in.
+pub fn static_split(l: &StaticLoop) -> StaticSplit {
+    let s = l.summary;
+    let returned = s.work_returned / s.work_in;
+    let plastic = s.plastic_work / s.work_in;
+    StaticSplit {
+        work_in: s.work_in,
+        returned,
+        plastic,
+        locked_elastic: 1.0 - returned - plastic,
+    }
+}
+
+/// The hold after separation (s) that [`energy_after`] needs for `scene`'s ball 1:
+/// [`HOLD_SHEAR_TRANSITS`] · D / c_s.
+pub fn vibration_hold(scene: &Scene) -> f64 {
+    let m = &scene.ball1.material;
+    HOLD_SHEAR_TRANSITS * scene.ball1.diameter / (m.shear_modulus() / m.rho).sqrt()
+}
+
+/// The static loops of `scene`'s free ball to the work one ball brings (ladder `level`,
+/// two levels, `increments` at level 0).
+///
+/// Errors: those of [`case_of_scene`] and [`run_ladder`].
+pub fn static_image(
+    scene: &Scene,
+    level: u32,
+    increments: usize,
+) -> Result<(Vec<StaticLoop>, LoopEstimate)> {
+    let case = case_of_scene(scene, Support::Free, None, level, increments)?;
+    run_ladder(&case, 2)
+}
+
+/// Ladder level of the static loops (levels 0 and 1, as `twoball static`).
+pub const STATIC_LEVEL: u32 = 1;
+
+/// Increments of the static loops at level 0 (as `twoball static`).
+pub const STATIC_INCREMENTS: usize = 20;
+
+/// The identical-ball count behind one static ball: 2 (the centres approach twice one
+/// ball's travel to the mirror plane) or 1 (a ball on a wall); why not, in one line, for a
+/// scene whose static image is not one ball on a plane.
+///
+/// Errors: those of [`head_on_case`].
+pub fn pair_of(scene: &Scene) -> Result<std::result::Result<f64, String>> {
+    Ok(head_on_case(scene, 0.0)?.map(|case| match case.target {
+        HeadOnTarget::IdenticalBall => 2.0,
+        HeadOnTarget::RigidWall => 1.0,
+    }))
+}
+
+/// The comparison for `scene`, whose dynamic run gave `report`: the vibration run (the
+/// scene's mesh held [`vibration_hold`] past separation) and the free ball's static loops.
+///
+/// Errors: a scene that is not one ball on a plane by symmetry (one line), a report without
+/// an FE outcome; those of the runs.
+pub fn run_compare(scene: &Scene, report: &RunReport) -> Result<DynamicStatic> {
+    let pair = pair_of(scene)?.map_err(|why| {
+        Error::invalid(
+            "--compare-static",
+            why,
+            "a head-on scene of identical balls or of a ball on a rigid wall",
+        )
+    })?;
+    let single = |v: f64| estimate(&[v, v], 2.0).expect("a finite value");
+    let (e, delta) = match (&report.error_estimate, report.e) {
+        (Some(est), _) => (est.e, est.delta_max),
+        (None, Some(e)) => (single(e), single(report.delta_max)),
+        (None, None) => {
+            return Err(Error::Numerical(
+                "compare-static: the dynamic run has no e".into(),
+            ))
+        }
+    };
+    let mut held = scene.clone();
+    held.solver.hold_time = Some(vibration_hold(scene));
+    let quiet = RunOptions {
+        history_rows: 2000,
+        ..RunOptions::default()
+    };
+    let run = run_scene_alone(&held, &quiet)?;
+    let history = run
+        .fe
+        .as_ref()
+        .map(|f| f.history.as_slice())
+        .unwrap_or_default();
+    let first = history.first().ok_or_else(|| {
+        Error::Numerical("compare-static: the vibration run has no history".into())
+    })?;
+    let mass = 2.0 * first.kinetic / (first.v[0][0].powi(2) + first.v[1][0].powi(2));
+    let energy = energy_after(history, mass)?;
+    let (loops, est) = static_image(scene, STATIC_LEVEL, STATIC_INCREMENTS)?;
+    Ok(compare(e, delta, pair, energy, &loops, est))
+}
+
+/// Puts the two sides together. `pair` is 2 for identical balls (δ of the centres is twice
+/// one ball's) and 1 for a ball on a wall.
+pub fn compare(
+    e_dynamic: Estimate,
+    delta_centres: Estimate,
+    pair: f64,
+    dynamic_energy: EnergyAfter,
+    loops: &[StaticLoop],
+    static_estimate: LoopEstimate,
+) -> DynamicStatic {
+    let finest = loops.last().expect("a ladder has loops");
+    let e_static = static_estimate.e;
+    DynamicStatic {
+        e_dynamic,
+        e_static,
+        delta_dynamic: delta_centres.scaled(1.0 / pair),
+        delta_static: static_estimate.delta_max,
+        dynamic_energy,
+        static_split: static_split(finest),
+        e_predicted: (e_static.finest.powi(2) - dynamic_energy.vibration)
+            .max(0.0)
+            .sqrt(),
+        static_estimate,
+    }
+}
+
+impl DynamicStatic {
+    /// The printed comparison.
+    pub fn summary(&self) -> String {
+        let pct = |a: f64, b: f64| 100.0 * (a / b - 1.0);
+        let d = &self.dynamic_energy;
+        let s = &self.static_split;
+        let mut out = String::from(
+            "dynamic against quasi-static (the free ball loaded to the kinetic energy it brings, \
+             then unloaded):\n",
+        );
+        out += &format!(
+            "  e                    dynamic {:.5} ± {:.5}   quasi-static {:.5} ± {:.5}   \
+             dynamic / quasi-static − 1 = {:+.2} %\n",
+            self.e_dynamic.finest,
+            self.e_dynamic.error,
+            self.e_static.finest,
+            self.e_static.error,
+            pct(self.e_dynamic.finest, self.e_static.finest)
+        );
+        out += &format!(
+            "  δ_max of one ball    dynamic {:.5e} ± {:.1e} m   quasi-static {:.5e} ± {:.1e} m   \
+             {:+.2} %\n",
+            self.delta_dynamic.finest,
+            self.delta_dynamic.error,
+            self.delta_static.finest,
+            self.delta_static.error,
+            pct(self.delta_dynamic.finest, self.delta_static.finest)
+        );
+        out += &format!(
+            "  energy after separation (dynamic, scene's mesh, {:.2e} s held), shares of KE₀: \
+             rigid-body {:.5}, vibration {:.5}, locked elastic {:.5}, plastic {:.5}, \
+             hourglass {:.5}\n",
+            d.window, d.rigid_body, d.vibration, d.locked_elastic, d.plastic, d.hourglass
+        );
+        out += &format!(
+            "  quasi-static loop (finest level), shares of W_in: returned {:.5}, locked \
+             elastic {:.5}, plastic {:.5}\n",
+            s.returned, s.locked_elastic, s.plastic
+        );
+        let e_run = d.rigid_body.sqrt();
+        let rest = (s.plastic + s.locked_elastic) - (d.plastic + d.locked_elastic + d.hourglass);
+        out += &format!(
+            "  the two runs' account: e² {:.5} (dynamic run) = {:.5} (quasi-static) − {:.5} \
+             (vibration) {:+.5} (plastic, locked-in and hourglass energy: static less \
+             dynamic) {:+.5} (energy error)\n",
+            d.rigid_body,
+            s.returned,
+            d.vibration,
+            rest,
+            d.rigid_body - (s.returned - d.vibration + rest)
+        );
+        out += &format!(
+            "  e predicted √(e_qs² − E_vib/KE₀) = {:.5} against the dynamic run's {:.5}: \
+             {:+.2} %\n",
+            self.e_predicted,
+            e_run,
+            pct(e_run, self.e_predicted)
+        );
+        out
+    }
+}
