@@ -1,9 +1,13 @@
 //! `twoball static [SCENE] [--support held|free] [--to approach|force|work --value X]
-//! [--level L] [--levels 2|3] [--increments N] [--out DIR]`: the quasi-static loading and
+//! [--level L] [--levels 2|3] [--increments N] [--laws] [--out DIR]`: the quasi-static loading and
 //! unloading loop of the scene's ball on a rigid plane, with error bars from a mesh ladder.
 
+use crate::analytic::laws::Registry;
 use crate::error::{Error, Result};
-use crate::study::convergence::static_ladder::{case_of_scene, run_ladder, LoopEstimate};
+use crate::study::convergence::static_ladder::{
+    case_of_scene, impact_of_scene, run_ladder, LoopEstimate,
+};
+use crate::study::laws_bench::loops::{csv, laws_on_loop, table};
 use crate::study::records::estimate::Estimate;
 use crate::study::run::quasi_static::{LoadTo, StaticCase, StaticLoop, Support};
 use clap::Args;
@@ -43,6 +47,11 @@ pub struct StaticArgs {
     /// Folder for loop.csv (the finest level's loop) and results.json.
     #[arg(long)]
     pub out: Option<PathBuf>,
+    /// Also set every normal contact law's quasi-static curve (default parameters, approach
+    /// rate 0) beside the finest loop: RMS force error of loading and unloading; with --out,
+    /// laws.csv.
+    #[arg(long)]
+    pub laws: bool,
 }
 
 /// Runs `twoball static`.
@@ -63,9 +72,27 @@ pub fn run(a: StaticArgs) -> Result<()> {
     let (loops, est) = run_ladder(&case, a.levels)?;
     let finest = loops.last().expect("at least two levels");
     print!("{}", summary(&case, &loops, &est));
+    let laws = if a.laws {
+        let (speed, wall) = impact_of_scene(&scene)?;
+        let laws = laws_on_loop(
+            finest,
+            case.material,
+            case.diameter,
+            speed,
+            wall,
+            &Registry::builtin(),
+        )?;
+        print!("{}", table(&laws));
+        Some(laws)
+    } else {
+        None
+    };
     if let Some(dir) = &a.out {
         crate::atomic::ensure_dir(dir)?;
         crate::atomic::write_atomic(dir.join("loop.csv"), loop_csv(finest).as_bytes())?;
+        if let Some(laws) = &laws {
+            crate::atomic::write_atomic(dir.join("laws.csv"), csv(finest, laws).as_bytes())?;
+        }
         let json = results_json(&case, &loops, &est)?;
         crate::atomic::write_atomic(dir.join("results.json"), json.as_bytes())?;
         println!("wrote {}", dir.display());

@@ -210,3 +210,28 @@ fn compare_static_refuses_an_oblique_scene_in_one_line() {
     assert_eq!(err.trim().lines().count(), 1, "{err}");
     assert!(err.contains("--compare-static"), "{err}");
 }
+
+/// `twoball static --laws` on an elastic loop: Hertz's law is the continuum's for a small
+/// contact, so its loading and unloading curves meet the free ball's loop within the finite
+/// ball's excess (a few tenths of a percent per percent of a/R, docs/contact-penalty.md), and
+/// no law with a yield point leaves a dent below it (Walton-Braun's fixed unloading stiffness
+/// ratio is hysteretic at any load).
+#[test]
+fn hertz_meets_an_elastic_loop() {
+    use twoball::analytic::laws::Registry;
+    use twoball::study::laws_bench::loops::laws_on_loop;
+    let mut m = Material::copper_fe();
+    m.yield_strength = 1e12;
+    let l = run_loop(&case(m, Support::Free, LoadTo::Approach(1.5e-5))).unwrap();
+    let laws = laws_on_loop(&l, m, 0.02, 1.0, false, &Registry::builtin()).unwrap();
+    let hertz = laws.iter().find(|x| x.law == "hertz").unwrap();
+    println!("{hertz:?}");
+    // a/R = √(δ/R) ≈ 0.04 here: the finite ball is about 4 % stiffer than Hertz.
+    assert!(hertz.loading_rms < 0.05, "{hertz:?}");
+    assert!(hertz.unloading_rms < 0.05, "{hertz:?}");
+    assert!((hertz.peak_ratio - 1.0).abs() < 0.06, "{hertz:?}");
+    assert!((hertz.peak_ratio - 1.0).abs() > 0.0);
+    for law in laws.iter().filter(|x| x.law != "walton-braun") {
+        assert!(law.residual_approach.abs() < 1e-12, "{law:?}");
+    }
+}

@@ -67,6 +67,24 @@ pub fn run_ladder(case: &StaticCase, levels: u32) -> Result<(Vec<StaticLoop>, Lo
     Ok((loops, est))
 }
 
+/// The approach speed v_r (m/s) of a head-on `scene` whose static image is one ball on a
+/// plane, and whether its partner is a rigid wall (else an identical ball).
+///
+/// Errors: as [`case_of_scene`].
+pub fn impact_of_scene(scene: &Scene) -> Result<(f64, bool)> {
+    let case = head_on_case(scene, 0.0)?.map_err(|why| {
+        Error::invalid(
+            "scene",
+            why,
+            "a head-on scene of identical balls or of a ball on a rigid wall",
+        )
+    })?;
+    Ok((
+        case.relative_speed,
+        matches!(case.target, HeadOnTarget::RigidWall),
+    ))
+}
+
 /// The loop case of a head-on `scene` (identical balls, or a ball on a rigid wall): its ball
 /// on a rigid plane, its section element, the mesh sized from Hertz's contact radius of the
 /// impact, loaded to `to` or, when `None`, to the kinetic energy one ball brings to the plane

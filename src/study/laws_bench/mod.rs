@@ -8,6 +8,7 @@
 //! - [`similarity`]: which head-on points are scaled from another diameter;
 //! - [`cache`]: one JSON per FE point, reused, written as each finishes, run in parallel;
 //! - [`law_side`]: the laws on the same points;
+//! - [`loops`]: the laws' quasi-static curves against an FE loop (`twoball static --laws`);
 //! - [`bars`]: the FE error bars in e per metal and the laws within them;
 //! - [`ranking`]: each law's errors against FE and the ranking;
 //! - [`calibrated`]: the damped laws calibrated at one point per metal and ranked;
@@ -21,6 +22,7 @@ pub mod fe;
 pub mod figures;
 pub mod fit;
 pub mod law_side;
+pub mod loops;
 pub mod matrix;
 pub mod ranking;
 pub mod report;
