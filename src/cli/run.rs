@@ -10,6 +10,7 @@ use crate::study::convergence::ladder::{LadderPlan, DEFAULT_MAX_REFINEMENTS};
 use crate::study::convergence::scene_estimate::{
     default_plan, run_scene_alone, run_scene_with_estimate,
 };
+use crate::study::convergence::static_ladder::impact_of_scene;
 use crate::study::run::scene::{side_by_side, write_outputs};
 use crate::study::run::simulate::RunOptions;
 use clap::Args;
@@ -111,13 +112,7 @@ pub fn run(a: RunArgs) -> Result<()> {
     // Everything that can be refused is read before the output folder is made.
     let plan = ladder_plan(&a, &scene)?;
     if a.compare_static {
-        if let Err(why) = dynamic_static::pair_of(&scene)? {
-            return Err(Error::invalid(
-                "--compare-static",
-                why,
-                "a head-on scene of identical balls or of a ball on a rigid wall",
-            ));
-        }
+        impact_of_scene(&scene)?;
     }
     let created = a.out.as_ref().is_some_and(|d| !d.exists());
     if let Some(dir) = &a.out {

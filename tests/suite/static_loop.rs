@@ -208,7 +208,7 @@ fn compare_static_refuses_an_oblique_scene_in_one_line() {
     let err = String::from_utf8_lossy(&run.stderr);
     assert!(!run.status.success());
     assert_eq!(err.trim().lines().count(), 1, "{err}");
-    assert!(err.contains("--compare-static"), "{err}");
+    assert!(err.contains("head-on"), "{err}");
 }
 
 /// `twoball static --laws` on an elastic loop: Hertz's law is the continuum's for a small

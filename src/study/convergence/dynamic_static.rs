@@ -19,10 +19,8 @@
 //! equal means (virial theorem), so E_vib = 2 ⟨K_int⟩ and the locked-in energy is
 //! ⟨E_el⟩ − ⟨K_int⟩.
 
-use super::converged_scene::head_on_case;
-use super::phase_ensemble::HeadOnTarget;
 use super::scene_estimate::run_scene_alone;
-use super::static_ladder::{case_of_scene, run_ladder, LoopEstimate};
+use super::static_ladder::{case_of_scene, impact_of_scene, run_ladder, LoopEstimate};
 use crate::error::{Error, Result};
 use crate::scene::Scene;
 use crate::study::records::estimate::{estimate, Estimate};
@@ -167,31 +165,15 @@ pub const STATIC_LEVEL: u32 = 1;
 /// Increments of the static loops at level 0 (as `twoball static`).
 pub const STATIC_INCREMENTS: usize = 20;
 
-/// The identical-ball count behind one static ball: 2 (the centres approach twice one
-/// ball's travel to the mirror plane) or 1 (a ball on a wall); why not, in one line, for a
-/// scene whose static image is not one ball on a plane.
-///
-/// Errors: those of [`head_on_case`].
-pub fn pair_of(scene: &Scene) -> Result<std::result::Result<f64, String>> {
-    Ok(head_on_case(scene, 0.0)?.map(|case| match case.target {
-        HeadOnTarget::IdenticalBall => 2.0,
-        HeadOnTarget::RigidWall => 1.0,
-    }))
-}
-
 /// The comparison for `scene`, whose dynamic run gave `report`: the vibration run (the
 /// scene's mesh held [`vibration_hold`] past separation) and the free ball's static loops.
 ///
-/// Errors: a scene that is not one ball on a plane by symmetry (one line), a report without
-/// an FE outcome; those of the runs.
+/// Errors: a scene that is not one ball on a plane by symmetry (one line naming `scene`), a
+/// report without an FE outcome; those of the runs.
 pub fn run_compare(scene: &Scene, report: &RunReport) -> Result<DynamicStatic> {
-    let pair = pair_of(scene)?.map_err(|why| {
-        Error::invalid(
-            "--compare-static",
-            why,
-            "a head-on scene of identical balls or of a ball on a rigid wall",
-        )
-    })?;
+    let (_, wall) = impact_of_scene(scene)?;
+    // The centres of two identical balls approach by twice one ball's travel.
+    let pair = if wall { 1.0 } else { 2.0 };
     let single = |v: f64| estimate(&[v, v], 2.0).expect("a finite value");
     let (e, delta) = match (&report.error_estimate, report.e) {
         (Some(est), _) => (est.e, est.delta_max),

@@ -4,7 +4,7 @@
 //! safety factor 3; three: the observed order).
 
 use super::converged_scene::head_on_case;
-use super::phase_ensemble::{hertz_contact_radius, HeadOnTarget};
+use super::phase_ensemble::{hertz_contact_radius, HeadOnCase, HeadOnTarget};
 use crate::error::{Error, Result};
 use crate::scene::Scene;
 use crate::study::records::estimate::{estimate, Estimate};
@@ -67,18 +67,26 @@ pub fn run_ladder(case: &StaticCase, levels: u32) -> Result<(Vec<StaticLoop>, Lo
     Ok((loops, est))
 }
 
-/// The approach speed v_r (m/s) of a head-on `scene` whose static image is one ball on a
-/// plane, and whether its partner is a rigid wall (else an identical ball).
+/// The head-on case of a `scene` whose static image is one ball on a plane (identical
+/// balls, or a ball on a rigid wall).
 ///
-/// Errors: as [`case_of_scene`].
-pub fn impact_of_scene(scene: &Scene) -> Result<(f64, bool)> {
-    let case = head_on_case(scene, 0.0)?.map_err(|why| {
+/// Errors: any other scene (one line saying why); those of the scene's approach.
+fn static_image_of(scene: &Scene) -> Result<HeadOnCase> {
+    head_on_case(scene, 0.0)?.map_err(|why| {
         Error::invalid(
             "scene",
             why,
             "a head-on scene of identical balls or of a ball on a rigid wall",
         )
-    })?;
+    })
+}
+
+/// The approach speed v_r (m/s) of a head-on `scene` whose static image is one ball on a
+/// plane, and whether its partner is a rigid wall (else an identical ball).
+///
+/// Errors: as [`case_of_scene`].
+pub fn impact_of_scene(scene: &Scene) -> Result<(f64, bool)> {
+    let case = static_image_of(scene)?;
     Ok((
         case.relative_speed,
         matches!(case.target, HeadOnTarget::RigidWall),
@@ -99,13 +107,7 @@ pub fn case_of_scene(
     level: u32,
     increments: usize,
 ) -> Result<StaticCase> {
-    let case = head_on_case(scene, 0.0)?.map_err(|why| {
-        Error::invalid(
-            "scene",
-            why,
-            "a head-on scene of identical balls or of a ball on a rigid wall",
-        )
-    })?;
+    let case = static_image_of(scene)?;
     let speed = match case.target {
         HeadOnTarget::IdenticalBall => case.relative_speed / 2.0,
         HeadOnTarget::RigidWall => case.relative_speed,
