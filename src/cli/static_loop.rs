@@ -5,7 +5,7 @@
 use crate::analytic::laws::Registry;
 use crate::error::{Error, Result};
 use crate::study::convergence::static_ladder::{
-    case_of_scene, impact_of_scene, run_ladder, LoopEstimate,
+    case_of_scene, impact_of_scene, run_loop_ladder, LoopEstimate,
 };
 use crate::study::laws_bench::loops::{csv, laws_on_loop, table};
 use crate::study::records::estimate::Estimate;
@@ -69,7 +69,7 @@ pub fn run(a: StaticArgs) -> Result<()> {
         }
     };
     let case = case_of_scene(&scene, support, to, a.level, a.increments)?;
-    let (loops, est) = run_ladder(&case, a.levels)?;
+    let (loops, est) = run_loop_ladder(&case, a.levels)?;
     let finest = loops.last().expect("at least two levels");
     print!("{}", summary(&case, &loops, &est));
     let laws = if a.laws {

@@ -20,7 +20,7 @@
 //! ⟨E_el⟩ − ⟨K_int⟩.
 
 use super::scene_estimate::run_scene_alone;
-use super::static_ladder::{case_of_scene, impact_of_scene, run_ladder, LoopEstimate};
+use super::static_ladder::{case_of_scene, impact_of_scene, run_loop_ladder, LoopEstimate};
 use crate::error::{Error, Result};
 use crate::scene::Scene;
 use crate::study::records::estimate::{estimate, Estimate};
@@ -149,14 +149,14 @@ pub fn vibration_hold(scene: &Scene) -> f64 {
 /// The static loops of `scene`'s free ball to the work one ball brings (ladder `level`,
 /// two levels, `increments` at level 0).
 ///
-/// Errors: those of [`case_of_scene`] and [`run_ladder`].
+/// Errors: those of [`case_of_scene`] and [`run_loop_ladder`].
 pub fn static_image(
     scene: &Scene,
     level: u32,
     increments: usize,
 ) -> Result<(Vec<StaticLoop>, LoopEstimate)> {
     let case = case_of_scene(scene, Support::Free, None, level, increments)?;
-    run_ladder(&case, 2)
+    run_loop_ladder(&case, 2)
 }
 
 /// Ladder level of the static loops (levels 0 and 1, as `twoball static`).

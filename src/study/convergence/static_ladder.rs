@@ -36,7 +36,7 @@ pub struct LoopEstimate {
 /// and the estimate of each number. `levels` is 2 or 3.
 ///
 /// Errors: a level count outside 2..=3 or a first level below 0; those of [`run_loop`].
-pub fn run_ladder(case: &StaticCase, levels: u32) -> Result<(Vec<StaticLoop>, LoopEstimate)> {
+pub fn run_loop_ladder(case: &StaticCase, levels: u32) -> Result<(Vec<StaticLoop>, LoopEstimate)> {
     if !(2..=3).contains(&levels) || case.level.saturating_add(1) < levels {
         return Err(Error::invalid(
             "static.levels",
