@@ -16,8 +16,8 @@ use crate::tool_support as tools;
 
 #[test]
 #[ignore = "CalculiX loading-unloading loop: minutes"]
-fn static_ccx_loop_matches_the_dynamic_loading_branch() {
-    let test = "static_ccx_loop_matches_the_dynamic_loading_branch";
+fn static_ccx_loop_meets_the_dynamic_energy() {
+    let test = "static_ccx_loop_meets_the_dynamic_energy";
     if !tools::require(tools::ccx(), test, "ccx (CalculiX)")
         || !tools::require(tools::gmsh(), test, "gmsh")
         || !tools::require(tools::python("numpy"), test, "python3 with numpy")
