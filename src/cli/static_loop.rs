@@ -5,7 +5,8 @@
 use crate::analytic::laws::Registry;
 use crate::error::{Error, Result};
 use crate::study::convergence::static_ladder::{
-    case_of_scene, impact_of_scene, run_loop_ladder, LoopEstimate,
+    case_of_scene, impact_of_scene, run_loop_ladder, LoopEstimate, DEFAULT_INCREMENTS,
+    DEFAULT_LEVEL,
 };
 use crate::study::laws_bench::loops::{csv, laws_on_loop, table};
 use crate::study::records::estimate::Estimate;
@@ -36,13 +37,13 @@ pub struct StaticArgs {
     pub value: Option<f64>,
     /// Finest ladder level (0 = six pole cells per Hertz contact radius; each level halves
     /// every length).
-    #[arg(long, default_value_t = 1)]
+    #[arg(long, default_value_t = DEFAULT_LEVEL)]
     pub level: u32,
     /// Levels of the ladder behind the error bars (2 or 3, the finest --level).
     #[arg(long, default_value_t = 2)]
     pub levels: u32,
     /// Increments of loading (and of unloading) at level 0; each level doubles them.
-    #[arg(long, default_value_t = 20)]
+    #[arg(long, default_value_t = DEFAULT_INCREMENTS)]
     pub increments: usize,
     /// Folder for loop.csv (the finest level's loop) and results.json.
     #[arg(long)]

@@ -20,7 +20,10 @@
 //! ⟨E_el⟩ − ⟨K_int⟩.
 
 use super::scene_estimate::run_scene_alone;
-use super::static_ladder::{case_of_scene, impact_of_scene, run_loop_ladder, LoopEstimate};
+use super::static_ladder::{
+    case_of_scene, impact_of_scene, run_loop_ladder, LoopEstimate, DEFAULT_INCREMENTS,
+    DEFAULT_LEVEL,
+};
 use crate::error::{Error, Result};
 use crate::scene::Scene;
 use crate::study::records::estimate::{estimate, Estimate};
@@ -89,14 +92,15 @@ pub struct DynamicStatic {
 }
 
 /// The energies after separation of a head-on run's history: rows after the last one with
-/// a contact force. `ball_mass` is each ball's mass, kg (identical balls; the wall's
-/// velocity is zero).
+/// a contact force. The balls are identical (or ball 2 is a wall, at rest); each ball's mass
+/// comes from the first row, whose motion is rigid: m = 2 K / (v₁² + v₂²).
 ///
-/// Errors: fewer than ten rows after separation.
-pub fn energy_after(history: &[HistoryRow], ball_mass: f64) -> Result<EnergyAfter> {
+/// Errors: an empty history, fewer than ten rows after separation.
+pub fn energy_after(history: &[HistoryRow]) -> Result<EnergyAfter> {
     let first = history
         .first()
         .ok_or_else(|| Error::Numerical("compare-static: an empty history".into()))?;
+    let ball_mass = 2.0 * first.kinetic / (first.v[0][0].powi(2) + first.v[1][0].powi(2));
     let last_contact = history
         .iter()
         .rposition(|r| r.normal_force != 0.0)
@@ -159,12 +163,6 @@ pub fn static_image(
     run_loop_ladder(&case, 2)
 }
 
-/// Ladder level of the static loops (levels 0 and 1, as `twoball static`).
-pub const STATIC_LEVEL: u32 = 1;
-
-/// Increments of the static loops at level 0 (as `twoball static`).
-pub const STATIC_INCREMENTS: usize = 20;
-
 /// The comparison for `scene`, whose dynamic run gave `report`: the vibration run (the
 /// scene's mesh held [`vibration_hold`] past separation) and the free ball's static loops.
 ///
@@ -196,12 +194,8 @@ pub fn run_compare(scene: &Scene, report: &RunReport) -> Result<DynamicStatic> {
         .as_ref()
         .map(|f| f.history.as_slice())
         .unwrap_or_default();
-    let first = history.first().ok_or_else(|| {
-        Error::Numerical("compare-static: the vibration run has no history".into())
-    })?;
-    let mass = 2.0 * first.kinetic / (first.v[0][0].powi(2) + first.v[1][0].powi(2));
-    let energy = energy_after(history, mass)?;
-    let (loops, est) = static_image(scene, STATIC_LEVEL, STATIC_INCREMENTS)?;
+    let energy = energy_after(history)?;
+    let (loops, est) = static_image(scene, DEFAULT_LEVEL, DEFAULT_INCREMENTS)?;
     Ok(compare(e, delta, pair, energy, &loops, est))
 }
 

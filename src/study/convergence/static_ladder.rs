@@ -13,6 +13,13 @@ use crate::study::run::quasi_static::{
 };
 use serde::Serialize;
 
+/// The finest ladder level of a loop unless asked otherwise (levels 0 and 1 behind the
+/// bars).
+pub const DEFAULT_LEVEL: u32 = 1;
+
+/// Increments of loading at level 0 unless asked otherwise ([`StaticCase::increments`]).
+pub const DEFAULT_INCREMENTS: usize = 20;
+
 /// Each number of [`LoopSummary`] with its bar.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct LoopEstimate {
@@ -112,7 +119,7 @@ pub fn case_of_scene(
         HeadOnTarget::IdenticalBall => case.relative_speed / 2.0,
         HeadOnTarget::RigidWall => case.relative_speed,
     };
-    let mut loop_case = StaticCase {
+    let loop_case = StaticCase {
         diameter: case.diameter,
         material: case.material,
         formulation: case.formulation,
@@ -122,6 +129,9 @@ pub fn case_of_scene(
         level,
         increments,
     };
-    loop_case.to = to.unwrap_or(LoadTo::Work(0.5 * loop_case.ball_mass() * speed * speed));
-    Ok(loop_case)
+    let work = LoadTo::Work(0.5 * loop_case.ball_mass() * speed * speed);
+    Ok(StaticCase {
+        to: to.unwrap_or(work),
+        ..loop_case
+    })
 }

@@ -309,6 +309,19 @@ mod tests {
         assert!(inside == n, "{inside} of {n} inside");
     }
 
+    /// Scaling a quantity (a unit change, one ball's share) scales its values and bar and
+    /// keeps its relative error and order.
+    #[test]
+    fn a_scaled_estimate_keeps_its_relative_error() {
+        let e = estimate(&[1.0, 1.1, 1.12], 2.0).unwrap();
+        let h = e.scaled(0.5);
+        assert_eq!(h.finest, 0.5 * e.finest);
+        assert_eq!(h.extrapolated, 0.5 * e.extrapolated);
+        assert_eq!(h.error, 0.5 * e.error);
+        let (r, rh) = (e.relative_error.unwrap(), h.relative_error.unwrap());
+        assert!((r - rh).abs() < 1e-15 && h.observed_order == e.observed_order);
+    }
+
     #[test]
     fn degenerate_ladders_give_flags_not_nan() {
         let e = estimate(&[2.0, 2.0, 2.0], 2.0).unwrap();

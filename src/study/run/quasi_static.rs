@@ -517,10 +517,12 @@ fn unload(
 /// them; its stress work is the last point's less the elastic work (2/5) F (δ − δ_res)
 /// that law still stores there.
 fn release_point(points: &[LoopPoint]) -> Result<LoopPoint> {
-    let (a, b) = match points {
-        [.., a, b] => (*a, *b),
-        _ => unreachable!("the peak and at least one unloading point"),
+    let [.., a, b] = points else {
+        return Err(Error::Numerical(
+            "static loop: the contact let go within the first unloading step".into(),
+        ));
     };
+    let (a, b) = (*a, *b);
     let ratio = (a.force / b.force).powf(2.0 / 3.0);
     if !(ratio > 1.0 && ratio.is_finite()) {
         return Err(Error::Numerical(format!(
@@ -543,8 +545,8 @@ const PROBE: f64 = 1e-4;
 /// Halvings of a held unloading step that lets go, before the release is extrapolated.
 const RELEASE_CUTS: u32 = 6;
 
-/// The share of the peak force a free ball is unloaded to before its release is
-/// extrapolated.
+/// The share of the peak force a loop is unloaded to (about, for the held ball) before its
+/// release is extrapolated.
 const RELEASE_FORCE: f64 = 0.01;
 
 /// The force at approach `delta` on a rising curve, by quadratic interpolation through the
