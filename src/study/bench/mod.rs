@@ -24,6 +24,7 @@ use crate::atomic::{ensure_dir, write_atomic};
 use crate::error::{Error, Result};
 use crate::scene::{Formulation, Override, Scene};
 use crate::study::common::plots::{Chart, Series, Style};
+use crate::study::records::case_cache::{CaseCache, Layout};
 use crate::study::run::scene::run_scene;
 use serde::{Deserialize, Serialize};
 use std::fmt::Write as _;
@@ -306,19 +307,15 @@ pub fn run_ladder(
     mut progress: impl FnMut(&Measured, bool),
 ) -> Result<Vec<Measured>> {
     let base = Scene::from_toml(toml, scene_dir, &[])?;
-    let cases = dir.join("cases");
-    ensure_dir(&cases)?;
+    let cases = CaseCache::new(dir.join("cases"));
+    ensure_dir(cases.dir())?;
     let mut out = Vec::new();
     for s in ladder.settings() {
-        let path = cases.join(format!("{}.json", s.file_stem()));
-        if let Ok(text) = std::fs::read_to_string(&path) {
-            if let Ok(m) = serde_json::from_str::<Measured>(&text) {
-                if m.setting == s {
-                    progress(&m, true);
-                    out.push(m);
-                    continue;
-                }
-            }
+        let key = s.file_stem();
+        if let Some(m) = cases.read(&key, |m: &Measured| m.setting == s) {
+            progress(&m, true);
+            out.push(m);
+            continue;
         }
         let scene = scene_for(&base, toml, scene_dir, &s)?;
         let opts = crate::study::run::simulate::RunOptions {
@@ -341,9 +338,7 @@ pub fn run_ladder(
             contact_duration: fe.outcome.contact_duration,
             energy_error: fe.energy_error,
         };
-        let json = serde_json::to_string_pretty(&m)
-            .map_err(|e| Error::Parse(format!("bench case: {e}")))?;
-        write_atomic(&path, json.as_bytes())?;
+        cases.write(&key, &m, Layout::Pretty)?;
         progress(&m, false);
         out.push(m);
     }

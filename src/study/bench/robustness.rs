@@ -22,6 +22,7 @@
 
 use crate::atomic::{ensure_dir, remove_stale_temporaries, write_atomic};
 use crate::error::{Error, Result};
+use crate::study::records::case_cache::{CaseCache, Layout};
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
@@ -341,16 +342,13 @@ pub struct StressCounts {
     pub silent: usize,
 }
 
-/// Path of a case record.
-fn record_path(out: &Path, id: &str) -> PathBuf {
-    out.join("cases").join(format!("{id}.json"))
+/// The cache of finished case records in `out` (`out/cases/ID.json`).
+fn records(out: &Path) -> CaseCache {
+    CaseCache::new(out.join("cases"))
 }
 
 fn read_record(out: &Path, id: &str) -> Option<StressRecord> {
-    let t = std::fs::read_to_string(record_path(out, id)).ok()?;
-    serde_json::from_str::<StressRecord>(&t)
-        .ok()
-        .filter(|r| r.id == id)
+    records(out).read(id, |r: &StressRecord| r.id == id)
 }
 
 /// Whether a CSV text holds a non-finite number (`NaN`, `inf`).
@@ -634,9 +632,7 @@ pub fn run_stress(spec: &StressSpec, opts: &StressOptions) -> Result<(StressCoun
                         // Cut short: not recorded, so a resumed matrix reruns it.
                         return Err(Error::Interrupted(String::new()));
                     }
-                    let json = serde_json::to_string_pretty(&rec)
-                        .map_err(|e| Error::Parse(format!("case {}: {e}", c.id)))?;
-                    write_atomic(record_path(&opts.out, &c.id), json.as_bytes())?;
+                    records(&opts.out).write(&c.id, &rec, Layout::Pretty)?;
                     progress.case_done(
                         rec.class == Class::Silent,
                         &format!(

@@ -51,7 +51,10 @@ pub fn metal_bars(r: &BenchResults) -> Vec<MetalBars> {
                 .filter_map(|h| h.fe_done().map(|f| (h, f)))
                 .filter(|(_, f)| f.e.error.is_finite())
                 .collect();
-            let mut relative: Vec<f64> = done.iter().map(|(_, f)| f.e.relative_error()).collect();
+            let mut relative: Vec<f64> = done
+                .iter()
+                .map(|(_, f)| f.e.relative_error.unwrap_or(f64::NAN))
+                .collect();
             relative.sort_by(f64::total_cmp);
             let below_target = relative.iter().filter(|&&x| x < TARGET_E_BAR).count();
             let laws_inside = r
@@ -64,7 +67,7 @@ pub fn metal_bars(r: &BenchResults) -> Vec<MetalBars> {
                         .filter(|(h, f)| {
                             h.laws
                                 .get(k)
-                                .is_some_and(|l| (l.e - f.e.value).abs() <= f.e.error)
+                                .is_some_and(|l| (l.e - f.e.finest).abs() <= f.e.error)
                         })
                         .count();
                     (law.clone(), n)

@@ -1,11 +1,11 @@
-//! The benchmark's FE cache: one JSON file per FE point in `DIR/fe/`, named by its key
-//! (metal, diameter, speed), written atomically as each point finishes; a file present with
-//! the current FE model's name is reused, so a rerun (or `--laws-only`) costs no FE and an
-//! interrupted run resumes. Failed points are cached too (delete the file to retry).
+//! The benchmark's FE cache: the study's [`CaseCache`] in `DIR/fe/`, one file per FE point
+//! named by its key (metal, diameter, speed), written as each point finishes; a file present
+//! with the current FE model's name is reused, so a rerun (or `--laws-only`) costs no FE and
+//! an interrupted run resumes. Failed points are cached too (delete the file to retry).
 
 use super::matrix::{HeadOnPoint, ObliquePoint};
-use crate::atomic::write_atomic;
 use crate::error::{Error, Result};
+use crate::study::records::case_cache::{CaseCache, Layout};
 use serde::de::DeserializeOwned;
 use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
@@ -112,7 +112,7 @@ pub struct CacheStats {
 /// The cache folder `DIR/fe` of a benchmark output folder.
 #[derive(Debug, Clone)]
 pub struct FeCache {
-    dir: PathBuf,
+    cases: CaseCache,
     model: String,
 }
 
@@ -121,35 +121,34 @@ impl FeCache {
     /// file).
     pub fn new(out: &Path, model: &str) -> Self {
         FeCache {
-            dir: out.join("fe"),
+            cases: CaseCache::new(out.join("fe")),
             model: model.to_string(),
         }
     }
 
     /// The file of `point`.
     pub fn path<P: CacheKey>(&self, point: &P) -> PathBuf {
-        self.dir.join(format!("{}.json", point.key()))
+        self.cases.path(&point.key())
     }
 
     /// The cached answer of `point`, if a readable file of this model holds it.
     pub fn load<P: CacheKey, T: DeserializeOwned>(&self, point: &P) -> Option<Stored<T>> {
-        let text = std::fs::read_to_string(self.path(point)).ok()?;
-        let e: Entry<Stored<T>> = serde_json::from_str(&text).ok()?;
-        (e.key == point.key() && e.model == self.model).then_some(e.result)
+        let key = point.key();
+        let mine = |e: &Entry<Stored<T>>| e.key == key && e.model == self.model;
+        self.cases.read(&key, mine).map(|e| e.result)
     }
 
     /// Writes the answer of `point` (atomically).
     ///
     /// Errors: the folder or file cannot be written.
     pub fn store<P: CacheKey, T: Serialize>(&self, point: &P, result: &Stored<T>) -> Result<()> {
-        std::fs::create_dir_all(&self.dir).map_err(|e| Error::io(&self.dir, e))?;
-        let text = serde_json::to_string(&Entry {
-            key: point.key(),
+        let key = point.key();
+        let entry = Entry {
+            key: key.clone(),
             model: self.model.clone(),
             result,
-        })
-        .map_err(|e| Error::Parse(format!("cache entry {}: {e}", point.key())))?;
-        write_atomic(self.path(point), text.as_bytes())
+        };
+        self.cases.write(&key, &entry, Layout::Compact)
     }
 
     /// The answers of `points`, in order: cached ones read, the others run by `run` on

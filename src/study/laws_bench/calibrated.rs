@@ -167,7 +167,7 @@ fn calibrate(
     let Some(fe) = reference.fe_done() else {
         return Ok(None);
     };
-    let Some(value) = solve_parameter(registry, d, &reference.point, fe.e.value) else {
+    let Some(value) = solve_parameter(registry, d, &reference.point, fe.e.finest) else {
         return Ok(None);
     };
     let overrides = [(d.param.to_string(), value)];

@@ -13,61 +13,29 @@ use crate::scene::Scene;
 use crate::study::convergence::phase_ensemble::{
     converged_head_on, HeadOnCase, HeadOnTarget, PhasePlan, MIN_LEVEL,
 };
+use crate::study::records::estimate::value_and_error;
 use crate::study::records::estimate::Estimate;
 use crate::study::run::scene::run_scene;
 use crate::study::run::section_impact::PlaneContact;
 use crate::study::run::simulate::RunOptions;
-use serde::{Deserialize, Deserializer, Serialize, Serializer};
+use serde::{Deserialize, Serialize};
 use std::path::Path;
-
-/// A value with its absolute error (same unit); `error` is NaN when no estimate exists.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-pub struct Bar {
-    /// The value.
-    pub value: f64,
-    /// Its absolute error (NaN: not estimated; written as JSON null).
-    #[serde(serialize_with = "nan_as_null", deserialize_with = "null_as_nan")]
-    pub error: f64,
-}
-
-impl Bar {
-    /// A value without an error estimate.
-    pub fn bare(value: f64) -> Self {
-        Bar {
-            value,
-            error: f64::NAN,
-        }
-    }
-
-    /// The error relative to the value (NaN without an estimate).
-    pub fn relative_error(&self) -> f64 {
-        self.error / self.value.abs()
-    }
-}
-
-fn nan_as_null<S: Serializer>(x: &f64, s: S) -> std::result::Result<S::Ok, S::Error> {
-    if x.is_finite() {
-        s.serialize_f64(*x)
-    } else {
-        s.serialize_none()
-    }
-}
-
-fn null_as_nan<'de, D: Deserializer<'de>>(d: D) -> std::result::Result<f64, D::Error> {
-    Ok(Option::<f64>::deserialize(d)?.unwrap_or(f64::NAN))
-}
 
 /// What the FE says about one head-on point.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct FePoint {
     /// Coefficient of restitution, -.
-    pub e: Bar,
+    #[serde(with = "value_and_error")]
+    pub e: Estimate,
     /// Maximum approach of the centres, m.
-    pub delta_max: Bar,
+    #[serde(with = "value_and_error")]
+    pub delta_max: Estimate,
     /// Contact duration, s.
-    pub contact_duration: Bar,
+    #[serde(with = "value_and_error")]
+    pub contact_duration: Estimate,
     /// Peak normal force, N.
-    pub peak_force: Bar,
+    #[serde(with = "value_and_error")]
+    pub peak_force: Estimate,
     /// The pilot run's contact history: rows [t (s), δ (m), F (N)].
     pub curve: Vec<[f64; 3]>,
     /// Seconds of one core the point cost (the runs' wall times, each run on one thread;
@@ -326,17 +294,8 @@ pub fn head_on_case(point: &HeadOnPoint) -> HeadOnCase {
     }
 }
 
-/// An estimate of `study::convergence::phase_ensemble` as the cache's record: its finest
-/// value and its bar.
-fn bar_of(b: &Estimate) -> Bar {
-    Bar {
-        value: b.finest,
-        error: b.error,
-    }
-}
-
 /// The FE answer for one head-on point under `plan`: e, δ_max, t_c and the peak force as
-/// the fine ensemble's means with their error bars, the fine pilot run's (t, δ, F) rows and
+/// the fine ensemble's means with their error bars (as the cache records them), the fine pilot run's (t, δ, F) rows and
 /// the CPU seconds of all runs.
 ///
 /// Errors: a mesh the ladder rejects (contact radius outside its range), a run that fails
@@ -348,10 +307,10 @@ pub fn head_on_fe(point: &HeadOnPoint, plan: &FePlan) -> Result<FePoint> {
     };
     let answer = converged_head_on(&case, &plan.phase_plan())?;
     Ok(FePoint {
-        e: bar_of(&answer.e),
-        delta_max: bar_of(&answer.delta_max),
-        contact_duration: bar_of(&answer.contact_duration),
-        peak_force: bar_of(&answer.peak_force),
+        e: answer.e.as_recorded(),
+        delta_max: answer.delta_max.as_recorded(),
+        contact_duration: answer.contact_duration.as_recorded(),
+        peak_force: answer.peak_force.as_recorded(),
         curve: answer
             .pilot
             .history
@@ -370,15 +329,11 @@ impl FePoint {
     /// times `factor`, the peak force times `factor`², the curve likewise; no CPU time.
     /// `from_diameter` (m) is this point's diameter, recorded in `scaled_from`.
     pub fn scaled(&self, factor: f64, from_diameter: f64) -> FePoint {
-        let times = |b: Bar, k: f64| Bar {
-            value: k * b.value,
-            error: k * b.error,
-        };
         FePoint {
             e: self.e,
-            delta_max: times(self.delta_max, factor),
-            contact_duration: times(self.contact_duration, factor),
-            peak_force: times(self.peak_force, factor * factor),
+            delta_max: self.delta_max.scaled(factor),
+            contact_duration: self.contact_duration.scaled(factor),
+            peak_force: self.peak_force.scaled(factor * factor),
             curve: self
                 .curve
                 .iter()

@@ -46,10 +46,10 @@ fn fe_series(pts: &[&HeadOnResult], label: &str, x: impl Fn(&HeadOnResult) -> f6
     let mut bars = vec![];
     for h in pts {
         if let Some(f) = h.fe_done() {
-            points.push((x(h), f.e.value));
+            points.push((x(h), f.e.finest));
             if f.e.error.is_finite() {
-                bars.push((x(h), f.e.value - f.e.error));
-                bars.push((x(h), f.e.value + f.e.error));
+                bars.push((x(h), f.e.finest - f.e.error));
+                bars.push((x(h), f.e.finest + f.e.error));
             }
         }
     }

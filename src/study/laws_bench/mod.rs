@@ -148,8 +148,8 @@ pub fn observations(
         .filter_map(|h| {
             h.fe_done().map(|f| Observation {
                 speed: h.point.speed,
-                e: f.e.value,
-                delta_max: f.delta_max.value,
+                e: f.e.finest,
+                delta_max: f.delta_max.finest,
             })
         })
         .collect()

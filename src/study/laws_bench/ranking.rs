@@ -21,7 +21,7 @@ pub fn relative_errors(h: &HeadOnResult, k: usize) -> Option<[f64; 4]> {
 /// Relative errors (law − FE)/FE of a law's e, δ_max (m), t_c (s) and peak force (N), in
 /// the order of [`QUANTITIES`].
 pub fn against_fe(law: [f64; 4], f: &FePoint) -> [f64; 4] {
-    let fe = [f.e, f.delta_max, f.contact_duration, f.peak_force].map(|b| b.value);
+    let fe = [f.e, f.delta_max, f.contact_duration, f.peak_force].map(|b| b.finest);
     [0, 1, 2, 3].map(|q| law[q] / fe[q] - 1.0)
 }
 

@@ -268,12 +268,12 @@ fn fe_section(s: &mut String, r: &BenchResults) {
                 let _ = writeln!(
                     s,
                     "{lead} {} | {:.2} | {} | {:.3} | {} | {} | {cpu} |",
-                    bar(f.e.value, f.e.error, 1.0, 4),
-                    100.0 * f.e.relative_error(),
-                    bar(f.delta_max.value, f.delta_max.error, 1e6, 3),
-                    f.delta_max.value / hertz_approach(h),
-                    bar(f.contact_duration.value, f.contact_duration.error, 1e6, 2),
-                    bar(f.peak_force.value, f.peak_force.error, 1.0, 1),
+                    bar(f.e.finest, f.e.error, 1.0, 4),
+                    100.0 * f.e.relative_error.unwrap_or(f64::NAN),
+                    bar(f.delta_max.finest, f.delta_max.error, 1e6, 3),
+                    f.delta_max.finest / hertz_approach(h),
+                    bar(f.contact_duration.finest, f.contact_duration.error, 1e6, 2),
+                    bar(f.peak_force.finest, f.peak_force.error, 1.0, 1),
                 );
             }
             (Some(super::cache::Stored::Failed(m)), None) => {
@@ -607,12 +607,12 @@ fn diameter_section(s: &mut String, r: &BenchResults) {
                 if fx.scaled_from.is_some() {
                     "scaled".to_string()
                 } else {
-                    pct(fx.e.value / fy.e.value - 1.0)
+                    pct(fx.e.finest / fy.e.finest - 1.0)
                 },
                 if fx.scaled_from.is_some() {
                     "scaled".to_string()
                 } else {
-                    pct((fx.delta_max.value / small) / (fy.delta_max.value / large) - 1.0)
+                    pct((fx.delta_max.finest / small) / (fy.delta_max.finest / large) - 1.0)
                 },
                 if laws.is_empty() {
                     "none".to_string()

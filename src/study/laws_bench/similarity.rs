@@ -81,9 +81,9 @@ pub fn sources(points: &[HeadOnPoint]) -> Vec<Source> {
 pub fn check_differences(small: &FePoint, d_small: f64, large: &FePoint, d_large: f64) -> [f64; 4] {
     let s = large.scaled(d_small / d_large, d_large);
     [
-        small.e.value / s.e.value - 1.0,
-        small.delta_max.value / s.delta_max.value - 1.0,
-        small.contact_duration.value / s.contact_duration.value - 1.0,
-        small.peak_force.value / s.peak_force.value - 1.0,
+        small.e.finest / s.e.finest - 1.0,
+        small.delta_max.finest / s.delta_max.finest - 1.0,
+        small.contact_duration.finest / s.contact_duration.finest - 1.0,
+        small.peak_force.finest / s.peak_force.finest - 1.0,
     ]
 }

@@ -48,6 +48,9 @@ pub enum Behaviour {
     /// Monotone, but the observed order is outside [`ORDER_RANGE`] (or the finest step is
     /// zero while the coarser one is not): no extrapolation.
     OrderOutOfRange,
+    /// Read back from a record that keeps the finest value and its error only
+    /// ([`value_and_error`]): how the ladder behaved is not known.
+    Recorded,
 }
 
 impl Behaviour {
@@ -59,6 +62,7 @@ impl Behaviour {
             Behaviour::Converged => "converged",
             Behaviour::Oscillatory => "oscillatory",
             Behaviour::OrderOutOfRange => "order_out_of_range",
+            Behaviour::Recorded => "recorded",
         }
     }
 
@@ -106,6 +110,18 @@ impl Estimate {
             error: k * self.error,
             ..self
         }
+    }
+
+    /// The estimate a record kept as `value` and its `error` (same unit; NaN: none made):
+    /// the value is both the finest and the extrapolated one.
+    pub fn recorded(value: f64, error: f64) -> Estimate {
+        finish(value, value, None, None, error, Behaviour::Recorded)
+    }
+
+    /// The estimate as a record keeps it ([`Estimate::recorded`] of the finest value and
+    /// the error), so that an answer just computed and one read back agree to the bit.
+    pub fn as_recorded(self) -> Estimate {
+        Estimate::recorded(self.finest, self.error)
     }
 
     /// The same estimate with its error set to `error` (the quantity's unit, ≥ 0) and the
@@ -209,6 +225,37 @@ fn finish(
         error,
         relative_error,
         behaviour,
+    }
+}
+
+/// Serde form `{"value": finest, "error": error}` of an [`Estimate`] in a cache record (an
+/// error that is not a number written as null); read back as [`Estimate::recorded`].
+/// Use as `#[serde(with = "value_and_error")]`.
+pub mod value_and_error {
+    use super::Estimate;
+    use serde::{Deserialize, Deserializer, Serialize, Serializer};
+
+    /// The record's fields.
+    #[derive(Serialize, Deserialize)]
+    struct Record {
+        value: f64,
+        error: Option<f64>,
+    }
+
+    /// Writes the finest value and the error.
+    pub fn serialize<S: Serializer>(e: &Estimate, s: S) -> Result<S::Ok, S::Error> {
+        let error = e.error.is_finite().then_some(e.error);
+        Record {
+            value: e.finest,
+            error,
+        }
+        .serialize(s)
+    }
+
+    /// Reads a value and its error (null: NaN) as a recorded estimate.
+    pub fn deserialize<'de, D: Deserializer<'de>>(d: D) -> Result<Estimate, D::Error> {
+        let r = Record::deserialize(d)?;
+        Ok(Estimate::recorded(r.value, r.error.unwrap_or(f64::NAN)))
     }
 }
 

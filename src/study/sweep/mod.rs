@@ -32,6 +32,7 @@ use crate::error::{Error, Result};
 use crate::scene::reader::{parse_table, Reader};
 use crate::scene::{approach, Approach, Override, Scene, DEFAULT_SCENE};
 use crate::study::records::case::{FeCase, FeSummary};
+use crate::study::records::case_cache::{CaseCache, Layout};
 use crate::study::records::outcome::{analytic_outcome, Outcome};
 use crate::study::sweep::status::{clear_running, mark_running};
 use rayon::prelude::*;
@@ -786,17 +787,19 @@ pub struct SweepSummary {
     pub csv_written: bool,
 }
 
+/// The cache of finished cases of the sweep in `out` (`out/cases/ID.json`).
+pub fn case_cache(out: &Path) -> CaseCache {
+    CaseCache::new(out.join("cases"))
+}
+
 /// Path of a case's result file.
 pub fn case_path(out: &Path, id: &str) -> PathBuf {
-    out.join("cases").join(format!("{id}.json"))
+    case_cache(out).path(id)
 }
 
 /// Reads a finished case file; `None` if absent or unreadable (then the case is rerun).
 pub fn read_case(out: &Path, id: &str) -> Option<CaseRecord> {
-    let text = std::fs::read_to_string(case_path(out, id)).ok()?;
-    serde_json::from_str::<CaseRecord>(&text)
-        .ok()
-        .filter(|r| r.id == id)
+    case_cache(out).read(id, |r: &CaseRecord| r.id == id)
 }
 
 /// Runs (the shard of) a sweep, skipping finished cases, then rewrites `DIR/sweep.csv` from
@@ -932,9 +935,7 @@ fn run_cases(
             clear_running(&opts.out, &c.id);
             return Err(Error::Interrupted(String::new()));
         }
-        let json = serde_json::to_string_pretty(&rec)
-            .map_err(|e| Error::Parse(format!("case {}: {e}", c.id)))?;
-        write_atomic(case_path(&opts.out, &c.id), json.as_bytes())?;
+        case_cache(&opts.out).write(&c.id, &rec, Layout::Pretty)?;
         clear_running(&opts.out, &c.id);
         progress.case_done(
             rec.status == Status::Failed,
