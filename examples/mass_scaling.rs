@@ -1,4 +1,4 @@
-//! What mass scaling (`fe::axisym::mass_scaling`) saves and costs on a head-on section: per
+//! What mass scaling (`fe::section::mass_scaling`) saves and costs on a head-on section: per
 //! mesh and budget, the steps, the initial stable step, the wall time and e, δ_max, the
 //! contact duration and the peak force; the table of verification/contact-penalty.md ("Mass scaling
 //! of the contact region").
@@ -13,7 +13,7 @@
 //! added-mass fractions (0: none).
 
 use twoball::material::Material;
-use twoball::mesh::meridian::MeridianMesh;
+use twoball::mesh::section::SectionMesh;
 use twoball::study::convergence::phase_band::{banded_mesh, contact_edge};
 use twoball::study::convergence::phase_ensemble::{family_mesh, hertz_contact_radius, HeadOnCase};
 use twoball::study::run::section_impact::{HeadOn, Target};
@@ -57,7 +57,7 @@ fn run() -> Result<(), String> {
             .split_once(':')
             .ok_or(format!("{m:?} is not KIND:LEVEL"))?;
         let level: u32 = level.parse().map_err(|_| format!("{m:?}: bad level"))?;
-        let mesh: MeridianMesh = match kind {
+        let mesh: SectionMesh = match kind {
             "band" => banded_mesh(case.diameter, edge, level, 4, 1.0),
             "plain" => family_mesh(case.diameter, a, level as i32),
             k => match k.strip_prefix("band").map(str::parse::<usize>) {

@@ -12,11 +12,11 @@
 //! of from a pilot run, and all members run at once (`ensemble_at_radius`). `PHASE_BAND=SPLIT`
 //! runs the banded family instead (`study::convergence::phase_band`: the surface rings at the contact edge
 //! of a level-0 run split SPLIT-fold; LEVEL ≥ 1). `PHASE_MASS_SCALING=BUDGET` mass-scales
-//! every run within BUDGET (added mass over the section's; `fe::axisym::mass_scaling`).
+//! every run within BUDGET (added mass over the section's; `fe::section::mass_scaling`).
 //! `PHASE_SUBCYCLE_MAX_LEVEL=K` caps the subcycling at level K instead of the section's
 //! default 2 (`twoball run --tolerance` runs its family with K = 3).
 
-use twoball::fe::axisym::subcycle::Integration;
+use twoball::fe::section::subcycle::Integration;
 use twoball::fe::elements::ring::QuadFormulation;
 use twoball::material::Material;
 use twoball::study::convergence::phase_ensemble::{

@@ -9,23 +9,23 @@
 //! at rest and its arrival time after first touch) and the radius of the next ring.
 //!
 //! `cargo run --release --example section_energy -- MESH [MESH ...]` with MESH one of
-//! `ball:SIZE:POLE` (`mesh::meridian::ball`, lengths in m) or `ladder:LEVEL[:A]`
-//! (`mesh::meridian::ladder_ball` sized from the contact radius A in µm, by default Hertz's
+//! `ball:SIZE:POLE` (`mesh::section::ball`, lengths in m) or `ladder:LEVEL[:A]`
+//! (`mesh::section::ladder_ball` sized from the contact radius A in µm, by default Hertz's
 //! at 2 m/s: 470.4 µm); a suffix `:b-bar` picks the B-bar quads, `:single` single-rate
 //! integration, `:band=SPLIT/INNER/OUTER` (ladder only) splits the layers whose surface rings
 //! lie between the rest radii INNER and OUTER (µm) into SPLIT shells each
-//! (`mesh::meridian::ladder_ball_banded`), `:move=FROM/TO` moves the surface ring nearest the rest radius FROM (µm)
+//! (`mesh::section::ladder_ball_banded`), `:move=FROM/TO` moves the surface ring nearest the rest radius FROM (µm)
 //! along the surface to the radius TO (µm). `SECTION_RINGS=1` also prints every ring
 //! arrival, `SECTION_PULSE=FILE` writes the force pulse (t in s, F in N) of the last mesh as
 //! CSV, `SECTION_CONTACT=segment` integrates the plane's penalty pressure over each segment
-//! (`fe::contact::meridian::plane_segment`) instead of lumping it at the nodes.
+//! (`fe::contact::section::plane_segment`) instead of lumping it at the nodes.
 
-use twoball::fe::axisym::section::SectionSolver;
-use twoball::fe::axisym::subcycle::Integration;
+use twoball::fe::section::solver::SectionSolver;
+use twoball::fe::section::subcycle::Integration;
 use twoball::fe::elements::ring::QuadFormulation;
 use twoball::material::Material;
-use twoball::mesh::meridian::{
-    ball, ladder_ball, ladder_ball_banded, EdgeBand, MeridianMesh, SectionSpec,
+use twoball::mesh::section::{
+    ball, ladder_ball, ladder_ball_banded, EdgeBand, SectionMesh, SectionSpec,
 };
 use twoball::study::run::section_impact::{HeadOn, PlaneContact, Target};
 
@@ -43,7 +43,7 @@ fn contact_radius(v: f64) -> Result<f64, String> {
 }
 
 /// The mesh, formulation and integration of one argument.
-fn parse(arg: &str) -> Result<(MeridianMesh, QuadFormulation, Integration), String> {
+fn parse(arg: &str) -> Result<(SectionMesh, QuadFormulation, Integration), String> {
     let parts: Vec<&str> = arg.split(':').collect();
     let num = |i: usize| -> Result<f64, String> {
         parts
@@ -119,7 +119,7 @@ fn parse_band(spec: &str) -> Option<EdgeBand> {
 
 /// Moves the surface ring nearest the rest radius FROM (µm) along the surface to the radius
 /// TO (µm), `spec` = "FROM/TO": the same mesh with one ring elsewhere.
-fn move_ring(mesh: &mut MeridianMesh, spec: &str) -> Option<()> {
+fn move_ring(mesh: &mut SectionMesh, spec: &str) -> Option<()> {
     let (from, to) = spec.split_once('/')?;
     let (from, to) = (
         from.parse::<f64>().ok()? * 1e-6,

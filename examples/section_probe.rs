@@ -1,15 +1,15 @@
 //! The default scene (two D = 20 mm copper-fe balls, ±1 m/s) on the meridian section: one
-//! ball against the symmetry plane, meshed by `mesh::meridian::ball`.
+//! ball against the symmetry plane, meshed by `mesh::section::ball`.
 //!
 //! `cargo run --release --example section_probe -- [SIZE_M] [POLE_SIZE_M] [one-point|b-bar]
 //! [subcycled[:K]|single-rate]` prints e, δ_max (m), the contact duration (s), the peak force (N), the energy error and the
 //! wall time (s) of one run (defaults: D/6 bulk, D/200 pole, one point,
 //! subcycled).
 
-use twoball::fe::axisym::subcycle::Integration;
+use twoball::fe::section::subcycle::Integration;
 use twoball::fe::elements::ring::QuadFormulation;
 use twoball::material::Material;
-use twoball::mesh::meridian::{ball, SectionSpec};
+use twoball::mesh::section::{ball, SectionSpec};
 use twoball::study::run::section_impact::{HeadOn, Target};
 
 /// Argument `i` as a length in metres, or `default`.

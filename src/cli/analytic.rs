@@ -18,7 +18,7 @@ use std::path::PathBuf;
 
 /// What body 2 is.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
-pub enum WallKind {
+pub enum WallArg {
     /// A rigid, immovable half-space.
     Rigid,
     /// An immovable elastic-plastic half-space of `--material2` (default: ball 1's material).
@@ -48,7 +48,7 @@ pub struct AnalyticArgs {
     pub set: Vec<String>,
     /// Replace ball 2 by a half-space at rest (ball-on-wall limit).
     #[arg(long, value_enum)]
-    pub wall: Option<WallKind>,
+    pub wall: Option<WallArg>,
     /// Normal speed of ball 1 before impact, m/s (positive towards +x, i.e. towards ball 2).
     #[arg(long, default_value_t = 1.0, allow_negative_numbers = true)]
     pub v1: f64,
@@ -222,8 +222,8 @@ pub(super) fn bodies(a: &AnalyticArgs) -> Result<(Body, Body)> {
     let b1 = Body::ball(m1, a.diameter, "ball1")?;
     let b2 = match a.wall {
         None => Body::ball(m2, a.diameter2.unwrap_or(a.diameter), "ball2")?,
-        Some(WallKind::Rigid) => Body::RigidWall,
-        Some(WallKind::Elastic) => Body::HalfSpace { material: m2 },
+        Some(WallArg::Rigid) => Body::RigidWall,
+        Some(WallArg::Elastic) => Body::HalfSpace { material: m2 },
     };
     Ok((b1, b2))
 }

@@ -25,7 +25,7 @@ pub enum NormalState {
 
 /// The geometry and kinematics of a contact at one instant.
 #[derive(Debug, Clone, Copy)]
-pub struct Kinematics {
+pub struct ContactGeometry {
     /// Unit normal from the ball to its partner.
     pub normal: Vector3<f64>,
     /// Distances from the ball's and the partner's centre to the contact point, m (0 for a
@@ -99,7 +99,7 @@ impl Contact {
     /// clipped at 0 for a law that may not pull. The tangential spring is carried into the
     /// new tangent plane, extended by the slip and capped at μF; a law with k_t = 0 is the
     /// rigid Coulomb limit (the friction force at most stops the slip within the step).
-    pub fn update(&mut self, laws: &PairLaws, k: &Kinematics, dt: f64) -> StepWork {
+    pub fn update(&mut self, laws: &PairLaws, k: &ContactGeometry, dt: f64) -> StepWork {
         let n = k.normal;
         let rate = k.relative.dot(&n);
         let law = laws.normal.as_ref();

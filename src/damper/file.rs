@@ -3,7 +3,7 @@
 //! measured frequency and damping ratio it is compared with.
 
 use super::claims::{Claim, Relation};
-use super::scene::{BallSpec, BoxSpec, DamperScene, FrameSpec, LawChoice};
+use super::scene::{DamperBall, BoxSpec, DamperScene, FrameSpec, LawChoice};
 use crate::error::{Error, Result};
 use crate::material::Material;
 use serde::Deserialize;
@@ -340,7 +340,7 @@ impl DamperFile {
                     ));
                 }
                 for position in lay_out(b.count, d, size, gap, &format!("{field}.balls.count"))? {
-                    balls.push(BallSpec {
+                    balls.push(DamperBall {
                         material,
                         diameter: d,
                         position,

@@ -3,7 +3,7 @@
 
 use super::decay::{cycle_ratios, log_decrement, peaks, Decay};
 use super::file::{DamperCase, Measured};
-use super::sim::{Sample, Simulation};
+use super::sim::{Sample, DamperSimulation};
 use crate::analytic::laws::Registry;
 use crate::atomic::{ensure_dir, write_atomic};
 use crate::error::{Error, Result};
@@ -97,7 +97,7 @@ pub fn run_case_observed(
         other => other.within(&format!("case {}", case.name)),
     };
     let start = Instant::now();
-    let mut sim = Simulation::new(&case.scene, registry).map_err(named)?;
+    let mut sim = DamperSimulation::new(&case.scene, registry).map_err(named)?;
     let expected = (case.scene.duration / case.scene.sample_interval).ceil() as usize + 1;
     let every = expected.div_ceil(BALL_FRAMES).max(1);
     let mut frames = Vec::new();

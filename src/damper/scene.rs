@@ -33,7 +33,7 @@ pub struct BoxSpec {
 /// One ball: material, diameter (m) and centre at release in box coordinates (m, from the
 /// box's inner corner), at rest.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct BallSpec {
+pub struct DamperBall {
     /// Material.
     pub material: Material,
     /// Diameter, m.
@@ -81,7 +81,7 @@ pub struct DamperScene {
     /// The box.
     pub container: BoxSpec,
     /// The balls.
-    pub balls: Vec<BallSpec>,
+    pub balls: Vec<DamperBall>,
     /// The contact laws.
     pub laws: LawChoice,
     /// Gravitational acceleration (downward, along −z), m/s².
@@ -100,7 +100,7 @@ pub struct DamperScene {
 impl DamperScene {
     /// A scene with the paper's frame (5.76 kg, 1.69 Hz, 0.45 %, 30 mm release), the given
     /// box and balls, the default laws, g = 9.81 m/s², 10 s, 60 steps per period, 1 ms samples.
-    pub fn paper_frame(container: BoxSpec, balls: Vec<BallSpec>) -> DamperScene {
+    pub fn paper_frame(container: BoxSpec, balls: Vec<DamperBall>) -> DamperScene {
         DamperScene {
             frame: FrameSpec {
                 mass: 5.76,

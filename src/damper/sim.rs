@@ -1,7 +1,7 @@
 //! The damper in motion: the state of the frame and the balls, one velocity-Verlet step, the
 //! contact forces of a step and the energy ledger.
 
-use super::contact::{Contact, Kinematics, Partner, StepWork};
+use super::contact::{Contact, ContactGeometry, Partner, StepWork};
 use super::energy::Ledger;
 use super::frame::Frame;
 use super::neighbours::NeighbourList;
@@ -39,7 +39,7 @@ pub struct Sample {
 }
 
 /// The state of a running damper simulation.
-pub struct Simulation {
+pub struct DamperSimulation {
     frame: Frame,
     size: Vector3<f64>,
     gravity: f64,
@@ -69,7 +69,7 @@ pub struct Simulation {
     external_force: f64,
     contacts: Vec<Contact>,
     spare: Vec<Contact>,
-    touching: Vec<(usize, Partner, Kinematics)>,
+    touching: Vec<(usize, Partner, ContactGeometry)>,
     pred_v: Vec<Vector3<f64>>,
     pred_w: Vec<Vector3<f64>>,
     pred_frame: f64,
@@ -85,11 +85,11 @@ fn cross(a: Vector3<f64>, b: Vector3<f64>) -> Vector3<f64> {
     a.cross(&b)
 }
 
-impl Simulation {
+impl DamperSimulation {
     /// The scene at release: frame at rest at its release displacement, balls at rest at
     /// their positions in the displaced box. Errors: an invalid scene (one line naming the
     /// field), an unknown law or parameter.
-    pub fn new(scene: &DamperScene, registry: &Registry) -> Result<Simulation> {
+    pub fn new(scene: &DamperScene, registry: &Registry) -> Result<DamperSimulation> {
         scene.validate()?;
         let frame = scene.frame()?;
         let table = PairTable::new(scene, registry)?;
@@ -109,7 +109,7 @@ impl Simulation {
         let offset = Vector3::new(scene.frame.release, 0.0, 0.0);
         let n = scene.balls.len();
         let diameter = scene.balls.iter().map(|b| b.diameter).fold(0.0, f64::max);
-        let mut sim = Simulation {
+        let mut sim = DamperSimulation {
             frame,
             size,
             gravity: scene.gravity,
@@ -242,7 +242,7 @@ impl Simulation {
 
     /// Ball `i`'s kinematics against wall `wall` (0..6, see [`Partner::Wall`]) if it touches
     /// it (δ > 0).
-    fn wall_kinematics(&self, i: usize, wall: usize) -> Option<Kinematics> {
+    fn wall_kinematics(&self, i: usize, wall: usize) -> Option<ContactGeometry> {
         let axis = wall / 2;
         let high = wall % 2 == 1;
         let p = self.position[i][axis] - if axis == 0 { self.frame_x } else { 0.0 };
@@ -258,7 +258,7 @@ impl Simulation {
         let at = |v: &Vector3<f64>, w: &Vector3<f64>, frame: f64| {
             v + cross(*w, normal * r) - Vector3::new(frame, 0.0, 0.0)
         };
-        Some(Kinematics {
+        Some(ContactGeometry {
             normal,
             lever: [r, 0.0],
             delta,
@@ -268,7 +268,7 @@ impl Simulation {
     }
 
     /// Balls `i` and `j`'s kinematics if they touch (δ > 0).
-    fn ball_kinematics(&self, i: usize, j: usize) -> Option<Kinematics> {
+    fn ball_kinematics(&self, i: usize, j: usize) -> Option<ContactGeometry> {
         let d = self.position[j] - self.position[i];
         let dist = d.norm();
         let delta = self.radius[i] + self.radius[j] - dist;
@@ -282,7 +282,7 @@ impl Simulation {
         let at = |v: &[Vector3<f64>], w: &[Vector3<f64>]| {
             v[i] + cross(w[i], normal * ri) - v[j] - cross(w[j], normal * (-rj))
         };
-        Some(Kinematics {
+        Some(ContactGeometry {
             normal,
             lever: [ri, rj],
             delta,
@@ -435,14 +435,14 @@ impl Simulation {
         self.run_observed(until, interval, &mut |_| Ok(()))
     }
 
-    /// [`Simulation::run`], calling `observe(self)` at release and after every recorded
+    /// [`DamperSimulation::run`], calling `observe(self)` at release and after every recorded
     /// sample (to record the balls' states, show progress); an error of `observe` (e.g. an
     /// interrupt) stops the run and is returned.
     pub fn run_observed(
         &mut self,
         until: f64,
         interval: f64,
-        observe: &mut dyn FnMut(&Simulation) -> Result<()>,
+        observe: &mut dyn FnMut(&DamperSimulation) -> Result<()>,
     ) -> Result<Vec<Sample>> {
         observe(self)?;
         let mut samples = vec![self.sample()];

@@ -12,12 +12,12 @@
 //! - [`implicit`]: the quasi-static implicit solver of the section (Newton-Raphson, element
 //!   tangents from the elements' own updates, sparse LU, an exact rigid plane);
 //! - [`linear`]: small-strain linear tools for verification (modal analysis, Lamb's modes);
-//! - [`axisym`]: the meridian section of a head-on impact: ring quads, ring masses, mass
+//! - [`section`]: the section model (the meridian section) of a head-on impact: ring quads, ring masses, mass
 //!   scaling, its loop and subcycling;
 //! - [`model`] (what the solver is given) and [`tensor`] (small tensor algebra).
 // Index loops mirror the index notation of the formulas (σ_ij B_Ij, ...): keep them.
 #![allow(clippy::needless_range_loop)]
-pub mod axisym;
+pub mod section;
 pub mod contact;
 pub mod elements;
 pub mod implicit;

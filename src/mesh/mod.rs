@@ -7,17 +7,10 @@
 pub mod ball;
 pub mod block;
 pub mod gmsh;
-pub mod meridian;
-pub mod meridian_ball;
-pub mod meridian_band;
-pub mod meridian_block;
-pub mod meridian_ladder;
 pub mod msh;
 pub mod points_vtu;
 pub mod quality;
 pub mod section;
-pub mod section_msh;
-pub mod section_vtu;
 pub mod topology;
 pub mod vtu;
 

@@ -8,7 +8,7 @@
 //! What becomes what: 8-node hexahedra (type 5) are the solid; 4-node quadrangles (type 3) in
 //! a physical group become the face set of that group's name (and the node set of their
 //! nodes); points (type 15) in a physical group add their node to the node set of that name;
-//! 2-node lines (type 1) are ignored (the meridian-section reader `section_msh` keeps them);
+//! 2-node lines (type 1) are ignored (the section reader `section::msh` keeps them);
 //! any other element type is an error. Hexahedra whose corners are all inverted (a mirrored node order) are reoriented with a warning; partly
 //! inverted or degenerate ones are an error naming the element.
 

@@ -1,11 +1,11 @@
-//! Acceptance 3 of issue 5: Coulomb friction of a block on a frictional rigid plane.
+//! Acceptance 3 of issue 5: CoulombFriction friction of a block on a frictional rigid plane.
 //! A sliding block decelerates at μ g; below the threshold it sticks; friction dissipation
 //! equals the kinetic energy lost.
 
 use crate::contact_support;
 
 use contact_support::UniformLoad;
-use twoball::fe::contact::{ContactParams, Coulomb, RigidPlane};
+use twoball::fe::contact::{ContactParams, CoulombFriction, RigidPlane};
 use twoball::fe::interaction::Interaction;
 use twoball::fe::{Formulation, Model, Settings, Solver};
 use twoball::mesh::block::block;
@@ -21,7 +21,7 @@ fn block_on_plane(
     push: f64,
     t_push: f64,
     damping: f64,
-    friction: Coulomb,
+    friction: CoulombFriction,
 ) -> (Solver, twoball::fe::contact::ContactProbe) {
     let mesh = block([0.1, 0.1, 0.05], [2, 2, 1]);
     let mut model = Model::new();
@@ -78,7 +78,7 @@ fn sliding_block_decelerates_at_mu_g_and_dissipates_its_kinetic_energy() {
     let v0 = 0.05;
     // No contact damping (measured: deceleration error 1.0e-3, dissipation vs lost kinetic
     // energy 4.6e-4, energy ratio 1.00046).
-    let (mut s, probe) = block_on_plane(v0, 0.0, f64::INFINITY, 0.0, Coulomb::new(MU));
+    let (mut s, probe) = block_on_plane(v0, 0.0, f64::INFINITY, 0.0, CoulombFriction::new(MU));
     let m: f64 = s.mass().iter().sum();
     let ke0 = 0.5 * m * v0 * v0;
     // Deceleration from the centre-of-mass velocity over a long window while sliding.
@@ -117,7 +117,7 @@ fn sliding_block_decelerates_at_mu_g_and_dissipates_its_kinetic_energy() {
 #[test]
 fn block_below_the_friction_threshold_sticks() {
     // Push at half the static limit after the contact has settled.
-    let (mut s, probe) = block_on_plane(0.0, 0.5 * MU, 2e-3, 0.2, Coulomb::new(MU));
+    let (mut s, probe) = block_on_plane(0.0, 0.5 * MU, 2e-3, 0.2, CoulombFriction::new(MU));
     s.run_until(|s| s.time() >= 2e-3).unwrap();
     let x0: f64 = s.x().iter().map(|x| x[0]).sum::<f64>() / s.x().len() as f64;
     s.run_until(|s| s.time() >= 30e-3).unwrap();
@@ -136,7 +136,7 @@ fn block_below_the_friction_threshold_sticks() {
 #[test]
 fn block_above_the_threshold_slides_at_the_net_acceleration() {
     // Push at 1.5 μ g: it slides with a = (1.5 − 1) μ g = 0.5 μ g.
-    let (mut s, _probe) = block_on_plane(0.0, 1.5 * MU, 0.0, 0.2, Coulomb::new(MU));
+    let (mut s, _probe) = block_on_plane(0.0, 1.5 * MU, 0.0, 0.2, CoulombFriction::new(MU));
     s.run_until(|s| s.time() >= 4e-3).unwrap();
     let (v1, t1) = (s.part_motion(0).unwrap().0[0], s.time());
     s.run_until(|s| s.time() >= 20e-3).unwrap();

@@ -8,7 +8,7 @@
 //! 32 % of its energy at the default safety factor 0.9 (20 % at 0.95) and the tangential
 //! impulse fell to 0.11 of the normal one instead of μ = 0.2.
 
-use twoball::fe::contact::{ContactParams, Coulomb, RigidPlane};
+use twoball::fe::contact::{ContactParams, CoulombFriction, RigidPlane};
 use twoball::fe::{Formulation, Model, Settings, Solver};
 use twoball::mesh::ball::{ball, BallSpec, Cut};
 use twoball::Material;
@@ -47,7 +47,7 @@ fn oblique(vn: f64, vt: f64, pole: f64, safety: f64) -> Run {
         .unwrap();
     let faces = model.parts[p].face_sets["contact"].clone();
     let params = ContactParams {
-        friction: Some(Coulomb::new(MU)),
+        friction: Some(CoulombFriction::new(MU)),
         damping: 0.0,
         ..Default::default()
     };

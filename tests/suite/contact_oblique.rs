@@ -3,7 +3,7 @@
 //! speed the contact patch stops sliding during the impact. Energy (with friction dissipation)
 //! is conserved and the contact energy returns to zero, with no contact damping.
 
-use twoball::fe::contact::{ContactParams, Coulomb, RigidPlane};
+use twoball::fe::contact::{ContactParams, CoulombFriction, RigidPlane};
 use twoball::fe::{Formulation, Model, Settings, Solver};
 use twoball::mesh::ball::{ball, BallSpec, Cut};
 use twoball::Material;
@@ -50,7 +50,7 @@ fn oblique(vn: f64, vt: f64) -> Oblique {
     // No contact damping: the penalty time step keeps the chatter of the few contact nodes of
     // this coarse patch from pumping energy (tests/contact_friction_energy.rs).
     let params = ContactParams {
-        friction: Some(Coulomb::new(MU)),
+        friction: Some(CoulombFriction::new(MU)),
         damping: 0.0,
         ..Default::default()
     };

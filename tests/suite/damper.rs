@@ -5,7 +5,7 @@
 use crate::pvd_support;
 use twoball::analytic::laws::{ContactPair, Registry};
 use twoball::analytic::Body;
-use twoball::damper::{log_decrement, peaks, BallSpec, BoxSpec, DamperScene, Simulation};
+use twoball::damper::{log_decrement, peaks, DamperBall, BoxSpec, DamperScene, DamperSimulation};
 use twoball::Material;
 
 fn steel() -> Material {
@@ -19,8 +19,8 @@ fn paper_box() -> BoxSpec {
     }
 }
 
-fn ball(material: Material, d: f64, p: [f64; 3]) -> BallSpec {
-    BallSpec {
+fn ball(material: Material, d: f64, p: [f64; 3]) -> DamperBall {
+    DamperBall {
         material,
         diameter: d,
         position: p,
@@ -29,7 +29,7 @@ fn ball(material: Material, d: f64, p: [f64; 3]) -> BallSpec {
 
 /// Nine 20 mm balls of `material` on the floor of the test box, rows of five and four with
 /// 2 mm gaps.
-fn nine(material: Material) -> Vec<BallSpec> {
+fn nine(material: Material) -> Vec<DamperBall> {
     (0..9)
         .map(|k| {
             let (ix, iy) = (k % 5, k / 5);
@@ -50,7 +50,7 @@ fn nine(material: Material) -> Vec<BallSpec> {
 fn empty_frame_decays_at_its_frequency_and_damping_ratio() {
     let mut scene = DamperScene::paper_frame(paper_box(), Vec::new());
     scene.duration = 12.0;
-    let mut sim = Simulation::new(&scene, &Registry::builtin()).unwrap();
+    let mut sim = DamperSimulation::new(&scene, &Registry::builtin()).unwrap();
     let s = sim.run(scene.duration, scene.sample_interval).unwrap();
     let t: Vec<f64> = s.iter().map(|s| s.time).collect();
     let x: Vec<f64> = s.iter().map(|s| s.displacement).collect();
@@ -94,7 +94,7 @@ fn rebound(
     scene.laws.normal = law.into();
     scene.laws.normal_params = params.iter().map(|(k, v)| (k.to_string(), *v)).collect();
     let registry = Registry::builtin();
-    let mut sim = Simulation::new(&scene, &registry).unwrap();
+    let mut sim = DamperSimulation::new(&scene, &registry).unwrap();
     if gravity == 0.0 {
         sim.velocity[0].z = -v;
     }
@@ -164,7 +164,7 @@ fn a_dropped_ball_rebounds_with_its_laws_restitution_under_gravity() {
 fn horizontal_momentum_changes_only_by_spring_and_damper() {
     let mut scene = DamperScene::paper_frame(paper_box(), nine(steel()));
     scene.steps_per_period = 20.0;
-    let mut sim = Simulation::new(&scene, &Registry::builtin()).unwrap();
+    let mut sim = DamperSimulation::new(&scene, &Registry::builtin()).unwrap();
     let p0 = sim.momentum_x();
     let mut worst: f64 = 0.0;
     let mut largest: f64 = 0.0;
@@ -198,7 +198,7 @@ fn ball_ball_contacts_conserve_momentum_and_angular_momentum() {
     scene.frame.release = 0.0;
     scene.gravity = 0.0;
     scene.impact_speed = Some(2.0);
-    let mut sim = Simulation::new(&scene, &Registry::builtin()).unwrap();
+    let mut sim = DamperSimulation::new(&scene, &Registry::builtin()).unwrap();
     sim.velocity[0] = nalgebra::Vector3::new(1.0, 0.1, 0.0);
     sim.velocity[1] = nalgebra::Vector3::new(-1.0, 0.0, 0.05);
     sim.spin[0] = nalgebra::Vector3::new(0.0, 0.0, 30.0);
@@ -230,7 +230,7 @@ fn energy_balance_closes_for_a_released_damper() {
         let mut scene = DamperScene::paper_frame(paper_box(), nine(steel()));
         scene.laws.normal = law.into();
         scene.laws.tangential = tangential.into();
-        let mut sim = Simulation::new(&scene, &Registry::builtin()).unwrap();
+        let mut sim = DamperSimulation::new(&scene, &Registry::builtin()).unwrap();
         let s = sim.run(1.0, 0.01).unwrap();
         let start = s[0].ledger;
         let worst = s
@@ -251,7 +251,7 @@ fn elastic_frictionless_contacts_dissipate_nothing() {
     scene.laws.mu_ball = Some(0.0);
     scene.laws.mu_wall = Some(0.0);
     scene.frame.damping_ratio = 0.0;
-    let mut sim = Simulation::new(&scene, &Registry::builtin()).unwrap();
+    let mut sim = DamperSimulation::new(&scene, &Registry::builtin()).unwrap();
     let s = sim.run(1.0, 0.01).unwrap();
     let start = s[0].ledger;
     let end = s.last().unwrap().ledger;
@@ -266,7 +266,7 @@ fn elastic_frictionless_contacts_dissipate_nothing() {
 }
 
 fn error_of(scene: &DamperScene) -> String {
-    match Simulation::new(scene, &Registry::builtin()) {
+    match DamperSimulation::new(scene, &Registry::builtin()) {
         Ok(_) => panic!("accepted a bad scene"),
         Err(e) => {
             let e = e.to_string();

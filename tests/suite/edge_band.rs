@@ -1,4 +1,4 @@
-//! The edge band (`mesh::meridian_band`, `study::phase_band`) on the plastic default scene
+//! The edge band (`mesh::section::band`, `study::phase_band`) on the plastic default scene
 //! (two D = 20 mm copper-fe balls, ±1 m/s; one ball section against the symmetry plane): the
 //! claims of verification/contact-penalty.md, "An edge band of finer rings".
 //!
@@ -6,7 +6,7 @@
 //! answers with their bars are `#[ignore]`d (half a minute and more):
 //! `cargo test --release --test suite edge_band:: -- --ignored --nocapture`.
 
-use twoball::mesh::meridian::{ladder_ball, MeridianMesh};
+use twoball::mesh::section::{ladder_ball, SectionMesh};
 use twoball::study::convergence::phase_band::{banded_mesh, contact_edge, SIZING_PER_EDGE};
 use twoball::study::convergence::phase_ensemble::{
     converged_head_on, ring_ratio, HeadOnCase, PhasePlan,
@@ -24,7 +24,7 @@ fn case() -> HeadOnCase {
 }
 
 /// e of the default scene on `mesh`.
-fn e_of(mesh: MeridianMesh) -> f64 {
+fn e_of(mesh: SectionMesh) -> f64 {
     let c = case();
     HeadOn::new(mesh, c.material, 1.0, Target::MirrorBall)
         .run()

@@ -4,7 +4,7 @@
 //! `cargo test --test suite NAME::`, for example `cargo test --test suite damper::`.
 
 // Helpers shared by several subjects.
-mod axisym_support;
+mod section_support;
 mod contact_support;
 mod pvd_support;
 mod run_support;
@@ -17,10 +17,10 @@ mod analytic_hertz;
 mod analytic_independent;
 mod analytic_parametric;
 mod analytic_three_phase;
-mod axisym_contact;
-mod axisym_element;
-mod axisym_lanes;
-mod axisym_subcycle;
+mod section_contact;
+mod section_element;
+mod section_lanes;
+mod section_subcycle;
 mod cli_pipe;
 mod cli_user;
 mod committed_files;
@@ -55,7 +55,7 @@ mod mass_scaling;
 mod mesh_ball;
 mod mesh_cli;
 mod mesh_io;
-mod mesh_meridian;
+mod mesh_section;
 mod mesh_section_msh;
 mod mesh_section_vtu;
 mod mesh_vtu;

@@ -1,4 +1,4 @@
-//! Mass scaling of a head-on section (`fe::axisym::mass_scaling`): within its budget it
+//! Mass scaling of a head-on section (`fe::section::mass_scaling`): within its budget it
 //! moves e, δ_max and the contact duration by less than the bias bound every mass-scaled bar
 //! carries (`study::convergence::phase_ensemble::MASS_SCALING_BIAS` × budget) and takes fewer steps.
 

@@ -1,14 +1,14 @@
 //! The gmsh path for meridian sections: meshes/ball_section.geo → gmsh (2D, recombined into
-//! quadrangles) → `.msh` → `MeridianMesh`, checked against the half-disc's geometry; and the
+//! quadrangles) → `.msh` → `SectionMesh`, checked against the half-disc's geometry; and the
 //! reader's refusals. gmsh is required under CI=true (tests/tool_support).
 
 use crate::tool_support as tools;
 
 use std::f64::consts::PI;
 use std::process::Command;
-use twoball::mesh::meridian::MeridianMesh;
+use twoball::mesh::section::SectionMesh;
 use twoball::mesh::section::{area, corner_jacobians, quad_points, revolved_volume};
-use twoball::mesh::section_msh::{parse, read};
+use twoball::mesh::section::msh::{parse, read};
 
 const R: f64 = 0.01;
 
@@ -18,7 +18,7 @@ fn tmp(name: &str) -> std::path::PathBuf {
     d.join(name)
 }
 
-fn gmsh_section(format: &str, hp: f64) -> Option<MeridianMesh> {
+fn gmsh_section(format: &str, hp: f64) -> Option<SectionMesh> {
     if !tools::require(tools::gmsh(), "gmsh section meshes", "gmsh") {
         return None;
     }
@@ -39,7 +39,7 @@ fn gmsh_section(format: &str, hp: f64) -> Option<MeridianMesh> {
     Some(read(&out).unwrap())
 }
 
-fn check_geometry(m: &MeridianMesh, hp: f64) {
+fn check_geometry(m: &SectionMesh, hp: f64) {
     // Counter-clockwise quads with positive corner Jacobians.
     for q in &m.quads {
         assert!(corner_jacobians(&quad_points(m, q))

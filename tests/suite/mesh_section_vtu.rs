@@ -5,9 +5,9 @@
 use crate::tool_support as tools;
 
 use std::process::Command;
-use twoball::mesh::meridian::{ball, SectionSpec};
+use twoball::mesh::section::{ball, SectionSpec};
 use twoball::mesh::section::area;
-use twoball::mesh::section_vtu::{to_vtu_bytes, write, SectionField};
+use twoball::mesh::section::vtu::{to_vtu_bytes, write, SectionField};
 use twoball::mesh::vtu::VtuFormat;
 
 fn tmp(name: &str) -> std::path::PathBuf {
@@ -16,7 +16,7 @@ fn tmp(name: &str) -> std::path::PathBuf {
     d.join(name)
 }
 
-fn section() -> twoball::mesh::meridian::MeridianMesh {
+fn section() -> twoball::mesh::section::SectionMesh {
     ball(&SectionSpec {
         diameter: 0.02,
         size: 0.004,

@@ -5,7 +5,7 @@
 use std::path::Path;
 use twoball::analytic::hertz::HertzPair;
 use twoball::error::Result;
-use twoball::mesh::meridian::{block, BlockSpec};
+use twoball::mesh::section::{block, BlockSpec};
 use twoball::mesh::section::quad_area;
 use twoball::scene::{approach, Approach, Override, Scene, WALL_SCENE};
 use twoball::study::records::outcome::ball_inertia;

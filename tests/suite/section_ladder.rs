@@ -1,4 +1,4 @@
-//! The section model's mesh ladder (`mesh::meridian::ladder_ball`) on head-on impacts of two
+//! The section model's mesh ladder (`mesh::section::ladder_ball`) on head-on impacts of two
 //! D = 20 mm copper-fe balls (one ball against the symmetry plane): the tables of
 //! verification/contact-penalty.md ("The section model's mesh ladder"), with Richardson extrapolation
 //! and the observed order from `study::records::estimate::estimate`.
@@ -15,7 +15,7 @@ use hertz::{finite_ball_reference, windowed_peak};
 use twoball::analytic::hertz::HertzPair;
 use twoball::fe::elements::ring::QuadFormulation;
 use twoball::material::Material;
-use twoball::mesh::meridian::{ball, ladder_ball, ladder_pole_size, MeridianMesh, SectionSpec};
+use twoball::mesh::section::{ball, ladder_ball, ladder_pole_size, SectionMesh, SectionSpec};
 use twoball::mesh::section::quad_area;
 use twoball::study::records::estimate::{estimate, Behaviour, Estimate};
 use twoball::study::run::section_impact::{HeadOn, ImpactResult, PlaneContact, Target};
@@ -50,7 +50,7 @@ fn contact_radius(v: f64) -> f64 {
 }
 
 /// Volume of revolution (m³) of the section: Pappus, with each quad's own centroid.
-fn volume(mesh: &MeridianMesh) -> f64 {
+fn volume(mesh: &SectionMesh) -> f64 {
     mesh.quads
         .iter()
         .map(|q| {
@@ -181,7 +181,7 @@ fn monotone(values: &[f64]) -> bool {
 
 /// Mean edge length (m) of the quads whose centroid lies within ±20 % of `rho` (m) from the
 /// pole (0, R): the resolution of the mesh at the edge of the contact.
-fn edge_at(mesh: &MeridianMesh, rho: f64) -> f64 {
+fn edge_at(mesh: &SectionMesh, rho: f64) -> f64 {
     let (mut sum, mut count) = (0.0, 0usize);
     for q in &mesh.quads {
         let p = q.map(|i| mesh.nodes[i as usize]);
@@ -467,7 +467,7 @@ fn phase_honesty() {
             formulation: formulation(),
             plane: plane_contact(),
             mass_scaling: 0.0,
-            integration: twoball::fe::axisym::subcycle::Integration::subcycled(),
+            integration: twoball::fe::section::subcycle::Integration::subcycled(),
         };
         let family = level - 1;
         let meshes = if level > 0 { truth_meshes } else { 8 };
@@ -533,7 +533,7 @@ fn plastic_b_bar_ladder_is_monotone() {
         formulation: QuadFormulation::SelectiveReduced,
         plane: PlaneContact::Kinematic,
         mass_scaling: 0.0,
-        integration: twoball::fe::axisym::subcycle::Integration::subcycled(),
+        integration: twoball::fe::section::subcycle::Integration::subcycled(),
     };
     let mut rows: Vec<[f64; 3]> = Vec::new();
     for level in -1..=top {

@@ -4,13 +4,13 @@
 //! rigid plane against the finite-ball reference of docs/contact-penalty.md ("The free
 //! ball") and Hertz's law.
 
-use crate::axisym_support;
+use crate::section_support;
 
-use axisym_support::*;
-use twoball::fe::axisym::section::SectionModel;
+use section_support::*;
+use twoball::fe::section::solver::SectionModel;
 use twoball::fe::elements::ring::mass::element_masses;
 use twoball::fe::elements::ring::QuadFormulation;
-use twoball::fe::implicit::plane::RigidPlane;
+use twoball::fe::implicit::plane::ExactPlane;
 use twoball::fe::implicit::static_solver::{Increment, Settings, StaticSolver, Target};
 use twoball::material::Material;
 
@@ -151,7 +151,7 @@ fn partly_plastic_thick_sphere_matches_hill() {
 /// in `steps` increments: returns (approach of the centre of mass, contact force, contact
 /// radius of the outermost node on the plane), m, N, m.
 fn free_ball(m: &Material, radius: f64, a: f64, level: u32, force: f64) -> (f64, f64, f64) {
-    let mesh = twoball::mesh::meridian_ladder::ladder_ball(2.0 * radius, a, level).unwrap();
+    let mesh = twoball::mesh::section::ladder::ladder_ball(2.0 * radius, a, level).unwrap();
     let mut model: SectionModel = model(mesh.nodes.clone(), mesh.quads.clone(), m);
     model.formulation = QuadFormulation::Full;
     let mut mass = vec![0.0; mesh.nodes.len()];
@@ -166,7 +166,7 @@ fn free_ball(m: &Material, radius: f64, a: f64, level: u32, force: f64) -> (f64,
     for (l, mi) in model.loads.iter_mut().zip(&mass) {
         *l = [0.0, mi / total];
     }
-    let plane = RigidPlane {
+    let plane = ExactPlane {
         z: radius,
         side: -1.0,
     };

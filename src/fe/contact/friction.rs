@@ -12,17 +12,17 @@ use crate::fe::tensor::{norm, scale, sub};
 
 /// Coulomb coefficients.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Coulomb {
+pub struct CoulombFriction {
     /// Static coefficient μ_s (≥ μ_d): limit while sticking.
     pub mu_static: f64,
     /// Dynamic coefficient μ_d (≥ 0): limit while sliding.
     pub mu_dynamic: f64,
 }
 
-impl Coulomb {
+impl CoulombFriction {
     /// Equal static and dynamic coefficients (the paper's single μ).
     pub fn new(mu: f64) -> Self {
-        Coulomb {
+        CoulombFriction {
             mu_static: mu,
             mu_dynamic: mu,
         }
@@ -67,7 +67,7 @@ pub fn return_map(
     slip: [f64; 3],
     kt: f64,
     normal_force: f64,
-    c: Coulomb,
+    c: CoulombFriction,
 ) -> f64 {
     let trial = sub(state.force, scale(kt, slip));
     let t = norm(trial);
@@ -104,7 +104,7 @@ mod tests {
     #[test]
     fn small_slip_sticks_elastically() {
         let mut s = StickState::default();
-        let d = return_map(&mut s, [1e-6, 0.0, 0.0], 1e6, 10.0, Coulomb::new(0.2));
+        let d = return_map(&mut s, [1e-6, 0.0, 0.0], 1e6, 10.0, CoulombFriction::new(0.2));
         assert_eq!(d, 0.0);
         assert!(!s.sliding);
         assert!((s.force[0] + 1.0).abs() < 1e-12);
@@ -115,7 +115,7 @@ mod tests {
         // Accumulate a long slide in small increments: dissipation → μ F_n × slip (the elastic
         // pre-slip μ F_n / k_t is stored, not dissipated).
         let (kt, fnorm, mu) = (1e8, 50.0, 0.3);
-        let c = Coulomb::new(mu);
+        let c = CoulombFriction::new(mu);
         let mut s = StickState::default();
         let (du, n) = (1e-6, 1000);
         let mut d = 0.0;
@@ -136,7 +136,7 @@ mod tests {
 
     #[test]
     fn static_threshold_then_dynamic_limit() {
-        let c = Coulomb {
+        let c = CoulombFriction {
             mu_static: 0.5,
             mu_dynamic: 0.3,
         };
@@ -154,13 +154,13 @@ mod tests {
 
     #[test]
     fn invalid_coefficients_are_named() {
-        let e = Coulomb {
+        let e = CoulombFriction {
             mu_static: 0.1,
             mu_dynamic: 0.2,
         }
         .validated("contact")
         .unwrap_err();
         assert!(e.to_string().contains("contact.mu_static"));
-        assert!(Coulomb::new(-0.1).validated("c").is_err());
+        assert!(CoulombFriction::new(-0.1).validated("c").is_err());
     }
 }

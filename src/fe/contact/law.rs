@@ -1,7 +1,7 @@
 //! The contact law of one node: penalty spring and dashpot in the normal direction, Coulomb
 //! stick spring and return mapping in the tangent plane.
 
-use super::friction::{return_map, stick_energy, Coulomb, StickState};
+use super::friction::{return_map, stick_energy, CoulombFriction, StickState};
 use super::penalty::normal_force;
 use crate::fe::tensor::{add, norm, scale, tangential};
 
@@ -40,7 +40,7 @@ impl NodeResponse {
 
 /// Where a node is relative to the opposing surface this step.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
-pub struct Kinematics {
+pub struct NodeKinematics {
     /// Signed gap, m (< 0 in contact).
     pub gap: f64,
     /// Opening rate of the gap, m/s.
@@ -60,8 +60,8 @@ pub struct Kinematics {
 pub fn respond(
     law: &NodeLaw,
     stick: &mut StickState,
-    k: &Kinematics,
-    friction: Option<Coulomb>,
+    k: &NodeKinematics,
+    friction: Option<CoulombFriction>,
 ) -> NodeResponse {
     let (gap, gap_rate, slip, n, dt) = (k.gap, k.gap_rate, k.slip, k.normal, k.dt);
     let fe = normal_force(law.k, 0.0, gap, 0.0);

@@ -20,7 +20,7 @@ pub mod duration;
 pub mod friction;
 pub mod law;
 pub mod mass_damping;
-pub mod meridian;
+pub mod section;
 pub mod node_to_segment;
 pub mod output;
 pub mod params;
@@ -31,7 +31,7 @@ pub mod search;
 pub mod step_cache;
 pub mod surface;
 
-pub use friction::Coulomb;
+pub use friction::CoulombFriction;
 pub use node_to_segment::SurfacePair;
 pub use output::{ContactOutput, ContactProbe, PressureSample};
 pub use params::ContactParams;

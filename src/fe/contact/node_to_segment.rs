@@ -8,7 +8,7 @@
 //! nodes with the bilinear shape functions: −N_a(ξ, η) F on master node a.
 
 use super::friction::StickState;
-use super::law::{respond, stored_energy, Kinematics, NodeLaw};
+use super::law::{respond, stored_energy, NodeKinematics, NodeLaw};
 use super::output::{ContactOutput, ContactProbe, NodeContact, OutputBuilder, PressureSample};
 use super::params::ContactParams;
 use super::penalty::{damping_constant, effective_mass, stable_step};
@@ -401,7 +401,7 @@ impl Interaction for SurfacePair {
                     }
                     let rel = sub(ctx.v[g as usize], vm);
                     let n = pr.normal;
-                    let kin = Kinematics {
+                    let kin = NodeKinematics {
                         gap: pr.gap,
                         gap_rate: dot(rel, n),
                         slip: scale(dt_prev, tangential(rel, n)),
@@ -510,7 +510,7 @@ impl Interaction for SurfacePair {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::fe::contact::{Coulomb, PenaltyRule};
+    use crate::fe::contact::{CoulombFriction, PenaltyRule};
     use crate::mesh::block::block;
     use crate::mesh::Mesh;
 
@@ -710,7 +710,7 @@ mod tests {
         let (m, top, bottom) = stacked(2, 2, g);
         let mat = steel();
         let params = ContactParams {
-            friction: Some(Coulomb::new(0.3)),
+            friction: Some(CoulombFriction::new(0.3)),
             ..Default::default()
         };
         let mut pair =

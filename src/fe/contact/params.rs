@@ -1,7 +1,7 @@
 //! The settings every contact pair shares: penalty rule, damping, friction, stick stiffness
 //! and the penetration bound.
 
-use super::friction::Coulomb;
+use super::friction::CoulombFriction;
 use super::penalty::PenaltyRule;
 use crate::error::{Error, Result};
 
@@ -13,7 +13,7 @@ pub struct ContactParams {
     /// Normal contact damping as a fraction of critical (0 ≤ ζ ≤ 1; 0 = none).
     pub damping: f64,
     /// Coulomb friction; `None` = frictionless.
-    pub friction: Option<Coulomb>,
+    pub friction: Option<CoulombFriction>,
     /// Tangential stick stiffness as a multiple of the node's normal penalty stiffness (> 0).
     pub tangential_ratio: f64,
     /// Largest allowed penetration as a fraction of the thickness of the element under the

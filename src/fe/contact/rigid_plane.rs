@@ -2,7 +2,7 @@
 //! (frictionless), a wall (frictional), or a moving platen for quasi-static compression.
 
 use super::friction::StickState;
-use super::law::{respond, stored_energy, Kinematics, NodeLaw};
+use super::law::{respond, stored_energy, NodeKinematics, NodeLaw};
 use super::output::{ContactOutput, ContactProbe, NodeContact, OutputBuilder, PressureSample};
 use super::params::ContactParams;
 use super::penalty::{damping_constant, stable_step};
@@ -224,7 +224,7 @@ impl Interaction for RigidPlane {
                     )));
                 }
                 let rel = sub(ctx.v[gi], wall_v);
-                let kin = Kinematics {
+                let kin = NodeKinematics {
                     gap,
                     gap_rate: dot(rel, n),
                     slip: scale(dt_prev, tangential(rel, n)),

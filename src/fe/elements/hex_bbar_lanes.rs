@@ -38,7 +38,7 @@ use crate::fe::{
 /// The state of W B-bar elements, lane-wise; points in the order of
 /// [`crate::fe::elements::shape::gauss_points_2x2x2`].
 #[derive(Debug, Clone, Copy)]
-pub struct State<const W: usize> {
+pub struct BBarLaneState<const W: usize> {
     /// Cauchy stress at each Gauss point, Pa (Voigt [xx, yy, zz, xy, yz, zx]).
     pub stress: [[Lanes<W>; 6]; 8],
     /// Equivalent plastic strain at each Gauss point.
@@ -51,7 +51,7 @@ pub struct State<const W: usize> {
 
 /// What a group update returns, lane-wise.
 #[derive(Debug, Clone, Copy)]
-pub struct Output<const W: usize> {
+pub struct BBarLaneOutput<const W: usize> {
     /// Internal nodal forces at t^{n+1}, N.
     pub force: [Vec3<W>; 8],
     /// Volume at t^{n+1}, m³.
@@ -112,8 +112,8 @@ pub fn update<H: Hardening, const W: usize>(
     dt: f64,
     mat: &J2Material,
     law: &H,
-    st: &mut State<W>,
-) -> Output<W> {
+    st: &mut BBarLaneState<W>,
+) -> BBarLaneOutput<W> {
     let a1 = modes(x1);
     let u = modes(v);
     let half = 0.5 * dt;
@@ -225,7 +225,7 @@ pub fn update<H: Hardening, const W: usize>(
         }
     }
     let force = nodes_from_modes(&fm);
-    Output {
+    BBarLaneOutput {
         force,
         volume: vol,
         point_volume: j1,
@@ -268,7 +268,7 @@ impl Element for BBarHex {
             // from them directly, with no zero fill first (a 3.7 KB `memset` call per group).
             debug_assert!(b.pts.len() == 8 * n && b.wp.len() == n && b.ie.len() == n);
             let pp = b.pts.as_mut_ptr().cast::<f64>();
-            let mut st = MaybeUninit::<State<W>>::uninit();
+            let mut st = MaybeUninit::<BBarLaneState<W>>::uninit();
             let sp = st.as_mut_ptr();
             // SAFETY: as above (rows of 8 f64 inside the slice); every field of `st` is written
             // once, through raw pointers to its own storage, before it is read.
@@ -347,7 +347,7 @@ impl Element for BBarHex {
         let lane = |f: &dyn Fn(usize) -> f64| isa.lanes(std::array::from_fn(f));
         let mat = &b.material;
         let pt = |l: usize, g: usize| &b.points[8 * idx[l] + g];
-        let st0 = State::<W> {
+        let st0 = BBarLaneState::<W> {
             stress: std::array::from_fn(|g| std::array::from_fn(|c| lane(&|l| pt(l, g).stress[c]))),
             eps_p: std::array::from_fn(|g| lane(&|l| pt(l, g).eps_p)),
             plastic_work: lane(&|l| b.plastic_work[idx[l]]),
@@ -384,7 +384,7 @@ mod tests {
         let dt = 2e-8;
         let mut x = xs;
         let z = crate::fe::simd::LaneIsa::<4>::detect().unwrap().splat(0.0);
-        let mut st = State::<4> {
+        let mut st = BBarLaneState::<4> {
             stress: [[z; 6]; 8],
             eps_p: [z; 8],
             plastic_work: z,

@@ -238,7 +238,7 @@ pub fn point_update<H: Hardening, const W: usize>(
 
 /// The state of W one-point elements, lane-wise.
 #[derive(Debug, Clone, Copy)]
-pub struct State<const W: usize> {
+pub struct OnePointLaneState<const W: usize> {
     /// Cauchy stress, Pa.
     pub stress: [Lanes<W>; 6],
     /// Equivalent plastic strain.
@@ -255,7 +255,7 @@ pub struct State<const W: usize> {
 
 /// What a group update returns, lane-wise.
 #[derive(Debug, Clone, Copy)]
-pub struct Output<const W: usize> {
+pub struct OnePointLaneOutput<const W: usize> {
     /// Internal nodal forces at t^{n+1}, N.
     pub force: [Vec3<W>; 8],
     /// Volume at t^{n+1} (≤ 0: inverted), m³.
@@ -278,8 +278,8 @@ pub fn update<H: Hardening, const W: usize>(
     mat: &J2Material,
     law: &H,
     hg: f64,
-    st: &mut State<W>,
-) -> Output<W> {
+    st: &mut OnePointLaneState<W>,
+) -> OnePointLaneOutput<W> {
     let a1 = modes(x1);
     let u = modes(v);
     let half = 0.5 * dt;
@@ -358,7 +358,7 @@ pub fn update<H: Hardening, const W: usize>(
         }
     }
     let force = nodes_from_modes(&fm);
-    Output {
+    OnePointLaneOutput {
         force,
         volume: v1,
         dt_crit: critical_step(x1, v1, mat.wave_speed),
@@ -431,7 +431,7 @@ impl Element for OnePointHex {
                 b.pts.as_mut_ptr().cast::<f64>(),
                 b.hgq.as_mut_ptr().cast::<f64>(),
             );
-            let mut st = MaybeUninit::<State<W>>::uninit();
+            let mut st = MaybeUninit::<OnePointLaneState<W>>::uninit();
             let sp = st.as_mut_ptr();
             // SAFETY: as above (rows of 8 and 12 f64 inside their slices); every field of `st`
             // is written once, through raw pointers to its own storage, before it is read.
@@ -515,7 +515,7 @@ impl Element for OnePointHex {
     ) -> std::time::Duration {
         let lane = |f: &dyn Fn(usize) -> f64| isa.lanes(std::array::from_fn(f));
         let mat = &b.material;
-        let st0 = State::<W> {
+        let st0 = OnePointLaneState::<W> {
             stress: std::array::from_fn(|c| lane(&|l| b.points[idx[l]].stress[c])),
             eps_p: lane(&|l| b.points[idx[l]].eps_p),
             hourglass: std::array::from_fn(|a| {
@@ -702,7 +702,7 @@ pub(crate) mod tests {
         let dt = 2e-8;
         let mut x = xs;
         let z = crate::fe::simd::LaneIsa::<4>::detect().unwrap().splat(0.0);
-        let mut st = State::<4> {
+        let mut st = OnePointLaneState::<4> {
             stress: [z; 6],
             eps_p: z,
             hourglass: [[z; 3]; 4],

@@ -5,14 +5,14 @@
 
 /// A rigid frictionless plane normal to the axis.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct RigidPlane {
+pub struct ExactPlane {
     /// Axial position of the plane, m.
     pub z: f64,
     /// +1 when the body lies above the plane (z > `z`), −1 below.
     pub side: f64,
 }
 
-impl RigidPlane {
+impl ExactPlane {
     /// The gap of a node at axial position `z_node` (m): positive apart, negative across.
     pub fn gap(&self, z_node: f64) -> f64 {
         self.side * (z_node - self.z)
@@ -31,10 +31,10 @@ mod tests {
 
     #[test]
     fn gap_and_pressure_follow_the_side() {
-        let below = RigidPlane { z: 1.0, side: 1.0 };
+        let below = ExactPlane { z: 1.0, side: 1.0 };
         assert_eq!(below.gap(1.5), 0.5);
         assert_eq!(below.pressure_of(2.0), 2.0);
-        let above = RigidPlane { z: 1.0, side: -1.0 };
+        let above = ExactPlane { z: 1.0, side: -1.0 };
         assert_eq!(above.gap(1.5), -0.5);
         assert_eq!(above.pressure_of(2.0), -2.0);
     }

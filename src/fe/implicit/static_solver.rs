@@ -13,10 +13,10 @@
 //! [`Law::quasi_static`]: crate::material::hardening::Law::quasi_static
 
 use super::element_tangent::{increment_forces, increment_tangent};
-use super::plane::RigidPlane;
+use super::plane::ExactPlane;
 use super::system::Pattern;
 use crate::error::{Error, Result};
-use crate::fe::axisym::section::SectionModel;
+use crate::fe::section::solver::SectionModel;
 use crate::fe::elements::ring::element::Quad;
 use crate::fe::elements::ring::QuadState;
 use crate::fe::materials::J2Material;
@@ -92,7 +92,7 @@ pub const MAX_CUTS: u32 = 6;
 #[derive(Clone)]
 pub struct StaticSolver {
     model: SectionModel,
-    plane: Option<RigidPlane>,
+    plane: Option<ExactPlane>,
     settings: Settings,
     pattern: Arc<Pattern>,
     x: Vec<[f64; 2]>,
@@ -115,7 +115,7 @@ impl StaticSolver {
     /// plane start in contact. Fails on an invalid model or a node across the plane.
     pub fn new(
         mut model: SectionModel,
-        plane: Option<RigidPlane>,
+        plane: Option<ExactPlane>,
         settings: Settings,
     ) -> Result<Self> {
         model.check()?;
@@ -232,7 +232,7 @@ impl StaticSolver {
             }
         }
         let plane = match (self.plane, target.plane_z) {
-            (Some(p), Some(z)) => Some(RigidPlane { z, ..p }),
+            (Some(p), Some(z)) => Some(ExactPlane { z, ..p }),
             (p, _) => p,
         };
         let f_ext: Vec<[f64; 2]> = self
@@ -291,7 +291,7 @@ impl StaticSolver {
     fn constraints(
         &self,
         target: &Target,
-        plane: Option<RigidPlane>,
+        plane: Option<ExactPlane>,
         active: &[bool],
     ) -> (Vec<bool>, Vec<f64>) {
         let n = self.x.len();
@@ -445,7 +445,7 @@ impl StaticSolver {
     /// returns the number of changes.
     fn settle(
         &self,
-        plane: RigidPlane,
+        plane: ExactPlane,
         active: &mut [bool],
         du: &[[f64; 2]],
         f_int: &[[f64; 2]],
@@ -512,7 +512,7 @@ impl StaticSolver {
     }
 
     /// The plane at the last converged increment.
-    pub fn plane(&self) -> Option<RigidPlane> {
+    pub fn plane(&self) -> Option<ExactPlane> {
         self.plane
     }
 

@@ -15,7 +15,7 @@ use crate::fe::{
     solver::energy::{EnergyReport, PartEnergy},
     solver::interaction::{Interaction, StepContext},
     solver::mass::element_lumped_mass,
-    solver::profile::{Phase, Profile},
+    solver::profile::{StepPhase, Profile},
     solver::subcycle::{node_force_sum, SubcycleReport, Subcycler, Subcycling, AUTO_MIN_SAVING},
     solver::timestep::StableStep,
     tensor::{cross, dot, inverse, Sym},
@@ -470,7 +470,7 @@ impl Solver {
 
     /// One time step n → n+1, Box 6.1 steps 4-12.
     pub fn step(&mut self) -> Result<()> {
-        self.profile.lap(Phase::Outside);
+        self.profile.lap(StepPhase::Outside);
         if self.sub.is_some() {
             return self.step_subcycled();
         }
@@ -483,7 +483,7 @@ impl Solver {
         // update x^{n+1} = x^n + Δt^{n+1/2} v^{n+1/2}.
         let (p_int_old, p_ext_old) = self.kick_and_drift(dt);
         self.t = t_new;
-        self.profile.lap(Phase::Nodal);
+        self.profile.lap(StepPhase::Nodal);
         // 8. getforce: element loop, interactions, critical time step.
         self.getforce(dt)?;
         self.updates += self.model.hexes.len() as u64;
@@ -515,7 +515,7 @@ impl Solver {
         // x^{n+1} = x^n + Δt v^{n+1/2}.
         let (p_int_old, p_ext_old) = self.open_kick_and_drift(dt);
         self.t = t_new;
-        self.profile.lap(Phase::Nodal);
+        self.profile.lap(StepPhase::Nodal);
         // 8. getforce: elements due now with their own steps, levels and fine step, interactions.
         self.getforce_subcycled(dt)?;
         // 9-10 and 11 (first half) in one pass over the nodes due now: closing and opening
@@ -535,7 +535,7 @@ impl Solver {
 
     /// Box 6.1 step 11: records the balance error and stops when energy is created.
     fn energy_check(&mut self) -> Result<()> {
-        self.profile.lap(Phase::Nodal);
+        self.profile.lap(StepPhase::Nodal);
         if self.step.is_multiple_of(self.settings.energy_interval) {
             let e = self.energy();
             self.max_balance_error = self.max_balance_error.max(e.balance_error);
@@ -546,7 +546,7 @@ impl Solver {
                 return Err(self.energy_growth_error(created));
             }
         }
-        self.profile.lap(Phase::Energy);
+        self.profile.lap(StepPhase::Energy);
         self.profile.end_step(Some(self.updates));
         Ok(())
     }
@@ -571,7 +571,7 @@ impl Solver {
         let done =
             sub.update_due_elements(&mut self.blocks, xg, &self.x, &self.v, &mut self.elem_force);
         self.updates += done.map_err(|(e, why)| self.element_error(e, why))?;
-        self.profile.lap(Phase::Elements);
+        self.profile.lap(StepPhase::Elements);
         // Critical steps: every element's latest Courant limit, and the interactions.
         let best = sub.smallest_limit(&self.blocks);
         self.stable = self.stable_limit(best);
@@ -590,7 +590,7 @@ impl Solver {
         );
         self.dt_next = h;
         self.check_collapse()?;
-        self.profile.lap(Phase::StableStep);
+        self.profile.lap(StepPhase::StableStep);
         // The nodes kicked last step go back to zero force and acceleration; the nodes due
         // now (every node if an interaction may act anywhere) are gathered and kicked.
         for &i in &self.kicked {
@@ -612,7 +612,7 @@ impl Solver {
             &mut self.f_int,
             &mut self.f_open,
         );
-        self.profile.lap(Phase::Gather);
+        self.profile.lap(StepPhase::Gather);
         self.external_forces()
     }
 
@@ -741,16 +741,16 @@ impl Solver {
                 Err((e, why)) => return Err(self.element_error(e, why)),
             }
         }
-        self.profile.lap(Phase::Elements);
+        self.profile.lap(StepPhase::Elements);
         if !direct {
             self.gather_internal_forces();
         }
-        self.profile.lap(Phase::Gather);
+        self.profile.lap(StepPhase::Gather);
         // Critical time step: elements (Courant) and interactions.
         self.stable = self.stable_limit(best);
         self.dt_next = self.next_step(self.dt_next, self.stable.dt);
         self.check_collapse()?;
-        self.profile.lap(Phase::StableStep);
+        self.profile.lap(StepPhase::StableStep);
         Ok(())
     }
 
@@ -841,7 +841,7 @@ impl Solver {
         for it in &mut self.interactions {
             it.add_forces(&ctx, &mut self.f_ext)?;
         }
-        self.profile.lap(Phase::Contact);
+        self.profile.lap(StepPhase::Contact);
         Ok(())
     }
 

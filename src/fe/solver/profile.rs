@@ -2,7 +2,7 @@
 //!
 //! The solver calls [`Profile::lap`] at each phase boundary of a step; a lap charges the time
 //! since the previous lap to the named phase. Time spent between two steps (the caller's
-//! history output and stop checks) is charged to [`Phase::Outside`] by the lap at the start of
+//! history output and stop checks) is charged to [`StepPhase::Outside`] by the lap at the start of
 //! the next step. Off by default: then a lap is one predictable branch, no clock read.
 //! Switched on per solver by its settings (`Settings::profile`); the totals belong to the
 //! solver ([`Profile::totals`]), and a study that builds its solvers internally hands them
@@ -12,7 +12,7 @@ use std::time::Instant;
 
 /// The phases of an explicit step.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Phase {
+pub enum StepPhase {
     /// Element loop: gather, strain, objective rotation, plasticity, hourglass, force blocks.
     Elements,
     /// Assembly of the element force blocks into nodal internal forces.
@@ -29,33 +29,33 @@ pub enum Phase {
     Outside,
 }
 
-impl Phase {
+impl StepPhase {
     /// Every phase, in table order.
-    pub const ALL: [Phase; 7] = [
-        Phase::Elements,
-        Phase::Gather,
-        Phase::StableStep,
-        Phase::Contact,
-        Phase::Nodal,
-        Phase::Energy,
-        Phase::Outside,
+    pub const ALL: [StepPhase; 7] = [
+        StepPhase::Elements,
+        StepPhase::Gather,
+        StepPhase::StableStep,
+        StepPhase::Contact,
+        StepPhase::Nodal,
+        StepPhase::Energy,
+        StepPhase::Outside,
     ];
 
     /// Row label.
     pub fn name(self) -> &'static str {
         match self {
-            Phase::Elements => "element forces (strain, plasticity, hourglass)",
-            Phase::Gather => "node gather of element forces",
-            Phase::StableStep => "stable time step",
-            Phase::Contact => "contact (search + forces)",
-            Phase::Nodal => "nodal updates (v, x, a, BCs, power)",
-            Phase::Energy => "energy checks",
-            Phase::Outside => "output/history/stop checks (caller)",
+            StepPhase::Elements => "element forces (strain, plasticity, hourglass)",
+            StepPhase::Gather => "node gather of element forces",
+            StepPhase::StableStep => "stable time step",
+            StepPhase::Contact => "contact (search + forces)",
+            StepPhase::Nodal => "nodal updates (v, x, a, BCs, power)",
+            StepPhase::Energy => "energy checks",
+            StepPhase::Outside => "output/history/stop checks (caller)",
         }
     }
 }
 
-/// Accumulated seconds per phase, indexed like [`Phase::ALL`].
+/// Accumulated seconds per phase, indexed like [`StepPhase::ALL`].
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub struct Totals {
     /// Seconds per phase.
@@ -73,7 +73,7 @@ impl Totals {
     }
 
     /// Seconds charged to one phase.
-    pub fn get(&self, p: Phase) -> f64 {
+    pub fn get(&self, p: StepPhase) -> f64 {
         self.seconds[p as usize]
     }
 
@@ -91,7 +91,7 @@ impl Totals {
             "{:<48} {:>9} {:>7} {:>10}\n",
             "phase", "time [s]", "share", "ns/el-cyc"
         );
-        for p in Phase::ALL {
+        for p in StepPhase::ALL {
             let s = self.get(p);
             let share = if total > 0.0 { 100.0 * s / total } else { 0.0 };
             out += &format!(
@@ -133,7 +133,7 @@ impl Profile {
 
     /// Charges the time since the previous lap to `phase` (nothing when off).
     #[inline]
-    pub fn lap(&mut self, phase: Phase) {
+    pub fn lap(&mut self, phase: StepPhase) {
         if let Some(t0) = self.last {
             let now = Instant::now();
             self.totals.seconds[phase as usize] += (now - t0).as_secs_f64();
@@ -171,7 +171,7 @@ mod tests {
             totals: Totals::default(),
             elements: 10,
         };
-        off.lap(Phase::Elements);
+        off.lap(StepPhase::Elements);
         off.end_step(None);
         assert_eq!(off.totals(), Totals::default());
 
@@ -181,12 +181,12 @@ mod tests {
             elements: 10,
         };
         std::thread::sleep(std::time::Duration::from_millis(20));
-        on.lap(Phase::Contact);
-        on.lap(Phase::Gather);
+        on.lap(StepPhase::Contact);
+        on.lap(StepPhase::Gather);
         on.end_step(None);
         let t = on.totals();
-        assert!(t.get(Phase::Contact) >= 0.02, "{t:?}");
-        assert!(t.get(Phase::Gather) < t.get(Phase::Contact));
+        assert!(t.get(StepPhase::Contact) >= 0.02, "{t:?}");
+        assert!(t.get(StepPhase::Gather) < t.get(StepPhase::Contact));
         assert_eq!((t.steps, t.element_cycles), (1, 10));
         assert!(t.table().contains("contact (search + forces)"));
     }

@@ -2,7 +2,7 @@
 //! timer on, and where its wall time went.
 
 use crate::error::{Error, Result};
-use crate::fe::profile::Phase;
+use crate::fe::profile::StepPhase;
 use crate::scene::Scene;
 use crate::study::run::scene::run_scene;
 use crate::study::run::simulate::RunOptions;
@@ -63,12 +63,12 @@ pub fn profile(scene: &Scene, threads: Option<usize>, out: &mut impl Write) -> R
         "setup (mesh, model, analytic, first forces)", setup, "wall time of the run", wall
     )
     .map_err(put)?;
-    let solver = t.sum() - t.get(Phase::Outside);
+    let solver = t.sum() - t.get(StepPhase::Outside);
     if solver > 0.0 {
         writeln!(
             out,
             "# contact share of the solver's step time: {:.1}%",
-            100.0 * t.get(Phase::Contact) / solver
+            100.0 * t.get(StepPhase::Contact) / solver
         )
         .map_err(put)?;
     }

@@ -18,9 +18,9 @@
 //! estimate says why ([`EstimateMethod::SceneLadder`]).
 
 use crate::error::{Error, Result};
-use crate::fe::axisym::subcycle::Integration;
+use crate::fe::section::subcycle::Integration;
 use crate::fe::subcycle::Subcycling;
-use crate::mesh::meridian::MeridianMesh;
+use crate::mesh::section::SectionMesh;
 use crate::scene::{approach, Approach, PlaneEnforcement, Scene, Switch, WallKind};
 use crate::study::convergence::phase_band::banded_mesh;
 use crate::study::convergence::phase_ensemble::{
@@ -35,7 +35,7 @@ use crate::study::run::section::{formulation, plane_contact};
 use crate::study::run::simulate::{choose_reduction, Reduction};
 
 /// The band's split: each surface ring at the contact edge split five-fold, its shells
-/// confined to the surface ([`crate::mesh::meridian_band::SURFACE_DEPTH`]).
+/// confined to the surface ([`crate::mesh::section::band::SURFACE_DEPTH`]).
 pub const SPLIT: usize = 5;
 
 /// The fine level the plan starts on (its coarse ensemble is level 0).
@@ -48,7 +48,7 @@ pub const MESHES: usize = 2;
 pub const MAX_MASS_SCALING: f64 = 1e-4;
 
 /// The highest subcycling level of the family's runs: one above the section's default
-/// ([`crate::fe::axisym::subcycle::DEFAULT_MAX_LEVEL`]). Mass scaling has lifted the step of
+/// ([`crate::fe::section::subcycle::DEFAULT_MAX_LEVEL`]). Mass scaling has lifted the step of
 /// the smallest quads, so the levels' pseudo-energy stays small: on levels 0 and 1 of the
 /// default scene, steel at 1 m/s, aluminum at 10 m/s and copper-fe at 0.2 m/s the energy
 /// error is 2e-5 to 6e-5 of KE₀ (3e-6 to 1.3e-5 at the default cap), e moves by at most
@@ -177,7 +177,7 @@ pub fn converge_report(
     tolerance: f64,
     max_refinements: u32,
 ) -> Result<RunReport> {
-    let max = crate::mesh::meridian_ladder::MAX_LEVEL - FINE_LEVEL as u32;
+    let max = crate::mesh::section::ladder::MAX_LEVEL - FINE_LEVEL as u32;
     let plan = plan(tolerance, max_refinements.min(max));
     let answer = converged_head_on(case, &plan)?;
     let estimate = estimate_of(case, &answer, tolerance)?;
@@ -245,7 +245,7 @@ fn estimate_of(case: &HeadOnCase, answer: &HeadOnAnswer, tolerance: f64) -> Resu
 
 /// The lengths (m) of the contact surface's segment at the pole (on the axis) and of its
 /// longest segment.
-fn contact_segment_sizes(mesh: &MeridianMesh) -> (f64, f64) {
+fn contact_segment_sizes(mesh: &SectionMesh) -> (f64, f64) {
     let segments = mesh.segment_sets.get("contact").unwrap_or(&mesh.boundary);
     let length = |s: &[u32; 2]| {
         let (a, b) = (mesh.nodes[s[0] as usize], mesh.nodes[s[1] as usize]);
@@ -299,7 +299,7 @@ mod tests {
             .unwrap();
         assert_eq!(wall.target, HeadOnTarget::RigidWall);
         assert_eq!(wall.relative_speed, 1.0);
-        let mesh = || crate::mesh::meridian::ladder_ball(0.02, 5e-4, 0).unwrap();
+        let mesh = || crate::mesh::section::ladder_ball(0.02, 5e-4, 0).unwrap();
         let (a, b) = (
             crate::study::convergence::phase_ensemble::head_on(&pair, mesh()),
             crate::study::convergence::phase_ensemble::head_on(&wall, mesh()),

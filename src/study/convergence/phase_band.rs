@@ -1,5 +1,5 @@
 //! The banded mesh family of a head-on impact: the ladder with an edge band of finer surface
-//! rings at the contact edge ([`crate::mesh::meridian_band`]).
+//! rings at the contact edge ([`crate::mesh::section::band`]).
 //!
 //! A section run's plastic e is a sawtooth over the ring spacing at the contact edge
 //! ([`crate::study::convergence::phase_ensemble`]). The band splits that spacing alone, which shrinks the
@@ -8,7 +8,7 @@
 //! level 0 falls from 1.9 % to 0.35 % with a four-fold band, at 4.5 times the run's cost,
 //! where level 1 (seven times the cost) leaves 0.95 % (verification/contact-penalty.md, "An edge
 //! band of finer rings"). An odd split confines the band's shells to a sixth of the rays below
-//! the surface ([`crate::mesh::meridian_band::SURFACE_DEPTH`]), which the bench's five-fold
+//! the surface ([`crate::mesh::section::band::SURFACE_DEPTH`]), which the bench's five-fold
 //! band uses: the same answers at about half the cost.
 //!
 //! The band needs the edge: [`contact_edge`] runs the plain family's level 0 once and takes
@@ -18,8 +18,8 @@
 //! every level. Its levels are the ladder's (0, 1, …): a banded plan's fine level is ≥ 1.
 
 use crate::error::Result;
-use crate::mesh::meridian::{ladder_ball_banded, EdgeBand, MeridianMesh};
-pub use crate::mesh::meridian_band::check_split;
+use crate::mesh::section::{ladder_ball_banded, EdgeBand, SectionMesh};
+pub use crate::mesh::section::band::check_split;
 use crate::study::convergence::phase_ensemble::{
     ensemble_over, family_mesh, hertz_contact_radius, ring_ratio, run_head_on, HeadOnCase,
     PhaseEnsemble,
@@ -50,7 +50,7 @@ pub fn contact_edge(case: &HeadOnCase) -> Result<(f64, ImpactResult)> {
 /// `split`-fold.
 ///
 /// Errors: those of [`ladder_ball_banded`].
-pub fn banded_mesh(d: f64, edge: f64, level: u32, split: usize, s: f64) -> Result<MeridianMesh> {
+pub fn banded_mesh(d: f64, edge: f64, level: u32, split: usize, s: f64) -> Result<SectionMesh> {
     ladder_ball_banded(
         d,
         SIZING_PER_EDGE * edge * s,
@@ -76,7 +76,7 @@ pub fn banded_ensemble_at(
     let d = case.diameter;
     let q = ring_ratio(&banded_mesh(d, edge, level, split, 1.0)?, edge)?;
     let mesh_at = |s: f64| banded_mesh(d, edge, level, split, s);
-    let run = |mesh: MeridianMesh| run_head_on(case, mesh);
+    let run = |mesh: SectionMesh| run_head_on(case, mesh);
     ensemble_over(q, meshes, &mesh_at, &run)
 }
 
@@ -87,7 +87,7 @@ mod tests {
     #[test]
     fn a_bad_split_is_refused_before_running() {
         let case = HeadOnCase::default_scene();
-        for split in [0, crate::mesh::meridian_band::MAX_SPLIT + 1] {
+        for split in [0, crate::mesh::section::band::MAX_SPLIT + 1] {
             let e = banded_ensemble_at(&case, 0, 2, 9e-4, split)
                 .unwrap_err()
                 .to_string();

@@ -20,10 +20,10 @@
 
 use crate::analytic::hertz::HertzPair;
 use crate::error::{Error, Result};
-use crate::fe::axisym::subcycle::Integration;
+use crate::fe::section::subcycle::Integration;
 use crate::fe::elements::ring::QuadFormulation;
 use crate::material::Material;
-use crate::mesh::meridian::{ladder_ball, MeridianMesh};
+use crate::mesh::section::{ladder_ball, SectionMesh};
 use crate::study::convergence::ladder::refine;
 use crate::study::records::estimate::{estimate, Behaviour, Estimate, ASSUMED_ORDER};
 use crate::study::run::section_impact::{HeadOn, ImpactResult, PlaneContact, Target};
@@ -45,7 +45,7 @@ pub const MIN_LEVEL: i32 = -2;
 /// (m) sized from contact radius `a` (m).
 ///
 /// Errors: those of `ladder_ball` (a sizing radius outside its range).
-pub fn family_mesh(d: f64, a: f64, level: i32) -> Result<MeridianMesh> {
+pub fn family_mesh(d: f64, a: f64, level: i32) -> Result<SectionMesh> {
     if level >= 0 {
         ladder_ball(d, a, level as u32)
     } else {
@@ -195,7 +195,7 @@ pub struct HeadOnCase {
     /// How the rigid plane (the symmetry plane, or the wall) is enforced.
     pub plane: PlaneContact,
     /// Mass-scaling budget of every run: added mass over the section's (0: none;
-    /// [`crate::fe::axisym::mass_scaling`]); its bias bound joins every bar
+    /// [`crate::fe::section::mass_scaling`]); its bias bound joins every bar
     /// ([`MASS_SCALING_BIAS`]).
     pub mass_scaling: f64,
     /// Time integration of every run (by default [`Integration::subcycled`]).
@@ -222,7 +222,7 @@ impl HeadOnCase {
 /// How fine and how large the ensembles are.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct PhasePlan {
-    /// Level of the fine ensemble: ℓ ≥ 0 the ladder level of `mesh::meridian::ladder_ball`
+    /// Level of the fine ensemble: ℓ ≥ 0 the ladder level of `mesh::section::ladder_ball`
     /// sized from Hertz's contact radius a; ℓ < 0 the level-0 ladder sized from 2^−ℓ a (pole
     /// cells 2^−ℓ times larger). The coarse ensemble is level ℓ − 1.
     pub level: i32,
@@ -255,7 +255,7 @@ impl Default for PhasePlan {
 /// and the next one outwards, on the nodes of `mesh`'s `contact` set (its boundary without).
 ///
 /// Errors: a radius that is not finite and positive, or no surface ring outside it.
-pub fn ring_ratio(mesh: &MeridianMesh, radius: f64) -> Result<f64> {
+pub fn ring_ratio(mesh: &SectionMesh, radius: f64) -> Result<f64> {
     if !(radius.is_finite() && radius > 0.0) {
         return Err(Error::invalid(
             "contact_radius",
@@ -341,8 +341,8 @@ fn member(scale: f64, r: &ImpactResult) -> PhaseRun {
 ///
 /// Errors: an odd or too small `meshes`; any error of `mesh_at` or `run` (the first one).
 pub fn run_ensemble(
-    mesh_at: &(dyn Fn(f64) -> Result<MeridianMesh> + Sync),
-    run: &(dyn Fn(MeridianMesh) -> Result<ImpactResult> + Sync),
+    mesh_at: &(dyn Fn(f64) -> Result<SectionMesh> + Sync),
+    run: &(dyn Fn(SectionMesh) -> Result<ImpactResult> + Sync),
     meshes: usize,
 ) -> Result<(PhaseEnsemble, ImpactResult)> {
     check_meshes(meshes)?;
@@ -401,8 +401,8 @@ fn check(case: &HeadOnCase, plan: &PhasePlan) -> Result<()> {
     if !(case.diameter.is_finite() && case.diameter > 0.0) {
         return Err(Error::invalid("diameter", case.diameter, "> 0 m, finite"));
     }
-    crate::fe::axisym::mass_scaling::check_budget(case.mass_scaling)?;
-    let max = crate::mesh::meridian_ladder::MAX_LEVEL as i32;
+    crate::fe::section::mass_scaling::check_budget(case.mass_scaling)?;
+    let max = crate::mesh::section::ladder::MAX_LEVEL as i32;
     if !(MIN_LEVEL..=max).contains(&plan.level) {
         // `plan.level` is the fine level: its coarse ensemble is one below.
         return Err(Error::invalid(
@@ -454,7 +454,7 @@ fn check_ensemble_level(case: &HeadOnCase, level: i32, meshes: usize) -> Result<
 }
 
 /// The HeadOn model of `case` on `mesh`.
-pub(super) fn head_on(case: &HeadOnCase, mesh: MeridianMesh) -> HeadOn {
+pub(super) fn head_on(case: &HeadOnCase, mesh: SectionMesh) -> HeadOn {
     let (speed, target) = match case.target {
         HeadOnTarget::IdenticalBall => (case.relative_speed / 2.0, Target::MirrorBall),
         HeadOnTarget::RigidWall => (case.relative_speed, Target::RigidWall),
@@ -471,7 +471,7 @@ pub(super) fn head_on(case: &HeadOnCase, mesh: MeridianMesh) -> HeadOn {
 /// interrupted (Ctrl-C, or its cancel token).
 ///
 /// Errors: those of the run; [`Error::Interrupted`] on an interrupt.
-pub(super) fn run_head_on(case: &HeadOnCase, mesh: MeridianMesh) -> Result<ImpactResult> {
+pub(super) fn run_head_on(case: &HeadOnCase, mesh: SectionMesh) -> Result<ImpactResult> {
     head_on(case, mesh).run_observed(&mut |solver, _| {
         if crate::study::common::interrupt::requested() {
             return Err(Error::Interrupted(format!(
@@ -497,7 +497,7 @@ pub fn ensemble_at(
     check_ensemble_level(case, level, meshes)?;
     let a = hertz_contact_radius(case);
     let d = case.diameter;
-    let run = |mesh: MeridianMesh| run_head_on(case, mesh);
+    let run = |mesh: SectionMesh| run_head_on(case, mesh);
     let mesh_at = |s: f64| family_mesh(d, a * s, level);
     run_ensemble(&mesh_at, &run, meshes)
 }
@@ -519,7 +519,7 @@ pub fn ensemble_at_radius(
     let d = case.diameter;
     let q = ring_ratio(&family_mesh(d, a, level)?, radius)?;
     let mesh_at = |s: f64| family_mesh(d, a * s, level);
-    let run = |mesh: MeridianMesh| run_head_on(case, mesh);
+    let run = |mesh: SectionMesh| run_head_on(case, mesh);
     Ok(ensemble_over(q, meshes, &mesh_at, &run)?.0)
 }
 
@@ -531,8 +531,8 @@ pub fn ensemble_at_radius(
 pub fn ensemble_over(
     q: f64,
     meshes: usize,
-    mesh_at: &(dyn Fn(f64) -> Result<MeridianMesh> + Sync),
-    run: &(dyn Fn(MeridianMesh) -> Result<ImpactResult> + Sync),
+    mesh_at: &(dyn Fn(f64) -> Result<SectionMesh> + Sync),
+    run: &(dyn Fn(SectionMesh) -> Result<ImpactResult> + Sync),
 ) -> Result<(PhaseEnsemble, ImpactResult)> {
     if !(q.is_finite() && q > 1.0) {
         return Err(Error::invalid("ring_ratio", q, "> 1, finite"));
@@ -706,8 +706,8 @@ mod tests {
 
     #[test]
     fn an_odd_ensemble_is_refused() {
-        let mesh_at = |_s: f64| -> Result<MeridianMesh> { unreachable!() };
-        let run = |_m: MeridianMesh| -> Result<ImpactResult> { unreachable!() };
+        let mesh_at = |_s: f64| -> Result<SectionMesh> { unreachable!() };
+        let run = |_m: SectionMesh| -> Result<ImpactResult> { unreachable!() };
         let e = run_ensemble(&mesh_at, &run, 3).unwrap_err().to_string();
         assert!(e.contains("phase_meshes") && e.contains("3"), "{e}");
         for q in [f64::NAN, 1.0, 0.5] {

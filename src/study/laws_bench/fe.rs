@@ -8,7 +8,7 @@ use super::matrix::{HeadOnPoint, ObliquePoint};
 use crate::analytic::{Body, HertzPair};
 use crate::error::{Error, Result};
 use crate::fe::elements::ring::QuadFormulation;
-use crate::mesh::meridian_band::depth_for;
+use crate::mesh::section::band::depth_for;
 use crate::scene::Scene;
 use crate::study::convergence::phase_ensemble::{
     converged_head_on, HeadOnCase, HeadOnTarget, PhasePlan, MIN_LEVEL,
@@ -92,7 +92,7 @@ pub struct FePlan {
 }
 
 /// The bench's default plan: the banded family (a five-fold band confined to a sixth of the
-/// rays below the surface, [`crate::mesh::meridian_band::SURFACE_DEPTH`]) with fine level 1 and
+/// rays below the surface, [`crate::mesh::section::band::SURFACE_DEPTH`]) with fine level 1 and
 /// coarse level 0, two meshes each, every run mass-scaled within 1e-4 of the section's mass,
 /// a point whose bar of e exceeds 0.5 % refined one level (docs/contact-laws.md, "FE error
 /// bars").
@@ -116,7 +116,7 @@ impl FePlan {
     /// Errors: a level outside the fine levels phase_ensemble accepts, or `meshes` odd or
     /// below 2 (one line naming `--fe-level` or `--phase-meshes`).
     pub fn new(level: i32, meshes: usize) -> Result<FePlan> {
-        let max = crate::mesh::meridian_ladder::MAX_LEVEL as i32;
+        let max = crate::mesh::section::ladder::MAX_LEVEL as i32;
         if !(MIN_LEVEL..=max).contains(&level) {
             return Err(Error::invalid(
                 "--fe-level",
@@ -152,7 +152,7 @@ impl FePlan {
                     s,
                     format!(
                         "an integer in [1, {}]",
-                        crate::mesh::meridian_band::MAX_SPLIT
+                        crate::mesh::section::band::MAX_SPLIT
                     ),
                 ));
             }
@@ -174,7 +174,7 @@ impl FePlan {
     ///
     /// Errors: a budget outside [0, 1e-2] (naming `--fe-mass-scaling`).
     pub fn with_mass_scaling(self, budget: f64) -> Result<FePlan> {
-        use crate::fe::axisym::mass_scaling::{check_budget, MAX_BUDGET};
+        use crate::fe::section::mass_scaling::{check_budget, MAX_BUDGET};
         if check_budget(budget).is_err() {
             return Err(Error::invalid(
                 "--fe-mass-scaling",
@@ -195,7 +195,7 @@ impl FePlan {
     /// `--fe-tolerance`).
     pub fn with_tolerance(self, tolerance: Option<f64>) -> Result<FePlan> {
         if let Some(t) = tolerance {
-            let max = crate::mesh::meridian_ladder::MAX_LEVEL as i32;
+            let max = crate::mesh::section::ladder::MAX_LEVEL as i32;
             if !(t.is_finite() && t > 0.0) || self.level >= max {
                 return Err(Error::invalid(
                     "--fe-tolerance",
@@ -290,7 +290,7 @@ pub fn head_on_case(point: &HeadOnPoint) -> HeadOnCase {
         formulation: QuadFormulation::default(),
         plane: PlaneContact::Kinematic,
         mass_scaling: 0.0,
-        integration: crate::fe::axisym::subcycle::Integration::subcycled(),
+        integration: crate::fe::section::subcycle::Integration::subcycled(),
     }
 }
 

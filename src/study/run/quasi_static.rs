@@ -18,14 +18,14 @@
 
 use crate::analytic::hertz::HertzPair;
 use crate::error::{Error, Result};
-use crate::fe::axisym::section::SectionModel;
+use crate::fe::section::solver::SectionModel;
 use crate::fe::elements::ring::mass::element_masses;
 use crate::fe::elements::ring::QuadFormulation;
-use crate::fe::implicit::plane::RigidPlane;
+use crate::fe::implicit::plane::ExactPlane;
 use crate::fe::implicit::static_solver::{Prescribed, Settings, StaticSolver, Target};
 use crate::fe::materials::J2Material;
 use crate::material::Material;
-use crate::mesh::meridian::ladder_ball;
+use crate::mesh::section::ladder_ball;
 use serde::Serialize;
 
 /// How the ball is held against the plane.
@@ -79,7 +79,7 @@ pub struct StaticCase {
     pub to: LoadTo,
     /// Contact radius the mesh is sized from, m (an estimate of the largest).
     pub sizing_radius: f64,
-    /// Ladder level of the mesh (`mesh::meridian::ladder_ball`).
+    /// Ladder level of the mesh (`mesh::section::ladder_ball`).
     pub level: u32,
     /// Increments of loading (and as many of unloading) at level 0, ≥ 4; each level
     /// doubles them ([`StaticCase::steps`]), so that a ladder refines the load path with the
@@ -198,7 +198,7 @@ impl Rig {
                     .collect();
             }
         }
-        let plane = RigidPlane {
+        let plane = ExactPlane {
             z: radius,
             side: -1.0,
         };

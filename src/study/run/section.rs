@@ -1,4 +1,4 @@
-//! The FE side of a head-on run on the meridian section ([`crate::fe::axisym`]): the scene's
+//! The FE side of a head-on run on the meridian section ([`crate::fe::section`]): the scene's
 //! balls meshed as half-discs, run from first touch to separation by
 //! [`HeadOn::run_observed`], and the outcome written in the scene's terms (the same
 //! [`Simulation`], results.json keys and history.csv columns as the 3D models).
@@ -7,11 +7,11 @@
 //! towards ball 2), and the run is in the pair's centre-of-mass frame, like the 3D models.
 
 use crate::error::{Error, Result};
-use crate::fe::axisym::subcycle::Integration;
+use crate::fe::section::subcycle::Integration;
 use crate::fe::elements::ring::QuadFormulation;
 use crate::fe::solver::subcycle::{SubcycleReport, Subcycling};
 use crate::fe::Formulation;
-use crate::mesh::meridian::{ball, block, BlockSpec, MeridianMesh, SectionSpec};
+use crate::mesh::section::{ball, block, BlockSpec, SectionMesh, SectionSpec};
 use crate::scene::{BallScene, MeshSettings, PlaneEnforcement, Scene, Switch, Touch};
 use crate::study::common::progress::{Mode, RunProgress};
 use crate::study::records::outcome::{dissipation_factor, Outcome};
@@ -21,7 +21,7 @@ use crate::study::run::section_impact::{
     HeadOn, ImpactRow, OtherBall, PlaneContact, Target, WallBlock,
 };
 use crate::study::run::simulation::{
-    Kinematics, RunOptions, Savings, Simulation, DEFAULT_HOLD_FRACTION,
+    CentreOfMassFrame, RunOptions, Savings, Simulation, DEFAULT_HOLD_FRACTION,
 };
 use crate::study::run::smoothed_force::smooth_history;
 use crate::study::run::snapshots::Snapshots;
@@ -35,7 +35,7 @@ pub(super) struct SectionRun<'a> {
     /// First touch.
     pub touch: &'a Touch,
     /// Centre-of-mass frame velocities.
-    pub kin: &'a Kinematics,
+    pub kin: &'a CentreOfMassFrame,
     /// Expected contact duration (s), from the analytical model.
     pub expected_duration: f64,
     /// Why the reduction was chosen.
@@ -48,7 +48,7 @@ pub(super) struct SectionRun<'a> {
 ///
 /// Errors: a mesh file (the section model meshes its own sections), or sizes the section
 /// mesher rejects (named from the scene root).
-pub fn section_mesh(name: &str, b: &BallScene) -> Result<MeridianMesh> {
+pub fn section_mesh(name: &str, b: &BallScene) -> Result<SectionMesh> {
     match &b.mesh {
         MeshSettings::Builtin { size, pole_size } => ball(&SectionSpec {
             diameter: b.diameter,
@@ -292,7 +292,7 @@ pub(super) fn simulate_section(run: SectionRun<'_>, opts: &RunOptions) -> Result
             subcycling: SubcycleReport {
                 used: subcycled,
                 reason: if subcycled {
-                    "the section model's power-of-two step classes (fe::axisym::subcycle)".into()
+                    "the section model's power-of-two step classes (fe::section::subcycle)".into()
                 } else {
                     "single rate: solver.subcycling = off, or two meshed balls under auto".into()
                 },

@@ -8,20 +8,20 @@
 //! the contact duration, the peak force, the energy terms, the energy error and history rows.
 
 use crate::error::{Error, Result};
-use crate::fe::axisym::mass_scaling;
-use crate::fe::axisym::section::{SectionModel, SectionSolver};
-use crate::fe::axisym::subcycle::Integration;
+use crate::fe::section::mass_scaling;
+use crate::fe::section::solver::{SectionModel, SectionSolver};
+use crate::fe::section::subcycle::Integration;
 use crate::fe::contact::duration::pulse_duration;
-use crate::fe::contact::meridian::plane_kinematic::KinematicPlane;
-use crate::fe::contact::meridian::plane_nodal::{ring_areas_and_thickness, NodalPlane, Side};
-use crate::fe::contact::meridian::plane_segment::SegmentPlane;
-use crate::fe::contact::meridian::segment::{Boundary, SegmentPair};
+use crate::fe::contact::section::plane_kinematic::KinematicPlane;
+use crate::fe::contact::section::plane_nodal::{ring_areas_and_thickness, NodalPlane, Side};
+use crate::fe::contact::section::plane_segment::SegmentPlane;
+use crate::fe::contact::section::segment::{Boundary, SegmentPair};
 use crate::fe::elements::ring::QuadFormulation;
 use crate::fe::interaction::Interaction;
 use crate::fe::materials::J2Material;
 use crate::fe::simd::KernelPath;
 use crate::material::Material;
-use crate::mesh::meridian::MeridianMesh;
+use crate::mesh::section::SectionMesh;
 use crate::study::run::smoothed_force::{half_width, triangular};
 use serde::Serialize;
 use std::time::Instant;
@@ -50,7 +50,7 @@ pub struct WallBlock {
     /// Its meridian mesh: r ∈ [0, W], z ∈ [−H, 0], face z = 0 up, contact segments in
     /// `segment_sets["contact"]`, the nodes to fix in `node_sets["base"]`; it is mirrored and
     /// placed with its face on the ball's pole.
-    pub mesh: MeridianMesh,
+    pub mesh: SectionMesh,
     /// Its material.
     pub material: Material,
     /// Skip plasticity.
@@ -77,7 +77,7 @@ pub enum PlaneContact {
 pub struct OtherBall {
     /// Its meridian mesh, in the same convention as the first ball's (pole at (0, +R₂),
     /// centre at the origin); it is mirrored and placed above the first ball's pole.
-    pub mesh: MeridianMesh,
+    pub mesh: SectionMesh,
     /// Its material.
     pub material: Material,
     /// Skip plasticity.
@@ -91,7 +91,7 @@ pub struct OtherBall {
 pub struct HeadOn {
     /// Meridian mesh of the ball: half-disc of radius R centred at the origin, contact pole at
     /// (0, +R), contact segments in `segment_sets["contact"]` (or the whole boundary).
-    pub mesh: MeridianMesh,
+    pub mesh: SectionMesh,
     /// The ball's material.
     pub material: Material,
     /// Skip plasticity (elastic ball).
@@ -125,7 +125,7 @@ pub struct HeadOn {
     /// How the mirror plane or the wall takes the boundary.
     pub plane_contact: PlaneContact,
     /// Mass-scaling budget: the added mass over the model's mass that may raise the
-    /// smallest quads' steps ([`crate::fe::axisym::mass_scaling`]; 0, the default: none).
+    /// smallest quads' steps ([`crate::fe::section::mass_scaling`]; 0, the default: none).
     pub mass_scaling: f64,
     /// The widest lane path of the quads, `None` for scalar updates (the same
     /// bits either way; [`SectionModel::kernel`]).
@@ -259,9 +259,9 @@ pub fn hertz_duration(h: &HeadOn, radius: f64, ball_mass: f64, mass2: f64) -> f6
 /// `mat2`), whose nodes and quads follow the first's; velocities and supports are left to the
 /// caller.
 fn two_bodies(
-    first: &MeridianMesh,
+    first: &SectionMesh,
     mat1: J2Material,
-    second: &MeridianMesh,
+    second: &SectionMesh,
     mat2: J2Material,
 ) -> SectionModel {
     let n1 = first.nodes.len() as u32;
@@ -279,7 +279,7 @@ fn two_bodies(
 
 /// `mesh` mirrored about z = 0 and shifted by `shift` along z (m): quads and segments
 /// re-ordered to stay counter-clockwise.
-fn mirrored(mesh: &MeridianMesh, shift: f64) -> MeridianMesh {
+fn mirrored(mesh: &SectionMesh, shift: f64) -> SectionMesh {
     let mut m = mesh.clone();
     for p in &mut m.nodes {
         p[1] = shift - p[1];
@@ -353,7 +353,7 @@ impl HeadOn {
 
     /// Defaults around `mesh`, `material` and `speed`: one-point quads, FKN = 10, the 3D
     /// study's hold fraction 0.03, 200 history rows, step factor 0.9, subcycled.
-    pub fn new(mesh: MeridianMesh, material: Material, speed: f64, target: Target) -> Self {
+    pub fn new(mesh: SectionMesh, material: Material, speed: f64, target: Target) -> Self {
         HeadOn {
             mesh,
             material,
@@ -408,14 +408,14 @@ impl HeadOn {
         }
         let mat = J2Material::new(&self.material, self.elastic_only);
         let n1 = self.mesh.nodes.len();
-        let contact_of = |m: &MeridianMesh| -> Vec<[u32; 2]> {
+        let contact_of = |m: &SectionMesh| -> Vec<[u32; 2]> {
             m.segment_sets.get("contact").unwrap_or(&m.boundary).clone()
         };
         let seg1 = contact_of(&self.mesh);
         // The penetration limit of the 3D contacts: half the thickness of the thinnest
         // element under a contact node, a quarter on the mirror plane (which sees half the
         // pair's overlap).
-        let thinnest = |m: &MeridianMesh, seg: &[[u32; 2]]| -> Result<f64> {
+        let thinnest = |m: &SectionMesh, seg: &[[u32; 2]]| -> Result<f64> {
             Ok(ring_areas_and_thickness(m, seg)?
                 .iter()
                 .map(|t| t.2)

@@ -9,7 +9,7 @@
 
 use crate::error::{Error, Result};
 use crate::fe::contact::{
-    ContactParams, ContactProbe, Coulomb, PenaltyRule, RigidPlane, SurfacePair,
+    ContactParams, ContactProbe, CoulombFriction, PenaltyRule, RigidPlane, SurfacePair,
 };
 use crate::fe::explicit::{Settings, Solver};
 use crate::fe::interaction::Interaction;
@@ -26,15 +26,15 @@ use std::time::Instant;
 
 pub use crate::study::run::history::{HistoryRow, HISTORY_HEADER};
 pub use crate::study::run::reduction::{choose_reduction, Reduction};
-use crate::study::run::simulation::Kinematics;
+use crate::study::run::simulation::CentreOfMassFrame;
 pub use crate::study::run::simulation::{
     advice, RunOptions, Savings, Simulation, DEFAULT_HOLD_FRACTION,
 };
 
-fn pair_kinematics(scene: &Scene, touch: &Touch) -> Kinematics {
+fn pair_kinematics(scene: &Scene, touch: &Touch) -> CentreOfMassFrame {
     if scene.wall.is_some() {
         // The wall's frame: the wall at rest, ball 1 at its own velocity.
-        return Kinematics {
+        return CentreOfMassFrame {
             v_cm: [0.0; 3],
             u: [touch.v[0], [0.0; 3]],
         };
@@ -47,7 +47,7 @@ fn pair_kinematics(scene: &Scene, touch: &Touch) -> Kinematics {
         [0, 1, 2].map(|k| v1[k] - v_cm[k]),
         [0, 1, 2].map(|k| v2[k] - v_cm[k]),
     ];
-    Kinematics { v_cm, u }
+    CentreOfMassFrame { v_cm, u }
 }
 
 /// The mesh of ball `name` ("ball1" or "ball2") with its contact pole at +x and centre at the
@@ -307,7 +307,7 @@ fn build(
     scene: &Scene,
     touch: &Touch,
     red: Reduction,
-    kin: &Kinematics,
+    kin: &CentreOfMassFrame,
     elastic_only: [bool; 2],
     mu: f64,
     pre_gap_time: f64,
@@ -372,7 +372,7 @@ fn build(
             )?;
             let c1 = centre(-r1, kin.u[0]);
             model.set_rigid_velocity(p1, kin.u[0], touch.w[0], c1)?;
-            params.friction = (mu > 0.0).then(|| Coulomb::new(mu));
+            params.friction = (mu > 0.0).then(|| CoulombFriction::new(mu));
             plane_x0(model, p1, &b1.material, params)
         }
         Reduction::Half | Reduction::Full => {
@@ -404,7 +404,7 @@ fn build(
             model.set_rigid_velocity(p1, kin.u[0], touch.w[0], c1)?;
             model.set_rigid_velocity(p2, kin.u[1], touch.w[1], c2)?;
             params.friction = if mu > 0.0 {
-                Some(Coulomb::new(mu))
+                Some(CoulombFriction::new(mu))
             } else {
                 None
             };

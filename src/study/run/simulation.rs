@@ -10,7 +10,7 @@ use crate::study::run::smoothed_force::ForceSummary;
 use serde::Serialize;
 
 /// Contact-frame state of the pair in its centre-of-mass frame.
-pub(super) struct Kinematics {
+pub(super) struct CentreOfMassFrame {
     /// Centre-of-mass velocity of the pair (contact frame), m/s.
     pub v_cm: [f64; 3],
     /// Ball velocities relative to v_cm (contact frame), m/s.

@@ -12,10 +12,10 @@
 
 use crate::atomic::write_atomic;
 use crate::error::Result;
-use crate::fe::axisym::section::SectionSolver;
+use crate::fe::section::solver::SectionSolver;
 use crate::fe::{explicit::Solver, tensor::von_mises};
-use crate::mesh::meridian::MeridianMesh;
-use crate::mesh::section_vtu::{to_vtu_bytes, SectionField};
+use crate::mesh::section::SectionMesh;
+use crate::mesh::section::vtu::{to_vtu_bytes, SectionField};
 use crate::mesh::{vtu, Mesh};
 use std::path::{Path, PathBuf};
 
@@ -162,7 +162,7 @@ pub fn write_state(
 }
 
 /// Writes the meridian-section run's current state as one `.vtu` file, the section drawn in
-/// the plane with x = r and y = z ([`crate::mesh::section_vtu`]): deformed coordinates (m);
+/// the plane with x = r and y = z ([`crate::mesh::section::vtu`]): deformed coordinates (m);
 /// point fields `displacement` (m) and `velocity` (m/s), components (r, z, 0); cell fields
 /// `stress` (Pa; xx = rr, yy = zz, zz = θθ hoop, xy = rz), `von_mises` (Pa),
 /// `plastic_strain` (-) of each quad's first integration point; `time` (s since first touch)
@@ -176,7 +176,7 @@ pub fn write_section_state(
     format: vtu::VtuFormat,
 ) -> Result<()> {
     let x = solver.positions();
-    let section = MeridianMesh {
+    let section = SectionMesh {
         nodes: x.to_vec(),
         quads: solver.quads().to_vec(),
         ..Default::default()

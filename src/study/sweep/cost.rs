@@ -12,10 +12,10 @@
 //! banded family, and is costed as such ([`Estimator::estimate_to`]).
 
 use crate::error::Result;
-use crate::fe::axisym::mass_scaling::within_budget;
+use crate::fe::section::mass_scaling::within_budget;
 use crate::fe::solver::timestep::characteristic_length;
 use crate::mesh::ball::{ball, BallSpec, Cut};
-use crate::mesh::meridian::MeridianMesh;
+use crate::mesh::section::SectionMesh;
 use crate::mesh::quality::hex_volume;
 use crate::mesh::Mesh;
 use crate::scene::{approach, Approach, MeshSettings, Scene};
@@ -275,7 +275,7 @@ impl Estimator {
         &self,
         key: &str,
         case: &HeadOnCase,
-        make: impl Fn() -> Result<MeridianMesh>,
+        make: impl Fn() -> Result<SectionMesh>,
     ) -> Result<(usize, f64)> {
         let m = &case.material;
         let key = format!(

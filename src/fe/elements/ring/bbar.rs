@@ -5,7 +5,7 @@
 //! one-point quad's ([`super::one_point`]), at each Gauss point.
 
 use super::element::{LaneStep, Quad, RingElement, Step};
-use super::lanes::{self, Output, State};
+use super::lanes::{self, RingLaneOutput, RingLaneState};
 use super::scalar::{advance_gauss_points, mid_step, output};
 use super::shape::{add_stress_forces, gauss_points, mean_of, velocity_gradient, Gradient};
 use super::state::{QuadOutput, QuadState};
@@ -40,8 +40,8 @@ impl RingElement for BBarQuad {
     fn update_lanes<H: Hardening, const W: usize>(
         &self,
         s: LaneStep<'_, H, W>,
-        st: &mut State<W>,
-    ) -> Output<W> {
+        st: &mut RingLaneState<W>,
+    ) -> RingLaneOutput<W> {
         let LaneStep { step, law } = s;
         let Step { x1, v, dt, mat } = step;
         let zero = x1[0][0].splat_like(0.0);

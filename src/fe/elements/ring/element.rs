@@ -3,7 +3,7 @@
 //! visitor by which [`super::formulation::QuadFormulation::with`] runs code generic over
 //! the family.
 
-use super::lanes::{Nodes, Output, State};
+use super::lanes::{Nodes, RingLaneOutput, RingLaneState};
 use super::state::{QuadOutput, QuadState};
 use crate::fe::materials::{Hardening, J2Material};
 
@@ -53,8 +53,8 @@ pub trait RingElement: Copy {
     fn update_lanes<H: Hardening, const W: usize>(
         &self,
         s: LaneStep<'_, H, W>,
-        st: &mut State<W>,
-    ) -> Output<W>;
+        st: &mut RingLaneState<W>,
+    ) -> RingLaneOutput<W>;
 }
 
 /// Code generic over the ring-element type, run by

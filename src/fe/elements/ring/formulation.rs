@@ -145,7 +145,7 @@ impl RingVisitor for Points {
 #[cfg(test)]
 mod tests {
     use super::super::element::LaneStep;
-    use super::super::lanes::{Nodes, Output, State};
+    use super::super::lanes::{Nodes, RingLaneOutput, RingLaneState};
     use super::*;
     use crate::fe::materials::{Hardening, Law};
     use crate::fe::simd::{Avx2, Avx512, LaneIsa, LaneKernel, Portable, Simd};
@@ -181,12 +181,12 @@ mod tests {
         v: &'a Nodes<W>,
         mat: &'a J2Material,
         law: &'a H,
-        st: &'a mut State<W>,
+        st: &'a mut RingLaneState<W>,
     }
 
     impl<H: Hardening, const W: usize> RingVisitor for LaneUpdate<'_, H, W> {
-        type Output = Output<W>;
-        fn visit<E: RingElement>(self, e: E) -> Output<W> {
+        type Output = RingLaneOutput<W>;
+        fn visit<E: RingElement>(self, e: E) -> RingLaneOutput<W> {
             let step = Step {
                 x1: self.x,
                 v: self.v,
@@ -234,7 +234,7 @@ mod tests {
                     }
                 }
             }
-            let mut st = State::gather(isa, std::array::from_fn(|l| &scalar[l].2), points);
+            let mut st = RingLaneState::gather(isa, std::array::from_fn(|l| &scalar[l].2), points);
             for _ in 0..3 {
                 let out = form.with(LaneUpdate {
                     x: &x,

@@ -10,7 +10,7 @@
 //! and material seam as the other formulations', at each Gauss point.
 
 use super::element::{LaneStep, Quad, RingElement, Step};
-use super::lanes::{self, Output, State};
+use super::lanes::{self, RingLaneOutput, RingLaneState};
 use super::scalar::{advance_gauss_points, mid_step, output};
 use super::shape::{add_stress_forces, gauss_points, mean_of};
 use super::state::{QuadOutput, QuadState};
@@ -41,8 +41,8 @@ impl RingElement for FullQuad {
     fn update_lanes<H: Hardening, const W: usize>(
         &self,
         s: LaneStep<'_, H, W>,
-        st: &mut State<W>,
-    ) -> Output<W> {
+        st: &mut RingLaneState<W>,
+    ) -> RingLaneOutput<W> {
         let LaneStep { step, law } = s;
         let Step { x1, v, dt, mat } = step;
         let pm = lanes::gauss_points(&lanes::mid_step(x1, v, dt));

@@ -35,7 +35,7 @@ pub(super) struct Gradient<const W: usize> {
 /// The state of W quads, lane-wise (the scalar [`QuadState`]; the one-point form uses the
 /// first point only).
 #[derive(Clone, Copy)]
-pub struct State<const W: usize> {
+pub struct RingLaneState<const W: usize> {
     /// Cauchy stress [rr, zz, θθ, rz] of each point, Pa.
     pub stress: [[Lanes<W>; 4]; 4],
     /// Equivalent plastic strain of each point.
@@ -50,12 +50,12 @@ pub struct State<const W: usize> {
     pub hourglass_energy: Lanes<W>,
 }
 
-impl<const W: usize> State<W> {
+impl<const W: usize> RingLaneState<W> {
     /// Lane l from `states[l]`, its first `points` points (1 or 4).
     #[inline(always)]
     pub fn gather(isa: LaneIsa<W>, states: [&QuadState; W], points: usize) -> Self {
         let z = isa.splat(0.0);
-        let mut g = State {
+        let mut g = RingLaneState {
             stress: [[z; 4]; 4],
             eps_p: [z; 4],
             hourglass: [z; 2],
@@ -100,7 +100,7 @@ impl<const W: usize> State<W> {
 
 /// Lane l of the scalar [`QuadOutput`], lane-wise.
 #[derive(Clone, Copy)]
-pub struct Output<const W: usize> {
+pub struct RingLaneOutput<const W: usize> {
     /// Internal nodal forces (r, z) of the whole ring, N.
     pub force: [[Lanes<W>; 2]; 4],
     /// Ring volume at t^{n+1}, m³.
@@ -111,7 +111,7 @@ pub struct Output<const W: usize> {
     pub dt_crit: Lanes<W>,
 }
 
-impl<const W: usize> Output<W> {
+impl<const W: usize> RingLaneOutput<W> {
     /// Lane `l` as the scalar output.
     #[inline(always)]
     pub fn lane(&self, l: usize) -> QuadOutput {
@@ -324,7 +324,7 @@ pub(super) fn advance_gauss_points<H: Hardening, const W: usize>(
     dt: f64,
     mat: &J2Material,
     law: &H,
-    st: &mut State<W>,
+    st: &mut RingLaneState<W>,
 ) {
     for (k, p) in pm.iter().enumerate() {
         let l = velocity_gradient(v, &p.grad);
@@ -344,8 +344,8 @@ pub(super) fn output<const W: usize>(
     volume: Lanes<W>,
     min_jacobian: Lanes<W>,
     mat: &J2Material,
-) -> Output<W> {
-    Output {
+) -> RingLaneOutput<W> {
+    RingLaneOutput {
         force,
         volume,
         min_jacobian,
@@ -366,7 +366,7 @@ pub(super) fn advance_point<H: Hardening, const W: usize>(
     dt: f64,
     volume: Lanes<W>,
     k: usize,
-    st: &mut State<W>,
+    st: &mut RingLaneState<W>,
 ) {
     let s = st.stress[k];
     let zero = s[0].splat_like(0.0);

@@ -10,7 +10,7 @@
 //! are V B̄ᵀσ on x^{n+1}. Forces are those of the whole ring (2π r weighting).
 
 use super::element::{LaneStep, Quad, RingElement, Step};
-use super::lanes::{self, rotation, Nodes, Output, State};
+use super::lanes::{self, rotation, Nodes, RingLaneOutput, RingLaneState};
 use super::scalar::{advance_point, mid_step, output};
 use super::shape::{
     add_stress_forces, hourglass_gamma, mean_gradient, velocity_gradient, Gradient, HOURGLASS_BASE,
@@ -60,8 +60,8 @@ impl RingElement for OnePointQuad {
     fn update_lanes<H: Hardening, const W: usize>(
         &self,
         s: LaneStep<'_, H, W>,
-        st: &mut State<W>,
-    ) -> Output<W> {
+        st: &mut RingLaneState<W>,
+    ) -> RingLaneOutput<W> {
         let LaneStep { step, law } = s;
         let Step { x1, v, dt, mat } = step;
         let zero = x1[0][0].splat_like(0.0);
@@ -152,7 +152,7 @@ fn hourglass_forces<const W: usize>(
     coeff: f64,
     rot: [Lanes<W>; 2],
     dt: f64,
-    st: &mut State<W>,
+    st: &mut RingLaneState<W>,
     force: &mut [[Lanes<W>; 2]; 4],
 ) {
     let zero = x1[0][0].splat_like(0.0);

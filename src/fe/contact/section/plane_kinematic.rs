@@ -24,7 +24,7 @@
 use super::plane_nodal::{ring_areas_and_thickness, Side};
 use crate::error::Result;
 use crate::fe::interaction::{ContactState, Interaction, InteractionEnergy, Kick, StepContext};
-use crate::mesh::meridian::MeridianMesh;
+use crate::mesh::section::SectionMesh;
 
 /// A rigid plane z = z₀ enforced as a unilateral kinematic constraint on boundary nodes.
 #[derive(Debug, Clone)]
@@ -70,7 +70,7 @@ impl KinematicPlane {
     /// `mesh` (the nodes of the whole section are `mesh`'s, indices unchanged).
     ///
     /// Errors: a segment that is no edge of a quad.
-    pub fn new(mesh: &MeridianMesh, segments: &[[u32; 2]], z0: f64, side: Side) -> Result<Self> {
+    pub fn new(mesh: &SectionMesh, segments: &[[u32; 2]], z0: f64, side: Side) -> Result<Self> {
         let nodes: Vec<usize> = ring_areas_and_thickness(mesh, segments)?
             .iter()
             .map(|t| t.0)
@@ -209,7 +209,7 @@ mod tests {
 
     #[test]
     fn the_plane_holds_only_its_boundary_nodes_and_reports_its_force() {
-        use crate::mesh::meridian::{ball, SectionSpec};
+        use crate::mesh::section::{ball, SectionSpec};
         let mesh = ball(&SectionSpec {
             diameter: 0.02,
             size: 0.004,

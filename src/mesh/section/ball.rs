@@ -1,7 +1,7 @@
 //! Graded all-quad meshes of a ball's meridian section (the half-disc r ≥ 0), refined toward
 //! the contact pole (r, z) = (0, +R).
 //!
-//! The section is the meridian slice of the 3D ball mesh ([`super::ball`]): the same circle
+//! The section is the meridian slice of the 3D ball mesh ([`crate::mesh::ball`]): the same circle
 //! inversion about the antipode (0, −R) maps a quarter-disc O-grid around the pole (a square
 //! core of pole-size cells wrapped by layers that grow geometrically) onto the front quarter
 //! z ≥ 0, and the back quarter is the mirror image of the unrefined construction, sharing its
@@ -13,9 +13,9 @@
 //! axis and the surface and the layers end on the axis with full quads, so no element
 //! degenerates into a triangle at r = 0.
 
-use super::ball::{core_point, invert, Plan, CONTACT_HALF_ANGLE_DEG, MAX_ELEMENTS};
-use super::section::MeridianMesh;
-use super::section::{boundary_edges, quad_area};
+use crate::mesh::ball::{core_point, invert, Plan, CONTACT_HALF_ANGLE_DEG, MAX_ELEMENTS};
+use super::SectionMesh;
+use super::{boundary_edges, quad_area};
 use crate::error::{Error, Result};
 use std::collections::BTreeMap;
 
@@ -42,8 +42,8 @@ pub struct SectionSpec {
 ///
 /// Errors: non-finite or non-positive sizes, `size` above the radius or below radius / 600,
 /// `pole_size` above `size` or below `size / 10^4`, or more than [`MAX_ELEMENTS`] elements.
-pub fn ball(spec: &SectionSpec) -> Result<MeridianMesh> {
-    let (r, n, facet) = super::ball::core_cells(spec.diameter, spec.size, spec.pole_size)?;
+pub fn ball(spec: &SectionSpec) -> Result<SectionMesh> {
+    let (r, n, facet) = crate::mesh::ball::core_cells(spec.diameter, spec.size, spec.pole_size)?;
     let front = match spec.pole_size {
         Some(p) if p < facet => refined(r, n, p),
         _ => Plan::uniform(r, n, facet),
@@ -59,7 +59,7 @@ pub fn ball(spec: &SectionSpec) -> Result<MeridianMesh> {
             ),
         ));
     }
-    let mut mesh = MeridianMesh::default();
+    let mut mesh = SectionMesh::default();
     let dome = build_quarter(&front, &mut mesh, false, None, &uniform_layers(&front));
     build_quarter(&back, &mut mesh, true, Some(&dome), &uniform_layers(&back));
     Ok(with_sets(mesh, r))
@@ -108,7 +108,7 @@ fn quads_of(plan: &Plan) -> usize {
 
 /// One ring of an O-grid quarter's layers: its layer fraction l/L (0 the core's side, 1 the
 /// equator) and the first ray it reaches (0: every ray, from the axis; a ring of an edge band
-/// confined to the surface starts at a later ray, [`super::meridian_band`]).
+/// confined to the surface starts at a later ray, [`super::band`]).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub(super) struct LayerRing {
     /// Layer fraction, in (0, 1].
@@ -128,7 +128,7 @@ pub(super) fn uniform_layers(plan: &Plan) -> Vec<LayerRing> {
 }
 
 /// The rest radius (m) of the front quarter's surface ring at layer fraction f (0 the
-/// core's outermost surface node, 1 the equator), for [`super::meridian_band`].
+/// core's outermost surface node, 1 the equator), for [`super::band`].
 pub(super) fn surface_ring_radius(plan: &Plan) -> impl Fn(f64) -> f64 {
     let (n, m, r) = (plan.n, plan.n / 2, plan.r);
     let p = core_point(0, 2 * m, m, n, plan.a, plan.deepen);
@@ -141,7 +141,7 @@ pub(super) fn surface_ring_radius(plan: &Plan) -> impl Fn(f64) -> f64 {
 
 /// Appends one quarter (the front z ≥ 0, or with `mirror` the back z ≤ 0) to `mesh`, its
 /// layers the rings `layers` (fractions increasing, the last 1 and reaching every ray:
-/// [`uniform_layers`], or with an edge band [`super::meridian_band::layer_rings`]). `dome`
+/// [`uniform_layers`], or with an edge band [`super::band::layer_rings`]). `dome`
 /// (the front's node ids on z = 0, by ray index) makes the back share them. Returns this
 /// quarter's node ids on z = 0, from the axis to the equator.
 ///
@@ -152,7 +152,7 @@ pub(super) fn surface_ring_radius(plan: &Plan) -> impl Fn(f64) -> f64 {
 /// the coarse side, so every quad keeps four corners and no node hangs.
 pub(super) fn build_quarter(
     plan: &Plan,
-    mesh: &mut MeridianMesh,
+    mesh: &mut SectionMesh,
     mirror: bool,
     dome: Option<&[u32]>,
     layers: &[LayerRing],
@@ -340,7 +340,7 @@ fn transition(coarse: [u32; 2], fine: &[u32], inner: &[u32]) -> Vec<[u32; 4]> {
 }
 
 /// Adds the boundary and the sets (see [`ball`]).
-pub(super) fn with_sets(mut mesh: MeridianMesh, r: f64) -> MeridianMesh {
+pub(super) fn with_sets(mut mesh: SectionMesh, r: f64) -> SectionMesh {
     let nodes = &mesh.nodes;
     let on_axis = |i: u32| nodes[i as usize][0] == 0.0;
     let angle = |e: &[u32; 2]| {

@@ -1,7 +1,7 @@
 //! The section model's mesh family: meridian meshes of a ball sized from the predicted
 //! contact radius, nested so that each ladder level halves every length.
 //!
-//! Construction (the O-grid and inversion of [`super::meridian_ball`]): the front quarter
+//! Construction (the O-grid and inversion of [`super::ball`]): the front quarter
 //! (z ≥ 0) has a refined core of m × m pole-size cells of half-width
 //! [`REFINED_HALF_WIDTH_PER_RADIUS`] contact radii around the pole, wrapped by L layers of 2m
 //! cells whose radii (before the inversion) grow geometrically to the equator, with the
@@ -15,12 +15,12 @@
 //! is exactly 2 there, and the element counts grow by exactly 4. Surface nodes lie on the
 //! circle at every level.
 
-use super::ball::{Plan, MAX_ELEMENTS};
-use super::meridian_ball::{
+use crate::mesh::ball::{Plan, MAX_ELEMENTS};
+use super::ball::{
     build_quarter, pole_edge, surface_ring_radius, uniform_layers, with_sets,
 };
-use super::meridian_band::{layer_rings, EdgeBand};
-use super::section::MeridianMesh;
+use super::band::{layer_rings, EdgeBand};
+use super::SectionMesh;
 use crate::error::{Error, Result};
 
 /// Half-width of the refined core around the pole, in predicted contact radii: the plastic
@@ -117,19 +117,19 @@ fn check(diameter: f64, contact_radius: f64, level: u32) -> Result<()> {
 /// refined core of half-width 1.5 contact radii with nominally
 /// [`LEVEL0_ELEMENTS_PER_RADIUS`] · 2^level pole cells across the contact radius, graded
 /// outside it; level k + 1 halves every length of level k and has 4 times its quads (see the
-/// module doc). Same conventions and sets as [`super::meridian_ball::ball`] (half-disc
+/// module doc). Same conventions and sets as [`super::ball::ball`] (half-disc
 /// centred at the origin, pole at (0, +R), sets `axis`, `surface`, `contact`).
 ///
 /// Errors: a diameter that is not finite and positive, a contact radius outside
 /// [`CONTACT_RADIUS_RANGE_PER_D`] of the diameter, a level above [`MAX_LEVEL`], or more than
 /// [`MAX_ELEMENTS`] quads.
-pub fn ladder_ball(diameter: f64, contact_radius: f64, level: u32) -> Result<MeridianMesh> {
+pub fn ladder_ball(diameter: f64, contact_radius: f64, level: u32) -> Result<SectionMesh> {
     build(diameter, contact_radius, level, None)
 }
 
 /// [`ladder_ball`] with an edge band: the layer intervals whose surface rings overlap
 /// [`EdgeBand::inner`, `outer`] split into `band.split` shells each, so that the rings at
-/// the contact edge are `band.split` times closer ([`super::meridian_band`]); the shells
+/// the contact edge are `band.split` times closer ([`super::band`]); the shells
 /// reach the share `band.depth` of each layer's rays from the surface (1: to the axis). Every
 /// node of the mesh without the band is a node of this one.
 ///
@@ -140,7 +140,7 @@ pub fn ladder_ball_banded(
     contact_radius: f64,
     level: u32,
     band: &EdgeBand,
-) -> Result<MeridianMesh> {
+) -> Result<SectionMesh> {
     build(diameter, contact_radius, level, Some(band))
 }
 
@@ -150,7 +150,7 @@ fn build(
     contact_radius: f64,
     level: u32,
     band: Option<&EdgeBand>,
-) -> Result<MeridianMesh> {
+) -> Result<SectionMesh> {
     check(diameter, contact_radius, level)?;
     let r = 0.5 * diameter;
     if let Some(b) = band {
@@ -169,7 +169,7 @@ fn build(
             format!("a level giving at most {MAX_ELEMENTS} elements (this one gives {quads})"),
         ));
     }
-    let mut mesh = MeridianMesh::default();
+    let mut mesh = SectionMesh::default();
     let dome = build_quarter(&front, &mut mesh, false, None, &layers);
     build_quarter(&back, &mut mesh, true, Some(&dome), &uniform_layers(&back));
     Ok(with_sets(mesh, r))
@@ -193,7 +193,7 @@ mod tests {
     const D: f64 = 0.02;
     const A: f64 = 4.7e-4;
 
-    fn area(m: &MeridianMesh, q: &[u32; 4]) -> f64 {
+    fn area(m: &SectionMesh, q: &[u32; 4]) -> f64 {
         quad_area(&q.map(|i| m.nodes[i as usize]))
     }
 
@@ -227,7 +227,7 @@ mod tests {
 
     #[test]
     fn each_level_halves_the_sizes_and_quadruples_the_quads() {
-        let mut last: Option<(MeridianMesh, f64)> = None;
+        let mut last: Option<(SectionMesh, f64)> = None;
         for level in 0..4 {
             let m = ladder_ball(D, A, level).unwrap();
             let pole = ladder_pole_size(D, A, level).unwrap();
@@ -265,7 +265,7 @@ mod tests {
     }
 
     /// Rest radii of the front surface rings (z > 0), increasing.
-    fn rings(m: &MeridianMesh) -> Vec<f64> {
+    fn rings(m: &SectionMesh) -> Vec<f64> {
         let mut r: Vec<f64> = m.node_sets["surface"]
             .iter()
             .map(|&i| m.nodes[i as usize])
@@ -295,7 +295,7 @@ mod tests {
             );
             assert_conforming(&m);
             // Confined shells leave the axis alone; through-depth ones reach it.
-            let axis = |m: &MeridianMesh| m.node_sets["axis"].len();
+            let axis = |m: &SectionMesh| m.node_sets["axis"].len();
             if split % 2 == 1 {
                 assert_eq!(axis(&m), axis(&plain), "split {split}");
             } else {
@@ -335,7 +335,7 @@ mod tests {
     }
 
     /// Every edge of `m` is shared by two quads, or lies on the arc or the axis.
-    fn assert_conforming(m: &MeridianMesh) {
+    fn assert_conforming(m: &SectionMesh) {
         let mut count = std::collections::HashMap::new();
         for q in &m.quads {
             for k in 0..4 {
@@ -382,7 +382,7 @@ mod tests {
 
     #[test]
     fn bad_arguments_name_the_field() {
-        let msg = |r: Result<MeridianMesh>| r.unwrap_err().to_string();
+        let msg = |r: Result<SectionMesh>| r.unwrap_err().to_string();
         assert!(msg(ladder_ball(-1.0, A, 0)).contains("diameter"));
         assert!(msg(ladder_ball(D, f64::NAN, 0)).contains("contact_radius"));
         assert!(msg(ladder_ball(D, D, 0)).contains("contact_radius"));

@@ -9,7 +9,7 @@
 use crate::error::{Error, Result};
 use crate::fe::contact::penalty::{normal_force, stable_step};
 use crate::fe::interaction::{ContactState, Interaction, InteractionEnergy, StepContext};
-use crate::mesh::meridian::MeridianMesh;
+use crate::mesh::section::SectionMesh;
 use std::f64::consts::PI;
 
 /// Which side of the plane the body lies on.
@@ -36,7 +36,7 @@ pub struct NodalPlane {
 /// segment `s` of `mesh`.
 ///
 /// Errors: a segment that is no edge of a quad.
-pub fn segment_length_and_thickness(mesh: &MeridianMesh, s: [u32; 2]) -> Result<(f64, f64)> {
+pub fn segment_length_and_thickness(mesh: &SectionMesh, s: [u32; 2]) -> Result<(f64, f64)> {
     let q = mesh
         .quads
         .iter()
@@ -69,7 +69,7 @@ pub fn check_fkn(fkn: f64) -> Result<()> {
 
 /// Consistent ring areas (m²) and mean element thicknesses (m) of the nodes of `segments`.
 pub fn ring_areas_and_thickness(
-    mesh: &MeridianMesh,
+    mesh: &SectionMesh,
     segments: &[[u32; 2]],
 ) -> Result<Vec<(usize, f64, f64)>> {
     let mut acc: std::collections::BTreeMap<usize, (f64, f64, usize)> = Default::default();
@@ -104,7 +104,7 @@ impl NodalPlane {
     /// The plane z = `z0` (m) with the body on `side`, acting on the nodes of `segments` of
     /// `mesh`, with penalty factor `fkn` (> 0) on Young's modulus `youngs` (Pa).
     pub fn new(
-        mesh: &MeridianMesh,
+        mesh: &SectionMesh,
         segments: &[[u32; 2]],
         z0: f64,
         side: Side,

@@ -1,7 +1,7 @@
 //! gmsh MSH files of a meridian section (2D, in the plane z = 0 with x = r and y = z): the
-//! quads become a [`MeridianMesh`], and the physical line groups its segment sets.
+//! quads become a [`SectionMesh`], and the physical line groups its segment sets.
 //!
-//! The file is read by [`super::msh`]'s reader (MSH 4.1 and 2.2, ASCII and binary, checked
+//! The file is read by [`crate::mesh::msh`]'s reader (MSH 4.1 and 2.2, ASCII and binary, checked
 //! against hostile input). Every 4-node quadrangle (type 3) is a quad of the section, turned
 //! counter-clockwise if gmsh wrote it clockwise; 2-node lines (type 1) in a physical group
 //! become the segment set of that group's name (oriented as the boundary: body to the left)
@@ -10,9 +10,9 @@
 //! 1e-9 of the section's size of 0, put exactly on it); `surface`, unless the file names
 //! one, is the whole boundary off the axis. The file must name a line group `contact`.
 
-use super::meridian::MeridianMesh;
-use super::msh::parse_raw;
-use super::section::{boundary_edges, corner_jacobians};
+use super::SectionMesh;
+use crate::mesh::msh::parse_raw;
+use super::{boundary_edges, corner_jacobians};
 use crate::error::{Error, Result};
 use std::collections::{BTreeMap, HashMap, HashSet};
 use std::path::Path;
@@ -21,14 +21,14 @@ use std::path::Path;
 /// unreadable MSH, hexahedra (a 3D mesh), no quads, a node off the plane z = 0 or at r < 0,
 /// a degenerate or partly inverted quad, a grouped line off the boundary and the axis, or no
 /// `contact` group.
-pub fn read(path: impl AsRef<Path>) -> Result<MeridianMesh> {
+pub fn read(path: impl AsRef<Path>) -> Result<SectionMesh> {
     let path = path.as_ref();
     let bytes = std::fs::read(path).map_err(|e| Error::io(path, e))?;
     parse(&bytes, &path.display().to_string())
 }
 
 /// Parses the bytes of a section MSH file; `name` is used in error messages. See [`read`].
-pub fn parse(bytes: &[u8], name: &str) -> Result<MeridianMesh> {
+pub fn parse(bytes: &[u8], name: &str) -> Result<SectionMesh> {
     let raw = parse_raw(bytes, name)?;
     let fail = |m: String| Error::Parse(format!("{name}: {m}"));
     if !raw.hexes.is_empty() {
@@ -180,7 +180,7 @@ pub fn parse(bytes: &[u8], name: &str) -> Result<MeridianMesh> {
         v.sort_unstable();
         v.dedup();
     }
-    Ok(MeridianMesh {
+    Ok(SectionMesh {
         nodes,
         quads,
         boundary,

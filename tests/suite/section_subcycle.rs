@@ -3,18 +3,18 @@
 //! power-of-two step classes reproduce e, δ_max and the contact duration within 0.1 % with
 //! an energy error below 1e-3 and far fewer element updates; with one level they are Box 6.1.
 
-use twoball::fe::axisym::section::{SectionModel, SectionSolver};
-use twoball::fe::axisym::subcycle::Integration;
-use twoball::fe::contact::meridian::plane_nodal::{NodalPlane, Side};
+use twoball::fe::section::solver::{SectionModel, SectionSolver};
+use twoball::fe::section::subcycle::Integration;
+use twoball::fe::contact::section::plane_nodal::{NodalPlane, Side};
 use twoball::fe::interaction::Interaction;
 use twoball::fe::materials::J2Material;
 use twoball::material::Material;
-use twoball::mesh::meridian::{ball, ladder_ball, MeridianMesh, SectionSpec};
+use twoball::mesh::section::{ball, ladder_ball, SectionMesh, SectionSpec};
 use twoball::study::run::section_impact::{HeadOn, ImpactResult, PlaneContact, Target};
 
 const D: f64 = 0.02;
 
-fn default_mesh() -> MeridianMesh {
+fn default_mesh() -> SectionMesh {
     ball(&SectionSpec {
         diameter: D,
         size: D / 6.0,

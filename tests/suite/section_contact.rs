@@ -2,12 +2,12 @@
 //! balls (D = 20 mm) on their symmetry plane against Hertz at low a/R and the finite-ball
 //! reference of verification/contact-penalty.md, with restitution and energy checks. The impacts take
 //! minutes in the scalar kernels and are `#[ignore]`d: `cargo test --release --test
-//! axisym_contact -- --ignored --nocapture`.
+//! section_contact -- --ignored --nocapture`.
 
-use crate::axisym_support;
+use crate::section_support;
 use crate::contact_support::hertz;
 
-use axisym_support::test_ball;
+use section_support::test_ball;
 use hertz::{elastic_copper, finite_ball_reference, windowed_peak, DIAMETER};
 use twoball::analytic::hertz::HertzPair;
 use twoball::study::run::section_impact::{HeadOn, ImpactResult, Target};
@@ -154,7 +154,7 @@ fn two_balls_with_node_to_segment_contact_agree_with_the_symmetry_plane() {
 }
 
 /// The default scene (D = 20 mm copper-fe, ±1 m/s, plastic) on the mirror plane at pole
-/// D/200, D/1000 and D/2000. `cargo test --release --test suite axisym_contact::default_scene --
+/// D/200, D/1000 and D/2000. `cargo test --release --test suite section_contact::default_scene --
 /// --ignored --nocapture`.
 #[test]
 #[ignore]
@@ -200,7 +200,7 @@ fn default_scene_ladder() {
 /// compliance (e.g. a node put at a fixed fraction of its predicted penetration) or pulls.
 #[test]
 fn the_kinematic_plane_is_the_stiff_limit_of_the_penalty_plane() {
-    use twoball::mesh::meridian::ladder_ball;
+    use twoball::mesh::section::ladder_ball;
     use twoball::study::run::section_impact::PlaneContact;
     let run = |plane: PlaneContact, fkn: f64, factor: f64| {
         let mesh = ladder_ball(DIAMETER, 470.4e-6, 0).unwrap();

@@ -4,14 +4,14 @@
 //! aluminium, both meshed, whose lane groups break at the material change), single rate and
 //! subcycled.
 
-use twoball::fe::axisym::subcycle::Integration;
+use twoball::fe::section::subcycle::Integration;
 use twoball::fe::elements::ring::QuadFormulation;
 use twoball::fe::simd::KernelPath;
 use twoball::material::Material;
-use twoball::mesh::meridian::{ball, MeridianMesh, SectionSpec};
+use twoball::mesh::section::{ball, SectionMesh, SectionSpec};
 use twoball::study::run::section_impact::{HeadOn, ImpactResult, OtherBall, Target};
 
-fn mesh(d: f64) -> MeridianMesh {
+fn mesh(d: f64) -> SectionMesh {
     ball(&SectionSpec {
         diameter: d,
         size: d / 6.0,

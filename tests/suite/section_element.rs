@@ -3,10 +3,10 @@
 //! translation along the axis, Lamé's pressurised thick sphere at order 2 in the mesh size,
 //! and Hill's partly plastic thick sphere.
 
-use crate::axisym_support;
+use crate::section_support;
 
-use axisym_support::*;
-use twoball::fe::axisym::section::SectionSolver;
+use section_support::*;
+use twoball::fe::section::solver::SectionSolver;
 use twoball::fe::elements::ring::{update, QuadFormulation, QuadState};
 use twoball::fe::materials::J2Material;
 

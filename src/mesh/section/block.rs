@@ -7,7 +7,7 @@
 //! node falls on the block's edge. Every quad is a rectangle; the cells next to the contact
 //! point are squares of the pole size.
 
-use super::section::MeridianMesh;
+use super::SectionMesh;
 use crate::error::{Error, Result};
 use std::collections::BTreeMap;
 
@@ -113,7 +113,7 @@ fn check(spec: &BlockSpec) -> Result<()> {
 ///
 /// Errors: non-finite or non-positive lengths, `pole_size` above `size`, `size` above the
 /// smaller side, a negative core, or more than [`MAX_BLOCK_ELEMENTS`] quads.
-pub fn block(spec: &BlockSpec) -> Result<MeridianMesh> {
+pub fn block(spec: &BlockSpec) -> Result<SectionMesh> {
     check(spec)?;
     let rs = graded_line(spec.width, spec.size, spec.pole_size, spec.core);
     let ds = graded_line(spec.height, spec.size, spec.pole_size, spec.core);
@@ -128,7 +128,7 @@ pub fn block(spec: &BlockSpec) -> Result<MeridianMesh> {
     }
     // Node (i, j): r = rs[i], z = −ds[j] (j = 0 on the face).
     let id = |i: usize, j: usize| (i + nr * j) as u32;
-    let mut mesh = MeridianMesh::default();
+    let mut mesh = SectionMesh::default();
     for d in &ds {
         for r in &rs {
             mesh.nodes.push([*r, -d]);

@@ -1,15 +1,15 @@
-//! The axisymmetric (meridian-section) model of a head-on impact: the velocities lie on the
+//! The section model of a head-on impact: the velocities lie on the
 //! line of centres, so the two balls (or a ball and a wall) deform as bodies of revolution
 //! and the problem is solved on the half-plane r ≥ 0 of the section (r, z).
 //!
-//! - [`section`]: the model and the explicit loop (Box 6.1), with energy accounting;
+//! - [`solver`]: the model and the explicit loop (Box 6.1), with energy accounting;
 //! - [`subcycle`]: multi-time-step integration (power-of-two step classes, nodal partition);
 //! - [`mass_scaling`]: raised densities of the smallest quads within an added-mass budget.
 //!
 //! Its ring elements live with the elements ([`crate::fe::elements::ring`]: geometry, ring
 //! masses, the formulations behind one seam, on the lane paths of [`crate::fe::simd`]); its
-//! contacts ([`crate::fe::contact::meridian`]) are scalar.
+//! contacts ([`crate::fe::contact::section`]) are scalar.
 
 pub mod mass_scaling;
-pub mod section;
+pub mod solver;
 pub mod subcycle;

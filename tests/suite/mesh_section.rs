@@ -6,7 +6,7 @@
 use std::collections::HashMap;
 use std::f64::consts::PI;
 use twoball::mesh::ball::{ball as ball3d, BallSpec, Cut, CONTACT_HALF_ANGLE_DEG};
-use twoball::mesh::meridian::{ball, MeridianMesh, SectionSpec};
+use twoball::mesh::section::{ball, SectionMesh, SectionSpec};
 use twoball::mesh::section::{area, corner_jacobians, quad_area, quad_points, revolved_volume};
 
 const R: f64 = 0.01;
@@ -310,7 +310,7 @@ fn the_section_is_the_3d_quarter_ball_on_its_cut_plane() {
 
 #[test]
 fn output_is_deterministic() {
-    let a: MeridianMesh = ball(&spec(0.002, Some(1e-5))).unwrap();
+    let a: SectionMesh = ball(&spec(0.002, Some(1e-5))).unwrap();
     let b = ball(&spec(0.002, Some(1e-5))).unwrap();
     assert_eq!(a, b);
 }

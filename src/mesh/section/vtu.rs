@@ -1,13 +1,13 @@
 //! ParaView output of a meridian section: the quads in the plane z = 0 with x = r and y = z
-//! (the usual picture of an axisymmetric model), in the format of [`super::vtu`].
+//! (the usual picture of an axisymmetric model), in the format of [`crate::mesh::vtu`].
 //!
 //! Fields are given in the section's cylindrical components and written as VTK vectors and
 //! symmetric tensors in that picture: a vector (v_r, v_z) becomes (v_r, v_z, 0), a stress
 //! (σ_rr, σ_zz, σ_θθ, σ_rz) becomes xx = σ_rr, yy = σ_zz, zz = σ_θθ (the hoop component,
 //! normal to the section), xy = σ_rz, yz = zx = 0.
 
-use super::meridian::MeridianMesh;
-use super::vtu::{grid_bytes, Field, Grid, VtuFormat};
+use super::SectionMesh;
+use crate::mesh::vtu::{grid_bytes, Field, Grid, VtuFormat};
 use crate::atomic::write_atomic;
 use crate::error::Result;
 use std::path::Path;
@@ -58,11 +58,11 @@ impl Converted<'_> {
 }
 
 /// The section and its fields as a `.vtu` file (VTK_QUAD cells) in `format`, with the data
-/// set's time `time` (s) when given. Fails, writing nothing, as [`super::vtu::to_vtu_bytes`]
+/// set's time `time` (s) when given. Fails, writing nothing, as [`crate::mesh::vtu::to_vtu_bytes`]
 /// does: a field of the wrong length (per node for `point_fields`, per quad for
 /// `cell_fields`), a bad name, or a non-finite value, node or time.
 pub fn to_vtu_bytes(
-    section: &MeridianMesh,
+    section: &SectionMesh,
     point_fields: &[SectionField],
     cell_fields: &[SectionField],
     time: Option<f64>,
@@ -87,7 +87,7 @@ pub fn to_vtu_bytes(
 /// Errors: see [`to_vtu_bytes`]; I/O errors name the path.
 pub fn write(
     path: impl AsRef<Path>,
-    section: &MeridianMesh,
+    section: &SectionMesh,
     point_fields: &[SectionField],
     cell_fields: &[SectionField],
     time: Option<f64>,

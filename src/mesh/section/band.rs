@@ -10,10 +10,10 @@
 //! even split runs the shells through the depth to the axis as thin quads; an odd one stops
 //! them a share [`SURFACE_DEPTH`] of the rays below the surface, where s shells meet the
 //! layer's two rings through a one-cell transition (s − 1 interior nodes, s quads on the fine
-//! side, (s − 1)/2 on the coarse side; [`super::meridian_ball`]). Everything outside the band
+//! side, (s − 1)/2 on the coarse side; [`super::ball`]). Everything outside the band
 //! keeps its nodes (a banded mesh contains every node of the mesh without the band).
 
-use super::meridian_ball::LayerRing;
+use super::ball::LayerRing;
 use crate::error::{Error, Result};
 
 /// Most shells one layer may be split into.

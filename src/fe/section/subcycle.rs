@@ -12,7 +12,7 @@
 //! element, contact, load and damping forces) at multiples of 2^{L_i} fine steps. Levels and h
 //! are chosen again at every synchronisation (all nodes due), from the limits of that instant.
 
-use super::section::SectionSolver;
+use super::solver::SectionSolver;
 use crate::error::{Error, Result};
 
 /// How the section model is integrated in time.

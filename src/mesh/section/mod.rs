@@ -1,11 +1,32 @@
-//! Meridian-section meshes ([`MeridianMesh`]) and their geometry: signed quad areas, boundary edges, the section's
-//! area and the volume of its solid of revolution about the z axis.
+//! Meshes of the section model: the meridian section (r, z) of an axisymmetric body as a
+//! [`SectionMesh`], and its geometry (signed quad areas, boundary edges, the section's area and
+//! the volume of its solid of revolution about the z axis).
+//!
+//! The symmetry axis is the z axis (r = 0); a ball is the half-disc r ≥ 0 of its section,
+//! centred at the origin, with its contact pole at (r, z) = (0, +R).
+//!
+//! - [`ball`]: graded meshes of a ball's section; [`ladder`]: the nested family sized from the
+//!   contact radius; [`band`]: finer surface rings at the contact edge;
+//! - [`block`]: a block's section (the elastic wall);
+//! - [`msh`], [`vtu`]: gmsh files in, ParaView files out.
+
+pub mod ball;
+pub mod band;
+pub mod block;
+pub mod ladder;
+pub mod msh;
+pub mod vtu;
+
+pub use ball::{ball, SectionSpec};
+pub use band::EdgeBand;
+pub use block::{block, BlockSpec};
+pub use ladder::{ladder_ball, ladder_ball_banded, ladder_pole_size};
 
 use std::collections::BTreeMap;
 
 /// A mesh of 4-node quadrilaterals on the meridian half-plane r ≥ 0. Coordinates in metres.
 #[derive(Debug, Clone, Default, PartialEq)]
-pub struct MeridianMesh {
+pub struct SectionMesh {
     /// Node coordinates (r, z), m; r ≥ 0, and nodes on the axis have r = 0 exactly.
     pub nodes: Vec<[f64; 2]>,
     /// Quadrilaterals as 4 node indices, counter-clockwise in the (r, z) plane (positive area).
@@ -31,12 +52,12 @@ pub fn quad_area(p: &[[f64; 2]; 4]) -> f64 {
 }
 
 /// Corner coordinates (r, z), m, of quad `q` of `mesh`.
-pub fn quad_points(mesh: &MeridianMesh, q: &[u32; 4]) -> [[f64; 2]; 4] {
+pub fn quad_points(mesh: &SectionMesh, q: &[u32; 4]) -> [[f64; 2]; 4] {
     q.map(|i| mesh.nodes[i as usize])
 }
 
 /// Area (m²) of the section: the sum of the quads' signed areas.
-pub fn area(mesh: &MeridianMesh) -> f64 {
+pub fn area(mesh: &SectionMesh) -> f64 {
     mesh.quads
         .iter()
         .map(|q| quad_area(&quad_points(mesh, q)))
@@ -45,7 +66,7 @@ pub fn area(mesh: &MeridianMesh) -> f64 {
 
 /// Volume (m³) swept by revolving the section about the z axis: 2π Σ r̄ A (Pappus), with r̄
 /// the exact centroid radius of each straight-sided quad.
-pub fn revolved_volume(mesh: &MeridianMesh) -> f64 {
+pub fn revolved_volume(mesh: &SectionMesh) -> f64 {
     2.0 * std::f64::consts::PI
         * mesh
             .quads

@@ -1,7 +1,7 @@
 //! The explicit loop of the meridian model, step for step Box 6.1 of Belytschko, Liu & Moran
 //! (2000) like the 3D solver: central differences in time, lumped ring masses, v_r = 0 on the
 //! axis, internal forces from the quads, contact forces from the two-component
-//! [`Interaction`]s ([`crate::fe::contact::meridian`]), and the
+//! [`Interaction`]s ([`crate::fe::contact::section`]), and the
 //! energy balance (kinetic, internal, plastic, hourglass, contact) checked every step.
 
 use super::subcycle::{Integration, Schedule};
@@ -737,7 +737,7 @@ impl<E: RingElement, const W: usize> LawVisitor for Group<'_, E, W> {
             }
         }
         let states = build(|l| &s.states[lane_quad(l)]);
-        let mut st = lanes::State::gather(self.isa, states, E::POINTS);
+        let mut st = lanes::RingLaneState::gather(self.isa, states, E::POINTS);
         let step = Step {
             x1: &x,
             v: &v,

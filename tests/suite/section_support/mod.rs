@@ -4,7 +4,7 @@
 #![allow(clippy::needless_range_loop)]
 
 use std::f64::consts::PI;
-use twoball::fe::axisym::section::SectionModel;
+use twoball::fe::section::solver::SectionModel;
 use twoball::fe::materials::J2Material;
 use twoball::material::Material;
 
@@ -109,7 +109,7 @@ pub fn model(nodes: Vec<[f64; 2]>, quads: Vec<[u32; 4]>, m: &Material) -> Sectio
 /// at the north pole to at most `far`, the other two are uniform with as many segments per
 /// 45° as the top one. Radial layers are graded alike towards the surface. Contact
 /// segments: the arc within 45° of the north pole.
-pub fn test_ball(radius: f64, pole: f64, far: f64) -> twoball::mesh::meridian::MeridianMesh {
+pub fn test_ball(radius: f64, pole: f64, far: f64) -> twoball::mesh::section::SectionMesh {
     let growth = 1.1;
     let graded = |total: f64| -> Vec<f64> {
         let mut ds = Vec::new();
@@ -249,7 +249,7 @@ pub fn test_ball(radius: f64, pole: f64, far: f64) -> twoball::mesh::meridian::M
     }
     let boundary: Vec<[u32; 2]> = (0..k).map(|p| [ring(m, p), ring(m, p + 1)]).collect();
     let contact: Vec<[u32; 2]> = (3 * n..k).map(|p| [ring(m, p), ring(m, p + 1)]).collect();
-    let mut mesh = twoball::mesh::meridian::MeridianMesh {
+    let mut mesh = twoball::mesh::section::SectionMesh {
         nodes,
         quads,
         boundary: boundary.clone(),

@@ -31,7 +31,7 @@ pub struct SegmentPair {
 /// of the mesh's nodes in the solver's numbering.
 pub struct Boundary<'a> {
     /// The body's meridian mesh.
-    pub mesh: &'a crate::mesh::meridian::MeridianMesh,
+    pub mesh: &'a crate::mesh::section::SectionMesh,
     /// Its contact segments, counter-clockwise (body on the left).
     pub segments: &'a [[u32; 2]],
     /// Index of the mesh's node 0 in the solver.

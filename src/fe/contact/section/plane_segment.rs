@@ -26,7 +26,7 @@ use super::plane_nodal::{check_fkn, penalty_energy, segment_length_and_thickness
 use crate::error::Result;
 use crate::fe::contact::penalty::stable_step;
 use crate::fe::interaction::{ContactState, Interaction, InteractionEnergy, StepContext};
-use crate::mesh::meridian::MeridianMesh;
+use crate::mesh::section::SectionMesh;
 use std::f64::consts::PI;
 
 /// One boundary segment: its nodes, radii at rest (m), length at rest (m) and penalty ε (Pa/m).
@@ -87,7 +87,7 @@ impl SegmentPlane {
     ///
     /// Errors: a non-positive or non-finite `fkn`, a segment that is no edge of a quad.
     pub fn new(
-        mesh: &MeridianMesh,
+        mesh: &SectionMesh,
         segments: &[[u32; 2]],
         z0: f64,
         side: Side,
