@@ -20,9 +20,9 @@
 //! CSV, `SECTION_CONTACT=segment` integrates the plane's penalty pressure over each segment
 //! (`fe::contact::section::plane_segment`) instead of lumping it at the nodes.
 
+use twoball::fe::elements::ring::QuadFormulation;
 use twoball::fe::section::solver::SectionSolver;
 use twoball::fe::section::subcycle::Integration;
-use twoball::fe::elements::ring::QuadFormulation;
 use twoball::material::Material;
 use twoball::mesh::section::{
     ball, ladder_ball, ladder_ball_banded, EdgeBand, SectionMesh, SectionSpec,

@@ -6,8 +6,8 @@
 //! wall time (s) of one run (defaults: D/6 bulk, D/200 pole, one point,
 //! subcycled).
 
-use twoball::fe::section::subcycle::Integration;
 use twoball::fe::elements::ring::QuadFormulation;
+use twoball::fe::section::subcycle::Integration;
 use twoball::material::Material;
 use twoball::mesh::section::{ball, SectionSpec};
 use twoball::study::run::section_impact::{HeadOn, Target};

@@ -53,30 +53,78 @@ fn grid(a: f64, b: f64, n: usize) -> Vec<f64> {
         .collect()
 }
 
+/// The axis of a figure: names, the SI-to-plot factor and the grid.
+struct Axis {
+    name: &'static str,
+    title: &'static str,
+    x_label: &'static str,
+    x_column: &'static str,
+    x_scale: f64,
+    x: Vec<f64>,
+}
+
+/// The figure on `axis` with one curve per parameter of `family`: its legend `label(p)` and
+/// η at each x from `eta_at(p, x)`.
+fn family<P: Copy>(
+    axis: Axis,
+    family: &[P],
+    label: impl Fn(P) -> String,
+    eta_at: impl Fn(P, f64) -> Result<f64>,
+) -> Result<Figure> {
+    let curves = family
+        .iter()
+        .map(|&p| {
+            let ys = axis
+                .x
+                .iter()
+                .map(|&x| eta_at(p, x))
+                .collect::<Result<_>>()?;
+            Ok((label(p), ys))
+        })
+        .collect::<Result<_>>()?;
+    Ok(Figure {
+        name: axis.name,
+        title: axis.title,
+        x_label: axis.x_label,
+        x_column: axis.x_column,
+        x_scale: axis.x_scale,
+        x: axis.x,
+        curves,
+    })
+}
+
+/// η of a head-on base-case impact between balls 1 and 2 of `base` changed by `m1` and `m2`.
+fn eta_of_pair(
+    base: &Material,
+    m1: impl FnOnce(&mut Material),
+    m2: impl FnOnce(&mut Material),
+) -> Result<f64> {
+    let (mut a, mut b) = (*base, *base);
+    m1(&mut a);
+    m2(&mut b);
+    let (a, b) = (
+        a.validated("ball1.material")?,
+        b.validated("ball2.material")?,
+    );
+    eta(&a, &b, [BASE_SPEEDS.0, 0.0], [BASE_SPEEDS.1, 0.0], base.mu)
+}
+
 /// Figure 11: η against density 4000–12000 kg/m³ (both balls), left-ball speed 1.0 and
 /// 0.1 m/s, right ball −1 m/s.
 pub fn figure11() -> Result<Figure> {
     let base = base_material()?;
-    let x = grid(4000.0, 12000.0, 41);
-    let mut curves = vec![];
-    for v in [1.0, 0.1] {
-        let ys = x
-            .iter()
-            .map(|&rho| {
-                let m = Material { rho, ..base }.validated("material")?;
-                eta(&m, &m, [v, 0.0], [BASE_SPEEDS.1, 0.0], m.mu)
-            })
-            .collect::<Result<Vec<_>>>()?;
-        curves.push((format!("left ball {v:.1} m/s"), ys));
-    }
-    Ok(Figure {
+    let axis = Axis {
         name: "fig11_density",
         title: "Fig. 11: energy dissipation factor vs density",
         x_label: "density of the balls (kg/m^3)",
         x_column: "density_kg_per_m3",
         x_scale: 1.0,
-        x,
-        curves,
+        x: grid(4000.0, 12000.0, 41),
+    };
+    let label = |v: f64| format!("left ball {v:.1} m/s");
+    family(axis, &[1.0, 0.1], label, |v, rho| {
+        let m = Material { rho, ..base }.validated("material")?;
+        eta(&m, &m, [v, 0.0], [BASE_SPEEDS.1, 0.0], m.mu)
     })
 }
 
@@ -84,23 +132,17 @@ pub fn figure11() -> Result<Figure> {
 /// 0.2, 0.6 and 1.0 m/s (right ball none).
 pub fn figure12() -> Result<Figure> {
     let base = base_material()?;
-    let x = grid(0.1, 0.6, 26);
-    let mut curves = vec![];
-    for vt in [0.2, 0.6, 1.0] {
-        let ys = x
-            .iter()
-            .map(|&mu| eta(&base, &base, [BASE_SPEEDS.0, vt], [BASE_SPEEDS.1, 0.0], mu))
-            .collect::<Result<Vec<_>>>()?;
-        curves.push((format!("left tangential {vt:.1} m/s"), ys));
-    }
-    Ok(Figure {
+    let axis = Axis {
         name: "fig12_friction",
         title: "Fig. 12: energy dissipation factor vs friction coefficient",
         x_label: "dynamic friction coefficient (-)",
         x_column: "mu",
         x_scale: 1.0,
-        x,
-        curves,
+        x: grid(0.1, 0.6, 26),
+    };
+    let label = |vt: f64| format!("left tangential {vt:.1} m/s");
+    family(axis, &[0.2, 0.6, 1.0], label, |vt, mu| {
+        eta(&base, &base, [BASE_SPEEDS.0, vt], [BASE_SPEEDS.1, 0.0], mu)
     })
 }
 
@@ -108,80 +150,48 @@ pub fn figure12() -> Result<Figure> {
 /// E₂/E₁ = 100, 10, 2, 1, 0.5, 0.1.
 pub fn figure13() -> Result<Figure> {
     let base = base_material()?;
-    let x = grid(100e9, 400e9, 31);
-    let mut curves = vec![];
-    for ratio in [100.0, 10.0, 2.0, 1.0, 0.5, 0.1] {
-        let ys = x
-            .iter()
-            .map(|&e1| {
-                let m1 = Material { youngs: e1, ..base }.validated("ball1.material")?;
-                let m2 = Material {
-                    youngs: ratio * e1,
-                    ..base
-                }
-                .validated("ball2.material")?;
-                eta(
-                    &m1,
-                    &m2,
-                    [BASE_SPEEDS.0, 0.0],
-                    [BASE_SPEEDS.1, 0.0],
-                    base.mu,
-                )
-            })
-            .collect::<Result<Vec<_>>>()?;
-        curves.push((format!("modulus ratio {ratio}"), ys));
-    }
-    Ok(Figure {
+    let axis = Axis {
         name: "fig13_modulus",
         title: "Fig. 13: energy dissipation factor vs elastic modulus",
         x_label: "elastic modulus E1 (GPa)",
         x_column: "E1_GPa",
         x_scale: 1e-9,
-        x,
-        curves,
-    })
+        x: grid(100e9, 400e9, 31),
+    };
+    let ratios = [100.0, 10.0, 2.0, 1.0, 0.5, 0.1];
+    family(
+        axis,
+        &ratios,
+        |r| format!("modulus ratio {r}"),
+        |r, e1| eta_of_pair(&base, |m| m.youngs = e1, |m| m.youngs = r * e1),
+    )
 }
 
 /// Figure 14: η against the left ball's yield strength σ_s1 = 10–450 MPa for yield ratios
 /// σ_s2/σ_s1 = 0.1, 0.5, 1, 2, 10, 100 (σ_s = 0 has no elastic phase; the grid starts at 10).
 pub fn figure14() -> Result<Figure> {
     let base = base_material()?;
-    let x = grid(10e6, 450e6, 45);
-    let mut curves = vec![];
-    for ratio in [0.1, 0.5, 1.0, 2.0, 10.0, 100.0] {
-        let ys = x
-            .iter()
-            .map(|&s1| {
-                let m1 = Material {
-                    yield_strength: s1,
-                    ..base
-                }
-                .validated("ball1.material")?;
-                let m2 = Material {
-                    yield_strength: ratio * s1,
-                    ..base
-                }
-                .validated("ball2.material")?;
-                eta(
-                    &m1,
-                    &m2,
-                    [BASE_SPEEDS.0, 0.0],
-                    [BASE_SPEEDS.1, 0.0],
-                    base.mu,
-                )
-            })
-            .collect::<Result<Vec<_>>>()?;
-        curves.push((format!("yield ratio {ratio}"), ys));
-    }
-    Ok(Figure {
+    let axis = Axis {
         name: "fig14_yield",
         title: "Fig. 14: energy dissipation factor vs yield strength",
         x_label: "yield strength sigma_s1 (MPa)",
         x_column: "yield1_MPa",
         x_scale: 1e-6,
-        x,
-        curves,
-    })
+        x: grid(10e6, 450e6, 45),
+    };
+    let ratios = [0.1, 0.5, 1.0, 2.0, 10.0, 100.0];
+    family(
+        axis,
+        &ratios,
+        |r| format!("yield ratio {r}"),
+        |r, s1| {
+            eta_of_pair(
+                &base,
+                |m| m.yield_strength = s1,
+                |m| m.yield_strength = r * s1,
+            )
+        },
+    )
 }
 
 /// All four figures.

@@ -3,7 +3,7 @@
 //! measured frequency and damping ratio it is compared with.
 
 use super::claims::{Claim, Relation};
-use super::scene::{DamperBall, BoxSpec, DamperScene, FrameSpec, LawChoice};
+use super::scene::{BoxSpec, DamperBall, DamperScene, FrameSpec, LawChoice};
 use crate::error::{Error, Result};
 use crate::material::Material;
 use serde::Deserialize;

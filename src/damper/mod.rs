@@ -29,5 +29,5 @@ pub mod timestep;
 pub use decay::{log_decrement, peaks, Decay, Peak};
 pub use energy::Ledger;
 pub use frame::Frame;
-pub use scene::{DamperBall, BoxSpec, DamperScene, FrameSpec, LawChoice};
-pub use sim::{Sample, DamperSimulation};
+pub use scene::{BoxSpec, DamperBall, DamperScene, FrameSpec, LawChoice};
+pub use sim::{DamperSimulation, Sample};

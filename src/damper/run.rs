@@ -3,7 +3,7 @@
 
 use super::decay::{cycle_ratios, log_decrement, peaks, Decay};
 use super::file::{DamperCase, Measured};
-use super::sim::{Sample, DamperSimulation};
+use super::sim::{DamperSimulation, Sample};
 use crate::analytic::laws::Registry;
 use crate::atomic::{ensure_dir, write_atomic};
 use crate::error::{Error, Result};

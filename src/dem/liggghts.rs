@@ -106,7 +106,6 @@ pub fn deck(law: &str, params: &Params, s: &DeckScene) -> Result<String> {
             range.0, range.1, HYSTERESIS_TOLERANCE
         );
     }
-    let half = s.diameter / 2.0;
     let box_half = 2.0 * s.diameter;
     out += &format!(
         "variable vr index {v:.12e}\n\
@@ -130,28 +129,9 @@ pub fn deck(law: &str, params: &Params, s: &DeckScene) -> Result<String> {
     }
     out += &format!(
         "pair_style gran model {model}\n\
-         pair_coeff * *\n\
-         timestep {dt:.12e}\n\
-         create_atoms 1 single -{h:.12e} 0 0 units box\n\
-         create_atoms 1 single {h:.12e} 0 0 units box\n\
-         set atom 1 diameter {d:.12e} density {rho:.12e} vx $(v_vr/2)\n\
-         set atom 2 diameter {d:.12e} density {rho:.12e} vx $(-v_vr/2)\n\
-         fix integr all nve/sphere\n\
-         variable t equal step*dt\n\
-         variable x1 equal x[1]\n\
-         variable x2 equal x[2]\n\
-         variable v1 equal vx[1]\n\
-         variable v2 equal vx[2]\n\
-         variable f1 equal fx[1]\n\
-         fix trace all print 1 \"${{t}} ${{x1}} ${{x2}} ${{v1}} ${{v2}} ${{f1}}\" file trace.txt screen no\n\
-         thermo 1000\n\
-         run {n}\n",
-        dt = s.timestep,
-        h = half,
-        d = s.diameter,
-        rho = s.density,
-        n = s.steps
+         pair_coeff * *\n"
     );
+    out += &s.two_atoms_and_trace();
     Ok(out)
 }
 

@@ -92,6 +92,34 @@ impl DeckScene {
         })
     }
 
+    /// The tail of a LAMMPS-family input (LAMMPS, LIGGGHTS) after its pair style: the step,
+    /// the two balls touching at the origin with relative speed `${vr}` (m/s), the trace
+    /// `t x1 x2 v1 v2 f1` (SI) written to `trace.txt` every step, and the run.
+    pub fn two_atoms_and_trace(&self) -> String {
+        format!(
+            "timestep {dt:.12e}\n\
+         create_atoms 1 single -{h:.12e} 0 0 units box\n\
+         create_atoms 1 single {h:.12e} 0 0 units box\n\
+         set atom 1 diameter {d:.12e} density {rho:.12e} vx $(v_vr/2)\n\
+         set atom 2 diameter {d:.12e} density {rho:.12e} vx $(-v_vr/2)\n\
+         fix integr all nve/sphere\n\
+         variable t equal step*dt\n\
+         variable x1 equal x[1]\n\
+         variable x2 equal x[2]\n\
+         variable v1 equal vx[1]\n\
+         variable v2 equal vx[2]\n\
+         variable f1 equal fx[1]\n\
+         fix trace all print 1 \"${{t}} ${{x1}} ${{x2}} ${{v1}} ${{v2}} ${{f1}}\" file trace.txt screen no\n\
+         thermo 1000\n\
+         run {n}\n",
+            dt = self.timestep,
+            h = self.diameter / 2.0,
+            d = self.diameter,
+            rho = self.density,
+            n = self.steps
+        )
+    }
+
     /// Effective mass m* of the two balls, kg.
     pub fn mass(&self) -> f64 {
         self.pair.hertz.mass

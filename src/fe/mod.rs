@@ -17,13 +17,13 @@
 //! - [`model`] (what the solver is given) and [`tensor`] (small tensor algebra).
 // Index loops mirror the index notation of the formulas (σ_ij B_Ij, ...): keep them.
 #![allow(clippy::needless_range_loop)]
-pub mod section;
 pub mod contact;
 pub mod elements;
 pub mod implicit;
 pub mod linear;
 pub mod materials;
 pub mod model;
+pub mod section;
 pub mod simd;
 pub mod solver;
 pub mod tensor;

@@ -5,7 +5,7 @@
 use crate::pvd_support;
 use twoball::analytic::laws::{ContactPair, Registry};
 use twoball::analytic::Body;
-use twoball::damper::{log_decrement, peaks, DamperBall, BoxSpec, DamperScene, DamperSimulation};
+use twoball::damper::{log_decrement, peaks, BoxSpec, DamperBall, DamperScene, DamperSimulation};
 use twoball::Material;
 
 fn steel() -> Material {

@@ -4,10 +4,10 @@
 //! `cargo test --test suite NAME::`, for example `cargo test --test suite damper::`.
 
 // Helpers shared by several subjects.
-mod section_support;
 mod contact_support;
 mod pvd_support;
 mod run_support;
+mod section_support;
 mod tool_support;
 
 mod analytic_cli;
@@ -17,10 +17,6 @@ mod analytic_hertz;
 mod analytic_independent;
 mod analytic_parametric;
 mod analytic_three_phase;
-mod section_contact;
-mod section_element;
-mod section_lanes;
-mod section_subcycle;
 mod cli_pipe;
 mod cli_user;
 mod committed_files;
@@ -69,8 +65,12 @@ mod scene_laws;
 mod scene_parse;
 mod scene_tolerance;
 mod scene_wall;
+mod section_contact;
 mod section_elastic_wall;
+mod section_element;
 mod section_ladder;
+mod section_lanes;
+mod section_subcycle;
 mod static_loop;
 mod static_section;
 mod stress_quick;

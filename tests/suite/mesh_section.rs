@@ -6,8 +6,8 @@
 use std::collections::HashMap;
 use std::f64::consts::PI;
 use twoball::mesh::ball::{ball as ball3d, BallSpec, Cut, CONTACT_HALF_ANGLE_DEG};
-use twoball::mesh::section::{ball, SectionMesh, SectionSpec};
 use twoball::mesh::section::{area, corner_jacobians, quad_area, quad_points, revolved_volume};
+use twoball::mesh::section::{ball, SectionMesh, SectionSpec};
 
 const R: f64 = 0.01;
 

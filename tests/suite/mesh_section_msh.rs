@@ -6,9 +6,9 @@ use crate::tool_support as tools;
 
 use std::f64::consts::PI;
 use std::process::Command;
+use twoball::mesh::section::msh::{parse, read};
 use twoball::mesh::section::SectionMesh;
 use twoball::mesh::section::{area, corner_jacobians, quad_points, revolved_volume};
-use twoball::mesh::section::msh::{parse, read};
 
 const R: f64 = 0.01;
 

@@ -5,9 +5,9 @@
 use crate::tool_support as tools;
 
 use std::process::Command;
-use twoball::mesh::section::{ball, SectionSpec};
 use twoball::mesh::section::area;
 use twoball::mesh::section::vtu::{to_vtu_bytes, write, SectionField};
+use twoball::mesh::section::{ball, SectionSpec};
 use twoball::mesh::vtu::VtuFormat;
 
 fn tmp(name: &str) -> std::path::PathBuf {

@@ -4,11 +4,11 @@
 //! minutes in the scalar kernels and are `#[ignore]`d: `cargo test --release --test
 //! section_contact -- --ignored --nocapture`.
 
-use crate::section_support;
 use crate::contact_support::hertz;
+use crate::section_support;
 
-use section_support::test_ball;
 use hertz::{elastic_copper, finite_ball_reference, windowed_peak, DIAMETER};
+use section_support::test_ball;
 use twoball::analytic::hertz::HertzPair;
 use twoball::study::run::section_impact::{HeadOn, ImpactResult, Target};
 

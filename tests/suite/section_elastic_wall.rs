@@ -5,8 +5,8 @@
 use std::path::Path;
 use twoball::analytic::hertz::HertzPair;
 use twoball::error::Result;
-use twoball::mesh::section::{block, BlockSpec};
 use twoball::mesh::section::quad_area;
+use twoball::mesh::section::{block, BlockSpec};
 use twoball::scene::{approach, Approach, Override, Scene, WALL_SCENE};
 use twoball::study::records::outcome::ball_inertia;
 use twoball::study::run::scene::{run_scene, RunReport};

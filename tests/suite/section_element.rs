@@ -6,9 +6,9 @@
 use crate::section_support;
 
 use section_support::*;
-use twoball::fe::section::solver::SectionSolver;
 use twoball::fe::elements::ring::{update, QuadFormulation, QuadState};
 use twoball::fe::materials::J2Material;
+use twoball::fe::section::solver::SectionSolver;
 
 /// Every registered formulation, the one-point quad with a stiffer hourglass control than
 /// its default.

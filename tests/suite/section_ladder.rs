@@ -15,8 +15,8 @@ use hertz::{finite_ball_reference, windowed_peak};
 use twoball::analytic::hertz::HertzPair;
 use twoball::fe::elements::ring::QuadFormulation;
 use twoball::material::Material;
-use twoball::mesh::section::{ball, ladder_ball, ladder_pole_size, SectionMesh, SectionSpec};
 use twoball::mesh::section::quad_area;
+use twoball::mesh::section::{ball, ladder_ball, ladder_pole_size, SectionMesh, SectionSpec};
 use twoball::study::records::estimate::{estimate, Behaviour, Estimate};
 use twoball::study::run::section_impact::{HeadOn, ImpactResult, PlaneContact, Target};
 

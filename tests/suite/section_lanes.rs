@@ -4,8 +4,8 @@
 //! aluminium, both meshed, whose lane groups break at the material change), single rate and
 //! subcycled.
 
-use twoball::fe::section::subcycle::Integration;
 use twoball::fe::elements::ring::QuadFormulation;
+use twoball::fe::section::subcycle::Integration;
 use twoball::fe::simd::KernelPath;
 use twoball::material::Material;
 use twoball::mesh::section::{ball, SectionMesh, SectionSpec};

@@ -3,11 +3,11 @@
 //! power-of-two step classes reproduce e, δ_max and the contact duration within 0.1 % with
 //! an energy error below 1e-3 and far fewer element updates; with one level they are Box 6.1.
 
-use twoball::fe::section::solver::{SectionModel, SectionSolver};
-use twoball::fe::section::subcycle::Integration;
 use twoball::fe::contact::section::plane_nodal::{NodalPlane, Side};
 use twoball::fe::interaction::Interaction;
 use twoball::fe::materials::J2Material;
+use twoball::fe::section::solver::{SectionModel, SectionSolver};
+use twoball::fe::section::subcycle::Integration;
 use twoball::material::Material;
 use twoball::mesh::section::{ball, ladder_ball, SectionMesh, SectionSpec};
 use twoball::study::run::section_impact::{HeadOn, ImpactResult, PlaneContact, Target};

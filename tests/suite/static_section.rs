@@ -7,11 +7,11 @@
 use crate::section_support;
 
 use section_support::*;
-use twoball::fe::section::solver::SectionModel;
 use twoball::fe::elements::ring::mass::element_masses;
 use twoball::fe::elements::ring::QuadFormulation;
 use twoball::fe::implicit::plane::ExactPlane;
 use twoball::fe::implicit::static_solver::{Increment, Settings, StaticSolver, Target};
+use twoball::fe::section::solver::SectionModel;
 use twoball::material::Material;
 
 /// The quarter thick sphere a = 10 mm, b = 20 mm of `nr` x `nc` quads in formulation

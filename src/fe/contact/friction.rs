@@ -104,7 +104,13 @@ mod tests {
     #[test]
     fn small_slip_sticks_elastically() {
         let mut s = StickState::default();
-        let d = return_map(&mut s, [1e-6, 0.0, 0.0], 1e6, 10.0, CoulombFriction::new(0.2));
+        let d = return_map(
+            &mut s,
+            [1e-6, 0.0, 0.0],
+            1e6,
+            10.0,
+            CoulombFriction::new(0.2),
+        );
         assert_eq!(d, 0.0);
         assert!(!s.sliding);
         assert!((s.force[0] + 1.0).abs() < 1e-12);

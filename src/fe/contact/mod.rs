@@ -20,7 +20,6 @@ pub mod duration;
 pub mod friction;
 pub mod law;
 pub mod mass_damping;
-pub mod section;
 pub mod node_to_segment;
 pub mod output;
 pub mod params;
@@ -28,6 +27,7 @@ pub mod penalty;
 pub mod projection;
 pub mod rigid_plane;
 pub mod search;
+pub mod section;
 pub mod step_cache;
 pub mod surface;
 

@@ -556,6 +556,17 @@ mod tests {
         f
     }
 
+    /// The pair of `top` against `bottom` on mesh `m`, both of steel.
+    fn steel_pair(
+        m: &Mesh,
+        top: &[[u32; 4]],
+        bottom: &[[u32; 4]],
+        params: ContactParams,
+    ) -> SurfacePair {
+        let mat = steel();
+        SurfacePair::new(&m.nodes, &m.hexes, top, &mat, bottom, &mat, params).unwrap()
+    }
+
     fn steel() -> Material {
         Material::preset("steel").unwrap()
     }
@@ -567,16 +578,7 @@ mod tests {
         for (na, nb) in [(2, 2), (2, 3), (4, 3)] {
             let (m, top, bottom) = stacked(na, nb, g);
             let mat = steel();
-            let mut pair = SurfacePair::new(
-                &m.nodes,
-                &m.hexes,
-                &top,
-                &mat,
-                &bottom,
-                &mat,
-                ContactParams::default(),
-            )
-            .unwrap();
+            let mut pair = steel_pair(&m, &top, &bottom, ContactParams::default());
             let f = eval(&mut pair, &m, &vec![[0.0; 3]; m.nodes.len()], 1e-7);
             let eps = 10.0 * mat.youngs / 0.5;
             let total: [f64; 3] = f.iter().fold([0.0; 3], |s, v| add(s, *v));
@@ -688,17 +690,7 @@ mod tests {
     #[test]
     fn surfaces_apart_cost_no_contact_work() {
         let (m, top, bottom) = stacked(2, 2, -1.0);
-        let mat = steel();
-        let mut pair = SurfacePair::new(
-            &m.nodes,
-            &m.hexes,
-            &top,
-            &mat,
-            &bottom,
-            &mat,
-            ContactParams::default(),
-        )
-        .unwrap();
+        let mut pair = steel_pair(&m, &top, &bottom, ContactParams::default());
         let f = eval(&mut pair, &m, &vec![[0.0; 3]; m.nodes.len()], 1e-7);
         assert!(f.iter().all(|v| *v == [0.0; 3]));
         assert_eq!((pair.free_steps, pair.search_rebuilds()), (1, 0));
@@ -742,17 +734,7 @@ mod tests {
     #[test]
     fn too_deep_penetration_is_an_error_not_a_pass_through() {
         let (m, top, bottom) = stacked(2, 2, 0.3);
-        let mat = steel();
-        let mut pair = SurfacePair::new(
-            &m.nodes,
-            &m.hexes,
-            &top,
-            &mat,
-            &bottom,
-            &mat,
-            ContactParams::default(),
-        )
-        .unwrap();
+        let mut pair = steel_pair(&m, &top, &bottom, ContactParams::default());
         let mass = vec![1.0; m.nodes.len()];
         let v = vec![[0.0; 3]; m.nodes.len()];
         let mut f = vec![[0.0; 3]; m.nodes.len()];

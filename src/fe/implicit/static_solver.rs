@@ -16,10 +16,10 @@ use super::element_tangent::{increment_forces, increment_tangent};
 use super::plane::ExactPlane;
 use super::system::Pattern;
 use crate::error::{Error, Result};
-use crate::fe::section::solver::SectionModel;
 use crate::fe::elements::ring::element::Quad;
 use crate::fe::elements::ring::QuadState;
 use crate::fe::materials::J2Material;
+use crate::fe::section::solver::SectionModel;
 use rayon::prelude::*;
 use std::sync::Arc;
 

@@ -15,7 +15,7 @@ use crate::fe::{
     solver::energy::{EnergyReport, PartEnergy},
     solver::interaction::{Interaction, StepContext},
     solver::mass::element_lumped_mass,
-    solver::profile::{StepPhase, Profile},
+    solver::profile::{Profile, StepPhase},
     solver::subcycle::{node_force_sum, SubcycleReport, Subcycler, Subcycling, AUTO_MIN_SAVING},
     solver::timestep::StableStep,
     tensor::{cross, dot, inverse, Sym},
@@ -491,15 +491,8 @@ impl Solver {
         // f^{n+1} at v^{n+1/2} (before the velocity moves on), second partial velocity update
         // v^{n+1} = v^{n+1/2} + (t^{n+1} − t^{n+1/2}) a^{n+1}, velocity boundary conditions.
         let (p_int_new, p_ext_new) = self.accelerate_and_kick(dt)?;
-        // 11 (first half). Work of internal and external forces over the step (trapezoid).
-        self.w_int += 0.5 * dt * (p_int_old + p_int_new);
-        self.w_ext += 0.5 * dt * (p_ext_old + p_ext_new);
-        self.step += 1;
-        self.dt_prev = dt;
-        // 11. Energy balance check.
-        self.energy_check()?;
-        // 12. Output: the caller reads the state between steps.
-        Ok(())
+        // 11-12. Work over the step, energy balance; the caller reads the state between steps.
+        self.close_step(dt, (p_int_old, p_ext_old), (p_int_new, p_ext_new))
     }
 
     /// One fine step n → n+1 with subcycling (module [`crate::fe::solver::subcycle`]): Box 6.1 with the
@@ -523,14 +516,19 @@ impl Solver {
         // closing half-kick v^{n+1} = v^{n+1/2} + (Δt/2) M⁻¹(f_ext − Σ 2^{k_old} f_e)^{n+1},
         // boundary conditions.
         let (p_int_new, p_ext_new) = self.accelerate_and_close_kick(dt)?;
-        // 11 (first half). Work over the step: trapezoid of the closing and opening forces.
-        self.w_int += 0.5 * dt * (p_int_old + p_int_new);
-        self.w_ext += 0.5 * dt * (p_ext_old + p_ext_new);
+        // 11. Work over the step (the closing and opening forces), energy balance.
+        self.close_step(dt, (p_int_old, p_ext_old), (p_int_new, p_ext_new))
+    }
+
+    /// Box 6.1 step 11 for a step of `dt` (s): the work of the internal and external forces
+    /// by the trapezoid of their powers (W) at its start `old` and end `new`, the step count,
+    /// then the energy balance check.
+    fn close_step(&mut self, dt: f64, old: (f64, f64), new: (f64, f64)) -> Result<()> {
+        self.w_int += 0.5 * dt * (old.0 + new.0);
+        self.w_ext += 0.5 * dt * (old.1 + new.1);
         self.step += 1;
         self.dt_prev = dt;
-        // 11. Energy balance check.
-        self.energy_check()?;
-        Ok(())
+        self.energy_check()
     }
 
     /// Box 6.1 step 11: records the balance error and stops when energy is created.

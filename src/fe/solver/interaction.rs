@@ -87,8 +87,12 @@ pub trait Interaction<const D: usize = 3>: Send {
     /// The largest time step (s) this interaction keeps stable, given the lumped nodal
     /// masses `mass` (kg) and, where the loop tracks it, the highest frequency `omega` (rad/s)
     /// of the elements at each node (empty otherwise: the interaction then uses its own
-    /// estimate); `None` when it sets no limit.
-    fn stable_time_step(&self, mass: &[f64], omega: &[f64]) -> Option<f64>;
+    /// estimate); `None` when it sets no limit. The default: the smallest of its
+    /// [`Interaction::node_limits`].
+    fn stable_time_step(&self, mass: &[f64], omega: &[f64]) -> Option<f64> {
+        let limits = self.node_limits(mass, omega);
+        limits.into_iter().map(|(_, dt)| dt).reduce(f64::min)
+    }
 
     /// Stored, dissipated and total work so far, J.
     fn energy(&self) -> InteractionEnergy;

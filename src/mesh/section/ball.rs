@@ -13,10 +13,10 @@
 //! axis and the surface and the layers end on the axis with full quads, so no element
 //! degenerates into a triangle at r = 0.
 
-use crate::mesh::ball::{core_point, invert, Plan, CONTACT_HALF_ANGLE_DEG, MAX_ELEMENTS};
 use super::SectionMesh;
 use super::{boundary_edges, quad_area};
 use crate::error::{Error, Result};
+use crate::mesh::ball::{core_point, invert, Plan, CONTACT_HALF_ANGLE_DEG, MAX_ELEMENTS};
 use std::collections::BTreeMap;
 
 /// What to mesh: the meridian section of a ball. Lengths in metres.

@@ -15,13 +15,11 @@
 //! is exactly 2 there, and the element counts grow by exactly 4. Surface nodes lie on the
 //! circle at every level.
 
-use crate::mesh::ball::{Plan, MAX_ELEMENTS};
-use super::ball::{
-    build_quarter, pole_edge, surface_ring_radius, uniform_layers, with_sets,
-};
+use super::ball::{build_quarter, pole_edge, surface_ring_radius, uniform_layers, with_sets};
 use super::band::{layer_rings, EdgeBand};
 use super::SectionMesh;
 use crate::error::{Error, Result};
+use crate::mesh::ball::{Plan, MAX_ELEMENTS};
 
 /// Half-width of the refined core around the pole, in predicted contact radii: the plastic
 /// zone of an impact reaches about one contact radius under the surface and the core's

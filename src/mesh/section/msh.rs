@@ -11,9 +11,9 @@
 //! one, is the whole boundary off the axis. The file must name a line group `contact`.
 
 use super::SectionMesh;
-use crate::mesh::msh::parse_raw;
 use super::{boundary_edges, corner_jacobians};
 use crate::error::{Error, Result};
+use crate::mesh::msh::parse_raw;
 use std::collections::{BTreeMap, HashMap, HashSet};
 use std::path::Path;
 

@@ -7,9 +7,9 @@
 //! normal to the section), xy = σ_rz, yz = zx = 0.
 
 use super::SectionMesh;
-use crate::mesh::vtu::{grid_bytes, Field, Grid, VtuFormat};
 use crate::atomic::write_atomic;
 use crate::error::Result;
+use crate::mesh::vtu::{grid_bytes, Field, Grid, VtuFormat};
 use std::path::Path;
 
 /// A named field of a meridian section, one entry per node or per quad.

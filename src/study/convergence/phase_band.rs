@@ -18,8 +18,8 @@
 //! every level. Its levels are the ladder's (0, 1, …): a banded plan's fine level is ≥ 1.
 
 use crate::error::Result;
-use crate::mesh::section::{ladder_ball_banded, EdgeBand, SectionMesh};
 pub use crate::mesh::section::band::check_split;
+use crate::mesh::section::{ladder_ball_banded, EdgeBand, SectionMesh};
 use crate::study::convergence::phase_ensemble::{
     ensemble_over, family_mesh, hertz_contact_radius, ring_ratio, run_head_on, HeadOnCase,
     PhaseEnsemble,

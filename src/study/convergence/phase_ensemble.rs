@@ -20,8 +20,8 @@
 
 use crate::analytic::hertz::HertzPair;
 use crate::error::{Error, Result};
-use crate::fe::section::subcycle::Integration;
 use crate::fe::elements::ring::QuadFormulation;
+use crate::fe::section::subcycle::Integration;
 use crate::material::Material;
 use crate::mesh::section::{ladder_ball, SectionMesh};
 use crate::study::convergence::ladder::refine;

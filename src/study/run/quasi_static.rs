@@ -18,12 +18,12 @@
 
 use crate::analytic::hertz::HertzPair;
 use crate::error::{Error, Result};
-use crate::fe::section::solver::SectionModel;
 use crate::fe::elements::ring::mass::element_masses;
 use crate::fe::elements::ring::QuadFormulation;
 use crate::fe::implicit::plane::ExactPlane;
 use crate::fe::implicit::static_solver::{Prescribed, Settings, StaticSolver, Target};
 use crate::fe::materials::J2Material;
+use crate::fe::section::solver::SectionModel;
 use crate::material::Material;
 use crate::mesh::section::ladder_ball;
 use serde::Serialize;

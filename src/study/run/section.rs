@@ -7,8 +7,8 @@
 //! towards ball 2), and the run is in the pair's centre-of-mass frame, like the 3D models.
 
 use crate::error::{Error, Result};
-use crate::fe::section::subcycle::Integration;
 use crate::fe::elements::ring::QuadFormulation;
+use crate::fe::section::subcycle::Integration;
 use crate::fe::solver::subcycle::{SubcycleReport, Subcycling};
 use crate::fe::Formulation;
 use crate::mesh::section::{ball, block, BlockSpec, SectionMesh, SectionSpec};

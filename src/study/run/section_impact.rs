@@ -8,9 +8,6 @@
 //! the contact duration, the peak force, the energy terms, the energy error and history rows.
 
 use crate::error::{Error, Result};
-use crate::fe::section::mass_scaling;
-use crate::fe::section::solver::{SectionModel, SectionSolver};
-use crate::fe::section::subcycle::Integration;
 use crate::fe::contact::duration::pulse_duration;
 use crate::fe::contact::section::plane_kinematic::KinematicPlane;
 use crate::fe::contact::section::plane_nodal::{ring_areas_and_thickness, NodalPlane, Side};
@@ -19,6 +16,9 @@ use crate::fe::contact::section::segment::{Boundary, SegmentPair};
 use crate::fe::elements::ring::QuadFormulation;
 use crate::fe::interaction::Interaction;
 use crate::fe::materials::J2Material;
+use crate::fe::section::mass_scaling;
+use crate::fe::section::solver::{SectionModel, SectionSolver};
+use crate::fe::section::subcycle::Integration;
 use crate::fe::simd::KernelPath;
 use crate::material::Material;
 use crate::mesh::section::SectionMesh;

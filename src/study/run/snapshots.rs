@@ -14,8 +14,8 @@ use crate::atomic::write_atomic;
 use crate::error::Result;
 use crate::fe::section::solver::SectionSolver;
 use crate::fe::{explicit::Solver, tensor::von_mises};
-use crate::mesh::section::SectionMesh;
 use crate::mesh::section::vtu::{to_vtu_bytes, SectionField};
+use crate::mesh::section::SectionMesh;
 use crate::mesh::{vtu, Mesh};
 use std::path::{Path, PathBuf};
 

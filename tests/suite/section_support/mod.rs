@@ -4,8 +4,8 @@
 #![allow(clippy::needless_range_loop)]
 
 use std::f64::consts::PI;
-use twoball::fe::section::solver::SectionModel;
 use twoball::fe::materials::J2Material;
+use twoball::fe::section::solver::SectionModel;
 use twoball::material::Material;
 
 /// A structured mesh (nodes, counter-clockwise quads) of the map `f(s, t)` on

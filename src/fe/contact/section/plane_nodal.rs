@@ -152,14 +152,6 @@ impl Interaction<2> for NodalPlane {
         Ok(())
     }
 
-    fn stable_time_step(&self, mass: &[f64], omega: &[f64]) -> Option<f64> {
-        Some(
-            self.springs()
-                .map(|(i, k)| stable_step(k, mass[i], omega[i]))
-                .fold(f64::INFINITY, f64::min),
-        )
-    }
-
     fn energy(&self) -> InteractionEnergy {
         penalty_energy(&self.state)
     }

@@ -163,15 +163,6 @@ impl Interaction<2> for SegmentPlane {
         Ok(())
     }
 
-    fn stable_time_step(&self, mass: &[f64], omega: &[f64]) -> Option<f64> {
-        Some(
-            self.node_limits(mass, omega)
-                .into_iter()
-                .map(|t| t.1)
-                .fold(f64::INFINITY, f64::min),
-        )
-    }
-
     fn energy(&self) -> InteractionEnergy {
         penalty_energy(&self.state)
     }
