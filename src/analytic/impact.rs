@@ -239,15 +239,11 @@ impl System<'_> {
                 11.0 / 84.0,
             ],
         ];
-        const B5: [f64; 7] = [
-            35.0 / 384.0,
-            0.0,
-            500.0 / 1113.0,
-            125.0 / 192.0,
-            -2187.0 / 6784.0,
-            11.0 / 84.0,
-            0.0,
-        ];
+        // First same as last: the fifth-order weights are the last stage's row.
+        const B5: [f64; 7] = {
+            let a = A[5];
+            [a[0], a[1], a[2], a[3], a[4], a[5], 0.0]
+        };
         const B4: [f64; 7] = [
             5179.0 / 57600.0,
             0.0,

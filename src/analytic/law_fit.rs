@@ -260,6 +260,66 @@ pub fn fit_weighted(
             "at least one head-on impact",
         ));
     }
+    let residuals = |p: &Params| -> Result<Vec<f64>> {
+        let mut r = Vec::with_capacity(2 * obs.len());
+        for o in obs {
+            let (e, d, _) = predict(spec, pair, p, b1, b2, o.speed)?;
+            if w.e > 0.0 {
+                r.push(w.e * (e - o.e) / o.e);
+            }
+            if w.delta_max > 0.0 {
+                r.push(w.delta_max * (d - o.delta_max) / o.delta_max);
+            }
+        }
+        Ok(r)
+    };
+    let LeastSquares {
+        params,
+        free: names,
+        sigma,
+        rms,
+    } = least_squares(spec, pair, free, fixed, residuals)?;
+    let mut rows = vec![];
+    for o in obs {
+        let (e, d, _) = predict(spec, pair, &params, b1, b2, o.speed)?;
+        rows.push((*o, e, d));
+    }
+    Ok(Fit {
+        params,
+        free: names,
+        sigma,
+        rms,
+        rows,
+    })
+}
+
+/// The optimum of a least-squares fit of a law's parameters.
+#[derive(Debug, Clone, PartialEq)]
+pub struct LeastSquares {
+    /// All parameters, the free ones at their optimum.
+    pub params: Params,
+    /// Free parameter names.
+    pub free: Vec<&'static str>,
+    /// One-standard-deviation uncertainty of each free parameter (same units; NaN if there
+    /// are no more residuals than free parameters).
+    pub sigma: Vec<f64>,
+    /// Root-mean-square residual at the optimum (the residuals' unit).
+    pub rms: f64,
+}
+
+/// Fits the `free` parameters of `spec` (the others at the `fixed` overrides or their defaults
+/// for `pair`) so that the residuals `residuals(params)` have the least sum of squares:
+/// Levenberg-Marquardt in the logarithms of the free parameters (each stays positive and
+/// within its declared range), uncertainties from the covariance s²(JᵀJ)⁻¹.
+///
+/// Errors: an unknown, duplicate or non-positive free key; a failing `residuals`.
+pub fn least_squares(
+    spec: &NormalSpec,
+    pair: &ContactPair,
+    free: &[String],
+    fixed: &[(String, f64)],
+    residuals: impl Fn(&Params) -> Result<Vec<f64>>,
+) -> Result<LeastSquares> {
     let base = Params::resolve(spec.name, spec.params, fixed, pair)?;
     let mut names: Vec<&'static str> = vec![];
     for f in free {
@@ -289,20 +349,7 @@ pub fn fit_weighted(
         }
         Params::resolve(spec.name, spec.params, &over, pair)
     };
-    let residuals = |theta: &[f64]| -> Result<Vec<f64>> {
-        let p = make(theta)?;
-        let mut r = Vec::with_capacity(2 * obs.len());
-        for o in obs {
-            let (e, d, _) = predict(spec, pair, &p, b1, b2, o.speed)?;
-            if w.e > 0.0 {
-                r.push(w.e * (e - o.e) / o.e);
-            }
-            if w.delta_max > 0.0 {
-                r.push(w.delta_max * (d - o.delta_max) / o.delta_max);
-            }
-        }
-        Ok(r)
-    };
+    let residuals = |theta: &[f64]| -> Result<Vec<f64>> { residuals(&make(theta)?) };
     let ssr = |r: &[f64]| r.iter().map(|x| x * x).sum::<f64>();
     let mut theta: Vec<f64> = names.iter().map(|k| base.get(k).ln()).collect();
     let mut r = residuals(&theta)?;
@@ -386,16 +433,10 @@ pub fn fit_weighted(
     } else {
         vec![f64::NAN; np]
     };
-    let mut rows = vec![];
-    for o in obs {
-        let (e, d, _) = predict(spec, pair, &params, b1, b2, o.speed)?;
-        rows.push((*o, e, d));
-    }
-    Ok(Fit {
+    Ok(LeastSquares {
         params,
         free: names,
         sigma,
         rms: (ssr(&r) / r.len() as f64).sqrt(),
-        rows,
     })
 }

@@ -1,13 +1,15 @@
-//! `twoball laws fit`: fit a normal law's free parameters to head-on e and δ_max data; the
-//! files a DEM user needs (fit.json, e_of_v.csv, DEM input snippets) are written by
-//! `study::report::law_fit_files`.
+//! `twoball laws fit`: fit a normal law's free parameters to head-on e and δ_max data (the
+//! files a DEM user needs, fit.json, e_of_v.csv and DEM input snippets, are written by
+//! `study::report::law_fit_files`), or to a quasi-static FE loop's forces
+//! (`--against-static DIR`, `study::laws_bench::loop_fit`).
 
 use super::law_params::parse_params;
 use crate::analytic::law_fit::{fit, read_observations};
-use crate::analytic::laws::{ContactPair, Registry};
+use crate::analytic::laws::{ContactPair, NormalSpec, Registry};
 use crate::analytic::Body;
 use crate::error::{Error, Result};
 use crate::material::{Material, PRESET_NAMES};
+use crate::study::laws_bench::loop_fit::{fit_law_on_loop, read_loop_folder, write_loop_fit};
 use crate::study::report::law_fit_files::{write_fit_files, FitSetting};
 use clap::Args;
 use std::path::PathBuf;
@@ -20,8 +22,17 @@ pub struct LawFitArgs {
     pub law: String,
     /// Data: a CSV with columns `v_r [m/s]`, `e [-]`, `delta_max [m]`, a `twoball sweep`
     /// CSV (head-on rows of --diameter and --mesh), or a directory holding `fe.csv`.
-    #[arg(long, value_name = "CSV_OR_DIR")]
-    pub against: PathBuf,
+    #[arg(
+        long,
+        value_name = "CSV_OR_DIR",
+        required_unless_present = "against_static"
+    )]
+    pub against: Option<PathBuf>,
+    /// Fit the law's quasi-static loading and unloading forces to the loop of a
+    /// `twoball static --out DIR` folder instead (its pair, material and diameter from
+    /// DIR/results.json; --material, --diameter, --mesh, --vmin and --vmax do not apply).
+    #[arg(long, value_name = "DIR", conflicts_with = "against")]
+    pub against_static: Option<PathBuf>,
     /// Free parameter (repeatable) [default: every parameter of the law but `tension` and
     /// `R_star` (only E* √R* is identifiable from head-on data)].
     #[arg(long = "free", value_name = "KEY")]
@@ -52,6 +63,11 @@ pub struct LawFitArgs {
 /// Runs `laws fit` against `registry`.
 pub fn run(a: LawFitArgs, registry: &Registry) -> Result<()> {
     let spec = *registry.normal(&a.law)?;
+    let free = free_or_default(&spec, &a.free);
+    let fixed = parse_params("--param", &a.param)?;
+    if let Some(dir) = &a.against_static {
+        return fit_static(&spec, dir, &free, &fixed, &a.out);
+    }
     let m = Material::preset(&a.material).map_err(|_| {
         Error::invalid(
             "--material",
@@ -71,10 +87,14 @@ pub fn run(a: LawFitArgs, registry: &Registry) -> Result<()> {
     }
     let b = Body::ball(m, a.diameter, "ball1")?;
     let pair = ContactPair::between(&b, &b, m.mu);
-    let path = if a.against.is_dir() {
-        a.against.join("fe.csv")
+    let against = a
+        .against
+        .clone()
+        .expect("clap: --against or --against-static");
+    let path = if against.is_dir() {
+        against.join("fe.csv")
     } else {
-        a.against.clone()
+        against
     };
     let text = std::fs::read_to_string(&path).map_err(|e| Error::io(&path, e))?;
     let source = path.display().to_string();
@@ -92,16 +112,6 @@ pub fn run(a: LawFitArgs, registry: &Registry) -> Result<()> {
             ),
         ));
     }
-    let free: Vec<String> = if a.free.is_empty() {
-        spec.params
-            .iter()
-            .filter(|p| p.key != "tension" && p.key != "R_star")
-            .map(|p| p.key.to_string())
-            .collect()
-    } else {
-        a.free.clone()
-    };
-    let fixed = parse_params("--param", &a.param)?;
     let f = fit(&spec, &pair, &b, &b, &obs, &free, &fixed)?;
     let decks = write_fit_files(
         &a.out,
@@ -156,5 +166,63 @@ pub fn run(a: LawFitArgs, registry: &Registry) -> Result<()> {
     for r in &decks.refused {
         println!("  no deck: {r}");
     }
+    Ok(())
+}
+
+/// The free keys asked for, or every parameter of the law but `tension` and `R_star` (only
+/// E* √R* is identifiable from head-on data or from F(δ)).
+fn free_or_default(spec: &NormalSpec, asked: &[String]) -> Vec<String> {
+    if !asked.is_empty() {
+        return asked.to_vec();
+    }
+    spec.params
+        .iter()
+        .filter(|p| p.key != "tension" && p.key != "R_star")
+        .map(|p| p.key.to_string())
+        .collect()
+}
+
+/// `laws fit --against-static DIR`: the law fitted to the loop in `dir`, written to `out`.
+fn fit_static(
+    spec: &NormalSpec,
+    dir: &std::path::Path,
+    free: &[String],
+    fixed: &[(String, f64)],
+    out: &std::path::Path,
+) -> Result<()> {
+    let folder = read_loop_folder(dir)?;
+    let f = fit_law_on_loop(&folder, spec, free, fixed)?;
+    write_loop_fit(out, dir, spec, &f, &folder.finest)?;
+    let p = &folder.pair;
+    println!(
+        "Fitted {} to the quasi-static loop in {} (D = {} m, {}, {} points):",
+        spec.name,
+        dir.display(),
+        p.diameter_m,
+        if p.rigid_wall {
+            "ball on a rigid wall"
+        } else {
+            "two identical balls"
+        },
+        folder.finest.loading.len() + folder.finest.unloading.len()
+    );
+    for (k, v) in f.fit.params.iter() {
+        match f.fit.free.iter().position(|n| *n == k) {
+            Some(j) => println!("  {k} = {v:.6e} +- {:.2e} (fitted)", f.fit.sigma[j]),
+            None => println!("  {k} = {v:.6e} (fixed)"),
+        }
+    }
+    println!("  RMS force error over the FE peak force     loading  unloading");
+    for (name, x) in [
+        ("default parameters", &f.before),
+        ("fitted parameters", &f.after),
+    ] {
+        println!(
+            "    {name:<38} {:>6.2} % {:>8.2} %",
+            100.0 * x.loading_rms,
+            100.0 * x.unloading_rms
+        );
+    }
+    println!("wrote {}/fit.json, loop_fit.csv", out.display());
     Ok(())
 }

@@ -8,6 +8,7 @@ use crate::study::convergence::static_ladder::{
     case_of_scene, impact_of_scene, run_loop_ladder, LoopEstimate, DEFAULT_INCREMENTS,
     DEFAULT_LEVEL,
 };
+use crate::study::laws_bench::loop_fit::LoopPair;
 use crate::study::laws_bench::loops::{csv, laws_on_loop, table};
 use crate::study::records::estimate::Estimate;
 use crate::study::run::quasi_static::{LoadTo, StaticCase, StaticLoop, Support};
@@ -73,8 +74,14 @@ pub fn run(a: StaticArgs) -> Result<()> {
     let (loops, est) = run_loop_ladder(&case, a.levels)?;
     let finest = loops.last().expect("at least two levels");
     print!("{}", summary(&case, &loops, &est));
+    let (speed, wall) = impact_of_scene(&scene)?;
+    let pair = LoopPair {
+        material: case.material,
+        diameter_m: case.diameter,
+        rigid_wall: wall,
+        approach_speed_m_per_s: speed,
+    };
     let laws = if a.laws {
-        let (speed, wall) = impact_of_scene(&scene)?;
         let laws = laws_on_loop(
             finest,
             case.material,
@@ -94,7 +101,7 @@ pub fn run(a: StaticArgs) -> Result<()> {
         if let Some(laws) = &laws {
             crate::atomic::write_atomic(dir.join("laws.csv"), csv(finest, laws).as_bytes())?;
         }
-        let json = results_json(&case, &loops, &est)?;
+        let json = results_json(&case, &pair, &loops, &est)?;
         crate::atomic::write_atomic(dir.join("results.json"), json.as_bytes())?;
         println!("wrote {}", dir.display());
     }
@@ -176,8 +183,14 @@ fn loop_csv(l: &StaticLoop) -> String {
     s
 }
 
-/// results.json: the case, the estimates and each level's summary (SI units; keys name them).
-fn results_json(case: &StaticCase, loops: &[StaticLoop], est: &LoopEstimate) -> Result<String> {
+/// results.json: the case, the pair it stands for (what `laws fit --against-static` reads),
+/// the estimates and each level's summary (SI units; keys name them).
+fn results_json(
+    case: &StaticCase,
+    pair: &LoopPair,
+    loops: &[StaticLoop],
+    est: &LoopEstimate,
+) -> Result<String> {
     let levels: Vec<serde_json::Value> = loops
         .iter()
         .map(|l| serde_json::json!({ "quads": l.quads, "newton_iterations": l.iterations, "summary": l.summary }))
@@ -185,6 +198,7 @@ fn results_json(case: &StaticCase, loops: &[StaticLoop], est: &LoopEstimate) -> 
     let v = serde_json::json!({
         "units": "SI: approach and radius m, force N, work J",
         "diameter_m": case.diameter,
+        "contact_pair": pair,
         "support": case.support,
         "element": case.formulation,
         "load_to": case.to,

@@ -140,7 +140,7 @@ pub(super) fn parse_raw(bytes: &[u8], name: &str) -> Result<Raw> {
 
 /// Everything read from the file, before it is checked and turned into a [`Mesh`].
 #[derive(Default)]
-pub(super) struct Raw {
+pub(crate) struct Raw {
     pub(super) names: HashMap<(i32, i32), String>,
     /// Physical tags of each (dim, entity tag) (version 4.1).
     entity_phys: HashMap<(i32, i32), Vec<i32>>,
@@ -570,16 +570,10 @@ fn read_elements22(c: &mut Cur, binary: bool, raw: &mut Raw) -> Result<()> {
     Ok(())
 }
 
-/// Checks what was read and builds the mesh.
-fn assemble(raw: Raw, name: &str) -> Result<Loaded> {
+/// The position of each node tag in `raw.nodes`; fails (naming file `name`) on a
+/// non-finite coordinate or a tag defined twice.
+pub(crate) fn node_index(raw: &Raw, name: &str) -> Result<HashMap<u64, usize>> {
     let fail = |m: String| Error::Parse(format!("{name}: {m}"));
-    if raw.hexes.is_empty() {
-        return Err(fail(
-            "no volume elements: twoball needs 8-node hexahedra (gmsh: Recombine + transfinite \
-             volumes, and a physical volume group)"
-                .into(),
-        ));
-    }
     let mut index: HashMap<u64, usize> = HashMap::with_capacity(raw.nodes.len());
     for (k, (tag, x)) in raw.nodes.iter().enumerate() {
         if !x.iter().all(|v| v.is_finite()) {
@@ -591,6 +585,20 @@ fn assemble(raw: Raw, name: &str) -> Result<Loaded> {
             return Err(fail(format!("node {tag} is defined twice")));
         }
     }
+    Ok(index)
+}
+
+/// Checks what was read and builds the mesh.
+fn assemble(raw: Raw, name: &str) -> Result<Loaded> {
+    let fail = |m: String| Error::Parse(format!("{name}: {m}"));
+    if raw.hexes.is_empty() {
+        return Err(fail(
+            "no volume elements: twoball needs 8-node hexahedra (gmsh: Recombine + transfinite \
+             volumes, and a physical volume group)"
+                .into(),
+        ));
+    }
+    let index = node_index(&raw, name)?;
     // Keep only nodes used by hexahedra, in file order.
     let mut new_id = vec![u32::MAX; raw.nodes.len()];
     for (tag, h) in &raw.hexes {

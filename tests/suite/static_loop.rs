@@ -112,7 +112,111 @@ fn the_command_writes_the_loop_with_units_and_its_bars() {
     let e = &v["estimate"]["e"];
     assert!(e["finest"].as_f64().unwrap() > 0.0 && e["error"].as_f64().unwrap() >= 0.0);
     assert_eq!(v["levels"].as_array().unwrap().len(), 2);
+    assert_eq!(v["contact_pair"]["rigid_wall"], false);
+    // The folder is what `laws fit --against-static` reads: Thornton's p_y fitted to the
+    // loop's forces must bring its RMS force error below the default parameters' one.
+    let fit_dir = out.join("fit");
+    let run = twoball()
+        .args([
+            "laws",
+            "fit",
+            "--law",
+            "thornton",
+            "--free",
+            "p_y",
+            "--against-static",
+        ])
+        .arg(&out)
+        .arg("--out")
+        .arg(&fit_dir)
+        .output()
+        .unwrap();
+    assert!(
+        run.status.success(),
+        "{}",
+        String::from_utf8_lossy(&run.stderr)
+    );
+    let f: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(fit_dir.join("fit.json")).unwrap()).unwrap();
+    let rms = |k: &str| f[k]["loading_rms"].as_f64().unwrap();
+    assert!(rms("fitted_params") < rms("default_params"), "{f}");
+    let csv = std::fs::read_to_string(fit_dir.join("loop_fit.csv")).unwrap();
+    assert_eq!(
+        csv.lines().next().unwrap(),
+        "phase,approach_m,fe_N,default_N,fitted_N"
+    );
     let _ = std::fs::remove_dir_all(&out);
+}
+
+/// The loop fit recovers a law's parameter from a loop the law itself made (Thornton with
+/// p_y 1.3 times its default): the fitter, the pair's approach (twice the ball's) and the
+/// unloading from the law's own turn agree with the law's closed form to round-off.
+#[test]
+fn a_loop_fit_recovers_the_parameter_of_a_loop_the_law_made() {
+    use twoball::analytic::laws::{Params, Registry, Turn};
+    use twoball::study::laws_bench::loop_fit::{fit_law_on_loop, LoopFolder, LoopPair};
+    use twoball::study::run::quasi_static::{LoopPoint, LoopSummary, StaticLoop};
+    let pair = LoopPair {
+        material: Material::copper_fe(),
+        diameter_m: 0.02,
+        rigid_wall: false,
+        approach_speed_m_per_s: 1.0,
+    };
+    let (contact, share) = pair.contact_pair().unwrap();
+    assert_eq!(share, 2.0);
+    let registry = Registry::builtin();
+    let spec = *registry.normal("thornton").unwrap();
+    let default = Params::resolve(spec.name, spec.params, &[], &contact).unwrap();
+    let p_y = 1.3 * default.get("p_y");
+    let truth = Params::resolve(spec.name, spec.params, &[("p_y".into(), p_y)], &contact).unwrap();
+    let law = (spec.build)(&contact, &truth);
+    let delta_max = 4e-5;
+    let point = |approach: f64, force: f64| LoopPoint {
+        approach,
+        force,
+        contact_radius: 0.0,
+        plastic_work: 0.0,
+        stress_work: 0.0,
+    };
+    let f_top = law.loading(share * delta_max, 0.0, 1.0);
+    let turn = Turn::new(law.as_ref(), share * delta_max, f_top);
+    let loading: Vec<LoopPoint> = (1..=20)
+        .map(|i| delta_max * i as f64 / 20.0)
+        .map(|d| point(d, law.loading(share * d, 0.0, 1.0).max(0.0)))
+        .collect();
+    let unloading: Vec<LoopPoint> = (0..20)
+        .map(|i| delta_max * (1.0 - 0.06 * i as f64 / 19.0))
+        .map(|d| point(d, law.unloading(share * d, 0.0, 1.0, &turn).max(0.0)))
+        .collect();
+    let summary = LoopSummary {
+        delta_max,
+        force_at_half: 0.0,
+        force_at_max: f_top,
+        residual_approach: 0.0,
+        work_in: 0.0,
+        work_returned: 0.0,
+        e: 0.0,
+        contact_radius: 0.0,
+        plastic_work: 0.0,
+    };
+    let folder = LoopFolder {
+        finest: StaticLoop {
+            quads: 0,
+            iterations: 0,
+            loading,
+            unloading,
+            summary,
+        },
+        pair,
+    };
+    let f = fit_law_on_loop(&folder, &spec, &["p_y".to_string()], &[]).unwrap();
+    let got = f.fit.params.get("p_y");
+    assert!((got / p_y - 1.0).abs() < 1e-6, "p_y {got} against {p_y}");
+    assert!(
+        f.fit.rms < 1e-6 && f.before.loading_rms > 0.05,
+        "{:?}",
+        f.fit
+    );
 }
 
 #[test]
@@ -126,6 +230,19 @@ fn bad_input_gets_one_line() {
         ),
         (vec!["static", "--level", "0"], "static.levels"),
         (vec!["static", "--increments", "2"], "static.increments"),
+        (
+            vec![
+                "laws",
+                "fit",
+                "--law",
+                "thornton",
+                "--against-static",
+                "/no/such/loop",
+                "--out",
+                "/no/such/fit",
+            ],
+            "results.json",
+        ),
     ] {
         let run = twoball().args(&args).output().unwrap();
         let err = String::from_utf8_lossy(&run.stderr);

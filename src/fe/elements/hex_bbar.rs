@@ -54,14 +54,7 @@ pub fn update(
         internal_energy,
         ..
     } = st;
-    let half = 0.5 * dt;
-    let xm: [[f64; 3]; 8] = std::array::from_fn(|i| {
-        [
-            x1[i][0] - half * v[i][0],
-            x1[i][1] - half * v[i][1],
-            x1[i][2] - half * v[i][2],
-        ]
-    });
+    let xm = super::shape::mid_step(x1, v, dt);
     let (gm, jm) = gauss_gradients(&xm);
     let mut ls = [[[0.0; 3]; 3]; 8];
     let mut div_sum = 0.0;

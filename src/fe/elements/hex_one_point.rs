@@ -152,14 +152,7 @@ pub fn update(
         hourglass_energy,
     } = st;
     let ip = &mut points[0];
-    let half = 0.5 * dt;
-    let xm: [[f64; 3]; 8] = std::array::from_fn(|i| {
-        [
-            x1[i][0] - half * v[i][0],
-            x1[i][1] - half * v[i][1],
-            x1[i][2] - half * v[i][2],
-        ]
-    });
+    let xm = super::shape::mid_step(x1, v, dt);
     let (vm, bm) = mean_gradient(&xm);
     // Velocity gradient L_ij = Σ_I v_Ii B_Ij on the mid-step configuration.
     let mut l = [[0.0; 3]; 3];

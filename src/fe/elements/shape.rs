@@ -18,6 +18,20 @@ pub const NODE_XI: [[f64; 3]; 8] = [
     [-1.0, 1.0, 1.0],
 ];
 
+/// The nodes at mid-step t^{n+1/2}, x^{n+1} − (Δt/2) v^{n+1/2} (m), from the positions `x1`
+/// (m) and velocities `v` (m/s) of a step of `dt` (s).
+#[inline(always)]
+pub fn mid_step(x1: &[[f64; 3]; 8], v: &[[f64; 3]; 8], dt: f64) -> [[f64; 3]; 8] {
+    let half = 0.5 * dt;
+    std::array::from_fn(|i| {
+        [
+            x1[i][0] - half * v[i][0],
+            x1[i][1] - half * v[i][1],
+            x1[i][2] - half * v[i][2],
+        ]
+    })
+}
+
 /// Gauss abscissa of the 2-point rule, 1/√3 (weights 1).
 pub const GAUSS2: f64 = 0.577_350_269_189_625_8;
 

@@ -13,7 +13,7 @@
 use super::SectionMesh;
 use super::{boundary_edges, corner_jacobians};
 use crate::error::{Error, Result};
-use crate::mesh::msh::parse_raw;
+use crate::mesh::msh::{node_index, parse_raw};
 use std::collections::{BTreeMap, HashMap, HashSet};
 use std::path::Path;
 
@@ -42,17 +42,7 @@ pub fn parse(bytes: &[u8], name: &str) -> Result<SectionMesh> {
             "no quadrangles (gmsh: Recombine Surface, or Mesh.RecombineAll = 1)".into(),
         ));
     }
-    let mut index: HashMap<u64, usize> = HashMap::with_capacity(raw.nodes.len());
-    for (k, (tag, x)) in raw.nodes.iter().enumerate() {
-        if !x.iter().all(|v| v.is_finite()) {
-            return Err(fail(format!(
-                "node {tag} has a non-finite coordinate {x:?}"
-            )));
-        }
-        if index.insert(*tag, k).is_some() {
-            return Err(fail(format!("node {tag} is defined twice")));
-        }
-    }
+    let index = node_index(&raw, name)?;
     let extent = raw
         .nodes
         .iter()

@@ -64,8 +64,15 @@ pub fn laws_on_loop(
         .collect()
 }
 
-/// One law on `l`; the pair's approach is `share` times the ball's.
-fn on_loop(name: &str, law: &dyn NormalLaw, l: &StaticLoop, speed: f64, share: f64) -> LawOnLoop {
+/// One law on `l` (the impact's approach speed `speed`, m/s); the pair's approach is `share`
+/// times the ball's.
+pub fn on_loop(
+    name: &str,
+    law: &dyn NormalLaw,
+    l: &StaticLoop,
+    speed: f64,
+    share: f64,
+) -> LawOnLoop {
     let peak = l.summary;
     let pair_delta = |p: &LoopPoint| share * p.approach;
     let top = share * peak.delta_max;

@@ -9,6 +9,7 @@
 //! - [`cache`]: one JSON per FE point, reused, written as each finishes, run in parallel;
 //! - [`law_side`]: the laws on the same points;
 //! - [`loops`]: the laws' quasi-static curves against an FE loop (`twoball static --laws`);
+//!   [`loop_fit`]: a law fitted to such a loop (`twoball laws fit --against-static`);
 //! - [`bars`]: the FE error bars in e per metal and the laws within them;
 //! - [`ranking`]: each law's errors against FE and the ranking;
 //! - [`calibrated`]: the damped laws calibrated at one point per metal and ranked;
@@ -22,6 +23,7 @@ pub mod fe;
 pub mod figures;
 pub mod fit;
 pub mod law_side;
+pub mod loop_fit;
 pub mod loops;
 pub mod matrix;
 pub mod ranking;

@@ -26,7 +26,7 @@ use crate::fe::materials::J2Material;
 use crate::fe::section::solver::SectionModel;
 use crate::material::Material;
 use crate::mesh::section::ladder_ball;
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 
 /// How the ball is held against the plane.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
@@ -117,7 +117,7 @@ pub struct LoopPoint {
 }
 
 /// What a loop gives.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct LoopSummary {
     /// Largest approach, m.
     pub delta_max: f64,
