@@ -60,11 +60,11 @@ pub struct LawBenchArgs {
     pub jobs: usize,
     /// Family level of the fine phase ensemble of each head-on FE point (coarse: one below).
     #[arg(long, value_name = "L", allow_hyphen_values = true,
-          default_value_t = crate::study::laws_bench::fe::DEFAULT_FE_PLAN.level)]
+          default_value_t = crate::study::laws_bench::fe::DEFAULT_FE_PLAN.phase.level)]
     pub fe_level: i32,
     /// Meshes per phase ensemble (even, >= 2).
     #[arg(long, value_name = "M",
-          default_value_t = crate::study::laws_bench::fe::DEFAULT_FE_PLAN.meshes)]
+          default_value_t = crate::study::laws_bench::fe::DEFAULT_FE_PLAN.phase.meshes)]
     pub phase_meshes: usize,
     /// Split the surface rings at each head-on point's contact edge SPLIT-fold (the banded
     /// mesh family; needs --fe-level >= 1; an odd split stops a sixth of the rays below the
@@ -80,7 +80,7 @@ pub struct LawBenchArgs {
     /// Run a head-on point one level finer when the relative bar of its e exceeds this
     /// fraction (0: never).
     #[arg(long, value_name = "FRACTION",
-          default_value_t = crate::study::laws_bench::fe::DEFAULT_FE_PLAN.tolerance.unwrap_or(0.0))]
+          default_value_t = crate::study::laws_bench::fe::DEFAULT_FE_PLAN.phase.tolerance.unwrap_or(0.0))]
     pub fe_tolerance: f64,
     /// Run every diameter of the bilinear metals instead of scaling the smaller ones from
     /// the largest (similarity).
@@ -126,11 +126,14 @@ pub fn bench_with(a: LawBenchArgs, registry: &Registry) -> Result<()> {
             .map_or(String::new(), |p| format!(" --matrix {}", p.display())),
         a.jobs
     );
-    if (plan.level, plan.meshes) != (default.level, default.meshes) {
-        command += &format!(" --fe-level {} --phase-meshes {}", plan.level, plan.meshes);
+    if (plan.phase.level, plan.phase.meshes) != (default.phase.level, default.phase.meshes) {
+        command += &format!(
+            " --fe-level {} --phase-meshes {}",
+            plan.phase.level, plan.phase.meshes
+        );
     }
-    if plan.band != default.band {
-        match plan.band {
+    if plan.phase.band != default.phase.band {
+        match plan.phase.band {
             Some(split) => command += &format!(" --fe-band {split}"),
             None => command += " --fe-band none",
         }
@@ -138,8 +141,8 @@ pub fn bench_with(a: LawBenchArgs, registry: &Registry) -> Result<()> {
     if plan.mass_scaling != default.mass_scaling {
         command += &format!(" --fe-mass-scaling {:e}", plan.mass_scaling);
     }
-    if plan.tolerance != default.tolerance {
-        command += &format!(" --fe-tolerance {:e}", plan.tolerance.unwrap_or(0.0));
+    if plan.phase.tolerance != default.phase.tolerance {
+        command += &format!(" --fe-tolerance {:e}", plan.phase.tolerance.unwrap_or(0.0));
     }
     if a.no_similarity {
         command += " --no-similarity";

@@ -244,26 +244,7 @@ impl Plan {
                 }
             }
         }
-        let mut core = Vec::with_capacity(m * n * n);
-        for k in 0..n {
-            for j in 0..n {
-                for i in 0..m {
-                    core.push(
-                        [
-                            id(i, j, k),
-                            id(i + 1, j, k),
-                            id(i + 1, j + 1, k),
-                            id(i, j + 1, k),
-                            id(i, j, k + 1),
-                            id(i + 1, j, k + 1),
-                            id(i + 1, j + 1, k + 1),
-                            id(i, j + 1, k + 1),
-                        ]
-                        .map(|x| x as u32),
-                    );
-                }
-            }
-        }
+        let core = super::structured_hexes([m, n, n], |i, j, k| id(i, j, k) as u32);
         // Outer core faces (all but the flat face u = 0 on the ball surface), outward.
         let on_flat = |c: u32| (c as usize).is_multiple_of(m + 1);
         let outer: Vec<[u32; 4]> = boundary_faces(&core)

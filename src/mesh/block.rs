@@ -25,23 +25,7 @@ pub fn block(lengths: [f64; 3], counts: [usize; 3]) -> Mesh {
             }
         }
     }
-    let mut hexes = Vec::with_capacity(nx * ny * nz);
-    for k in 0..nz {
-        for j in 0..ny {
-            for i in 0..nx {
-                hexes.push([
-                    id(i, j, k),
-                    id(i + 1, j, k),
-                    id(i + 1, j + 1, k),
-                    id(i, j + 1, k),
-                    id(i, j, k + 1),
-                    id(i + 1, j, k + 1),
-                    id(i + 1, j + 1, k + 1),
-                    id(i, j + 1, k + 1),
-                ]);
-            }
-        }
-    }
+    let hexes = super::structured_hexes([nx, ny, nz], id);
     let boundary = boundary_faces(&hexes);
     let mut mesh = Mesh {
         nodes,

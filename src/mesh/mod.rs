@@ -16,6 +16,32 @@ pub mod vtu;
 
 use std::collections::BTreeMap;
 
+/// The hexahedra of a structured block of `cells` = [n_i, n_j, n_k] cells, i fastest, with
+/// node numbers `id(i, j, k)` for i ≤ n_i, j ≤ n_j, k ≤ n_k (gmsh/VTK node order).
+pub(crate) fn structured_hexes(
+    cells: [usize; 3],
+    id: impl Fn(usize, usize, usize) -> u32,
+) -> Vec<[u32; 8]> {
+    let mut hexes = Vec::with_capacity(cells.iter().product());
+    for k in 0..cells[2] {
+        for j in 0..cells[1] {
+            for i in 0..cells[0] {
+                hexes.push([
+                    id(i, j, k),
+                    id(i + 1, j, k),
+                    id(i + 1, j + 1, k),
+                    id(i, j + 1, k),
+                    id(i, j, k + 1),
+                    id(i + 1, j, k + 1),
+                    id(i + 1, j + 1, k + 1),
+                    id(i, j + 1, k + 1),
+                ]);
+            }
+        }
+    }
+    hexes
+}
+
 /// A mesh of 8-node hexahedra with its boundary and named sets. Coordinates in metres.
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct Mesh {

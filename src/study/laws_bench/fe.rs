@@ -73,22 +73,16 @@ pub struct ObliqueFe {
 }
 
 /// How converged every head-on FE point is: the phase ensembles of
-/// [`crate::study::convergence::phase_ensemble::converged_head_on`], fine on family level `level`,
+/// [`crate::study::convergence::phase_ensemble::converged_head_on`], fine on family level `phase.level`,
 /// coarse on `level − 1`, `meshes` meshes each.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct FePlan {
-    /// Family level of the fine ensemble ([`PhasePlan::level`]).
-    pub level: i32,
-    /// Meshes per ensemble (even, ≥ 2).
-    pub meshes: usize,
-    /// With `Some(split)`, the banded family ([`PhasePlan::band`]).
-    pub band: Option<usize>,
+    /// The phase ensembles' plan (level, meshes, band, tolerance; a point refines at most
+    /// one level under a tolerance).
+    pub phase: PhasePlan,
     /// Mass-scaling budget of every head-on run (added mass over the section's; 0: none;
     /// [`HeadOnCase::mass_scaling`]).
     pub mass_scaling: f64,
-    /// With `Some(t)`, a point whose relative bar of e exceeds t runs one level finer
-    /// ([`PhasePlan::tolerance`]).
-    pub tolerance: Option<f64>,
 }
 
 /// The bench's default plan: the banded family (a five-fold band confined to a sixth of the
@@ -97,11 +91,14 @@ pub struct FePlan {
 /// a point whose bar of e exceeds 0.5 % refined one level (docs/contact-laws.md, "FE error
 /// bars").
 pub const DEFAULT_FE_PLAN: FePlan = FePlan {
-    level: 1,
-    meshes: 2,
-    band: Some(5),
+    phase: PhasePlan {
+        level: 1,
+        meshes: 2,
+        band: Some(5),
+        tolerance: Some(0.005),
+        max_refinements: 1,
+    },
     mass_scaling: 1e-4,
-    tolerance: Some(0.005),
 };
 
 impl Default for FePlan {
@@ -132,11 +129,12 @@ impl FePlan {
             ));
         }
         Ok(FePlan {
-            level,
-            meshes,
-            band: None,
+            phase: PhasePlan {
+                level,
+                meshes,
+                ..PhasePlan::default()
+            },
             mass_scaling: 0.0,
-            tolerance: None,
         })
     }
 
@@ -144,7 +142,7 @@ impl FePlan {
     ///
     /// Errors: a split outside 1..=16 (naming `--fe-band`), or a band with a fine level
     /// below 1 (naming `--fe-level`).
-    pub fn with_band(self, split: Option<usize>) -> Result<FePlan> {
+    pub fn with_band(mut self, split: Option<usize>) -> Result<FePlan> {
         if let Some(s) = split {
             if crate::study::convergence::phase_band::check_split(s).is_err() {
                 return Err(Error::invalid(
@@ -156,18 +154,16 @@ impl FePlan {
                     ),
                 ));
             }
-            if self.level < 1 {
+            if self.phase.level < 1 {
                 return Err(Error::invalid(
                     "--fe-level",
-                    self.level,
+                    self.phase.level,
                     ">= 1 with --fe-band (the banded family's coarse level is 0)",
                 ));
             }
         }
-        Ok(FePlan {
-            band: split,
-            ..self
-        })
+        self.phase.band = split;
+        Ok(self)
     }
 
     /// The plan with every head-on run mass-scaled within `budget` (0: none).
@@ -193,10 +189,10 @@ impl FePlan {
     ///
     /// Errors: a tolerance that is not finite and positive, or a fine level of 7 (naming
     /// `--fe-tolerance`).
-    pub fn with_tolerance(self, tolerance: Option<f64>) -> Result<FePlan> {
+    pub fn with_tolerance(mut self, tolerance: Option<f64>) -> Result<FePlan> {
         if let Some(t) = tolerance {
             let max = crate::mesh::section::ladder::MAX_LEVEL as i32;
-            if !(t.is_finite() && t > 0.0) || self.level >= max {
+            if !(t.is_finite() && t > 0.0) || self.phase.level >= max {
                 return Err(Error::invalid(
                     "--fe-tolerance",
                     t,
@@ -204,12 +200,21 @@ impl FePlan {
                 ));
             }
         }
-        Ok(FePlan { tolerance, ..self })
+        self.phase.tolerance = tolerance;
+        self.phase.max_refinements = u32::from(tolerance.is_some());
+        Ok(self)
     }
 
     /// The FE model's name stored in every cache file of this plan (a file of another plan
     /// is rerun).
     pub fn model(&self) -> String {
+        let PhasePlan {
+            level,
+            meshes,
+            band,
+            tolerance,
+            ..
+        } = self.phase;
         let scaled = if self.mass_scaling > 0.0 {
             format!(
                 ", mass-scaled within {:e} of the section's mass",
@@ -218,17 +223,17 @@ impl FePlan {
         } else {
             String::new()
         };
-        let refined = match self.tolerance {
+        let refined = match tolerance {
             Some(t) => format!(", refined one level where the bar of e exceeds {t:e}"),
             None => String::new(),
         };
-        let plan = match self.band {
+        let plan = match band {
             None => format!(
                 "{FE_MODEL}: fine family level {}, coarse {}, {} meshes each, sized from the \
                  Hertz contact radius",
-                self.level,
-                self.level - 1,
-                self.meshes
+                level,
+                level - 1,
+                meshes
             ),
             Some(split) => {
                 let depth = depth_for(split);
@@ -240,24 +245,13 @@ impl FePlan {
                 format!(
                     "{FE_MODEL}: fine banded level {}, coarse {}, {} meshes each, the surface \
                      rings at the contact edge (found on level 0) split {split}-fold{reach}",
-                    self.level,
-                    self.level - 1,
-                    self.meshes
+                    level,
+                    level - 1,
+                    meshes
                 )
             }
         };
         plan + &scaled + &refined
-    }
-
-    /// The plan of `study::convergence::phase_ensemble`.
-    pub fn phase_plan(&self) -> PhasePlan {
-        PhasePlan {
-            level: self.level,
-            meshes: self.meshes,
-            band: self.band,
-            tolerance: self.tolerance,
-            max_refinements: u32::from(self.tolerance.is_some()),
-        }
     }
 }
 
@@ -305,7 +299,7 @@ pub fn head_on_fe(point: &HeadOnPoint, plan: &FePlan) -> Result<FePoint> {
         mass_scaling: plan.mass_scaling,
         ..head_on_case(point)
     };
-    let answer = converged_head_on(&case, &plan.phase_plan())?;
+    let answer = converged_head_on(&case, &plan.phase)?;
     Ok(FePoint {
         e: answer.e.as_recorded(),
         delta_max: answer.delta_max.as_recorded(),
@@ -423,7 +417,7 @@ mod tests {
                  Hertz contact radius"
             )
         );
-        assert_eq!(banded.phase_plan().band, Some(4));
+        assert_eq!(banded.phase.band, Some(4));
     }
 
     /// A mass-scaled plan names its budget in the cache's model; a budget of 0 leaves the

@@ -5,7 +5,7 @@
 //! measure `twoball static --laws` reports ([`super::loops`]). The law unloads from its own
 //! turn at the loop's largest approach, as there.
 
-use super::loops::{on_loop, LawOnLoop};
+use super::loops::{on_loop, phases, LawOnLoop};
 use crate::analytic::law_fit::{least_squares, LeastSquares};
 use crate::analytic::laws::{ContactPair, NormalSpec, Params};
 use crate::analytic::Body;
@@ -242,12 +242,7 @@ pub fn write_loop_fit(
         .map_err(|e| Error::Numerical(format!("fit.json: {e}")))?;
     write_atomic(out.join("fit.json"), (text + "\n").as_bytes())?;
     let mut csv = String::from("phase,approach_m,fe_N,default_N,fitted_N\n");
-    let points = l
-        .loading
-        .iter()
-        .map(|p| ("loading", p))
-        .chain(l.unloading.iter().map(|p| ("unloading", p)));
-    for (k, (phase, p)) in points.enumerate() {
+    for (k, (phase, p)) in phases(l).enumerate() {
         let _ = writeln!(
             csv,
             "{phase},{:.9e},{:.9e},{:.9e},{:.9e}",

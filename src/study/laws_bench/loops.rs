@@ -121,6 +121,12 @@ pub fn table(laws: &[LawOnLoop]) -> String {
     out
 }
 
+/// The loop's points in order, each with its phase (`loading`, `unloading`).
+pub fn phases(l: &StaticLoop) -> impl Iterator<Item = (&'static str, &LoopPoint)> {
+    let load = l.loading.iter().map(|p| ("loading", p));
+    load.chain(l.unloading.iter().map(|p| ("unloading", p)))
+}
+
 /// laws.csv: each loop point with the FE force and every law's, N (approach of the ball, m).
 pub fn csv(l: &StaticLoop, laws: &[LawOnLoop]) -> String {
     let mut out = String::from("phase,approach_m,fe_N");
@@ -128,12 +134,7 @@ pub fn csv(l: &StaticLoop, laws: &[LawOnLoop]) -> String {
         out += &format!(",{}_N", law.law);
     }
     out.push('\n');
-    let points = l
-        .loading
-        .iter()
-        .map(|p| ("loading", p))
-        .chain(l.unloading.iter().map(|p| ("unloading", p)));
-    for (k, (phase, p)) in points.enumerate() {
+    for (k, (phase, p)) in phases(l).enumerate() {
         out += &format!("{phase},{:.9e},{:.9e}", p.approach, p.force);
         for law in laws {
             out += &format!(",{:.9e}", law.forces[k]);

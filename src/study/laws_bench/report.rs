@@ -163,13 +163,13 @@ fn bars_section(s: &mut String, r: &BenchResults) {
         .head_on
         .iter()
         .filter_map(|h| h.fe_done())
-        .filter(|f| f.fine_level.is_some_and(|l| l > r.plan.level))
+        .filter(|f| f.fine_level.is_some_and(|l| l > r.plan.phase.level))
         .count();
     let refined = if refined > 0 {
         format!(
             " {refined} of them were refined one level (their bar on level {} exceeded the \
              tolerance; \"(level …)\" in the FE table).",
-            r.plan.level
+            r.plan.phase.level
         )
     } else {
         String::new()
@@ -258,7 +258,7 @@ fn fe_section(s: &mut String, r: &BenchResults) {
         match (&h.fe, h.fe_done()) {
             (_, Some(f)) => {
                 let refined = match f.fine_level {
-                    Some(l) if l > r.plan.level => format!(" (level {l})"),
+                    Some(l) if l > r.plan.phase.level => format!(" (level {l})"),
                     _ => String::new(),
                 };
                 let cpu = match f.scaled_from {
