@@ -13,8 +13,8 @@
 //! axis and the surface and the layers end on the axis with full quads, so no element
 //! degenerates into a triangle at r = 0.
 
-use super::SectionMesh;
-use super::{boundary_edges, quad_area};
+use super::geometry::SectionMesh;
+use super::geometry::{boundary_edges, quad_area};
 use crate::error::{Error, Result};
 use crate::mesh::ball::{core_point, invert, Plan, CONTACT_HALF_ANGLE_DEG, MAX_ELEMENTS};
 use std::collections::BTreeMap;

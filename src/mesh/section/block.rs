@@ -7,7 +7,7 @@
 //! node falls on the block's edge. Every quad is a rectangle; the cells next to the contact
 //! point are squares of the pole size.
 
-use super::SectionMesh;
+use super::geometry::SectionMesh;
 use crate::error::{Error, Result};
 use std::collections::BTreeMap;
 

@@ -17,7 +17,7 @@
 
 use super::ball::{build_quarter, pole_edge, surface_ring_radius, uniform_layers, with_sets};
 use super::band::{layer_rings, EdgeBand};
-use super::SectionMesh;
+use super::geometry::SectionMesh;
 use crate::error::{Error, Result};
 use crate::mesh::ball::{Plan, MAX_ELEMENTS};
 

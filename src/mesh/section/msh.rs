@@ -10,8 +10,8 @@
 //! 1e-9 of the section's size of 0, put exactly on it); `surface`, unless the file names
 //! one, is the whole boundary off the axis. The file must name a line group `contact`.
 
-use super::SectionMesh;
-use super::{boundary_edges, corner_jacobians};
+use super::geometry::SectionMesh;
+use super::geometry::{boundary_edges, corner_jacobians};
 use crate::error::{Error, Result};
 use crate::mesh::msh::{node_index, parse_raw};
 use std::collections::{BTreeMap, HashMap, HashSet};

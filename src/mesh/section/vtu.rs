@@ -6,7 +6,7 @@
 //! (σ_rr, σ_zz, σ_θθ, σ_rz) becomes xx = σ_rr, yy = σ_zz, zz = σ_θθ (the hoop component,
 //! normal to the section), xy = σ_rz, yz = zx = 0.
 
-use super::SectionMesh;
+use super::geometry::SectionMesh;
 use crate::atomic::write_atomic;
 use crate::error::Result;
 use crate::mesh::vtu::{grid_bytes, Field, Grid, VtuFormat};
