@@ -15,17 +15,32 @@ use crate::error::{Error, Result};
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::sparse::linalg::lu::{factorize_symbolic_lu, LuSymbolicParams, NumericLu, SymbolicLu};
 use faer::sparse::linalg::SupernodalThreshold;
-use faer::sparse::{Pair, SparseColMat, SymbolicSparseColMat};
+use faer::sparse::{Pair, SparseColMatRef, SymbolicSparseColMat};
 use faer::{Conj, Mat, Par};
+use std::sync::Mutex;
 
-/// The fixed structure of a mesh's tangent: the entries' positions, their order in the
-/// compressed matrix and the symbolic LU.
+/// The fixed structure of a mesh's tangent: the entries' positions in the compressed matrix,
+/// the symbolic LU, and the memory every numeric factorisation reuses.
 pub struct Pattern {
     dofs: usize,
     quads: Vec<[u32; 4]>,
     symbolic: SymbolicSparseColMat<usize>,
-    argsort: faer::sparse::Argsort<usize>,
+    /// Position in the compressed values of each entry (the quads' 8 × 8 blocks in mesh order,
+    /// then the diagonal), with [`FIRST`] set on the first entry of each position.
+    slot: Vec<usize>,
     lu: SymbolicLu<usize>,
+    work: Mutex<Workspace>,
+}
+
+/// Marks the first of the entries summed into one position.
+const FIRST: usize = 1 << (usize::BITS - 1);
+
+/// The numeric factorisation, its scratch memory and the compressed values, kept from one
+/// solve to the next (the pattern never changes, so neither do their sizes).
+struct Workspace {
+    numeric: NumericLu<usize, f64>,
+    scratch: MemBuffer,
+    values: Vec<f64>,
 }
 
 /// The degree of freedom of entry `i` (0..8: node i / 2, component i % 2) of quad `q`.
@@ -47,20 +62,41 @@ impl Pattern {
         }
         idx.extend((0..n).map(|d| Pair::new(d, d)));
         let fail = |e: String| Error::Numerical(format!("static tangent pattern: {e}"));
-        let (symbolic, argsort) = SymbolicSparseColMat::try_new_from_indices(n, n, &idx)
+        let (symbolic, _) = SymbolicSparseColMat::try_new_from_indices(n, n, &idx)
             .map_err(|e| fail(format!("{e:?}")))?;
+        let (col_ptr, row_idx) = (symbolic.col_ptr(), symbolic.row_idx());
+        let mut seen = vec![false; row_idx.len()];
+        let slot = idx
+            .iter()
+            .map(|p| {
+                let rows = &row_idx[col_ptr[p.col]..col_ptr[p.col + 1]];
+                let at = rows.binary_search(&p.row);
+                let k = col_ptr[p.col] + at.map_err(|_| fail("an entry left out".into()))?;
+                let first = !std::mem::replace(&mut seen[k], true);
+                Ok(if first { k | FIRST } else { k })
+            })
+            .collect::<Result<Vec<usize>>>()?;
         let params = LuSymbolicParams {
             supernodal_flop_ratio_threshold: SupernodalThreshold::FORCE_SUPERNODAL,
             ..Default::default()
         };
         let lu =
             factorize_symbolic_lu(symbolic.as_ref(), params).map_err(|e| fail(format!("{e:?}")))?;
+        let scratch = lu
+            .factorize_numeric_lu_scratch::<f64>(Par::Seq, Default::default())
+            .or(lu.solve_in_place_scratch::<f64>(1, Par::Seq));
+        let work = Workspace {
+            numeric: NumericLu::new(),
+            scratch: MemBuffer::try_new(scratch).map_err(|_| fail("out of memory".into()))?,
+            values: vec![0.0; row_idx.len()],
+        };
         Ok(Pattern {
             dofs: n,
             quads: quads.to_vec(),
             symbolic,
-            argsort,
+            slot,
             lu,
+            work: Mutex::new(work),
         })
     }
 
@@ -81,41 +117,44 @@ impl Pattern {
         rhs: &[f64],
     ) -> Result<Vec<f64>> {
         let n = self.dofs;
-        let mut val = Vec::with_capacity(64 * blocks.len() + n);
-        for (q, k) in self.quads.iter().zip(blocks) {
+        let mut work = self.work.lock().unwrap_or_else(|e| e.into_inner());
+        let Workspace {
+            numeric,
+            scratch,
+            values,
+        } = &mut *work;
+        // Each entry into its position, summed in entry order (the first one assigned).
+        let mut put = |t: usize, v: f64| {
+            let s = self.slot[t];
+            if s & FIRST != 0 {
+                values[s & !FIRST] = v;
+            } else {
+                values[s] += v;
+            }
+        };
+        for (e, (q, k)) in self.quads.iter().zip(blocks).enumerate() {
             for i in 0..8 {
                 let free = !constrained[dof(q, i)];
                 for j in 0..8 {
-                    val.push(if free { k[i][j] } else { 0.0 });
+                    put(64 * e + 8 * i + j, if free { k[i][j] } else { 0.0 });
                 }
             }
         }
-        val.extend(constrained.iter().map(|&c| if c { 1.0 } else { 0.0 }));
+        let diagonal = 64 * self.quads.len();
+        for (d, &c) in constrained.iter().enumerate() {
+            put(diagonal + d, if c { 1.0 } else { 0.0 });
+        }
         let singular = |why: String| {
             Error::Numerical(format!(
                 "static tangent singular ({why}): the body is free to move rigidly; hold it or \
                  put it in contact"
             ))
         };
-        let a = SparseColMat::new_from_argsort(self.symbolic.clone(), &self.argsort, &val)
-            .map_err(|e| Error::Numerical(format!("static tangent assembly: {e:?}")))?;
-        let scratch = self
-            .lu
-            .factorize_numeric_lu_scratch::<f64>(Par::Seq, Default::default())
-            .or(self.lu.solve_in_place_scratch::<f64>(1, Par::Seq));
-        let mut buffer = MemBuffer::try_new(scratch)
-            .map_err(|_| Error::Numerical("static tangent: out of memory".into()))?;
-        let stack = MemStack::new(&mut buffer);
-        let mut numeric = NumericLu::new();
+        let a = SparseColMatRef::new(self.symbolic.as_ref(), values);
+        let stack = MemStack::new(scratch);
         let lu = self
             .lu
-            .factorize_numeric_lu(
-                &mut numeric,
-                a.as_ref(),
-                Par::Seq,
-                stack,
-                Default::default(),
-            )
+            .factorize_numeric_lu(numeric, a, Par::Seq, stack, Default::default())
             .map_err(|e| singular(format!("{e:?}")))?;
         let mut b = Mat::<f64>::zeros(n, 1);
         for (i, v) in rhs.iter().enumerate() {
