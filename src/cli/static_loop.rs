@@ -8,8 +8,7 @@ use crate::study::convergence::static_ladder::{
     case_of_scene, impact_of_scene, run_loop_ladder, LoopEstimate, DEFAULT_INCREMENTS,
     DEFAULT_LEVEL,
 };
-use crate::study::laws_bench::loop_fit::LoopPair;
-use crate::study::laws_bench::loops::{csv, laws_on_loop, table};
+use crate::study::laws_bench::loops::{csv, laws_on_loop, table, LoopPair};
 use crate::study::records::estimate::Estimate;
 use crate::study::run::quasi_static::{LoadTo, StaticCase, StaticLoop, Support};
 use clap::Args;
@@ -82,14 +81,7 @@ pub fn run(a: StaticArgs) -> Result<()> {
         approach_speed_m_per_s: speed,
     };
     let laws = if a.laws {
-        let laws = laws_on_loop(
-            finest,
-            case.material,
-            case.diameter,
-            speed,
-            wall,
-            &Registry::builtin(),
-        )?;
+        let laws = laws_on_loop(finest, &pair, &Registry::builtin())?;
         print!("{}", table(&laws));
         Some(laws)
     } else {

@@ -154,7 +154,8 @@ fn the_command_writes_the_loop_with_units_and_its_bars() {
 #[test]
 fn a_loop_fit_recovers_the_parameter_of_a_loop_the_law_made() {
     use twoball::analytic::laws::{Params, Registry, Turn};
-    use twoball::study::laws_bench::loop_fit::{fit_law_on_loop, LoopFolder, LoopPair};
+    use twoball::study::laws_bench::loop_fit::{fit_law_on_loop, LoopFolder};
+    use twoball::study::laws_bench::loops::LoopPair;
     use twoball::study::run::quasi_static::{LoopPoint, LoopSummary, StaticLoop};
     let pair = LoopPair {
         material: Material::copper_fe(),
@@ -334,11 +335,17 @@ fn compare_static_refuses_an_oblique_scene_in_one_line() {
 #[test]
 fn hertz_meets_an_elastic_loop() {
     use twoball::analytic::laws::Registry;
-    use twoball::study::laws_bench::loops::laws_on_loop;
+    use twoball::study::laws_bench::loops::{laws_on_loop, LoopPair};
     let mut m = Material::copper_fe();
     m.yield_strength = 1e12;
     let l = run_loop(&case(m, Support::Free, LoadTo::Approach(1.5e-5))).unwrap();
-    let laws = laws_on_loop(&l, m, 0.02, 1.0, false, &Registry::builtin()).unwrap();
+    let pair = LoopPair {
+        material: m,
+        diameter_m: 0.02,
+        rigid_wall: false,
+        approach_speed_m_per_s: 1.0,
+    };
+    let laws = laws_on_loop(&l, &pair, &Registry::builtin()).unwrap();
     let hertz = laws.iter().find(|x| x.law == "hertz").unwrap();
     println!("{hertz:?}");
     // a/R = √(δ/R) ≈ 0.04 here: the finite ball is about 4 % stiffer than Hertz.

@@ -5,47 +5,15 @@
 //! measure `twoball static --laws` reports ([`super::loops`]). The law unloads from its own
 //! turn at the loop's largest approach, as there.
 
-use super::loops::{on_loop, phases, LawOnLoop};
+use super::loops::{on_loop, phases, LawOnLoop, LoopPair};
 use crate::analytic::law_fit::{least_squares, LeastSquares};
-use crate::analytic::laws::{ContactPair, NormalSpec, Params};
-use crate::analytic::Body;
+use crate::analytic::laws::{NormalSpec, Params};
 use crate::atomic::{ensure_dir, write_atomic};
 use crate::error::{Error, Result};
-use crate::material::Material;
 use crate::study::run::quasi_static::{LoopPoint, LoopSummary, StaticLoop};
-use serde::{Deserialize, Serialize};
+use serde::Deserialize;
 use std::fmt::Write as _;
 use std::path::Path;
-
-/// The pair a static loop stands for, as results.json records it under `contact_pair`.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-pub struct LoopPair {
-    /// The ball's material.
-    pub material: Material,
-    /// Diameter of the ball, m.
-    pub diameter_m: f64,
-    /// True for a ball on a rigid wall; false for one of two identical balls (the loop's
-    /// plane is their symmetry plane, so the pair's approach is twice the ball's).
-    pub rigid_wall: bool,
-    /// Relative approach speed of the impact the loop stands for, m/s (rate-dependent laws
-    /// are set at it).
-    pub approach_speed_m_per_s: f64,
-}
-
-impl LoopPair {
-    /// The law's contact pair and the pair's approach per unit approach of the ball.
-    ///
-    /// Errors: a diameter or material [`Body::ball`] refuses.
-    pub fn contact_pair(&self) -> Result<(ContactPair, f64)> {
-        let b = Body::ball(self.material, self.diameter_m, "ball")?;
-        let (partner, share) = if self.rigid_wall {
-            (Body::RigidWall, 1.0)
-        } else {
-            (b, 2.0)
-        };
-        Ok((ContactPair::between(&b, &partner, self.material.mu), share))
-    }
-}
 
 /// A static loop read back from its folder.
 #[derive(Debug, Clone, PartialEq)]

@@ -14,7 +14,7 @@ use crate::analytic::Body;
 use crate::error::Result;
 use crate::material::Material;
 use crate::study::run::quasi_static::{LoopPoint, StaticLoop};
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 
 /// One law on one loop.
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -34,31 +34,51 @@ pub struct LawOnLoop {
     pub forces: Vec<f64>,
 }
 
-/// Every normal law of `registry` (default parameters for a ball of `material` and
-/// `diameter`, m, meeting an identical ball, or a rigid wall when `wall`, at the approach
-/// speed `speed`, m/s) on `l`.
+/// The pair a static loop stands for, as results.json records it under `contact_pair`.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct LoopPair {
+    /// The ball's material.
+    pub material: Material,
+    /// Diameter of the ball, m.
+    pub diameter_m: f64,
+    /// True for a ball on a rigid wall; false for one of two identical balls (the loop's
+    /// plane is their symmetry plane, so the pair's approach is twice the ball's).
+    pub rigid_wall: bool,
+    /// Relative approach speed of the impact the loop stands for, m/s (rate-dependent laws
+    /// are set at it).
+    pub approach_speed_m_per_s: f64,
+}
+
+impl LoopPair {
+    /// The law's contact pair and the pair's approach per unit approach of the ball.
+    ///
+    /// Errors: a diameter or material [`Body::ball`] refuses.
+    pub fn contact_pair(&self) -> Result<(ContactPair, f64)> {
+        let b = Body::ball(self.material, self.diameter_m, "ball")?;
+        let (partner, share) = if self.rigid_wall {
+            (Body::RigidWall, 1.0)
+        } else {
+            (b, 2.0)
+        };
+        Ok((ContactPair::between(&b, &partner, self.material.mu), share))
+    }
+}
+
+/// Every normal law of `registry` (default parameters for `pair`) on `l`.
 ///
 /// Errors: a diameter or material [`Body::ball`] refuses; a law that cannot be built.
 pub fn laws_on_loop(
     l: &StaticLoop,
-    material: Material,
-    diameter: f64,
-    speed: f64,
-    wall: bool,
+    pair: &LoopPair,
     registry: &Registry,
 ) -> Result<Vec<LawOnLoop>> {
-    let b = Body::ball(material, diameter, "ball")?;
-    let (partner, share) = if wall {
-        (Body::RigidWall, 1.0)
-    } else {
-        (b, 2.0)
-    };
-    let pair = ContactPair::between(&b, &partner, material.mu);
+    let (contact, share) = pair.contact_pair()?;
+    let speed = pair.approach_speed_m_per_s;
     registry
         .normal
         .iter()
         .map(|spec| {
-            let (law, _) = registry.build_normal(spec.name, &[], &pair)?;
+            let (law, _) = registry.build_normal(spec.name, &[], &contact)?;
             Ok(on_loop(spec.name, law.as_ref(), l, speed, share))
         })
         .collect()

@@ -152,6 +152,15 @@ impl Interaction<2> for NodalPlane {
         Ok(())
     }
 
+    /// The smallest of [`Interaction::node_limits`], without collecting them: the
+    /// single-rate loop asks every step.
+    fn stable_time_step(&self, mass: &[f64], omega: &[f64]) -> Option<f64> {
+        let steps = self
+            .springs()
+            .map(|(i, k)| stable_step(k, mass[i], omega[i]));
+        Some(steps.fold(f64::INFINITY, f64::min))
+    }
+
     fn energy(&self) -> InteractionEnergy {
         penalty_energy(&self.state)
     }
