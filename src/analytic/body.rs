@@ -93,3 +93,16 @@ impl Body {
         })
     }
 }
+
+/// 1/m_t = 1/m₁ + 1/m₂ + R₁²/I₁ + R₂²/I₂ (1/kg): how a tangential force at the contact
+/// accelerates the slip of the contact points (a wall contributes nothing).
+pub fn tangential_compliance(b1: &Body, b2: &Body) -> f64 {
+    let part = |b: &Body| {
+        if b.is_wall() {
+            0.0
+        } else {
+            1.0 / b.mass() + b.radius().powi(2) / b.moment_of_inertia()
+        }
+    };
+    part(b1) + part(b2)
+}

@@ -8,7 +8,7 @@
 //! unloading, the law's history), the law's loading thresholds (phase changes), stick → slip
 //! (|k_t ξ| = μF) and slip → stick, and separation (F = 0, or δ = 0 for a law that may pull).
 
-use super::body::Body;
+use super::body::{tangential_compliance, Body};
 use super::exchange::{exchange, Exchange};
 use super::friction::kinetic;
 use super::hertz::HertzPair;
@@ -394,14 +394,7 @@ pub fn integrate(
         return Ok(None);
     }
     let pair = HertzPair::between(b1, b2);
-    let inertia = |b: &Body| {
-        if b.is_wall() {
-            0.0
-        } else {
-            1.0 / b.mass() + b.radius().powi(2) / b.moment_of_inertia()
-        }
-    };
-    let tangential_mass = 1.0 / (inertia(b1) + inertia(b2));
+    let tangential_mass = 1.0 / tangential_compliance(b1, b2);
     let slip0 = v1[1] - v2[1];
     let delta_ref = pair.max_approach(speed);
     let t_ref = pair.contact_duration(speed);

@@ -14,6 +14,7 @@ pub mod history;
 pub mod impact;
 pub mod law_fit;
 pub mod laws;
+pub mod maw_barber_fawcett;
 pub mod parametric;
 mod quadrature;
 pub mod three_phase;

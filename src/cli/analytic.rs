@@ -25,9 +25,9 @@ pub enum WallArg {
     Elastic,
 }
 
-/// Arguments of `twoball analytic`.
+/// The two bodies of an analytical impact: materials, diameters, overrides, wall.
 #[derive(Debug, Args)]
-pub struct AnalyticArgs {
+pub struct BodyArgs {
     /// Material preset of both balls (copper, steel, concrete, cast-iron, alumina, glass,
     /// wood, aluminum, rubber, copper-fe).
     #[arg(long, default_value = "copper-fe")]
@@ -49,6 +49,14 @@ pub struct AnalyticArgs {
     /// Replace ball 2 by a half-space at rest (ball-on-wall limit).
     #[arg(long, value_enum)]
     pub wall: Option<WallArg>,
+}
+
+/// Arguments of `twoball analytic`.
+#[derive(Debug, Args)]
+pub struct AnalyticArgs {
+    /// The two bodies.
+    #[command(flatten)]
+    pub bodies: BodyArgs,
     /// Normal speed of ball 1 before impact, m/s (positive towards +x, i.e. towards ball 2).
     #[arg(long, default_value_t = 1.0, allow_negative_numbers = true)]
     pub v1: f64,
@@ -197,7 +205,7 @@ fn apply(mut m: Material, o: &MaterialOverrides) -> Material {
 }
 
 /// The two bodies described by the flags.
-pub(super) fn bodies(a: &AnalyticArgs) -> Result<(Body, Body)> {
+pub(super) fn bodies(a: &BodyArgs) -> Result<(Body, Body)> {
     for (flag, d) in [
         ("--diameter", Some(a.diameter)),
         ("--diameter2", a.diameter2),
@@ -392,7 +400,7 @@ fn collision_warnings(c: &Collision) -> Vec<Warning> {
 /// The collision the flags describe (checked as the CLI checks them), with its bodies; writes
 /// `--curve` when asked.
 fn collide_args(a: &AnalyticArgs) -> Result<(Collision, Body, Body)> {
-    let (b1, b2) = bodies(a)?;
+    let (b1, b2) = bodies(&a.bodies)?;
     let v2n = a.v2.unwrap_or(if b2.is_wall() { 0.0 } else { -1.0 });
     for (flag, v) in [
         ("--v1", a.v1),

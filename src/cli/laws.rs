@@ -37,6 +37,9 @@ pub enum LawsCommand {
     Export(super::laws_export::LawExportArgs),
     /// Run a deck from `laws fit` or `laws export` in its DEM code, compare with `laws run`.
     Dem(super::laws_export::LawDemArgs),
+    /// Maw, Barber & Fawcett's elastic oblique impact: normalised rebound against incidence
+    /// angle, tangential restitution, by the method of dimensionality reduction.
+    Mbf(super::laws_mbf::MbfArgs),
 }
 
 /// Arguments of `twoball laws bench`.
@@ -225,7 +228,7 @@ pub struct LawRun {
 
 /// Runs `a` against `registry` (the built-in laws, or more).
 pub fn run_law(a: &LawRunArgs, registry: &Registry) -> Result<LawRun> {
-    let (b1, b2) = bodies(&a.ball)?;
+    let (b1, b2) = bodies(&a.ball.bodies)?;
     let v2n = a.ball.v2.unwrap_or(if b2.is_wall() { 0.0 } else { -1.0 });
     let mu = match a.ball.mu {
         Some(mu) if !(mu.is_finite() && mu >= 0.0) => {
@@ -527,6 +530,7 @@ fn dispatch(command: Option<LawsCommand>, registry: &Registry) -> Result<()> {
         Some(LawsCommand::Bench(b)) => bench_with(b, registry),
         Some(LawsCommand::Export(e)) => super::laws_export::export(e, registry),
         Some(LawsCommand::Dem(d)) => super::laws_export::dem(d, registry),
+        Some(LawsCommand::Mbf(m)) => super::laws_mbf::run(m),
     }
 }
 

@@ -15,6 +15,7 @@ mod law_params;
 mod laws;
 mod laws_export;
 mod laws_fit;
+mod laws_mbf;
 mod mesh;
 mod report;
 mod run;

@@ -15,6 +15,7 @@ mod analytic_errors;
 mod analytic_friction;
 mod analytic_hertz;
 mod analytic_independent;
+mod analytic_mbf;
 mod analytic_parametric;
 mod analytic_three_phase;
 mod cli_pipe;
