@@ -215,6 +215,7 @@ fn estimate_of(case: &HeadOnCase, answer: &HeadOnAnswer, tolerance: f64) -> Resu
                 e_max: en.e.max,
                 peak_force_sampling_error: en.peak_force.sampling_error,
             }),
+            tangential: None,
         })
     };
     let meshes = vec![
@@ -229,6 +230,7 @@ fn estimate_of(case: &HeadOnCase, answer: &HeadOnAnswer, tolerance: f64) -> Resu
         delta_max: answer.delta_max,
         contact_duration: answer.contact_duration,
         peak_force: answer.peak_force,
+        tangential: None,
         meshes,
         tolerance: Some(tolerance),
         tolerance_met,

@@ -187,6 +187,7 @@ mod tests {
                 peak_force: f(1e3, 0.04),
                 wall_time_s: 0.0,
                 phase: None,
+                tangential: None,
             })
         }
     }

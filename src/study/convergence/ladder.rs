@@ -155,6 +155,7 @@ mod tests {
             peak_force: f(900.0, 0.04),
             wall_time_s: 0.0,
             phase: None,
+            tangential: None,
         })
     }
 

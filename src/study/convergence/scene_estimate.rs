@@ -348,6 +348,7 @@ pub fn run_level(
         peak_force: report.fe.as_ref().map_or(0.0, |f| f.force.peak_smoothed),
         wall_time_s: report.wall_time_s,
         phase: None,
+        tangential: report.tangential.map(|t| t.fe),
     };
     // A section run whose contact never reached the first ring (radius 0: a mesh too coarse
     // for the contact, which its warnings say) has no ring phase to average.
@@ -401,6 +402,7 @@ fn phase_level(
                 contact_duration: r.contact_duration,
                 peak_force: r.fe.as_ref().map_or(0.0, |f| f.force.peak_smoothed),
                 wall_time_s: r.wall_time_s,
+                tangential: r.tangential.map(|t| t.fe),
                 ..out
             };
             Ok((level, r.fe.map(|f| f.history).unwrap_or_default()))

@@ -4,6 +4,7 @@
 
 use crate::error::{Error, Result};
 use crate::study::records::estimate::{estimate, Estimate};
+use crate::study::records::tangential::Tangential;
 use serde::Serialize;
 
 /// The refinement ratio of the ladder: each level halves the element sizes.
@@ -32,6 +33,9 @@ pub struct LevelOutcome {
     /// over its meshes); None for a single run.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub phase: Option<PhaseSummary>,
+    /// The FE tangential figures of an oblique or spinning impact (absent head-on).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub tangential: Option<Tangential>,
 }
 
 /// What a level's phase ensemble adds ([`crate::study::convergence::phase_ensemble`]).
@@ -64,6 +68,9 @@ pub struct ErrorEstimate {
     pub contact_duration: Estimate,
     /// Peak of the smoothed normal force, N (with the phase sampling error on the section).
     pub peak_force: Estimate,
+    /// The tangential figures' bars of an oblique or spinning impact (absent head-on).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub tangential: Option<TangentialEstimate>,
     /// The runs of the ladder, coarse to fine (the finest is the reported run).
     pub meshes: Vec<LevelOutcome>,
     /// The requested relative tolerance on e, - (with `--tolerance`).
@@ -73,6 +80,35 @@ pub struct ErrorEstimate {
     /// How the estimate was obtained: the scene's own ladder, or the banded family that
     /// `--tolerance` runs on a head-on section scene it covers.
     pub method: EstimateMethod,
+}
+
+/// The bars of the tangential figures ([`Tangential`]) from a ladder's runs.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct TangentialEstimate {
+    /// Tangential restitution of the contact point, - (absent without slip at touch).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub restitution: Option<Estimate>,
+    /// Rebound angle of ball 1 relative to its partner, rad.
+    pub rebound_angle: Estimate,
+    /// Ball 1's spin about the contact frame's z axis after the impact, rad/s.
+    pub spin1_after: Estimate,
+}
+
+impl TangentialEstimate {
+    /// The bars from the levels' tangential figures (coarse to fine); `None` unless every
+    /// level has them and at least two do.
+    pub fn from_levels(levels: &[Option<Tangential>]) -> Option<TangentialEstimate> {
+        let t: Vec<Tangential> = levels.iter().copied().collect::<Option<_>>()?;
+        let of = |f: fn(&Tangential) -> f64| {
+            estimate(&t.iter().map(f).collect::<Vec<_>>(), LADDER_RATIO)
+        };
+        let restitution: Option<Vec<f64>> = t.iter().map(|x| x.restitution).collect();
+        Some(TangentialEstimate {
+            restitution: restitution.and_then(|r| estimate(&r, LADDER_RATIO)),
+            rebound_angle: of(|x| x.rebound_angle)?,
+            spin1_after: of(|x| x.spin1_after)?,
+        })
+    }
 }
 
 impl ErrorEstimate {
@@ -94,7 +130,9 @@ impl ErrorEstimate {
             peak_force = peak_force.with_error(peak_force.error + p.peak_force_sampling_error);
         }
         let tolerance_met = tolerance.map(|t| meets(&e, t));
+        let levels: Vec<_> = meshes.iter().map(|m| m.tangential).collect();
         Ok(ErrorEstimate {
+            tangential: TangentialEstimate::from_levels(&levels),
             ratio: LADDER_RATIO,
             delta_max: of(|m| m.delta_max, "delta_max")?,
             contact_duration: of(|m| m.contact_duration, "contact_duration")?,
@@ -144,6 +182,16 @@ impl ErrorEstimate {
             bar("contact duration", " s", &self.contact_duration),
             bar("peak force (smoothed)", " N", &self.peak_force)
         );
+        if let Some(t) = &self.tangential {
+            if let Some(r) = &t.restitution {
+                s.push_str(&format!(", {}", bar("tangential restitution", "", r)));
+            }
+            s.push_str(&format!(
+                ", {}, {}",
+                bar("rebound angle", " rad", &t.rebound_angle),
+                bar("spin 1 after", " rad/s", &t.spin1_after)
+            ));
+        }
         if let (Some(t), Some(met)) = (self.tolerance, self.tolerance_met) {
             s.push_str(&format!(
                 "; tolerance {:.3} % on e {}",
