@@ -117,16 +117,25 @@ pub fn analytic_partner(scene: &Scene, v2: [f64; 3]) -> Result<(Body, [f64; 3])>
 /// [`Outcome`] built from it.
 ///
 /// The analytical model is two-dimensional (normal, and one tangential direction: the slip
-/// direction of the contact frame) and starts without spin: initial spins only enter through
-/// the slip direction; the out-of-plane velocity component passes unchanged.
+/// direction of the contact frame) and starts without spin. Initial spins enter through the
+/// slip they give the contact points, ω₁R₁ + ω₂R₂ about the frame's z: the Coulomb impulse
+/// depends on the slip alone, so the model runs with that slip added to ball 1's tangential
+/// speed and the same amount is taken off its tangential speed after. The out-of-plane
+/// velocity component passes unchanged.
 pub fn analytic_outcome(scene: &Scene, touch: &Touch) -> Result<(Outcome, Collision)> {
     let b1 = Body::ball(scene.ball1.material, scene.ball1.diameter, "ball1")?;
     let (mu, _) = scene.friction_coefficients();
     let [a, b] = touch.v;
     let (b2, b) = analytic_partner(scene, b)?;
-    let c = crate::analytic::collide_with_mu(&b1, &b2, [a[0], a[1]], [b[0], b[1]], mu)?;
+    let (_, w2) = touch.partner(scene);
+    let (r1, r2) = (scene.ball1.diameter / 2.0, scene.ball2.diameter / 2.0);
+    let spin_slip = touch.w[0][2] * r1 + w2[2] * r2;
+    // Without spin the speeds pass untouched (no signed zero turned positive).
+    let shift = |v: f64, by: f64| if spin_slip == 0.0 { v } else { v + by };
+    let v1t = shift(a[1], spin_slip);
+    let c = crate::analytic::collide_with_mu(&b1, &b2, [a[0], v1t], [b[0], b[1]], mu)?;
     let f = touch.frame;
-    let v1 = f.to_global([c.v1_after[0], c.v1_after[1], a[2]]);
+    let v1 = f.to_global([c.v1_after[0], shift(c.v1_after[1], -spin_slip), a[2]]);
     let v2 = f.to_global([c.v2_after[0], c.v2_after[1], b[2]]);
     let [wa, wb] = touch.w;
     let w1 = f.to_global([wa[0], wa[1], wa[2] + c.spin_after[0]]);
