@@ -490,6 +490,7 @@ fn phase_honesty() {
                 e_max: ens.e.max,
                 peak_force_sampling_error: ens.peak_force.sampling_error,
             }),
+            tangential: None,
         })
     };
     let rows = check_honesty(&cases, run, |r| {

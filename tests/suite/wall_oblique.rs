@@ -173,7 +173,7 @@ fn gross_sliding_on_a_wall_follows_coulomb_and_spins_the_ball() {
         "J_t/J_n = {ratio:.5} (mu {mu}); w_z = {:.3} rad/s against {spin:.3}; e = {:.5}",
         o.w1_after[2], o.e
     );
-    assert!((ratio / mu - 1.0).abs() < 0.02, "J_t/J_n = {ratio}");
+    assert!((ratio / mu - 1.0).abs() < 2e-3, "J_t/J_n = {ratio}");
     assert!(
         (o.w1_after[2] / spin - 1.0).abs() < 0.03,
         "{:?}",
@@ -230,4 +230,37 @@ fn the_whole_ball_agrees_with_the_half_ball_on_a_planar_impact() {
             "w{k}"
         );
     }
+}
+
+/// A ball spinning without tangential speed onto a wall (Chung & Ooi's spin test) slides
+/// throughout: the wall's tangential impulse is μ times the normal one (within 0.2 %), the ball
+/// leaves with the rigid-body Coulomb velocity −μ(1 + e)v_n, and the analytical model gives
+/// the rigid-body Coulomb answer exactly. The spin is imposed about the mesh's centre of mass:
+/// about the sphere's centre, a graded mesh's momentum would carry ω times the microns between
+/// them (0.7 % of J_t here).
+#[test]
+fn a_spinning_ball_slides_with_the_rigid_body_coulomb_impulse() {
+    let (mu, w0, r_ball) = (0.2, 600.0, 0.01);
+    let r = report(&[
+        "ball1.velocity=[1,0,0]",
+        "ball1.angular_velocity=[0,0,600]",
+        "contact.friction=0.2",
+    ]);
+    let o = r.fe.as_ref().unwrap().outcome;
+    let (dvn, dvt) = (1.0 - o.v1_after[0], o.v1_after[1]);
+    let ratio = -dvt / dvn;
+    println!(
+        "J_t/J_n = {ratio:.6} (mu {mu}), spin after {:.3} rad/s, e {:.5}",
+        o.w1_after[2], o.e
+    );
+    assert!((ratio / mu - 1.0).abs() < 2e-3, "J_t/J_n = {ratio}");
+    // The spin falls by 5 Δv_t/(2R) for a solid sphere; the mesh's lumped masses put more of
+    // it at the surface (measured: 1.1 % less spin lost on this mesh).
+    let lost = w0 - o.w1_after[2];
+    assert!((lost / (-2.5 * dvt / r_ball) - 1.0).abs() < 0.03, "{lost}");
+    let a = r.analytic.unwrap();
+    let vt = -mu * (1.0 + a.e) * 1.0;
+    assert!((a.v1_after[1] - vt).abs() < 1e-9, "{:?}", a.v1_after);
+    let spin = w0 + 2.5 * vt / r_ball;
+    assert!((a.w1_after[2] - spin).abs() < 1e-9 * w0, "{:?}", a.w1_after);
 }

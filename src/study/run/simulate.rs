@@ -31,6 +31,17 @@ pub use crate::study::run::simulation::{
     advice, RunOptions, Savings, Simulation, DEFAULT_HOLD_FRACTION,
 };
 
+/// The point a part spins about: its mesh's centre of mass (so its momentum is the scene's
+/// velocity alone; a graded ball's lies microns off the sphere's centre), or `centre` (m)
+/// without spin, where the point does not matter.
+fn spin_centre(model: &Model, part: usize, spin: [f64; 3], centre: [f64; 3]) -> Result<[f64; 3]> {
+    if spin == [0.0; 3] {
+        Ok(centre)
+    } else {
+        model.centre_of_mass(part)
+    }
+}
+
 fn pair_kinematics(scene: &Scene, touch: &Touch) -> CentreOfMassFrame {
     if scene.wall.is_some() {
         // The wall's frame: the wall at rest, ball 1 at its own velocity.
@@ -370,7 +381,7 @@ fn build(
                 elastic_only[0],
                 form,
             )?;
-            let c1 = centre(-r1, kin.u[0]);
+            let c1 = spin_centre(&model, p1, touch.w[0], centre(-r1, kin.u[0]))?;
             model.set_rigid_velocity(p1, kin.u[0], touch.w[0], c1)?;
             params.friction = (mu > 0.0).then(|| CoulombFriction::new(mu));
             plane_x0(model, p1, &b1.material, params)
@@ -400,7 +411,8 @@ fn build(
                 elastic_only[1],
                 form,
             )?;
-            let (c1, c2) = (centre(-r1, kin.u[0]), centre(r2, kin.u[1]));
+            let c1 = spin_centre(&model, p1, touch.w[0], centre(-r1, kin.u[0]))?;
+            let c2 = spin_centre(&model, p2, touch.w[1], centre(r2, kin.u[1]))?;
             model.set_rigid_velocity(p1, kin.u[0], touch.w[0], c1)?;
             model.set_rigid_velocity(p2, kin.u[1], touch.w[1], c2)?;
             params.friction = if mu > 0.0 {
