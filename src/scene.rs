@@ -98,7 +98,8 @@ pub struct BallScene {
     pub diameter: f64,
     /// Initial centre-of-mass velocity, m/s.
     pub velocity: [f64; 3],
-    /// Initial angular velocity, rad/s.
+    /// Initial angular velocity about the centre of mass, rad/s (the FE ball spins about its
+    /// mesh's centre of mass, so its momentum is `velocity` alone).
     pub angular_velocity: [f64; 3],
     /// Initial centre position, m (`None`: placed touching the other ball along x).
     pub position: Option<[f64; 3]>,
