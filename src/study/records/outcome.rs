@@ -1,6 +1,7 @@
 //! The outcome of one collision, the same quantities from either model, so FE and analytical
 //! answers can be put side by side and differenced.
 
+use crate::analytic::maw_barber_fawcett::{impact, DEFAULT_RESOLUTION};
 use crate::analytic::{Body, Collision};
 use crate::error::{Error, Result};
 use crate::scene::{Scene, Touch, WallScene};
@@ -156,6 +157,51 @@ pub fn analytic_outcome(scene: &Scene, touch: &Touch) -> Result<(Outcome, Collis
     };
     out.check_finite("analytical model")?;
     Ok((out, c))
+}
+
+/// Maw, Barber & Fawcett's elastic answer for `scene` touching as `touch`
+/// ([`crate::analytic::maw_barber_fawcett`], Hertz normal, Cattaneo-Mindlin partial slip), or
+/// `None` when the analytical model's `collision` yields (the theory is elastic). δ_max is
+/// Hertz's from the collision.
+pub fn elastic_theory_outcome(
+    scene: &Scene,
+    touch: &Touch,
+    collision: &Collision,
+) -> Result<Option<Outcome>> {
+    let Some(normal) = collision.normal.as_ref().filter(|n| !n.yielded) else {
+        return Ok(None);
+    };
+    let b1 = Body::ball(scene.ball1.material, scene.ball1.diameter, "ball1")?;
+    let (mu, _) = scene.friction_coefficients();
+    if !(mu > 0.0) {
+        return Ok(None);
+    }
+    let [a, b] = touch.v;
+    let (b2, b) = analytic_partner(scene, b)?;
+    let (_, w2) = touch.partner(scene);
+    let [wa, _] = touch.w;
+    let velocity = [[a[0], a[1]], [b[0], b[1]]];
+    let spin = [wa[2], w2[2]];
+    let Some(i) = impact(&b1, &b2, velocity, spin, mu, DEFAULT_RESOLUTION)? else {
+        return Ok(None);
+    };
+    let f = touch.frame;
+    let v1 = f.to_global([i.v1_after[0], i.v1_after[1], a[2]]);
+    let v2 = f.to_global([i.v2_after[0], i.v2_after[1], b[2]]);
+    let w1 = f.to_global([wa[0], wa[1], i.spin_after[0]]);
+    let w2 = f.to_global([w2[0], w2[1], i.spin_after[1]]);
+    let out = Outcome {
+        e: i.e,
+        v1_after: v1,
+        v2_after: v2,
+        w1_after: w1,
+        w2_after: w2,
+        delta_max: normal.delta2,
+        contact_duration: i.contact_duration,
+        eta: dissipation_factor(scene, [v1, v2], [w1, w2]),
+    };
+    out.check_finite("elastic oblique theory")?;
+    Ok(Some(out))
 }
 
 /// Relative difference (a − b)/|b|, or the absolute difference when |b| is tiny.

@@ -32,6 +32,10 @@ pub struct TangentialPair {
     pub fe: Tangential,
     /// From the analytical model's outcome.
     pub analytic: Tangential,
+    /// From Maw, Barber & Fawcett's elastic theory ([`crate::analytic::maw_barber_fawcett`]);
+    /// absent when the analytical model says the contact yields.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub theory: Option<Tangential>,
 }
 
 /// True when the impact has a tangential side: slip of the contact points, or a tangential

@@ -7,7 +7,8 @@ use crate::scene::{approach, Approach, MeshSettings, Scene};
 use crate::study::records::error_estimate::{ErrorEstimate, LevelOutcome};
 use crate::study::records::number::sci;
 use crate::study::records::outcome::{
-    analytic_outcome, ball_inertia, dissipation_factor, relative_difference, Outcome,
+    analytic_outcome, ball_inertia, dissipation_factor, elastic_theory_outcome,
+    relative_difference, Outcome,
 };
 use crate::study::records::tangential::{is_oblique, tangential, TangentialPair};
 use crate::study::records::warnings::{analytic_warnings, fe_warnings, FeFigures, Warning};
@@ -143,6 +144,12 @@ pub fn run_scene(scene: &Scene, opts: &RunOptions) -> Result<RunReport> {
         Approach::Impact(t) => t,
     };
     let (an, collision) = analytic_outcome(scene, &touch)?;
+    let oblique = is_oblique(scene, &touch);
+    let theory = if oblique {
+        elastic_theory_outcome(scene, &touch, &collision)?
+    } else {
+        None
+    };
     let laws = compare_laws(scene, &touch)?;
     let sim = simulate(scene, &touch, an.contact_duration, opts)?;
     let fe = sim.outcome;
@@ -169,9 +176,10 @@ pub fn run_scene(scene: &Scene, opts: &RunOptions) -> Result<RunReport> {
         wall_time_s: start.elapsed().as_secs_f64(),
         element_cycles: sim.element_cycles,
         relative_difference: Some(Differences::between(&fe, &an, touch.frame.axes[0])),
-        tangential: is_oblique(scene, &touch).then(|| TangentialPair {
+        tangential: oblique.then(|| TangentialPair {
             fe: tangential(scene, &touch, &fe),
             analytic: tangential(scene, &touch, &an),
+            theory: theory.map(|t| tangential(scene, &touch, &t)),
         }),
         force_curve: ForceCurve::of_run(&sim.history),
         fe: Some(sim),
@@ -423,6 +431,24 @@ pub fn side_by_side(r: &RunReport) -> String {
             a.spin1_after,
             Some(relative_difference(f.spin1_after, a.spin1_after)),
         );
+        // Maw, Barber & Fawcett in the analytical column, for an elastic impact.
+        if let Some(t) = tp.theory {
+            if let (Some(x), Some(y)) = (f.restitution, t.restitution) {
+                row("  e_t, elastic theory (MBF) [-]", x, y, None);
+            }
+            row(
+                "  rebound angle, MBF [rad]",
+                f.rebound_angle,
+                t.rebound_angle,
+                Some(relative_difference(f.rebound_angle, t.rebound_angle)),
+            );
+            row(
+                "  spin after, MBF [rad/s]",
+                f.spin1_after,
+                t.spin1_after,
+                Some(relative_difference(f.spin1_after, t.spin1_after)),
+            );
+        }
     }
     s.push_str(&format!(
         "FE: {} model ({}), {} elements, {} steps, dt = {:.3e} s, energy error {:.2e}, {:.2} s wall; {}\n",
