@@ -200,7 +200,9 @@ fn gross_sliding_on_a_wall_follows_coulomb_and_spins_the_ball() {
     assert!((fe_t - closed(o.e)).abs() < 0.02, "{fe_t}");
     assert!((an_t - closed(an_e)).abs() < 1e-9, "{an_t}");
     // Maw, Barber & Fawcett's elastic theory slides throughout too, with e = 1.
-    let th = t.theory.expect("an elastic oblique impact reports the elastic theory");
+    let th = t
+        .theory
+        .expect("an elastic oblique impact reports the elastic theory");
     let th_t = th.restitution.unwrap();
     assert!((th_t - closed(1.0)).abs() < 1e-4, "{th_t}");
     assert!((t.fe.incidence_angle - 5f64.atan()).abs() < 1e-12);

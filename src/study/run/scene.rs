@@ -414,40 +414,22 @@ pub fn side_by_side(r: &RunReport) -> String {
     );
     row("eta [-]", fe.eta, an.eta, Some(d.eta));
     if let Some(tp) = &r.tangential {
-        let (f, a) = (tp.fe, tp.analytic);
-        // No relative difference: e_t is 0 for a contact point that rolls off.
-        if let (Some(x), Some(y)) = (f.restitution, a.restitution) {
-            row("tangential restitution [-]", x, y, None);
-        }
-        row(
-            "rebound angle [rad]",
-            f.rebound_angle,
-            a.rebound_angle,
-            Some(relative_difference(f.rebound_angle, a.rebound_angle)),
-        );
-        row(
-            "ball 1 spin after [rad/s]",
-            f.spin1_after,
-            a.spin1_after,
-            Some(relative_difference(f.spin1_after, a.spin1_after)),
-        );
-        // Maw, Barber & Fawcett in the analytical column, for an elastic impact.
-        if let Some(t) = tp.theory {
-            if let (Some(x), Some(y)) = (f.restitution, t.restitution) {
-                row("  e_t, elastic theory (MBF) [-]", x, y, None);
+        let f = tp.fe;
+        // The analytical model's rows, then (elastic impacts) Maw, Barber & Fawcett's in the
+        // analytical column.
+        let sides = [("", Some(tp.analytic)), (", MBF", tp.theory)];
+        for (label, other) in sides {
+            let Some(a) = other else { continue };
+            // No relative difference: e_t is 0 for a contact point that rolls off.
+            if let (Some(x), Some(y)) = (f.restitution, a.restitution) {
+                row(&format!("tangential restitution{label} [-]"), x, y, None);
             }
-            row(
-                "  rebound angle, MBF [rad]",
-                f.rebound_angle,
-                t.rebound_angle,
-                Some(relative_difference(f.rebound_angle, t.rebound_angle)),
-            );
-            row(
-                "  spin after, MBF [rad/s]",
-                f.spin1_after,
-                t.spin1_after,
-                Some(relative_difference(f.spin1_after, t.spin1_after)),
-            );
+            let angle = relative_difference(f.rebound_angle, a.rebound_angle);
+            let name = format!("rebound angle{label} [rad]");
+            row(&name, f.rebound_angle, a.rebound_angle, Some(angle));
+            let spin = relative_difference(f.spin1_after, a.spin1_after);
+            let name = format!("ball 1 spin after{label} [rad/s]");
+            row(&name, f.spin1_after, a.spin1_after, Some(spin));
         }
     }
     s.push_str(&format!(
