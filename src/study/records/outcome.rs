@@ -173,7 +173,7 @@ pub fn elastic_theory_outcome(
     };
     let b1 = Body::ball(scene.ball1.material, scene.ball1.diameter, "ball1")?;
     let (mu, _) = scene.friction_coefficients();
-    if !(mu > 0.0) {
+    if mu <= 0.0 {
         return Ok(None);
     }
     let [a, b] = touch.v;
