@@ -36,8 +36,8 @@ pub struct Resolution {
     pub steps: usize,
 }
 
-/// The resolution whose answers move by less than 1e-4 of the tangential restitution when
-/// both counts double (tests/suite/analytic_mbf.rs).
+/// The resolution whose tangential restitution moves by less than 1e-3 when both counts
+/// double (tests/suite/analytic_mbf.rs).
 pub const DEFAULT_RESOLUTION: Resolution = Resolution {
     springs: 800,
     steps: 4000,
