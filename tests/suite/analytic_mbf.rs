@@ -148,3 +148,47 @@ fn spinning_ball_in_sliding_loses_coulomb_spin() {
     );
     assert!((i.v1_after[0] + 0.5 * i.e).abs() < 1e-12);
 }
+
+/// A scene's run takes the theory from the same impact: a copper ball at [1, 0.5, 0] m/s on a
+/// rigid wall gets Maw, Barber & Fawcett's tangential restitution when it stays elastic, and
+/// none when the analytical model says it yields.
+#[test]
+fn a_scene_gets_the_theory_only_while_elastic() {
+    use std::path::Path;
+    use twoball::scene::{approach, Approach, Override, Scene, WALL_SCENE};
+    use twoball::study::records::outcome::{analytic_outcome, elastic_theory_outcome};
+    use twoball::study::records::tangential::tangential;
+    let theory = |sets: &[&str]| {
+        let sets: Vec<Override> = sets.iter().map(|s| Override::parse(s).unwrap()).collect();
+        let scene = Scene::from_toml(WALL_SCENE, Path::new("."), &sets).unwrap();
+        let Approach::Impact(touch) = approach(&scene).unwrap() else {
+            panic!("no impact")
+        };
+        let (_, c) = analytic_outcome(&scene, &touch).unwrap();
+        elastic_theory_outcome(&scene, &touch, &c)
+            .unwrap()
+            .map(|o| tangential(&scene, &touch, &o))
+    };
+    assert!(
+        theory(&["ball1.velocity=[1,0.5,0]"]).is_none(),
+        "copper-fe yields at 1 m/s"
+    );
+    let t = theory(&["ball1.velocity=[1,0.5,0]", "ball1.material.yield=1e12"]).unwrap();
+    let b = ball("copper-fe", 0.02);
+    let i = impact(
+        &b,
+        &Body::RigidWall,
+        [[1.0, 0.5], [0.0, 0.0]],
+        [0.0, 0.0],
+        0.2,
+        DEFAULT_RESOLUTION,
+    )
+    .unwrap()
+    .unwrap();
+    let want = i.tangential_restitution().unwrap();
+    assert!(
+        (t.restitution.unwrap() - want).abs() < 1e-12,
+        "{:?} vs {want}",
+        t.restitution
+    );
+}
