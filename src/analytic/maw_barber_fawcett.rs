@@ -74,6 +74,12 @@ impl ObliqueImpact {
     pub fn tangential_restitution(&self) -> Option<f64> {
         (self.slip_before != 0.0).then(|| -self.slip_after / self.slip_before)
     }
+
+    /// J_t/(μJ_n), the tangential impulse over its gross-sliding value (1 when every spring
+    /// slid throughout) at friction coefficient `mu`.
+    pub fn impulse_ratio(&self, mu: f64) -> f64 {
+        self.tangential_impulse / (mu * self.normal_impulse)
+    }
 }
 
 /// The ratio κ = k_t/k_n = 4G*/E* of Mindlin's tangential to Hertz's normal contact stiffness

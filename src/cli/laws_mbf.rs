@@ -52,7 +52,7 @@ fn row(p: &CurvePoint, mu: f64) -> String {
         i.slip_after,
         i.tangential_restitution().unwrap_or(0.0),
         i.e,
-        i.tangential_impulse / (mu * i.normal_impulse),
+        i.impulse_ratio(mu),
         i.gross_slip_fraction,
         i.v1_after[0],
         i.v1_after[1],
@@ -95,7 +95,7 @@ pub fn run(a: MbfArgs) -> Result<()> {
             p.psi_in,
             p.psi_out,
             p.impact.tangential_restitution().unwrap_or(0.0),
-            p.impact.tangential_impulse / (mu * p.impact.normal_impulse),
+            p.impact.impulse_ratio(mu),
             p.impact.gross_slip_fraction
         );
     }

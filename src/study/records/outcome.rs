@@ -5,6 +5,7 @@ use crate::analytic::maw_barber_fawcett::{impact, DEFAULT_RESOLUTION};
 use crate::analytic::{Body, Collision};
 use crate::error::{Error, Result};
 use crate::scene::{Scene, Touch, WallScene};
+use crate::study::records::tangential::slip_y;
 use serde::{Deserialize, Serialize};
 
 /// What a collision produced. Vectors are in the scene's (global) frame.
@@ -114,6 +115,38 @@ pub fn analytic_partner(scene: &Scene, v2: [f64; 3]) -> Result<(Body, [f64; 3])>
     })
 }
 
+/// A model's answer in the contact frame at touch: velocities (m/s) and spins (rad/s) after,
+/// of ball 1 and its partner.
+struct FrameAnswer {
+    e: f64,
+    v: [[f64; 3]; 2],
+    w: [[f64; 3]; 2],
+    delta_max: f64,
+    contact_duration: f64,
+}
+
+impl FrameAnswer {
+    /// The [`Outcome`] in the scene's frame, η from its rigid-body kinetic energy. Errors: a
+    /// non-finite number, named by `model`.
+    fn outcome(&self, scene: &Scene, touch: &Touch, model: &str) -> Result<Outcome> {
+        let f = touch.frame;
+        let (v1, v2) = (f.to_global(self.v[0]), f.to_global(self.v[1]));
+        let (w1, w2) = (f.to_global(self.w[0]), f.to_global(self.w[1]));
+        let out = Outcome {
+            e: self.e,
+            v1_after: v1,
+            v2_after: v2,
+            w1_after: w1,
+            w2_after: w2,
+            delta_max: self.delta_max,
+            contact_duration: self.contact_duration,
+            eta: dissipation_factor(scene, [v1, v2], [w1, w2]),
+        };
+        out.check_finite(model)?;
+        Ok(out)
+    }
+}
+
 /// The analytical model's answer for `scene` touching as `touch`: its [`Collision`] and the
 /// [`Outcome`] built from it.
 ///
@@ -129,33 +162,30 @@ pub fn analytic_outcome(scene: &Scene, touch: &Touch) -> Result<(Outcome, Collis
     let [a, b] = touch.v;
     let (b2, b) = analytic_partner(scene, b)?;
     let (_, w2) = touch.partner(scene);
-    let (r1, r2) = (scene.ball1.diameter / 2.0, scene.ball2.diameter / 2.0);
-    let spin_slip = touch.w[0][2] * r1 + w2[2] * r2;
+    let spin_slip = slip_y(scene, [0.0; 3], touch.w[0], w2);
     // Without spin the speeds pass untouched (no signed zero turned positive).
     let shift = |v: f64, by: f64| if spin_slip == 0.0 { v } else { v + by };
     let v1t = shift(a[1], spin_slip);
     let c = crate::analytic::collide_with_mu(&b1, &b2, [a[0], v1t], [b[0], b[1]], mu)?;
-    let f = touch.frame;
-    let v1 = f.to_global([c.v1_after[0], shift(c.v1_after[1], -spin_slip), a[2]]);
-    let v2 = f.to_global([c.v2_after[0], c.v2_after[1], b[2]]);
     let [wa, wb] = touch.w;
-    let w1 = f.to_global([wa[0], wa[1], wa[2] + c.spin_after[0]]);
-    let w2 = f.to_global([wb[0], wb[1], wb[2] + c.spin_after[1]]);
     let (e, delta_max, contact_duration) = match &c.normal {
         Some(n) => (n.e, n.delta2, n.t3),
         None => (1.0, 0.0, 0.0),
     };
-    let out = Outcome {
+    let answer = FrameAnswer {
         e,
-        v1_after: v1,
-        v2_after: v2,
-        w1_after: w1,
-        w2_after: w2,
+        v: [
+            [c.v1_after[0], shift(c.v1_after[1], -spin_slip), a[2]],
+            [c.v2_after[0], c.v2_after[1], b[2]],
+        ],
+        w: [
+            [wa[0], wa[1], wa[2] + c.spin_after[0]],
+            [wb[0], wb[1], wb[2] + c.spin_after[1]],
+        ],
         delta_max,
         contact_duration,
-        eta: dissipation_factor(scene, [v1, v2], [w1, w2]),
     };
-    out.check_finite("analytical model")?;
+    let out = answer.outcome(scene, touch, "analytical model")?;
     Ok((out, c))
 }
 
@@ -185,22 +215,20 @@ pub fn elastic_theory_outcome(
     let Some(i) = impact(&b1, &b2, velocity, spin, mu, DEFAULT_RESOLUTION)? else {
         return Ok(None);
     };
-    let f = touch.frame;
-    let v1 = f.to_global([i.v1_after[0], i.v1_after[1], a[2]]);
-    let v2 = f.to_global([i.v2_after[0], i.v2_after[1], b[2]]);
-    let w1 = f.to_global([wa[0], wa[1], i.spin_after[0]]);
-    let w2 = f.to_global([w2[0], w2[1], i.spin_after[1]]);
-    let out = Outcome {
+    let answer = FrameAnswer {
         e: i.e,
-        v1_after: v1,
-        v2_after: v2,
-        w1_after: w1,
-        w2_after: w2,
+        v: [
+            [i.v1_after[0], i.v1_after[1], a[2]],
+            [i.v2_after[0], i.v2_after[1], b[2]],
+        ],
+        w: [
+            [wa[0], wa[1], i.spin_after[0]],
+            [w2[0], w2[1], i.spin_after[1]],
+        ],
         delta_max: normal.delta2,
         contact_duration: i.contact_duration,
-        eta: dissipation_factor(scene, [v1, v2], [w1, w2]),
     };
-    out.check_finite("elastic oblique theory")?;
+    let out = answer.outcome(scene, touch, "elastic oblique theory")?;
     Ok(Some(out))
 }
 

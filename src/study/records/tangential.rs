@@ -53,7 +53,7 @@ fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
 /// Slip of ball 1's contact point against its partner's along the contact frame's y, from
 /// the relative velocity `g` (m/s) and the spins `w1`, `w2` (rad/s, contact frame): the
 /// contact point sits at +R1 x on ball 1 and −R2 x on ball 2, so ω × r adds ω_z R along y.
-fn slip_y(scene: &Scene, g: [f64; 3], w1: [f64; 3], w2: [f64; 3]) -> f64 {
+pub(crate) fn slip_y(scene: &Scene, g: [f64; 3], w1: [f64; 3], w2: [f64; 3]) -> f64 {
     let (r1, r2) = (scene.ball1.diameter / 2.0, scene.ball2.diameter / 2.0);
     g[1] + w1[2] * r1 + w2[2] * r2
 }
