@@ -150,11 +150,13 @@ fn summary(case: &StaticCase, loops: &[StaticLoop], est: &LoopEstimate) -> Strin
     });
     let quads: Vec<String> = loops.iter().map(|l| l.quads.to_string()).collect();
     let iters: Vec<String> = loops.iter().map(|l| l.iterations.to_string()).collect();
+    let facts: Vec<String> = loops.iter().map(|l| l.factorisations.to_string()).collect();
     let _ = writeln!(
         s,
-        "  quads per level {}, Newton iterations {}",
+        "  quads per level {}, Newton iterations {} (factorisations, every attempt: {})",
         quads.join(", "),
-        iters.join(", ")
+        iters.join(", "),
+        facts.join(", ")
     );
     s
 }
@@ -185,7 +187,14 @@ fn results_json(
 ) -> Result<String> {
     let levels: Vec<serde_json::Value> = loops
         .iter()
-        .map(|l| serde_json::json!({ "quads": l.quads, "newton_iterations": l.iterations, "summary": l.summary }))
+        .map(|l| {
+            serde_json::json!({
+                "quads": l.quads,
+                "newton_iterations": l.iterations,
+                "factorisations": l.factorisations,
+                "summary": l.summary,
+            })
+        })
         .collect();
     let v = serde_json::json!({
         "units": "SI: approach and radius m, force N, work J",

@@ -84,6 +84,9 @@ pub struct Increment {
 /// The relative residual an active set that may still change is solved to.
 const LOOSE_TOL: f64 = 1e-6;
 
+/// The longest step, relative to the last one, that the last increment predicts.
+const MAX_PREDICTION: f64 = 4.0;
+
 /// Halvings of one increment before it is given up.
 pub const MAX_CUTS: u32 = 6;
 
@@ -101,6 +104,9 @@ pub struct StaticSolver {
     active: Vec<bool>,
     load_factor: f64,
     gap_tol: f64,
+    /// The last committed increment (m per node) and the control step that drove it
+    /// ([`StaticSolver::control_step`]), the predictor of the next one.
+    last: Option<(Vec<[f64; 2]>, f64)>,
 }
 
 /// The forces and trial states of every quad for one displacement increment.
@@ -159,6 +165,7 @@ impl StaticSolver {
             active,
             load_factor: 0.0,
             gap_tol,
+            last: None,
             plane,
             settings,
             model,
@@ -242,7 +249,8 @@ impl StaticSolver {
             .map(|l| [target.load_factor * l[0], target.load_factor * l[1]])
             .collect();
         let mut active = self.active.clone();
-        let mut du = vec![[0.0; 2]; n];
+        let step = self.control_step(target, plane);
+        let mut du = self.prediction(step, n);
         let mut report = Increment::default();
         // While the active set moves, each set is solved to a loose tolerance only; the set
         // that stays is solved to the full one (and checked again).
@@ -265,6 +273,9 @@ impl StaticSolver {
                 continue;
             }
             report.active_changes += changes;
+            // A new active set starts again from the committed state: from the last set's
+            // solution, the nodes it adds or releases can throw Newton into cycles.
+            du.iter_mut().for_each(|d| *d = [0.0; 2]);
             if report.active_changes > self.settings.max_active_changes {
                 return Err(Error::Numerical(format!(
                     "static contact: the active set did not settle after {} changes at load \
@@ -280,9 +291,39 @@ impl StaticSolver {
         self.states = eval.states;
         self.f_int = eval.f_int;
         self.active = active;
+        self.last = step.filter(|_| report.active_changes == 0).map(|h| (du, h));
         self.load_factor = target.load_factor;
         self.plane = plane;
         Ok(report)
+    }
+
+    /// The signed step of the one control `target` moves from the committed state (the
+    /// first prescribed displacement's, else the load factor's, else the plane's), or `None`
+    /// when it moves none.
+    fn control_step(&self, target: &Target, plane: Option<ExactPlane>) -> Option<f64> {
+        let step = match (target.prescribed.first(), plane, self.plane) {
+            (Some(p), ..) => {
+                let i = p.node as usize;
+                p.displacement - (self.x[i][p.dir] - self.model.nodes[i][p.dir])
+            }
+            _ if target.load_factor != self.load_factor => target.load_factor - self.load_factor,
+            (None, Some(to), Some(from)) => to.z - from.z,
+            _ => 0.0,
+        };
+        (step != 0.0 && step.is_finite()).then_some(step)
+    }
+
+    /// The first guess of an increment of control step `step` over `n` nodes: the last
+    /// increment scaled by the ratio of the steps when they go the same way and the new one
+    /// is at most [`MAX_PREDICTION`] times longer (loading on, unloading on), else zero.
+    fn prediction(&self, step: Option<f64>, n: usize) -> Vec<[f64; 2]> {
+        match (step, &self.last) {
+            (Some(h), Some((du, last))) if h / last > 0.0 && h / last <= MAX_PREDICTION => {
+                let r = h / last;
+                du.iter().map(|d| [r * d[0], r * d[1]]).collect()
+            }
+            _ => vec![[0.0; 2]; n],
+        }
     }
 
     /// The constrained degrees of freedom (2 per node) and the increments they take: the
@@ -377,6 +418,9 @@ impl StaticSolver {
                         }
                     }
                     Err(e) if alpha < 1.0 / 64.0 => return Err(e),
+                    // A step that would meet the constraints but inverts a quad: cut the
+                    // increment (a partial step leaves them unmet, without a merit to guard).
+                    Err(e) if !met => return Err(e),
                     Err(_) => {}
                 }
                 alpha *= 0.5;
@@ -481,6 +525,12 @@ impl StaticSolver {
 
     fn material(&self, e: usize) -> &J2Material {
         &self.model.materials[self.model.material_of[e]]
+    }
+
+    /// Numeric factorisations of the tangent so far, by this solver and every clone of it
+    /// (increments cut, failed or solved again included): the loop's cost.
+    pub fn factorisations(&self) -> u64 {
+        self.pattern.factorisations()
     }
 
     /// The plane's normal force on the body, N (whole ring; 0 without a plane).

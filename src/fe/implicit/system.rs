@@ -17,6 +17,7 @@ use faer::sparse::linalg::lu::{factorize_symbolic_lu, LuSymbolicParams, NumericL
 use faer::sparse::linalg::SupernodalThreshold;
 use faer::sparse::{Pair, SparseColMatRef, SymbolicSparseColMat};
 use faer::{Conj, Mat, Par};
+use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::Mutex;
 
 /// The fixed structure of a mesh's tangent: the entries' positions in the compressed matrix,
@@ -30,6 +31,8 @@ pub struct Pattern {
     slot: Vec<usize>,
     lu: SymbolicLu<usize>,
     work: Mutex<Workspace>,
+    /// Numeric factorisations so far, by every solver sharing this pattern.
+    factorisations: AtomicU64,
 }
 
 /// Marks the first of the entries summed into one position.
@@ -97,12 +100,19 @@ impl Pattern {
             slot,
             lu,
             work: Mutex::new(work),
+            factorisations: AtomicU64::new(0),
         })
     }
 
     /// Degrees of freedom (2 per node).
     pub fn dofs(&self) -> usize {
         self.dofs
+    }
+
+    /// Numeric factorisations so far (every [`Pattern::solve`], including those of
+    /// increments later cut or solved again).
+    pub fn factorisations(&self) -> u64 {
+        self.factorisations.load(Ordering::Relaxed)
     }
 
     /// Solves K d = `rhs` for the element tangents `blocks` (N/m, one 8 × 8 block per quad,
@@ -150,6 +160,7 @@ impl Pattern {
                  put it in contact"
             ))
         };
+        self.factorisations.fetch_add(1, Ordering::Relaxed);
         let a = SparseColMatRef::new(self.symbolic.as_ref(), values);
         let stack = MemStack::new(scratch);
         let lu = self

@@ -35,6 +35,9 @@ struct Results {
 struct Level {
     quads: usize,
     newton_iterations: usize,
+    /// Absent from folders written before the count was recorded.
+    #[serde(default)]
+    factorisations: u64,
     summary: LoopSummary,
 }
 
@@ -110,6 +113,7 @@ pub fn read_loop_folder(dir: &Path) -> Result<LoopFolder> {
         finest: StaticLoop {
             quads: last.quads,
             iterations: last.newton_iterations,
+            factorisations: last.factorisations,
             loading,
             unloading,
             summary: last.summary,

@@ -144,8 +144,10 @@ pub struct LoopSummary {
 pub struct StaticLoop {
     /// Quads of the mesh.
     pub quads: usize,
-    /// Newton iterations over the loop.
+    /// Newton iterations over the loop (of the increments kept).
     pub iterations: usize,
+    /// Tangent factorisations over the loop, every attempt included.
+    pub factorisations: u64,
     /// Loading points, from touch to δ_max.
     pub loading: Vec<LoopPoint>,
     /// Unloading points, from δ_max to release.
@@ -385,6 +387,7 @@ pub fn run_loop(case: &StaticCase) -> Result<StaticLoop> {
     Ok(StaticLoop {
         quads: rig.solver.states().len(),
         iterations: rig.iterations,
+        factorisations: rig.solver.factorisations(),
         loading,
         unloading,
         summary,
