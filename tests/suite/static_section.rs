@@ -10,7 +10,7 @@ use section_support::*;
 use twoball::fe::elements::ring::mass::element_masses;
 use twoball::fe::elements::ring::QuadFormulation;
 use twoball::fe::implicit::plane::ExactPlane;
-use twoball::fe::implicit::static_solver::{Increment, Settings, StaticSolver, Target};
+use twoball::fe::implicit::static_solver::{Increment, Prescribed, Settings, StaticSolver, Target};
 use twoball::fe::section::solver::SectionModel;
 use twoball::material::Material;
 
@@ -151,6 +151,47 @@ fn partly_plastic_thick_sphere_matches_hill() {
 /// in `steps` increments: returns (approach of the centre of mass, contact force, contact
 /// radius of the outermost node on the plane), m, N, m.
 fn free_ball(m: &Material, radius: f64, a: f64, level: u32, force: f64) -> (f64, f64, f64) {
+    let (mut s, mass, quads) = free_ball_solver(m, radius, a, level);
+    let total: f64 = mass.iter().sum();
+    let steps = 6;
+    let t0 = std::time::Instant::now();
+    let (mut it, mut ch, mut cuts) = (0, 0, 0);
+    for k in 1..=steps {
+        let f = force * (k as f64 / steps as f64).powf(1.5);
+        let inc = s
+            .solve(&Target {
+                load_factor: f,
+                ..Default::default()
+            })
+            .unwrap();
+        (it, ch, cuts) = (
+            it + inc.iterations,
+            ch + inc.active_changes,
+            cuts + inc.cuts,
+        );
+    }
+    println!(
+        "  {quads} quads: {it} Newton iterations, {ch} active-set changes, {cuts} cuts, {:.1} s",
+        t0.elapsed().as_secs_f64()
+    );
+    let approach = mass
+        .iter()
+        .zip(s.positions().iter().zip(s.initial_positions()))
+        .map(|(mi, (x, x0))| mi * (x[1] - x0[1]))
+        .sum::<f64>()
+        / total;
+    (approach, s.contact_force(), s.contact_radius())
+}
+
+/// The solver of a free elastic ball (fully integrated quads, ladder mesh `level` for the
+/// contact radius `a`) under one newton of uniform body force towards a rigid plane at its
+/// pole, its nodal masses (kg) and its quad count.
+fn free_ball_solver(
+    m: &Material,
+    radius: f64,
+    a: f64,
+    level: u32,
+) -> (StaticSolver, Vec<f64>, usize) {
     let mesh = twoball::mesh::section::ladder::ladder_ball(2.0 * radius, a, level).unwrap();
     let mut model: SectionModel = model(mesh.nodes.clone(), mesh.quads.clone(), m);
     model.formulation = QuadFormulation::Full;
@@ -170,36 +211,69 @@ fn free_ball(m: &Material, radius: f64, a: f64, level: u32, force: f64) -> (f64,
         z: radius,
         side: -1.0,
     };
-    let mut s = StaticSolver::new(model, Some(plane), Settings::default()).unwrap();
+    let s = StaticSolver::new(model, Some(plane), Settings::default()).unwrap();
+    (s, mass, mesh.quads.len())
+}
+
+/// Load control (the body force the unknown that brings the back pole to a travel) lands on
+/// the elastic state force control reaches: the same force to the contact's tolerance.
+#[test]
+fn load_control_finds_the_force_that_moves_the_back_pole_there() {
+    let mut m = Material::preset("copper").unwrap();
+    m.yield_strength = 1e15;
+    let (radius, a) = (0.01, 2e-4);
+    let force = 200.0;
+    let (mut by_force, _, _) = free_ball_solver(&m, radius, a, 0);
+    let back = by_force
+        .initial_positions()
+        .iter()
+        .enumerate()
+        .filter(|(_, x)| x[0] == 0.0)
+        .min_by(|p, q| p.1[1].total_cmp(&q.1[1]))
+        .map(|(i, _)| i)
+        .unwrap();
     let steps = 6;
-    let t0 = std::time::Instant::now();
-    let (mut it, mut ch, mut cuts) = (0, 0, 0);
     for k in 1..=steps {
         let f = force * (k as f64 / steps as f64).powf(1.5);
-        let inc = s
-            .solve(&Target {
-                load_factor: f,
-                ..Default::default()
-            })
-            .unwrap();
-        (it, ch, cuts) = (
-            it + inc.iterations,
-            ch + inc.active_changes,
-            cuts + inc.cuts,
-        );
+        let t = Target {
+            load_factor: f,
+            ..Default::default()
+        };
+        by_force.solve(&t).unwrap();
     }
-    println!(
-        "  {} quads: {it} Newton iterations, {ch} active-set changes, {cuts} cuts, {:.1} s",
-        mesh.quads.len(),
-        t0.elapsed().as_secs_f64()
+    let travel = by_force.positions()[back][1] - by_force.initial_positions()[back][1];
+    let (mut by_travel, _, _) = free_ball_solver(&m, radius, a, 0);
+    for k in 1..=steps {
+        let t = Target {
+            load_control: Some(Prescribed {
+                node: back as u32,
+                dir: 1,
+                displacement: travel * k as f64 / steps as f64,
+            }),
+            ..Default::default()
+        };
+        by_travel.solve(&t).unwrap();
+    }
+    let (lf, cf) = (by_travel.load_factor(), by_travel.contact_force());
+    println!("back pole travel {travel:.6e} m: load {lf:.9} N, contact {cf:.9} N against {force}");
+    // Equal to the contact's tolerance (a node at the edge of the contact may be held or
+    // not under a residual of 1e-10 of the force scale): 1.3e-7 is seen.
+    assert!((lf / force - 1.0).abs() < 1e-6, "load {lf} against {force}");
+    assert!(
+        (cf / force - 1.0).abs() < 1e-6,
+        "contact {cf} against {force}"
     );
-    let approach = mass
-        .iter()
-        .zip(s.positions().iter().zip(s.initial_positions()))
-        .map(|(mi, (x, x0))| mi * (x[1] - x0[1]))
-        .sum::<f64>()
-        / total;
-    (approach, s.contact_force(), s.contact_radius())
+    // The controlled degree of freedom a constrained one (r on the axis): one line naming it.
+    let t = Target {
+        load_control: Some(Prescribed {
+            node: back as u32,
+            dir: 0,
+            displacement: 0.0,
+        }),
+        ..Default::default()
+    };
+    let err = by_travel.solve(&t).unwrap_err().to_string();
+    assert!(err.contains("static.load_control"), "{err}");
 }
 
 /// The free ball's force against the finite-ball reference of docs/contact-penalty.md ("The

@@ -43,6 +43,10 @@ pub struct Target {
     pub prescribed: Vec<Prescribed>,
     /// The plane's axial position, m (`None`: where it is).
     pub plane_z: Option<f64>,
+    /// Displacement control of the loads: the load factor becomes the unknown that brings
+    /// this free degree of freedom to its displacement (`load_factor` is then ignored), by
+    /// the bordered Newton of Batoz & Dhatt (1979). `None`: the load factor is given.
+    pub load_control: Option<Prescribed>,
 }
 
 /// Newton and active-set settings.
@@ -104,9 +108,19 @@ pub struct StaticSolver {
     active: Vec<bool>,
     load_factor: f64,
     gap_tol: f64,
-    /// The last committed increment (m per node) and the control step that drove it
-    /// ([`StaticSolver::control_step`]), the predictor of the next one.
-    last: Option<(Vec<[f64; 2]>, f64)>,
+    /// The last committed increment (m per node), its change of load factor and the control
+    /// step that drove it ([`StaticSolver::control_step`]), the predictor of the next one.
+    last: Option<(Vec<[f64; 2]>, f64, f64)>,
+}
+
+/// One Newton system: which degrees of freedom are constrained and to what increments (m),
+/// the load-controlling degree of freedom and its increment (m), the relative tolerance.
+#[derive(Clone, Copy)]
+struct System<'a> {
+    constrained: &'a [bool],
+    values: &'a [f64],
+    control: Option<(usize, f64)>,
+    tol: f64,
 }
 
 /// The forces and trial states of every quad for one displacement increment.
@@ -224,12 +238,16 @@ impl StaticSolver {
                 (Some(p), Some(z)) => Some(half(p.z, z)),
                 _ => target.plane_z,
             },
+            load_control: target.load_control.map(|p| Prescribed {
+                displacement: half(self.displacement(p.node, p.dir), p.displacement),
+                ..p
+            }),
         }
     }
 
     fn solve_once(&mut self, target: &Target) -> Result<Increment> {
         let n = self.x.len();
-        for p in &target.prescribed {
+        for p in target.prescribed.iter().chain(&target.load_control) {
             if p.node as usize >= n || p.dir > 1 || !p.displacement.is_finite() {
                 return Err(Error::invalid(
                     "static.prescribed",
@@ -242,23 +260,29 @@ impl StaticSolver {
             (Some(p), Some(z)) => Some(ExactPlane { z, ..p }),
             (p, _) => p,
         };
-        let f_ext: Vec<[f64; 2]> = self
-            .model
-            .loads
-            .iter()
-            .map(|l| [target.load_factor * l[0], target.load_factor * l[1]])
-            .collect();
         let mut active = self.active.clone();
         let step = self.control_step(target, plane);
-        let mut du = self.prediction(step, n);
+        let (mut du, predicted_load) = self.prediction(step, n);
+        let start_load = match target.load_control {
+            Some(_) => predicted_load,
+            None => target.load_factor,
+        };
+        let mut load = start_load;
         let mut report = Increment::default();
         // While the active set moves, each set is solved to a loose tolerance only; the set
         // that stays is solved to the full one (and checked again).
         let mut tol = self.settings.residual_tol.max(LOOSE_TOL);
         let eval = loop {
             let (constrained, values) = self.constraints(target, plane, &active);
-            let (eval, rel) =
-                self.newton(&mut du, &constrained, &values, &f_ext, tol, &mut report)?;
+            let control = self.control(target, &constrained)?;
+            let system = System {
+                constrained: &constrained,
+                values: &values,
+                control,
+                tol,
+            };
+            let (eval, rel) = self.newton(&mut du, &mut load, &system, &mut report)?;
+            let f_ext = self.loads(load);
             let changes = match plane {
                 Some(p) => self.settle(p, &mut active, &du, &eval.f_int, &f_ext, tol),
                 None => 0,
@@ -276,6 +300,10 @@ impl StaticSolver {
             // A new active set starts again from the committed state: from the last set's
             // solution, the nodes it adds or releases can throw Newton into cycles.
             du.iter_mut().for_each(|d| *d = [0.0; 2]);
+            load = match target.load_control {
+                Some(_) => self.load_factor,
+                None => start_load,
+            };
             if report.active_changes > self.settings.max_active_changes {
                 return Err(Error::Numerical(format!(
                     "static contact: the active set did not settle after {} changes at load \
@@ -291,8 +319,11 @@ impl StaticSolver {
         self.states = eval.states;
         self.f_int = eval.f_int;
         self.active = active;
-        self.last = step.filter(|_| report.active_changes == 0).map(|h| (du, h));
-        self.load_factor = target.load_factor;
+        let dload = load - self.load_factor;
+        self.last = step
+            .filter(|_| report.active_changes == 0)
+            .map(|h| (du, dload, h));
+        self.load_factor = load;
         self.plane = plane;
         Ok(report)
     }
@@ -301,11 +332,9 @@ impl StaticSolver {
     /// first prescribed displacement's, else the load factor's, else the plane's), or `None`
     /// when it moves none.
     fn control_step(&self, target: &Target, plane: Option<ExactPlane>) -> Option<f64> {
-        let step = match (target.prescribed.first(), plane, self.plane) {
-            (Some(p), ..) => {
-                let i = p.node as usize;
-                p.displacement - (self.x[i][p.dir] - self.model.nodes[i][p.dir])
-            }
+        let first = target.load_control.or(target.prescribed.first().copied());
+        let step = match (first, plane, self.plane) {
+            (Some(p), ..) => p.displacement - self.displacement(p.node, p.dir),
             _ if target.load_factor != self.load_factor => target.load_factor - self.load_factor,
             (None, Some(to), Some(from)) => to.z - from.z,
             _ => 0.0,
@@ -316,14 +345,48 @@ impl StaticSolver {
     /// The first guess of an increment of control step `step` over `n` nodes: the last
     /// increment scaled by the ratio of the steps when they go the same way and the new one
     /// is at most [`MAX_PREDICTION`] times longer (loading on, unloading on), else zero.
-    fn prediction(&self, step: Option<f64>, n: usize) -> Vec<[f64; 2]> {
+    fn prediction(&self, step: Option<f64>, n: usize) -> (Vec<[f64; 2]>, f64) {
         match (step, &self.last) {
-            (Some(h), Some((du, last))) if h / last > 0.0 && h / last <= MAX_PREDICTION => {
+            (Some(h), Some((du, dload, last))) if h / last > 0.0 && h / last <= MAX_PREDICTION => {
                 let r = h / last;
-                du.iter().map(|d| [r * d[0], r * d[1]]).collect()
+                let du = du.iter().map(|d| [r * d[0], r * d[1]]).collect();
+                (du, self.load_factor + r * dload)
             }
-            _ => vec![[0.0; 2]; n],
+            _ => (vec![[0.0; 2]; n], self.load_factor),
         }
+    }
+
+    /// The displacement (m) of node `i`'s component `dir` from its initial position.
+    fn displacement(&self, i: u32, dir: usize) -> f64 {
+        let i = i as usize;
+        self.x[i][dir] - self.model.nodes[i][dir]
+    }
+
+    /// The external forces (N) of the load factor `load`.
+    fn loads(&self, load: f64) -> Vec<[f64; 2]> {
+        self.model
+            .loads
+            .iter()
+            .map(|l| [load * l[0], load * l[1]])
+            .collect()
+    }
+
+    /// The degree of freedom `target` controls the loads by and the increment it takes
+    /// there (m), or `None`. A controlled degree of freedom that is also constrained, or
+    /// a model without loads, is an error.
+    fn control(&self, target: &Target, constrained: &[bool]) -> Result<Option<(usize, f64)>> {
+        let Some(p) = target.load_control else {
+            return Ok(None);
+        };
+        let d = 2 * p.node as usize + p.dir;
+        if constrained[d] || self.model.loads.iter().all(|l| l == &[0.0; 2]) {
+            return Err(Error::invalid(
+                "static.load_control",
+                format!("{p:?}"),
+                "a free degree of freedom of a model with loads",
+            ));
+        }
+        Ok(Some((d, p.displacement - self.displacement(p.node, p.dir))))
     }
 
     /// The constrained degrees of freedom (2 per node) and the increments they take: the
@@ -359,23 +422,30 @@ impl StaticSolver {
         (c, v)
     }
 
-    /// Newton-Raphson for the increment `du` (m): the free degrees of freedom in
-    /// equilibrium, the constrained ones at `values`. A constrained value not yet reached
-    /// enters the linear system as a prescribed correction, so the first iteration is the
-    /// tangent's prediction of the whole increment (the displacement a held support or a
-    /// node landing on the plane imposes spreads through the body, instead of straining the
-    /// elements next to it alone). A backtracking line search on the free residual guards
-    /// the iterations that meet every constraint. Returns the evaluation and its relative
-    /// residual once that is at most `tol`.
+    /// Newton-Raphson for the increment `du` (m) and the load factor `load`: the free degrees
+    /// of freedom in equilibrium, the constrained ones at their values and, under load
+    /// control, the controlled one at its increment. A value not yet reached enters the
+    /// linear system as a prescribed correction, so the first iteration is the tangent's
+    /// prediction of the whole increment (the displacement a held support or a node landing
+    /// on the plane imposes spreads through the body, instead of straining the elements next
+    /// to it alone). Under load control the factorisation solves two columns, K a = r and
+    /// K b = f_ref, and the load changes by Δλ = (gap − a_c) / b_c so that the controlled
+    /// degree of freedom meets its increment (Batoz & Dhatt 1979). A backtracking line search
+    /// on the free residual guards the iterations that meet every value. Returns the
+    /// evaluation and its relative residual once that is at most the system's tolerance.
     fn newton(
         &self,
         du: &mut [[f64; 2]],
-        constrained: &[bool],
-        values: &[f64],
-        f_ext: &[[f64; 2]],
-        tol: f64,
+        load: &mut f64,
+        sys: &System<'_>,
         report: &mut Increment,
     ) -> Result<(Evaluation, f64)> {
+        let System {
+            constrained,
+            values,
+            control,
+            tol,
+        } = *sys;
         let gap = |du: &[[f64; 2]]| -> Vec<f64> {
             (0..values.len())
                 .map(|d| {
@@ -387,18 +457,49 @@ impl StaticSolver {
                 })
                 .collect()
         };
+        let control_gap = |du: &[[f64; 2]]| control.map_or(0.0, |(d, v)| v - du[d / 2][d % 2]);
+        let reference: Vec<f64> = (0..values.len())
+            .map(|d| {
+                if constrained[d] {
+                    0.0
+                } else {
+                    self.model.loads[d / 2][d % 2]
+                }
+            })
+            .collect();
         let mut eval = self.evaluate(du)?;
-        let mut r = residual(&eval.f_int, f_ext, constrained);
-        let mut rel = norm(&r) / force_scale(&eval.f_int, f_ext, constrained);
+        let f_ext = self.loads(*load);
+        let mut r = residual(&eval.f_int, &f_ext, constrained);
+        let mut rel = norm(&r) / force_scale(&eval.f_int, &f_ext, constrained);
         for _ in 0..self.settings.max_iterations {
             let open = gap(du);
-            let met = open.iter().all(|g| g.abs() <= 1e-3 * self.gap_tol);
+            let limit = 1e-3 * self.gap_tol;
+            let met = open.iter().all(|g| g.abs() <= limit) && control_gap(du).abs() <= limit;
             report.residuals.push(rel);
             if met && rel <= tol {
                 return Ok((eval, rel));
             }
             let rhs: Vec<f64> = r.iter().zip(&open).map(|(a, b)| a + b).collect();
-            let d = self.pattern.solve(&self.tangents(du), constrained, &rhs)?;
+            let tangents = self.tangents(du);
+            let (d, dload) = match control {
+                None => (self.pattern.solve(&tangents, constrained, &rhs)?, 0.0),
+                Some((c, _)) => {
+                    let cols =
+                        self.pattern
+                            .solve_columns(&tangents, constrained, &[&rhs, &reference])?;
+                    let (a, b) = (&cols[0], &cols[1]);
+                    let dload = (control_gap(du) - a[c]) / b[c];
+                    if !dload.is_finite() {
+                        return Err(Error::Numerical(format!(
+                            "static load control: the controlled degree of freedom does not \
+                             move with the loads (b = {:.3e} m per unit load)",
+                            b[c]
+                        )));
+                    }
+                    let d = a.iter().zip(b).map(|(a, b)| a + dload * b).collect();
+                    (d, dload)
+                }
+            };
             report.iterations += 1;
             let mut alpha = 1.0;
             loop {
@@ -407,12 +508,15 @@ impl StaticSolver {
                     .enumerate()
                     .map(|(i, u)| [u[0] + alpha * d[2 * i], u[1] + alpha * d[2 * i + 1]])
                     .collect();
+                let trial_load = *load + alpha * dload;
                 match self.evaluate(&trial) {
                     Ok(e) => {
-                        let r1 = residual(&e.f_int, f_ext, constrained);
-                        let rel1 = norm(&r1) / force_scale(&e.f_int, f_ext, constrained);
+                        let f1 = self.loads(trial_load);
+                        let r1 = residual(&e.f_int, &f1, constrained);
+                        let rel1 = norm(&r1) / force_scale(&e.f_int, &f1, constrained);
                         if !met || rel1 < rel || alpha < 1.0 / 64.0 {
                             du.copy_from_slice(&trial);
+                            *load = trial_load;
                             (eval, r, rel) = (e, r1, rel1);
                             break;
                         }

@@ -35,6 +35,9 @@ pub struct Pattern {
     factorisations: AtomicU64,
 }
 
+/// The most right-hand sides one factorisation solves ([`Pattern::solve_columns`]).
+pub const MAX_COLUMNS: usize = 2;
+
 /// Marks the first of the entries summed into one position.
 const FIRST: usize = 1 << (usize::BITS - 1);
 
@@ -87,7 +90,7 @@ impl Pattern {
             factorize_symbolic_lu(symbolic.as_ref(), params).map_err(|e| fail(format!("{e:?}")))?;
         let scratch = lu
             .factorize_numeric_lu_scratch::<f64>(Par::Seq, Default::default())
-            .or(lu.solve_in_place_scratch::<f64>(1, Par::Seq));
+            .or(lu.solve_in_place_scratch::<f64>(MAX_COLUMNS, Par::Seq));
         let work = Workspace {
             numeric: NumericLu::new(),
             scratch: MemBuffer::try_new(scratch).map_err(|_| fail("out of memory".into()))?,
@@ -126,7 +129,26 @@ impl Pattern {
         constrained: &[bool],
         rhs: &[f64],
     ) -> Result<Vec<f64>> {
+        let mut d = self.solve_columns(blocks, constrained, &[rhs])?;
+        Ok(d.swap_remove(0))
+    }
+
+    /// [`Pattern::solve`] for up to [`MAX_COLUMNS`] right-hand sides with one factorisation
+    /// (each as `rhs` there); returns one solution per column, in order.
+    pub fn solve_columns(
+        &self,
+        blocks: &[[[f64; 8]; 8]],
+        constrained: &[bool],
+        columns: &[&[f64]],
+    ) -> Result<Vec<Vec<f64>>> {
         let n = self.dofs;
+        if columns.is_empty() || columns.len() > MAX_COLUMNS {
+            return Err(Error::invalid(
+                "static.columns",
+                columns.len(),
+                format!("1 to {MAX_COLUMNS} right-hand sides"),
+            ));
+        }
         let mut work = self.work.lock().unwrap_or_else(|e| e.into_inner());
         let Workspace {
             numeric,
@@ -167,13 +189,17 @@ impl Pattern {
             .lu
             .factorize_numeric_lu(numeric, a, Par::Seq, stack, Default::default())
             .map_err(|e| singular(format!("{e:?}")))?;
-        let mut b = Mat::<f64>::zeros(n, 1);
-        for (i, v) in rhs.iter().enumerate() {
-            b[(i, 0)] = *v;
+        let mut b = Mat::<f64>::zeros(n, columns.len());
+        for (j, rhs) in columns.iter().enumerate() {
+            for (i, v) in rhs.iter().enumerate() {
+                b[(i, j)] = *v;
+            }
         }
         lu.solve_in_place_with_conj(Conj::No, b.as_mut(), Par::Seq, stack);
-        let d: Vec<f64> = (0..n).map(|i| b[(i, 0)]).collect();
-        if d.iter().any(|v| !v.is_finite()) {
+        let d: Vec<Vec<f64>> = (0..columns.len())
+            .map(|j| (0..n).map(|i| b[(i, j)]).collect())
+            .collect();
+        if d.iter().flatten().any(|v| !v.is_finite()) {
             return Err(singular("a correction that is not finite".into()));
         }
         Ok(d)

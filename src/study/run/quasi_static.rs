@@ -160,8 +160,9 @@ pub struct StaticLoop {
 struct Rig {
     solver: StaticSolver,
     support: Support,
-    /// Nodes on the equator (held).
-    equator: Vec<u32>,
+    /// The driven nodes: the equator (held), whose travel is prescribed, or the back pole
+    /// (free), whose travel sets the body force (load control).
+    driven: Vec<u32>,
     /// Nodal masses (free), kg.
     mass: Vec<f64>,
     iterations: usize,
@@ -186,20 +187,21 @@ impl Rig {
         let mut model =
             SectionModel::new(nodes.clone(), quads, J2Material::new(&case.material, false));
         model.formulation = case.formulation;
-        let mut equator = Vec::new();
-        match case.support {
+        let driven = match case.support {
             // One newton of body force towards the plane above the ball.
             Support::Free => {
                 for (l, m) in model.loads.iter_mut().zip(&mass) {
                     *l = [0.0, m / total];
                 }
+                let back = (0..nodes.len() as u32)
+                    .filter(|&i| nodes[i as usize][0] == 0.0)
+                    .min_by(|&a, &b| nodes[a as usize][1].total_cmp(&nodes[b as usize][1]));
+                back.into_iter().collect()
             }
-            Support::Held => {
-                equator = (0..nodes.len() as u32)
-                    .filter(|&i| nodes[i as usize][1] == 0.0)
-                    .collect();
-            }
-        }
+            Support::Held => (0..nodes.len() as u32)
+                .filter(|&i| nodes[i as usize][1] == 0.0)
+                .collect(),
+        };
         let plane = ExactPlane {
             z: radius,
             side: -1.0,
@@ -207,30 +209,28 @@ impl Rig {
         Ok(Rig {
             solver: StaticSolver::new(model, Some(plane), Settings::default())?,
             support: case.support,
-            equator,
+            driven,
             mass,
             iterations: 0,
         })
     }
 
-    /// Drives the ball to control value `c` (held: the equator's travel, m; free: the body
-    /// force, N).
+    /// Drives the ball to control value `c`, the driven nodes' travel towards the plane (m):
+    /// held, the equator's; free, the back pole's, with the body force (N) as the unknown
+    /// that brings it there.
     fn drive(&mut self, c: f64) -> Result<()> {
+        let travel = |&node: &u32| Prescribed {
+            node,
+            dir: 1,
+            displacement: c,
+        };
         let target = match self.support {
             Support::Held => Target {
-                prescribed: self
-                    .equator
-                    .iter()
-                    .map(|&node| Prescribed {
-                        node,
-                        dir: 1,
-                        displacement: c,
-                    })
-                    .collect(),
+                prescribed: self.driven.iter().map(travel).collect(),
                 ..Default::default()
             },
             Support::Free => Target {
-                load_factor: c,
+                load_control: self.driven.first().map(travel),
                 ..Default::default()
             },
         };
@@ -238,14 +238,18 @@ impl Rig {
         Ok(())
     }
 
+    /// The driven nodes' travel towards the plane now (m), the value [`Rig::drive`] sets.
+    fn control(&self) -> f64 {
+        let s = &self.solver;
+        let i = self.driven[0] as usize;
+        s.positions()[i][1] - s.initial_positions()[i][1]
+    }
+
     /// The current point of the loop.
     fn point(&self) -> LoopPoint {
         let s = &self.solver;
         let approach = match self.support {
-            Support::Held => {
-                let i = self.equator[0] as usize;
-                s.positions()[i][1] - s.initial_positions()[i][1]
-            }
+            Support::Held => self.control(),
             Support::Free => {
                 let (mut m, mut mz) = (0.0, 0.0);
                 for ((mi, x), x0) in self
@@ -300,20 +304,16 @@ fn measure(to: LoadTo, p: &LoopPoint) -> (f64, f64) {
     }
 }
 
-/// An estimate of the control value (equator travel or body force) that meets `to`, from
+/// An estimate of the control value (the driven nodes' travel, m) that meets `to`, from
 /// Hertz's elastic law of the ball on a rigid plane.
 fn control_estimate(case: &StaticCase) -> f64 {
     let modulus = case.material.plane_strain_modulus();
     let hertz = HertzPair::new(modulus, case.diameter / 2.0, case.ball_mass());
     let k = hertz.stiffness();
-    let delta = match case.to {
+    match case.to {
         LoadTo::Approach(d) => d,
         LoadTo::Force(f) => (f / k).powf(2.0 / 3.0),
         LoadTo::Work(w) => (2.5 * w / k).powf(0.4),
-    };
-    match case.support {
-        Support::Held => delta,
-        Support::Free => hertz.force(delta),
     }
 }
 
@@ -359,10 +359,7 @@ pub fn run_loop(case: &StaticCase) -> Result<StaticLoop> {
         c_est *= steps as f64 / case.steps() as f64;
     };
     let peak = *loading.last().expect("the peak");
-    let c_peak = match case.support {
-        Support::Held => peak.approach,
-        Support::Free => rig.solver.load_factor(),
-    };
+    let c_peak = rig.control();
     let unloading = unload(&mut rig, case, c_peak, peak)?;
     let end = *unloading.last().expect("the release");
     let work_in = peak.stress_work;
@@ -394,18 +391,13 @@ pub fn run_loop(case: &StaticCase) -> Result<StaticLoop> {
     })
 }
 
-/// Loads in steps of the approach of about `c_est` / increments (held: of the travel; free:
-/// of the body force, equal in F^{2/3}, so that the first load is not carried by the pole
-/// node alone) until the target is met, the last step solved again (Illinois regula falsi
-/// from the state before it) until it meets the target to 1e-6; returns the points from touch
-/// to the target.
+/// Loads in equal steps of the driven nodes' travel, about `c_est` / increments each, until
+/// the target is met, the last step solved again (Illinois regula falsi from the state
+/// before it) until it meets the target to 1e-6; returns the points from touch to the
+/// target.
 fn load(rig: &mut Rig, case: &StaticCase, c_est: f64) -> Result<Vec<LoopPoint>> {
     let n = case.steps();
-    let exponent = match case.support {
-        Support::Held => 1.0,
-        Support::Free => 1.5,
-    };
-    let control = |k: usize| c_est * (k as f64 / n as f64).powf(exponent);
+    let control = |k: usize| c_est * k as f64 / n as f64;
     let mut loading = vec![rig.point()];
     for k in 1..=40 * n {
         let before = rig.solver.clone();
@@ -455,12 +447,13 @@ fn load(rig: &mut Rig, case: &StaticCase, c_est: f64) -> Result<Vec<LoopPoint>> 
 
 /// Unloads from the peak (control `c_peak`) to release; the last point has zero force.
 ///
-/// Both supports step towards the point where Hertz's unloading law through the peak,
-/// F = F_p ((δ − δ_r) / (δ_p − δ_r))^{3/2}, falls to [`RELEASE_FORCE`] of the peak, in steps
-/// equal in F^{2/3} (equal in travel for the held ball, whose recovery δ_p − δ_r = 3 F_p / 2k
-/// comes from the slope k of a probe step), and extrapolate the release along that law
-/// through the last two points. A held step that lets go is halved (up to
-/// [`RELEASE_CUTS`] times), so the points crowd towards the release.
+/// Steps of the driven nodes' travel go towards the point where Hertz's unloading law through
+/// the peak, F = F_p ((δ − δ_r) / (δ_p − δ_r))^{3/2}, falls to [`RELEASE_FORCE`] of the peak
+/// (the recovery δ_p − δ_r = 3 F_p / 2k from the slope k of a probe step), and the release
+/// is extrapolated along that law through the last two points. A step that lets go is halved
+/// (up to [`RELEASE_CUTS`] times), so the points crowd towards the release; below a tenth of
+/// the peak force a step that fails (a free ball the plane all but lets go of) ends the
+/// unloading there.
 fn unload(
     rig: &mut Rig,
     case: &StaticCase,
@@ -470,46 +463,43 @@ fn unload(
     let n = case.steps();
     let mut points = vec![peak];
     let share = 1.0 - RELEASE_FORCE.powf(2.0 / 3.0);
-    match case.support {
-        Support::Held => {
-            let probe = PROBE * c_peak;
-            let before = rig.solver.clone();
-            rig.drive(c_peak - probe)?;
-            let slope = (peak.force - rig.point().force) / probe;
-            rig.solver = before;
-            if !(slope > 0.0 && slope.is_finite()) {
-                return Err(Error::Numerical(format!(
-                    "static loop: the force does not fall on unloading (slope {slope:.3e} N/m)"
-                )));
+    let probe = PROBE * c_peak;
+    let before = rig.solver.clone();
+    rig.drive(c_peak - probe)?;
+    let slope = (peak.force - rig.point().force) / probe;
+    rig.solver = before;
+    if !(slope > 0.0 && slope.is_finite()) {
+        return Err(Error::Numerical(format!(
+            "static loop: the force does not fall on unloading (slope {slope:.3e} N/m)"
+        )));
+    }
+    let end = c_peak - share * 1.5 * peak.force / slope;
+    let mut step = (c_peak - end) / n as f64;
+    let (mut c, mut cuts) = (c_peak, 0);
+    while c - end > 1e-6 * step {
+        let next = (c - step).max(end);
+        let before = rig.solver.clone();
+        let held = match rig.drive(next) {
+            Ok(()) => rig.point().force > 0.0,
+            // Near the release a free ball the plane all but lets go of is ill-conditioned:
+            // the release is extrapolated from the points so far.
+            Err(_) if points[points.len() - 1].force < RELEASE_ZONE * peak.force => {
+                rig.solver = before;
+                break;
             }
-            let end = c_peak - share * 1.5 * peak.force / slope;
-            let mut step = (c_peak - end) / n as f64;
-            let (mut c, mut cuts) = (c_peak, 0);
-            while c - end > 1e-6 * step {
-                let next = (c - step).max(end);
-                let before = rig.solver.clone();
-                rig.drive(next)?;
-                let p = rig.point();
-                if p.force > 0.0 {
-                    points.push(p);
-                    c = next;
-                } else if cuts < RELEASE_CUTS {
-                    rig.solver = before;
-                    cuts += 1;
-                    step *= 0.5;
-                } else {
-                    rig.solver = before;
-                    break;
-                }
-            }
+            Err(e) => return Err(e),
+        };
+        if held {
+            points.push(rig.point());
+            c = next;
+            continue;
         }
-        Support::Free => {
-            for k in 1..=n {
-                let t = 1.0 - share * k as f64 / n as f64;
-                rig.drive(c_peak * t.powf(1.5))?;
-                points.push(rig.point());
-            }
+        rig.solver = before;
+        if cuts == RELEASE_CUTS {
+            break;
         }
+        cuts += 1;
+        step *= 0.5;
     }
     let release = release_point(&points)?;
     points.push(release);
@@ -544,6 +534,9 @@ fn release_point(points: &[LoopPoint]) -> Result<LoopPoint> {
 
 /// The probe step that measures the unloading stiffness at the peak, of the peak's travel.
 const PROBE: f64 = 1e-4;
+
+/// The share of the peak force below which an unloading step that fails ends the unloading.
+const RELEASE_ZONE: f64 = 0.1;
 
 /// Halvings of a held unloading step that lets go, before the release is extrapolated.
 const RELEASE_CUTS: u32 = 6;
