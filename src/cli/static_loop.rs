@@ -158,6 +158,18 @@ fn summary(case: &StaticCase, loops: &[StaticLoop], est: &LoopEstimate) -> Strin
         iters.join(", "),
         facts.join(", ")
     );
+    if let Some(last) = loops.last() {
+        let r: Vec<String> = last
+            .peak_residuals
+            .iter()
+            .map(|r| format!("{r:.1e}"))
+            .collect();
+        let _ = writeln!(
+            s,
+            "  Newton at the peak (finest level), relative residual before each iteration: {}",
+            r.join(", ")
+        );
+    }
     s
 }
 
@@ -192,6 +204,7 @@ fn results_json(
                 "quads": l.quads,
                 "newton_iterations": l.iterations,
                 "factorisations": l.factorisations,
+                "peak_residuals": l.peak_residuals,
                 "summary": l.summary,
             })
         })

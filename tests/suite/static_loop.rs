@@ -119,6 +119,20 @@ fn the_command_writes_the_loop_with_units_and_its_bars() {
     assert!(e["finest"].as_f64().unwrap() > 0.0 && e["error"].as_f64().unwrap() >= 0.0);
     assert_eq!(v["levels"].as_array().unwrap().len(), 2);
     assert_eq!(v["contact_pair"]["rigid_wall"], false);
+    // Newton near the solution: each residual below 100 times the square of the one before
+    // (about 10 times is seen: quadratic convergence; a linear rate fails), down to 1e-10.
+    let r: Vec<f64> = v["levels"][1]["peak_residuals"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|r| r.as_f64().unwrap())
+        .collect();
+    println!("residuals at the peak: {r:?}");
+    assert!(r.last().is_some_and(|&l| l <= 1e-10), "{r:?}");
+    let fast = r.windows(2).filter(|w| w[0] < 1e-2 && w[1] > 1e-12);
+    for w in fast {
+        assert!(w[1] <= 100.0 * w[0] * w[0], "{r:?}");
+    }
     // The folder is what `laws fit --against-static` reads: Thornton's p_y fitted to the
     // loop's forces must bring its RMS force error below the default parameters' one.
     let fit_dir = out.join("fit");
@@ -211,6 +225,7 @@ fn a_loop_fit_recovers_the_parameter_of_a_loop_the_law_made() {
             quads: 0,
             iterations: 0,
             factorisations: 0,
+            peak_residuals: Vec::new(),
             loading,
             unloading,
             summary,

@@ -114,6 +114,7 @@ pub fn read_loop_folder(dir: &Path) -> Result<LoopFolder> {
             quads: last.quads,
             iterations: last.newton_iterations,
             factorisations: last.factorisations,
+            peak_residuals: Vec::new(),
             loading,
             unloading,
             summary: last.summary,

@@ -148,6 +148,9 @@ pub struct StaticLoop {
     pub iterations: usize,
     /// Tangent factorisations over the loop, every attempt included.
     pub factorisations: u64,
+    /// Relative residual norms before each Newton iteration of the increment that reached
+    /// the peak (the rate of convergence near the solution shows in them).
+    pub peak_residuals: Vec<f64>,
     /// Loading points, from touch to δ_max.
     pub loading: Vec<LoopPoint>,
     /// Unloading points, from δ_max to release.
@@ -166,6 +169,8 @@ struct Rig {
     /// Nodal masses (free), kg.
     mass: Vec<f64>,
     iterations: usize,
+    /// The relative residuals of the last increment driven.
+    residuals: Vec<f64>,
 }
 
 impl Rig {
@@ -212,6 +217,7 @@ impl Rig {
             driven,
             mass,
             iterations: 0,
+            residuals: Vec::new(),
         })
     }
 
@@ -234,7 +240,9 @@ impl Rig {
                 ..Default::default()
             },
         };
-        self.iterations += self.solver.solve(&target)?.iterations;
+        let done = self.solver.solve(&target)?;
+        self.iterations += done.iterations;
+        self.residuals = done.residuals;
         Ok(())
     }
 
@@ -359,6 +367,7 @@ pub fn run_loop(case: &StaticCase) -> Result<StaticLoop> {
         c_est *= steps as f64 / case.steps() as f64;
     };
     let peak = *loading.last().expect("the peak");
+    let peak_residuals = rig.residuals.clone();
     let c_peak = rig.control();
     let unloading = unload(&mut rig, case, c_peak, peak)?;
     let end = *unloading.last().expect("the release");
@@ -384,6 +393,7 @@ pub fn run_loop(case: &StaticCase) -> Result<StaticLoop> {
     Ok(StaticLoop {
         quads: rig.solver.states().len(),
         iterations: rig.iterations,
+        peak_residuals,
         factorisations: rig.solver.factorisations(),
         loading,
         unloading,
