@@ -225,13 +225,9 @@ impl StaticSolver {
             prescribed: target
                 .prescribed
                 .iter()
-                .map(|p| {
-                    let i = p.node as usize;
-                    let now = self.x[i][p.dir] - self.model.nodes[i][p.dir];
-                    Prescribed {
-                        displacement: half(now, p.displacement),
-                        ..*p
-                    }
+                .map(|p| Prescribed {
+                    displacement: half(self.displacement(p.node, p.dir), p.displacement),
+                    ..*p
                 })
                 .collect(),
             plane_z: match (self.plane, target.plane_z) {
