@@ -468,56 +468,48 @@ impl Solver {
         self.kick_accelerations()
     }
 
-    /// One time step n → n+1, Box 6.1 steps 4-12.
+    /// One time step n → n+1, Box 6.1 steps 4-12. With subcycling (module
+    /// [`crate::fe::solver::subcycle`]) the half-kicks split into closing and opening parts:
+    /// elements due now act with the weight 2^k of their own step, the others not at all until
+    /// their next update.
     pub fn step(&mut self) -> Result<()> {
         self.profile.lap(StepPhase::Outside);
-        if self.sub.is_some() {
-            return self.step_subcycled();
-        }
+        let subcycled = self.sub.is_some();
         // 4. Time update: t^{n+1} = t^n + Δt^{n+1/2}.
         let dt = self.dt_next;
         let t_new = self.t + dt;
         // 5-7 in one pass over the nodes: first partial velocity update
-        // v^{n+1/2} = v^n + (t^{n+1/2} − t^n) a^n, velocity boundary conditions (symmetry
-        // planes), power of f^n at v^{n+1/2} (step 11's first trapezoid end), displacement
-        // update x^{n+1} = x^n + Δt^{n+1/2} v^{n+1/2}.
-        let (p_int_old, p_ext_old) = self.kick_and_drift(dt);
+        // v^{n+1/2} = v^n + (t^{n+1/2} − t^n) a^n (subcycled: the opening half-kick
+        // M⁻¹(f_ext − Σ 2^{k_new} f_e)^n of the nodes kicked last step), velocity boundary
+        // conditions (symmetry planes), power of f^n at v^{n+1/2} (step 11's first trapezoid
+        // end), displacement update x^{n+1} = x^n + Δt^{n+1/2} v^{n+1/2} of every node.
+        let old = if subcycled {
+            self.open_kick_and_drift(dt)
+        } else {
+            self.kick_and_drift(dt)
+        };
         self.t = t_new;
         self.profile.lap(StepPhase::Nodal);
-        // 8. getforce: element loop, interactions, critical time step.
-        self.getforce(dt)?;
-        self.updates += self.model.hexes.len() as u64;
-        // 9-10 in one pass over the nodes: accelerations a^{n+1} = M⁻¹(f_ext − f_int), power of
-        // f^{n+1} at v^{n+1/2} (before the velocity moves on), second partial velocity update
-        // v^{n+1} = v^{n+1/2} + (t^{n+1} − t^{n+1/2}) a^{n+1}, velocity boundary conditions.
-        let (p_int_new, p_ext_new) = self.accelerate_and_kick(dt)?;
+        // 8. getforce: element loop (subcycled: the elements due now, with their own steps),
+        // interactions, critical time step.
+        if subcycled {
+            self.getforce_subcycled(dt)?;
+        } else {
+            self.getforce(dt)?;
+            self.updates += self.model.hexes.len() as u64;
+        }
+        // 9-10 in one pass over the nodes (subcycled: those due now): accelerations
+        // a^{n+1} = M⁻¹(f_ext − f_int) (subcycled: closing and opening, with Σ 2^k f_e), power
+        // of f^{n+1} at v^{n+1/2} (before the velocity moves on), second partial velocity
+        // update v^{n+1} = v^{n+1/2} + (t^{n+1} − t^{n+1/2}) a^{n+1}, velocity boundary
+        // conditions.
+        let new = if subcycled {
+            self.accelerate_and_close_kick(dt)?
+        } else {
+            self.accelerate_and_kick(dt)?
+        };
         // 11-12. Work over the step, energy balance; the caller reads the state between steps.
-        self.close_step(dt, (p_int_old, p_ext_old), (p_int_new, p_ext_new))
-    }
-
-    /// One fine step n → n+1 with subcycling (module [`crate::fe::solver::subcycle`]): Box 6.1 with the
-    /// half-kicks split into closing and opening parts. Elements due now act with the weight
-    /// 2^k of their own step; the others act not at all until their next update.
-    fn step_subcycled(&mut self) -> Result<()> {
-        // 4. Time update with the fine step.
-        let dt = self.dt_next;
-        let t_new = self.t + dt;
-        // 5-7: opening half-kick v^{n+1/2} = v^n + (Δt/2) M⁻¹(f_ext − Σ 2^{k_new} f_e)^n,
-        // velocity boundary conditions and power of the opening forces, in one pass over the
-        // nodes kicked last step (elsewhere a = 0); then the drift of every node,
-        // x^{n+1} = x^n + Δt v^{n+1/2}.
-        let (p_int_old, p_ext_old) = self.open_kick_and_drift(dt);
-        self.t = t_new;
-        self.profile.lap(StepPhase::Nodal);
-        // 8. getforce: elements due now with their own steps, levels and fine step, interactions.
-        self.getforce_subcycled(dt)?;
-        // 9-10 and 11 (first half) in one pass over the nodes due now: closing and opening
-        // accelerations M⁻¹(f_ext − Σ 2^k f_e), power of the closing forces at v^{n+1/2},
-        // closing half-kick v^{n+1} = v^{n+1/2} + (Δt/2) M⁻¹(f_ext − Σ 2^{k_old} f_e)^{n+1},
-        // boundary conditions.
-        let (p_int_new, p_ext_new) = self.accelerate_and_close_kick(dt)?;
-        // 11. Work over the step (the closing and opening forces), energy balance.
-        self.close_step(dt, (p_int_old, p_ext_old), (p_int_new, p_ext_new))
+        self.close_step(dt, old, new)
     }
 
     /// Box 6.1 step 11 for a step of `dt` (s): the work of the internal and external forces

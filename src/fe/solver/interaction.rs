@@ -53,6 +53,18 @@ pub struct ContactState {
     pub contact_radius: f64,
 }
 
+impl ContactState {
+    /// Counts one node in contact: its normal force `force` (N), penalty energy `stored` (J),
+    /// penetration `penetration` (m) and current radius `r` (m).
+    pub fn add_node(&mut self, force: f64, stored: f64, penetration: f64, r: f64) {
+        self.normal_force += force;
+        self.stored += stored;
+        self.active_nodes += 1;
+        self.max_penetration = self.max_penetration.max(penetration);
+        self.contact_radius = self.contact_radius.max(r);
+    }
+}
+
 /// What the loop passes for one node's kick to a kinematic contact: its position x^n (m),
 /// half-step velocity v^{n−1/2} (m/s), lumped mass (kg), and the steps closed and opened (s).
 #[derive(Debug, Clone, Copy)]

@@ -295,12 +295,7 @@ fn plane_x0(
     material: &crate::material::Material,
     params: ContactParams,
 ) -> Result<Built> {
-    let faces = model
-        .part(p)?
-        .face_sets
-        .get("contact")
-        .cloned()
-        .unwrap_or_default();
+    let faces = contact_faces(&model, p)?;
     let plane = RigidPlane::new(
         &model.nodes,
         &model.hexes,
@@ -312,6 +307,16 @@ fn plane_x0(
     )?;
     let probe = plane.probe();
     Ok((model, vec![Box::new(plane)], probe))
+}
+
+/// Part `p`'s face set "contact" (empty when it has none).
+fn contact_faces(model: &Model, p: usize) -> Result<Vec<[u32; 4]>> {
+    Ok(model
+        .part(p)?
+        .face_sets
+        .get("contact")
+        .cloned()
+        .unwrap_or_default())
 }
 
 fn build(
@@ -340,6 +345,16 @@ fn build(
     let centre = |x: f64, u: [f64; 3]| {
         let b = back(u);
         [x + b[0], b[1], b[2]]
+    };
+    // Ball i (0 or 1) on the half or full model from its mesh `m`, centred at (∓r, 0, 0) at
+    // touch, moving with its velocity and spin: its part.
+    let moving = |model: &mut Model, i: usize, m: Mesh| -> Result<usize> {
+        let (name, b, x) = [("ball1", b1, -r1), ("ball2", b2, r2)][i];
+        let at = ([x, 0.0, 0.0], back(kin.u[i]));
+        let p = add_ball(model, (name, b), m, at, red, elastic_only[i], form)?;
+        let c = spin_centre(model, p, touch.w[i], centre(x, kin.u[i]))?;
+        model.set_rigid_velocity(p, kin.u[i], touch.w[i], c)?;
+        Ok(p)
     };
     match red {
         Reduction::Axisymmetric => Err(not_3d()),
@@ -371,67 +386,17 @@ fn build(
             // symmetry plane z = 0) or the whole ball against the frictional wall plane x = 0,
             // penalty of the ball's own stiffness as on the quarter model.
             let m1 = ball_mesh("ball1", b1, cut_of(red))?;
-            let at1 = ([-r1, 0.0, 0.0], back(kin.u[0]));
-            let p1 = add_ball(
-                &mut model,
-                ("ball1", b1),
-                m1,
-                at1,
-                red,
-                elastic_only[0],
-                form,
-            )?;
-            let c1 = spin_centre(&model, p1, touch.w[0], centre(-r1, kin.u[0]))?;
-            model.set_rigid_velocity(p1, kin.u[0], touch.w[0], c1)?;
+            let p1 = moving(&mut model, 0, m1)?;
             params.friction = (mu > 0.0).then(|| CoulombFriction::new(mu));
             plane_x0(model, p1, &b1.material, params)
         }
         Reduction::Half | Reduction::Full => {
             let m1 = ball_mesh("ball1", b1, cut_of(red))?;
             let m2 = ball_mesh("ball2", b2, cut_of(red))?.mirrored_x();
-            let (at1, at2) = (
-                ([-r1, 0.0, 0.0], back(kin.u[0])),
-                ([r2, 0.0, 0.0], back(kin.u[1])),
-            );
-            let p1 = add_ball(
-                &mut model,
-                ("ball1", b1),
-                m1,
-                at1,
-                red,
-                elastic_only[0],
-                form,
-            )?;
-            let p2 = add_ball(
-                &mut model,
-                ("ball2", b2),
-                m2,
-                at2,
-                red,
-                elastic_only[1],
-                form,
-            )?;
-            let c1 = spin_centre(&model, p1, touch.w[0], centre(-r1, kin.u[0]))?;
-            let c2 = spin_centre(&model, p2, touch.w[1], centre(r2, kin.u[1]))?;
-            model.set_rigid_velocity(p1, kin.u[0], touch.w[0], c1)?;
-            model.set_rigid_velocity(p2, kin.u[1], touch.w[1], c2)?;
-            params.friction = if mu > 0.0 {
-                Some(CoulombFriction::new(mu))
-            } else {
-                None
-            };
-            let f1 = model
-                .part(p1)?
-                .face_sets
-                .get("contact")
-                .cloned()
-                .unwrap_or_default();
-            let f2 = model
-                .part(p2)?
-                .face_sets
-                .get("contact")
-                .cloned()
-                .unwrap_or_default();
+            let p1 = moving(&mut model, 0, m1)?;
+            let p2 = moving(&mut model, 1, m2)?;
+            params.friction = (mu > 0.0).then(|| CoulombFriction::new(mu));
+            let (f1, f2) = (contact_faces(&model, p1)?, contact_faces(&model, p2)?);
             let pair = SurfacePair::new(
                 &model.nodes,
                 &model.hexes,

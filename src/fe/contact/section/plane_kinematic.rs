@@ -81,7 +81,7 @@ impl KinematicPlane {
         }
         Ok(KinematicPlane {
             z0,
-            sign: if side == Side::Below { 1.0 } else { -1.0 },
+            sign: side.sign(),
             force: vec![0.0; nodes.len()],
             nodes,
             slot,

@@ -21,6 +21,16 @@ pub enum Side {
     Above,
 }
 
+impl Side {
+    /// +1 below the plane, −1 above: the sign that makes the gap sign·(z₀ − z) positive apart.
+    pub fn sign(self) -> f64 {
+        match self {
+            Side::Below => 1.0,
+            Side::Above => -1.0,
+        }
+    }
+}
+
 /// A rigid plane z = z₀ and the penalty springs of the boundary nodes that may touch it
 /// (one spring per node: the contact area grows ring by ring).
 #[derive(Debug, Clone)]
@@ -116,7 +126,7 @@ impl NodalPlane {
         Ok(NodalPlane {
             state: ContactState::default(),
             z0,
-            sign: if side == Side::Below { 1.0 } else { -1.0 },
+            sign: side.sign(),
             nodes: nh.iter().map(|t| t.0).collect(),
             k: nh.iter().map(|t| fkn * youngs * t.1 / t.2).collect(),
         })
@@ -141,11 +151,7 @@ impl Interaction<2> for NodalPlane {
             let fz = normal_force(k, 0.0, gap, 0.0);
             if fz > 0.0 {
                 f[i][1] -= self.sign * fz;
-                s.normal_force += fz;
-                s.stored += 0.5 * k * gap * gap;
-                s.active_nodes += 1;
-                s.max_penetration = s.max_penetration.max(-gap);
-                s.contact_radius = s.contact_radius.max(x[i][0]);
+                s.add_node(fz, 0.5 * k * gap * gap, -gap, x[i][0]);
             }
         }
         self.state = s;

@@ -110,7 +110,7 @@ impl SegmentPlane {
         }
         Ok(SegmentPlane {
             z0,
-            sign: if side == Side::Below { 1.0 } else { -1.0 },
+            sign: side.sign(),
             rings,
             state: ContactState::default(),
         })

@@ -175,11 +175,7 @@ impl Interaction<2> for SegmentPair {
                     f[s[1]][c] -= xi * fnr * n[c];
                 }
                 // Axial resultant: each pass carries half the pair's force.
-                st.normal_force += fnr * n[1].abs();
-                st.stored += 0.5 * k * g * g;
-                st.active_nodes += 1;
-                st.max_penetration = st.max_penetration.max(-g);
-                st.contact_radius = st.contact_radius.max(x[i][0]);
+                st.add_node(fnr * n[1].abs(), 0.5 * k * g * g, -g, x[i][0]);
             }
         }
         self.state = st;
