@@ -2,7 +2,8 @@
 //! line of centres, so the two balls (or a ball and a wall) deform as bodies of revolution
 //! and the problem is solved on the half-plane r ≥ 0 of the section (r, z).
 //!
-//! - [`solver`]: the model and the explicit loop (Box 6.1), with energy accounting;
+//! - [`solver`]: the model and its phases of the explicit step (Box 6.1, run by
+//!   [`crate::fe::solver::central_difference::step`]), with energy accounting;
 //! - [`subcycle`]: multi-time-step integration (power-of-two step classes, nodal partition);
 //! - [`mass_scaling`]: raised densities of the smallest quads within an added-mass budget.
 //!

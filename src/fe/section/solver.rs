@@ -1,5 +1,5 @@
-//! The explicit loop of the meridian model, step for step Box 6.1 of Belytschko, Liu & Moran
-//! (2000) like the 3D solver: central differences in time, lumped ring masses, v_r = 0 on the
+//! The meridian model and its phases of the explicit step, Box 6.1 of Belytschko, Liu & Moran
+//! (2000) run by the 3D model's own [`central_difference::step`]: central differences in time, lumped ring masses, v_r = 0 on the
 //! axis, internal forces from the quads, contact forces from the two-component
 //! [`Interaction`]s ([`crate::fe::contact::section`]), and the
 //! energy balance (kinetic, internal, plastic, hourglass, contact) checked every step.
@@ -16,6 +16,7 @@ use crate::fe::interaction::{ContactState, Interaction, Kick, StepContext};
 use crate::fe::materials::J2Material;
 use crate::fe::materials::{Hardening, LawDispatch, LawVisitor};
 use crate::fe::simd::{build, Kernel, KernelPath, LaneIsa, LaneKernel};
+use crate::fe::solver::central_difference::{self, CentralDifference};
 
 /// The meridian model: nodes, quads with their materials, initial velocities, supports and
 /// loads. Nodes with r = 0 are on the axis and get v_r = 0.
@@ -454,16 +455,19 @@ impl SectionSolver {
         self.model.time_step_factor * self.element_dt.min(c)
     }
 
-    /// Advances one step. Single rate: Box 6.1, v^{n+1/2} = v^n + Δt/2 a^n,
-    /// x^{n+1} = x^n + Δt v^{n+1/2}, forces at t^{n+1}, v^{n+1} = v^{n+1/2} + Δt/2 a^{n+1}, with
-    /// the stable step of the current configuration. Subcycled: one fine step (see
-    /// [`super::subcycle`]); positions, velocities, internal forces and energies are those of
-    /// the whole model at synchronisations ([`SectionSolver::synchronised`]).
+    /// Advances one step ([`central_difference::step`]). Single rate: Box 6.1,
+    /// v^{n+1/2} = v^n + Δt/2 a^n, x^{n+1} = x^n + Δt v^{n+1/2}, forces at t^{n+1},
+    /// v^{n+1} = v^{n+1/2} + Δt/2 a^{n+1}, with the stable step of the current configuration.
+    /// Subcycled: one fine step (see [`super::subcycle`]); positions, velocities, internal
+    /// forces and energies are those of the whole model at synchronisations
+    /// ([`SectionSolver::synchronised`]).
     pub fn step(&mut self) -> Result<()> {
-        if self.subcycled() {
-            return self.step_subcycled();
-        }
-        let dt = self.dt;
+        central_difference::step(self)
+    }
+
+    /// Single rate, steps 5-7: the opening kick with its boundary conditions, the drift, the
+    /// work of loads and damping with the mid-step velocity and the central kinetic energy.
+    fn kick_and_drift(&mut self, dt: f64) -> StepCarry {
         let n = self.x.len();
         std::mem::swap(&mut self.v_prev, &mut self.v_half);
         for i in 0..n {
@@ -492,8 +496,16 @@ impl SectionSolver {
                 kc += 0.5 * self.mass[i] * (o[0] * v[0] + o[1] * v[1]);
             }
         }
-        self.time += dt;
-        self.steps += 1;
+        StepCarry {
+            ext,
+            kc,
+            next: 0.0,
+            fine: None,
+        }
+    }
+
+    /// Single rate, step 8: the forces at t^{n+1} and the next stable step.
+    fn forces_and_step(&mut self, dt: f64, carry: StepCarry) -> Result<StepCarry> {
         self.forces(dt)?;
         let next = self.stable_step();
         if !next.is_finite() || next <= 0.0 {
@@ -502,16 +514,18 @@ impl SectionSolver {
                 self.time
             )));
         }
-        for i in 0..n {
-            ext += self.kick_constraint(i, dt, next);
+        Ok(StepCarry { next, ..carry })
+    }
+
+    /// Single rate, steps 9-10: the closing kick (and a kinematic contact's correction).
+    fn close_kick(&mut self, dt: f64, mut carry: StepCarry) -> StepCarry {
+        for i in 0..self.x.len() {
+            carry.ext += self.kick_constraint(i, dt, carry.next);
             for c in 0..2 {
                 self.v[i][c] = self.v_half[i][c] + 0.5 * dt * self.a[i][c];
             }
         }
-        self.kinetic_central = if self.steps > 1 { kc } else { self.kinetic() };
-        self.external_work += ext;
-        self.dt = next;
-        Ok(())
+        carry
     }
 
     /// True when every node is at a full step (always, single rate; at the end of each cycle,
@@ -643,6 +657,71 @@ impl SectionSolver {
             (s + self.mass[i] * self.x[i][1], m + self.mass[i])
         });
         s / m
+    }
+}
+
+/// What the phases of one section step hand on: the work of loads, damping and kinematic
+/// contacts (J), the central kinetic energy (J), the next stable step (s) and, subcycled, the
+/// fine step's schedule.
+pub(crate) struct StepCarry {
+    pub(super) ext: f64,
+    pub(super) kc: f64,
+    pub(super) next: f64,
+    pub(super) fine: Option<super::subcycle::FineStep>,
+}
+
+/// The section's phases: single rate here, subcycled by node levels in [`super::subcycle`].
+impl CentralDifference for SectionSolver {
+    type Carry = StepCarry;
+
+    fn time_update(&mut self) -> f64 {
+        self.dt
+    }
+
+    fn first_partial_update(&mut self, dt: f64) -> StepCarry {
+        let carry = if self.subcycled() {
+            self.drift(dt)
+        } else {
+            self.kick_and_drift(dt)
+        };
+        self.time += dt;
+        self.steps += 1;
+        carry
+    }
+
+    fn get_forces(&mut self, dt: f64, carry: StepCarry) -> Result<StepCarry> {
+        if self.subcycled() {
+            self.due_forces(dt, carry)
+        } else {
+            self.forces_and_step(dt, carry)
+        }
+    }
+
+    fn second_partial_update(&mut self, dt: f64, carry: StepCarry) -> Result<StepCarry> {
+        Ok(if self.subcycled() {
+            self.due_kicks(dt, carry)
+        } else {
+            self.close_kick(dt, carry)
+        })
+    }
+
+    fn energy_balance(&mut self, _dt: f64, carry: StepCarry) -> Result<()> {
+        match carry.fine {
+            Some(fine) => {
+                self.external_work += carry.ext;
+                self.close_fine_step(fine);
+            }
+            None => {
+                self.kinetic_central = if self.steps > 1 {
+                    carry.kc
+                } else {
+                    self.kinetic()
+                };
+                self.external_work += carry.ext;
+                self.dt = carry.next;
+            }
+        }
+        Ok(())
     }
 }
 

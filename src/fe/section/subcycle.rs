@@ -12,7 +12,7 @@
 //! element, contact, load and damping forces) at multiples of 2^{L_i} fine steps. Levels and h
 //! are chosen again at every synchronisation (all nodes due), from the limits of that instant.
 
-use super::solver::SectionSolver;
+use super::solver::{SectionSolver, StepCarry};
 use crate::error::{Error, Result};
 
 /// How the section model is integrated in time.
@@ -176,29 +176,44 @@ impl Schedule {
     }
 }
 
+/// One fine step's schedule, handed from its forces to its kicks and close: the cycle's
+/// schedule, whether the step ends the cycle, the level due now, and the next cycle's fine
+/// step (s) and schedule when it ends one (`None` inside: the levels are kept).
+pub(crate) struct FineStep {
+    sched: Schedule,
+    sync: bool,
+    level: usize,
+    next: Option<(f64, Option<Schedule>)>,
+}
+
 impl SectionSolver {
-    /// One fine step of the subcycled integration: drift every node by h v^{n+1/2}, update
-    /// the due quads (step 2^{u_e} h, velocities v^{n+1/2} of their nodes: constant over that
-    /// step since u_e ≤ L_i and levels are aligned), evaluate the contacts, and close and
-    /// reopen the kicks of the due nodes; at the end of a cycle choose h and the levels
-    /// again and refresh the energies.
-    pub(super) fn step_subcycled(&mut self) -> Result<()> {
-        let h = self.dt;
+    /// Steps 5-7 of a fine step: drift every node by h v^{n+1/2} (the kicks are the due
+    /// nodes', after their forces).
+    pub(super) fn drift(&mut self, h: f64) -> StepCarry {
         for (x, v) in self.x.iter_mut().zip(&self.v_half) {
             x[0] += h * v[0];
             x[1] += h * v[1];
         }
-        self.time += h;
-        self.steps += 1;
+        StepCarry {
+            ext: 0.0,
+            kc: 0.0,
+            next: 0.0,
+            fine: None,
+        }
+    }
+
+    /// Step 8 of a fine step: update the due quads (step 2^{u_e} h, velocities v^{n+1/2} of
+    /// their nodes: constant over that step since u_e ≤ L_i and levels are aligned), evaluate
+    /// the contacts, and at the end of a cycle plan the next one.
+    pub(super) fn due_forces(&mut self, h: f64, carry: StepCarry) -> Result<StepCarry> {
         let mut sched = std::mem::take(&mut self.schedule);
         sched.count += 1;
         let sync = sched.count >= sched.cycle();
-        let z = sched.due_level(sched.count) as usize;
-        let due_nodes = &sched.nodes[..sched.node_end[z]];
-        for &i in due_nodes {
+        let level = sched.due_level(sched.count) as usize;
+        for &i in &sched.nodes[..sched.node_end[level]] {
             self.f_int[i as usize] = [0.0; 2];
         }
-        let due_elements = &sched.elements[..sched.element_end[z]];
+        let due_elements = &sched.elements[..sched.element_end[level]];
         self.update_elements(due_elements, &sched.element_level, h)?;
         self.element_updates += due_elements.len() as u64;
         self.contact_forces()?;
@@ -209,9 +224,24 @@ impl SectionSolver {
         } else {
             None
         };
+        Ok(StepCarry {
+            fine: Some(FineStep {
+                sched,
+                sync,
+                level,
+                next,
+            }),
+            ..carry
+        })
+    }
+
+    /// Steps 9-10 of a fine step: close and reopen the kicks of the due nodes.
+    pub(super) fn due_kicks(&mut self, h: f64, mut carry: StepCarry) -> StepCarry {
+        let fine = carry.fine.take().expect("due_forces ran");
+        let sched = &fine.sched;
         let alpha = self.model.damping;
-        let mut ext = 0.0;
-        for &i in due_nodes {
+        let mut ext = carry.ext;
+        for &i in &sched.nodes[..sched.node_end[fine.level]] {
             let i = i as usize;
             let big = f64::from(1u32 << sched.node_level[i]) * h;
             let vh = self.v_half[i];
@@ -223,7 +253,7 @@ impl SectionSolver {
                 ext += big * vh[c] * (self.model.loads[i][c] - alpha * self.mass[i] * vh[c]);
             }
             self.constrain_acceleration(i);
-            let open = match &next {
+            let open = match &fine.next {
                 Some((h2, Some(s2))) => f64::from(1u32 << s2.node_level[i]) * h2,
                 Some((h2, None)) => f64::from(1u32 << sched.node_level[i]) * h2,
                 None => big,
@@ -232,21 +262,27 @@ impl SectionSolver {
             for c in 0..2 {
                 self.v[i][c] = vh[c] + 0.5 * big * self.a[i][c];
             }
-            if !sync {
+            if !fine.sync {
                 self.open_kick(i, big);
             }
         }
-        self.external_work += ext;
+        StepCarry {
+            ext,
+            fine: Some(fine),
+            ..carry
+        }
+    }
+
+    /// Step 12 of a fine step: at the end of a cycle choose h and the levels again and
+    /// refresh the energies.
+    pub(super) fn close_fine_step(&mut self, fine: FineStep) {
+        let FineStep { sched, next, .. } = fine;
         match next {
             Some((h2, s2)) => {
                 let s2 = s2.unwrap_or(Schedule { count: 0, ..sched });
                 self.start_cycle(h2, s2);
-                Ok(())
             }
-            None => {
-                self.schedule = sched;
-                Ok(())
-            }
+            None => self.schedule = sched,
         }
     }
 

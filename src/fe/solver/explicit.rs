@@ -12,6 +12,7 @@ use crate::fe::{
     model::Model,
     simd::rows::Rows4,
     simd::KernelPath,
+    solver::central_difference::{self, CentralDifference},
     solver::energy::{EnergyReport, PartEnergy},
     solver::interaction::{Interaction, StepContext},
     solver::mass::element_lumped_mass,
@@ -468,48 +469,12 @@ impl Solver {
         self.kick_accelerations()
     }
 
-    /// One time step n → n+1, Box 6.1 steps 4-12. With subcycling (module
-    /// [`crate::fe::solver::subcycle`]) the half-kicks split into closing and opening parts:
-    /// elements due now act with the weight 2^k of their own step, the others not at all until
-    /// their next update.
+    /// One time step n → n+1, Box 6.1 steps 4-12 ([`central_difference::step`]). With
+    /// subcycling (module [`crate::fe::solver::subcycle`]) the half-kicks split into closing
+    /// and opening parts: elements due now act with the weight 2^k of their own step, the
+    /// others not at all until their next update.
     pub fn step(&mut self) -> Result<()> {
-        self.profile.lap(StepPhase::Outside);
-        let subcycled = self.sub.is_some();
-        // 4. Time update: t^{n+1} = t^n + Δt^{n+1/2}.
-        let dt = self.dt_next;
-        let t_new = self.t + dt;
-        // 5-7 in one pass over the nodes: first partial velocity update
-        // v^{n+1/2} = v^n + (t^{n+1/2} − t^n) a^n (subcycled: the opening half-kick
-        // M⁻¹(f_ext − Σ 2^{k_new} f_e)^n of the nodes kicked last step), velocity boundary
-        // conditions (symmetry planes), power of f^n at v^{n+1/2} (step 11's first trapezoid
-        // end), displacement update x^{n+1} = x^n + Δt^{n+1/2} v^{n+1/2} of every node.
-        let old = if subcycled {
-            self.open_kick_and_drift(dt)
-        } else {
-            self.kick_and_drift(dt)
-        };
-        self.t = t_new;
-        self.profile.lap(StepPhase::Nodal);
-        // 8. getforce: element loop (subcycled: the elements due now, with their own steps),
-        // interactions, critical time step.
-        if subcycled {
-            self.getforce_subcycled(dt)?;
-        } else {
-            self.getforce(dt)?;
-            self.updates += self.model.hexes.len() as u64;
-        }
-        // 9-10 in one pass over the nodes (subcycled: those due now): accelerations
-        // a^{n+1} = M⁻¹(f_ext − f_int) (subcycled: closing and opening, with Σ 2^k f_e), power
-        // of f^{n+1} at v^{n+1/2} (before the velocity moves on), second partial velocity
-        // update v^{n+1} = v^{n+1/2} + (t^{n+1} − t^{n+1/2}) a^{n+1}, velocity boundary
-        // conditions.
-        let new = if subcycled {
-            self.accelerate_and_close_kick(dt)?
-        } else {
-            self.accelerate_and_kick(dt)?
-        };
-        // 11-12. Work over the step, energy balance; the caller reads the state between steps.
-        self.close_step(dt, old, new)
+        central_difference::step(self)
     }
 
     /// Box 6.1 step 11 for a step of `dt` (s): the work of the internal and external forces
@@ -1245,6 +1210,60 @@ impl Solver {
             .position(|b| e >= b.first && e < b.first + b.conn.len())
             .expect("element index in range");
         (b, e - self.blocks[b].first)
+    }
+}
+
+/// The 3D model's phases: single rate, or subcycled by element levels.
+impl CentralDifference for Solver {
+    /// The powers of the internal and external forces (W) at the step's start and end.
+    type Carry = [(f64, f64); 2];
+
+    fn time_update(&mut self) -> f64 {
+        self.profile.lap(StepPhase::Outside);
+        self.dt_next
+    }
+
+    /// One pass over the nodes (subcycled: the opening half-kick M⁻¹(f_ext − Σ 2^{k_new}
+    /// f_e)^n of the nodes kicked last step), the power of f^n at v^{n+1/2} (step 11's first
+    /// trapezoid end), then the drift of every node.
+    fn first_partial_update(&mut self, dt: f64) -> Self::Carry {
+        let t_new = self.t + dt;
+        let old = if self.sub.is_some() {
+            self.open_kick_and_drift(dt)
+        } else {
+            self.kick_and_drift(dt)
+        };
+        self.t = t_new;
+        self.profile.lap(StepPhase::Nodal);
+        [old, (0.0, 0.0)]
+    }
+
+    /// Element loop (subcycled: the elements due now, with their own steps), interactions,
+    /// critical time step.
+    fn get_forces(&mut self, dt: f64, carry: Self::Carry) -> Result<Self::Carry> {
+        if self.sub.is_some() {
+            self.getforce_subcycled(dt)?;
+        } else {
+            self.getforce(dt)?;
+            self.updates += self.model.hexes.len() as u64;
+        }
+        Ok(carry)
+    }
+
+    /// One pass over the nodes (subcycled: those due now, with closing and opening
+    /// accelerations of Σ 2^k f_e), with the power of f^{n+1} at v^{n+1/2} taken before the
+    /// velocity moves on.
+    fn second_partial_update(&mut self, dt: f64, carry: Self::Carry) -> Result<Self::Carry> {
+        let new = if self.sub.is_some() {
+            self.accelerate_and_close_kick(dt)?
+        } else {
+            self.accelerate_and_kick(dt)?
+        };
+        Ok([carry[0], new])
+    }
+
+    fn energy_balance(&mut self, dt: f64, carry: Self::Carry) -> Result<()> {
+        self.close_step(dt, carry[0], carry[1])
     }
 }
 
