@@ -25,6 +25,20 @@ pub enum BenchKind {
     Machine(MachineArgs),
     /// Run time against error on a ladder of meshes, elements and time-step factors.
     Study(super::bench_study::StudyArgs),
+    /// Chung & Ooi's DEM benchmark tests (verification/dem-benchmarks/) by converged FE,
+    /// beside Hertz and Maw, Barber & Fawcett's theory: one report.
+    Dem(DemArgs),
+}
+
+/// Arguments of `twoball bench dem`.
+#[derive(Debug, Args)]
+pub struct DemArgs {
+    /// Folder for report.md and cases.csv (written whole at the end; none without it).
+    #[arg(long)]
+    pub out: Option<std::path::PathBuf>,
+    /// Run only the cases whose names start with one of these (e.g. test1, test4-alumina@30).
+    #[arg(long, num_args = 1..)]
+    pub only: Vec<String>,
 }
 
 /// Arguments of `twoball bench kernel`.
@@ -130,5 +144,6 @@ pub fn run(a: BenchArgs) -> Result<()> {
             crate::study::bench::machine::machine(m.repeats, &mut std::io::stdout().lock())
         }
         BenchKind::Study(s) => super::bench_study::run(s),
+        BenchKind::Dem(d) => crate::study::bench::dem::bench(&d.only, d.out.as_deref()).map(|_| ()),
     }
 }

@@ -27,6 +27,7 @@ mod contact_hertz;
 mod contact_oblique;
 mod contact_static_hertz;
 mod damper;
+mod dem_benchmarks;
 mod dem_exports;
 mod edge_band;
 mod error_estimate;

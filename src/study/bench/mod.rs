@@ -15,6 +15,7 @@
 //! governed mostly by the pole size; extra "pole refinement" runs (pole size D/(100 m k) at
 //! the middle density) show what a finer pole alone buys, judged against the same reference.
 
+pub mod dem;
 pub mod kernel;
 pub mod machine;
 pub mod profile;
