@@ -7,12 +7,15 @@
 //! impact between two identical balls run on the 3D half model with the two-level bar and are
 //! set beside Maw, Barber & Fawcett's elastic theory.
 
+use crate::analytic::laws::Registry;
 use crate::atomic::{ensure_dir, write_atomic};
 use crate::error::{Error, Result};
+use crate::scene::{approach, Approach};
 use crate::scene::{Override, Scene};
 use crate::study::convergence::ladder::LadderPlan;
 use crate::study::convergence::scene_estimate::run_scene_with_estimate;
 use crate::study::records::estimate::Estimate;
+use crate::study::run::law_compare::{tangential_laws, TangentialLawOutcome};
 use crate::study::run::scene::RunReport;
 use crate::study::run::simulation::RunOptions;
 use std::fmt::Write as _;
@@ -165,6 +168,8 @@ pub struct DemRow {
     pub spin_after: (f64, f64, f64),
     /// Rebound angle with its bar and the theory's, rad.
     pub rebound_angle: (f64, f64, f64),
+    /// Every tangential law with Hertz along the normal (oblique cases; empty head-on).
+    pub laws: Vec<TangentialLawOutcome>,
     /// Wall time of the case, s.
     pub wall_time: f64,
 }
@@ -174,8 +179,9 @@ fn bar(e: Option<&Estimate>) -> f64 {
     e.map_or(f64::NAN, |e| e.error)
 }
 
-/// The row of `case` from its report `r` and wall time `wall` (s).
-pub fn row(case: &DemCase, r: &RunReport, wall: f64) -> DemRow {
+/// The row of `case` from its report `r`, its tangential laws `laws` and wall time `wall`
+/// (s).
+pub fn row(case: &DemCase, r: &RunReport, laws: Vec<TangentialLawOutcome>, wall: f64) -> DemRow {
     let est = r.error_estimate.as_ref();
     let an = r.analytic.as_ref();
     let tan = r.tangential.as_ref();
@@ -211,6 +217,7 @@ pub fn row(case: &DemCase, r: &RunReport, wall: f64) -> DemRow {
             bar(t_est.map(|t| &t.rebound_angle)),
             theory.map_or(nan, |t| t.rebound_angle),
         ),
+        laws,
         wall_time: wall,
     }
 }
@@ -226,6 +233,10 @@ pub fn run(cases: &[DemCase]) -> Result<Vec<DemRow>> {
         let start = Instant::now();
         let r = run_scene_with_estimate(&c.scene, &opts, c.plan)
             .map_err(|e| Error::Numerical(format!("bench dem, case {}: {e}", c.name)))?;
+        let laws = match (c.angle, approach(&c.scene)?) {
+            (Some(_), Approach::Impact(touch)) => tangential_laws(&c.scene, &touch)?,
+            _ => Vec::new(),
+        };
         let wall = start.elapsed().as_secs_f64();
         eprintln!(
             "bench dem: {}/{} {} in {wall:.1} s",
@@ -233,7 +244,7 @@ pub fn run(cases: &[DemCase]) -> Result<Vec<DemRow>> {
             cases.len(),
             c.name
         );
-        rows.push(row(c, &r, wall));
+        rows.push(row(c, &r, laws, wall));
     }
     Ok(rows)
 }
@@ -250,7 +261,8 @@ fn with_bar(v: f64, b: f64, digits: usize) -> String {
 /// `v` to `digits` significant digits, `-` when not a number.
 fn plain(v: f64, digits: usize) -> String {
     if v.is_finite() {
-        format!("{v:.digits$e}")
+        // + 0.0: a negative zero prints as 0.
+        format!("{:.digits$e}", v + 0.0)
     } else {
         "-".into()
     }
@@ -302,7 +314,7 @@ pub fn report(rows: &[DemRow], total: f64) -> String {
         s.push_str("## Oblique tests against Maw, Barber & Fawcett\n\n");
         s.push_str("| case | e_t FE | e_t theory | ω₁ after FE (rad/s) | theory | rebound FE (rad) | theory |\n");
         s.push_str("|---|---|---|---|---|---|---|\n");
-        for r in oblique {
+        for r in &oblique {
             let (t, w, a) = (r.tangential_restitution, r.spin_after, r.rebound_angle);
             let _ = writeln!(
                 s,
@@ -317,7 +329,47 @@ pub fn report(rows: &[DemRow], total: f64) -> String {
             );
         }
         s.push('\n');
+        s.push_str(&law_table(&oblique));
     }
+    s
+}
+
+/// The oblique cases' tangential laws (Hertz along the normal): e_t and ω₁ after (rad/s)
+/// of each, beside the FE's.
+fn law_table(rows: &[&DemRow]) -> String {
+    let Some(first) = rows.iter().find(|r| !r.laws.is_empty()) else {
+        return String::new();
+    };
+    let mut s = String::from(
+        "## The DEM tangential laws on the same impacts\n\n\
+         Each built-in tangential law with Hertz along the normal (`twoball laws run`): the \
+         contact point's e_t and ω₁ after (rad/s), beside the FE's.\n\n| case | FE |",
+    );
+    for l in &first.laws {
+        let _ = write!(s, " {} |", l.law);
+    }
+    s.push_str("\n|---|---|");
+    s.push_str(&"---|".repeat(first.laws.len()));
+    s.push('\n');
+    for r in rows {
+        let _ = write!(
+            s,
+            "| {} | {} / {} |",
+            r.name,
+            plain(r.tangential_restitution.0, 3),
+            plain(r.spin_after.0, 3)
+        );
+        for l in &r.laws {
+            let _ = write!(
+                s,
+                " {} / {} |",
+                plain(l.restitution, 3),
+                plain(l.spin1_after, 3)
+            );
+        }
+        s.push('\n');
+    }
+    s.push('\n');
     s
 }
 
@@ -328,11 +380,20 @@ pub fn csv(rows: &[DemRow]) -> String {
          contact_duration_s,contact_duration_bar_s,contact_duration_hertz_s,\
          tangential_restitution,tangential_restitution_bar,tangential_restitution_theory,\
          spin1_after_rad_per_s,spin1_after_bar_rad_per_s,spin1_after_theory_rad_per_s,\
-         rebound_angle_rad,rebound_angle_bar_rad,rebound_angle_theory_rad,wall_time_s\n",
+         rebound_angle_rad,rebound_angle_bar_rad,rebound_angle_theory_rad,wall_time_s",
     );
+    let names: Vec<&str> = Registry::builtin()
+        .tangential
+        .iter()
+        .map(|t| t.name)
+        .collect();
+    for n in &names {
+        let _ = write!(s, ",{n}_tangential_restitution,{n}_spin1_after_rad_per_s");
+    }
+    s.push('\n');
     let f = |v: f64| {
         if v.is_finite() {
-            format!("{v:?}")
+            format!("{:?}", v + 0.0)
         } else {
             String::new()
         }
@@ -359,7 +420,12 @@ pub fn csv(rows: &[DemRow]) -> String {
             r.rebound_angle.2,
             r.wall_time,
         ];
-        let line: Vec<String> = cells.iter().map(|&v| f(v)).collect();
+        let mut line: Vec<String> = cells.iter().map(|&v| f(v)).collect();
+        for n in &names {
+            let l = r.laws.iter().find(|l| l.law == *n);
+            line.push(f(l.map_or(f64::NAN, |l| l.restitution)));
+            line.push(f(l.map_or(f64::NAN, |l| l.spin1_after)));
+        }
         let _ = writeln!(s, "{},{}", r.name, line.join(","));
     }
     s
@@ -414,6 +480,36 @@ mod tests {
         assert!((a[0] + b[0]).abs() < 1e-12 && (a[1] + b[1]).abs() < 1e-12);
         assert!(((a[0] - b[0]).hypot(a[1] - b[1]) - 3.9).abs() < 1e-12);
         assert_eq!(cases(&["test2".into()]).unwrap().len(), 2);
+    }
+
+    #[test]
+    fn in_gross_sliding_the_coulomb_law_is_the_rigid_body_exchange() {
+        // Test 4 at 80 degrees slides throughout: the contact point's slip falls by
+        // (1 + mR²/I) μ (1 + e) v_n with e = 1 (Hertz), so e_t = −(1 − 7 μ v_n / v_t), and
+        // the spin by (5/2) μ (1 + e) v_n / R.
+        let c = &cases(&["test4-alumina@80".into()]).unwrap()[0];
+        let Approach::Impact(touch) = approach(&c.scene).unwrap() else {
+            panic!("no impact")
+        };
+        let laws = tangential_laws(&c.scene, &touch).unwrap();
+        let coulomb = laws.iter().find(|l| l.law == "coulomb").unwrap();
+        let (vn, vt, mu, r) = (
+            3.9 * 80f64.to_radians().cos(),
+            3.9 * 80f64.to_radians().sin(),
+            0.092,
+            0.0025,
+        );
+        let et = -(1.0 - 7.0 * mu * vn / vt);
+        assert!(
+            (coulomb.restitution - et).abs() < 1e-4,
+            "{coulomb:?} against {et}"
+        );
+        let spin = -2.5 * mu * 2.0 * vn / r;
+        assert!(
+            (coulomb.spin1_after / spin - 1.0).abs() < 1e-4,
+            "{coulomb:?} against {spin}"
+        );
+        assert_eq!(laws.len(), Registry::builtin().tangential.len());
     }
 
     #[test]

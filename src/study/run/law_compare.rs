@@ -91,6 +91,56 @@ pub fn compare_laws(scene: &Scene, touch: &Touch) -> Result<Vec<LawOutcome>> {
         .collect()
 }
 
+/// One tangential law's answer for an oblique impact, with Hertz along the normal.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct TangentialLawOutcome {
+    /// Tangential law name.
+    pub law: String,
+    /// Tangential restitution −u⁺/u⁻ of the contact points, - (NaN without slip at touch).
+    pub restitution: f64,
+    /// Ball 1's spin after the impact about the contact frame's z axis, rad/s.
+    pub spin1_after: f64,
+}
+
+/// Every built-in tangential law integrated, with Hertz along the normal, on the balls of
+/// `scene` at first touch `touch` (the velocities in its contact frame, the scene's kinetic
+/// friction coefficient; a `[wall]` scene's partner the rigid half-space at rest), in the
+/// registry's order. Errors: an integration that fails (named by the law).
+pub fn tangential_laws(scene: &Scene, touch: &Touch) -> Result<Vec<TangentialLawOutcome>> {
+    let b1 = Body::ball(scene.ball1.material, scene.ball1.diameter, "ball1")?;
+    let (mu, _) = scene.friction_coefficients();
+    let [a, b] = touch.v;
+    let (b2, b) = crate::study::records::outcome::analytic_partner(scene, b)?;
+    let pair = ContactPair::between(&b1, &b2, mu);
+    let registry = Registry::builtin();
+    let (n, _) = registry.build_normal("hertz", &[], &pair)?;
+    registry
+        .tangential
+        .iter()
+        .map(|spec| {
+            let (t, _) = registry.build_tangential(spec.name, &[], &pair)?;
+            let i = integrate(
+                &b1,
+                &b2,
+                [a[0], a[1]],
+                [b[0], b[1]],
+                n.as_ref(),
+                t.as_ref(),
+                DEFAULT_TOLERANCE,
+            )
+            .map_err(|e| Error::Numerical(format!("law {}: {e}", spec.name)))?
+            .ok_or_else(|| {
+                Error::Numerical(format!("law {}: the balls do not approach", spec.name))
+            })?;
+            Ok(TangentialLawOutcome {
+                law: spec.name.to_string(),
+                restitution: i.tangential_restitution().unwrap_or(f64::NAN),
+                spin1_after: i.spin_after[0],
+            })
+        })
+        .collect()
+}
+
 /// The printed table of the compared laws (empty string without laws).
 pub fn law_table(laws: &[LawOutcome]) -> String {
     let Some(first) = laws.first() else {
