@@ -2,8 +2,8 @@
 //! speeds at first touch (the quantities `twoball laws run` gives), for results.json and the
 //! printed summary.
 
-use crate::analytic::impact::{integrate, DEFAULT_TOLERANCE};
-use crate::analytic::laws::{ContactPair, Registry};
+use crate::analytic::impact::{integrate, LawImpact, DEFAULT_TOLERANCE};
+use crate::analytic::laws::{ContactPair, NormalLaw, Registry, TangentialLaw};
 use crate::analytic::Body;
 use crate::error::{Error, Result};
 use crate::scene::{Scene, Touch};
@@ -33,6 +33,48 @@ pub struct LawOutcome {
     pub warning: Option<String>,
 }
 
+/// The analytical bodies of a scene at first touch: ball 1, its partner (ball 2, or a
+/// `[wall]` scene's half-space at rest), their velocities in the contact frame (m/s) and the
+/// contact pair with the scene's kinetic friction coefficient.
+struct Bodies {
+    b1: Body,
+    b2: Body,
+    v: [[f64; 3]; 2],
+    pair: ContactPair,
+}
+
+/// [`Bodies`] of `scene` at `touch`; errors: a ball or partner the analytical model refuses.
+fn bodies(scene: &Scene, touch: &Touch) -> Result<Bodies> {
+    let b1 = Body::ball(scene.ball1.material, scene.ball1.diameter, "ball1")?;
+    let (mu, _) = scene.friction_coefficients();
+    let [a, b] = touch.v;
+    let (b2, b) = crate::study::records::outcome::analytic_partner(scene, b)?;
+    let pair = ContactPair::between(&b1, &b2, mu);
+    Ok(Bodies {
+        b1,
+        b2,
+        v: [a, b],
+        pair,
+    })
+}
+
+/// The impact of `b1` and `b2` at contact-frame velocities `v` (m/s; normal, tangential
+/// first) under laws `n` and `t`; errors name the law `name` (an integration that fails, or
+/// balls that do not approach).
+fn impact(
+    b1: &Body,
+    b2: &Body,
+    v: [[f64; 3]; 2],
+    n: &dyn NormalLaw,
+    t: &dyn TangentialLaw,
+    name: &str,
+) -> Result<LawImpact> {
+    let [a, b] = v;
+    integrate(b1, b2, [a[0], a[1]], [b[0], b[1]], n, t, DEFAULT_TOLERANCE)
+        .map_err(|e| Error::Numerical(format!("law {name}: {e}")))?
+        .ok_or_else(|| Error::Numerical(format!("law {name}: the balls do not approach")))
+}
+
 /// Integrates every law of `scene.laws` on the balls of `scene` with the velocities (normal,
 /// tangential) in the contact frame of `touch` and the scene's kinetic friction coefficient;
 /// a `[wall]` scene's partner is the rigid half-space at rest.
@@ -42,11 +84,7 @@ pub fn compare_laws(scene: &Scene, touch: &Touch) -> Result<Vec<LawOutcome>> {
     if scene.laws.laws.is_empty() {
         return Ok(Vec::new());
     }
-    let b1 = Body::ball(scene.ball1.material, scene.ball1.diameter, "ball1")?;
-    let (mu, _) = scene.friction_coefficients();
-    let [a, b] = touch.v;
-    let (b2, b) = crate::study::records::outcome::analytic_partner(scene, b)?;
-    let pair = ContactPair::between(&b1, &b2, mu);
+    let Bodies { b1, b2, v, pair } = bodies(scene, touch)?;
     let registry = Registry::builtin();
     let tangential = &scene.laws.tangential;
     let (t, _) = registry
@@ -60,19 +98,7 @@ pub fn compare_laws(scene: &Scene, touch: &Touch) -> Result<Vec<LawOutcome>> {
             let (n, p) = registry
                 .build_normal(&l.name, &l.params, &pair)
                 .map_err(|e| e.map_field(|f| format!("laws.params.{f}")))?;
-            let i = integrate(
-                &b1,
-                &b2,
-                [a[0], a[1]],
-                [b[0], b[1]],
-                n.as_ref(),
-                t.as_ref(),
-                DEFAULT_TOLERANCE,
-            )
-            .map_err(|e| Error::Numerical(format!("law {}: {e}", l.name)))?
-            .ok_or_else(|| {
-                Error::Numerical(format!("law {}: the balls do not approach", l.name))
-            })?;
+            let i = impact(&b1, &b2, v, n.as_ref(), t.as_ref(), &l.name)?;
             let spec = registry.normal(&l.name)?;
             let warning =
                 spec.validity
@@ -107,11 +133,7 @@ pub struct TangentialLawOutcome {
 /// friction coefficient; a `[wall]` scene's partner the rigid half-space at rest), in the
 /// registry's order. Errors: an integration that fails (named by the law).
 pub fn tangential_laws(scene: &Scene, touch: &Touch) -> Result<Vec<TangentialLawOutcome>> {
-    let b1 = Body::ball(scene.ball1.material, scene.ball1.diameter, "ball1")?;
-    let (mu, _) = scene.friction_coefficients();
-    let [a, b] = touch.v;
-    let (b2, b) = crate::study::records::outcome::analytic_partner(scene, b)?;
-    let pair = ContactPair::between(&b1, &b2, mu);
+    let Bodies { b1, b2, v, pair } = bodies(scene, touch)?;
     let registry = Registry::builtin();
     let (n, _) = registry.build_normal("hertz", &[], &pair)?;
     registry
@@ -119,19 +141,7 @@ pub fn tangential_laws(scene: &Scene, touch: &Touch) -> Result<Vec<TangentialLaw
         .iter()
         .map(|spec| {
             let (t, _) = registry.build_tangential(spec.name, &[], &pair)?;
-            let i = integrate(
-                &b1,
-                &b2,
-                [a[0], a[1]],
-                [b[0], b[1]],
-                n.as_ref(),
-                t.as_ref(),
-                DEFAULT_TOLERANCE,
-            )
-            .map_err(|e| Error::Numerical(format!("law {}: {e}", spec.name)))?
-            .ok_or_else(|| {
-                Error::Numerical(format!("law {}: the balls do not approach", spec.name))
-            })?;
+            let i = impact(&b1, &b2, v, n.as_ref(), t.as_ref(), spec.name)?;
             Ok(TangentialLawOutcome {
                 law: spec.name.to_string(),
                 restitution: i.tangential_restitution().unwrap_or(f64::NAN),
