@@ -249,6 +249,15 @@ pub fn run(cases: &[DemCase]) -> Result<Vec<DemRow>> {
     Ok(rows)
 }
 
+/// "1 case", "n cases".
+fn count(n: usize) -> String {
+    if n == 1 {
+        "1 case".into()
+    } else {
+        format!("{n} cases")
+    }
+}
+
 /// A value with its bar to `digits` significant digits, `-` when not a number.
 fn with_bar(v: f64, b: f64, digits: usize) -> String {
     match (v.is_finite(), b.is_finite()) {
@@ -284,9 +293,9 @@ pub fn report(rows: &[DemRow], total: f64) -> String {
     let mut s = String::from("# Chung & Ooi's DEM benchmark tests by converged FE\n\n");
     let _ = writeln!(
         s,
-        "`twoball bench dem`: {} cases in {total:.0} s. Scenes and their sources: \
+        "`twoball bench dem`: {} in {total:.0} s. Scenes and their sources: \
          verification/dem-benchmarks/README.md.\n",
-        rows.len()
+        count(rows.len())
     );
     let normal: Vec<_> = rows.iter().filter(|r| r.angle.is_nan()).collect();
     if !normal.is_empty() {
@@ -454,7 +463,7 @@ pub fn bench(only: &[String], out: Option<&Path>) -> Result<Vec<DemRow>> {
         write_atomic(dir.join("report.md"), text.as_bytes())?;
     }
     print!("{text}");
-    println!("bench dem: {} cases in {total:.1} s", rows.len());
+    println!("bench dem: {} in {total:.1} s", count(rows.len()));
     Ok(rows)
 }
 
