@@ -706,18 +706,15 @@ impl CentralDifference for SectionSolver {
     }
 
     fn energy_balance(&mut self, _dt: f64, carry: StepCarry) -> Result<()> {
+        self.external_work += carry.ext;
         match carry.fine {
-            Some(fine) => {
-                self.external_work += carry.ext;
-                self.close_fine_step(fine);
-            }
+            Some(fine) => self.close_fine_step(fine),
             None => {
                 self.kinetic_central = if self.steps > 1 {
                     carry.kc
                 } else {
                     self.kinetic()
                 };
-                self.external_work += carry.ext;
                 self.dt = carry.next;
             }
         }

@@ -15,6 +15,7 @@ use crate::scene::{Override, Scene};
 use crate::study::convergence::ladder::LadderPlan;
 use crate::study::convergence::scene_estimate::run_scene_with_estimate;
 use crate::study::records::estimate::Estimate;
+use crate::study::records::number::sci;
 use crate::study::run::law_compare::{tangential_laws, TangentialLawOutcome};
 use crate::study::run::scene::RunReport;
 use crate::study::run::simulation::RunOptions;
@@ -231,8 +232,11 @@ pub fn run(cases: &[DemCase]) -> Result<Vec<DemRow>> {
     let mut rows = Vec::with_capacity(cases.len());
     for (k, c) in cases.iter().enumerate() {
         let start = Instant::now();
-        let r = run_scene_with_estimate(&c.scene, &opts, c.plan)
-            .map_err(|e| Error::Numerical(format!("bench dem, case {}: {e}", c.name)))?;
+        // An interruption passes as it is; any other failure names its case.
+        let r = run_scene_with_estimate(&c.scene, &opts, c.plan).map_err(|e| match e {
+            Error::Interrupted(_) => e,
+            e => Error::Numerical(format!("bench dem, case {}: {e}", c.name)),
+        })?;
         let laws = match (c.angle, approach(&c.scene)?) {
             (Some(_), Approach::Impact(touch)) => tangential_laws(&c.scene, &touch)?,
             _ => Vec::new(),
@@ -260,18 +264,17 @@ fn count(n: usize) -> String {
 
 /// A value with its bar to `digits` significant digits, `-` when not a number.
 fn with_bar(v: f64, b: f64, digits: usize) -> String {
-    match (v.is_finite(), b.is_finite()) {
-        (false, _) => "-".into(),
-        (true, false) => format!("{v:.digits$e}"),
-        (true, true) => format!("{v:.digits$e} ± {b:.1e}"),
+    if b.is_finite() && v.is_finite() {
+        format!("{} ± {}", sci(v, digits), sci(b, 1))
+    } else {
+        plain(v, digits)
     }
 }
 
 /// `v` to `digits` significant digits, `-` when not a number.
 fn plain(v: f64, digits: usize) -> String {
     if v.is_finite() {
-        // + 0.0: a negative zero prints as 0.
-        format!("{:.digits$e}", v + 0.0)
+        sci(v, digits)
     } else {
         "-".into()
     }
@@ -441,7 +444,7 @@ pub fn csv(rows: &[DemRow]) -> String {
 }
 
 /// Runs the cases named by `only` (all when empty) and writes `report.md` and `cases.csv`
-/// into `out` (both whole, or neither); prints the report and the wall time. Fails on a bad
+/// into `out` (each whole: written aside and renamed); prints the report and the wall time. Fails on a bad
 /// `only` (no case matches), a failed case, or an unwritable folder.
 pub fn bench(only: &[String], out: Option<&Path>) -> Result<Vec<DemRow>> {
     let cases = cases(only)?;
