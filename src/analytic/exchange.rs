@@ -22,18 +22,32 @@ pub struct Exchange {
 /// tangential]`, m/s, no spin before). Friction −J_t t at +R₁ n on ball 1 and +J_t t at −R₂ n
 /// on ball 2 spin both by −R J_t/I. A wall (infinite mass) keeps its velocity and no spin.
 pub fn exchange(b1: &Body, b2: &Body, v1: [f64; 2], v2: [f64; 2], jn: f64, jt: f64) -> Exchange {
+    exchange_spinning(b1, b2, v1, v2, [0.0; 2], jn, jt)
+}
+
+/// [`exchange`] for balls spinning at `w` (rad/s, about n × t; a wall's entry is ignored)
+/// before the impact: each spin changes by −R J_t/I from its own.
+pub fn exchange_spinning(
+    b1: &Body,
+    b2: &Body,
+    v1: [f64; 2],
+    v2: [f64; 2],
+    w: [f64; 2],
+    jn: f64,
+    jt: f64,
+) -> Exchange {
     let (m1, m2) = (b1.mass(), b2.mass());
     let v1_after = [v1[0] - jn / m1, v1[1] - jt / m1];
     let v2_after = [v2[0] + jn / m2, v2[1] + jt / m2];
-    let spin = |b: &Body| {
+    let spin = |b: &Body, w: f64| {
         if b.is_wall() {
             0.0
         } else {
             // + 0.0 turns −0 into 0 for printing.
-            -b.radius() * jt / b.moment_of_inertia() + 0.0
+            w + (-b.radius() * jt / b.moment_of_inertia() + 0.0)
         }
     };
-    let spin_after = [spin(b1), spin(b2)];
+    let spin_after = [spin(b1, w[0]), spin(b2, w[1])];
     let rot = |b: &Body, w: f64| {
         if w == 0.0 {
             0.0

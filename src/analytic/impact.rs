@@ -9,7 +9,7 @@
 //! (|k_t ξ| = μF) and slip → stick, and separation (F = 0, or δ = 0 for a law that may pull).
 
 use super::body::{tangential_compliance, Body};
-use super::exchange::{exchange, Exchange};
+use super::exchange::{exchange_spinning, Exchange};
 use super::friction::kinetic;
 use super::hertz::HertzPair;
 use super::laws::{NormalLaw, TangentialLaw, Turn};
@@ -371,6 +371,32 @@ pub fn integrate(
     tangential: &dyn TangentialLaw,
     tolerance: f64,
 ) -> Result<Option<LawImpact>> {
+    integrate_spinning(b1, b2, v1, v2, [0.0; 2], normal, tangential, tolerance)
+}
+
+/// [`integrate`] for balls spinning at `w` (rad/s, about n × t; a wall's entry must be 0)
+/// before the impact: the contact points slip at v₁ₜ − v₂ₜ + R₁ω₁ + R₂ω₂ at touch. Errors
+/// as [`integrate`], and a non-finite spin or a spinning wall.
+#[allow(clippy::too_many_arguments)]
+pub fn integrate_spinning(
+    b1: &Body,
+    b2: &Body,
+    v1: [f64; 2],
+    v2: [f64; 2],
+    w: [f64; 2],
+    normal: &dyn NormalLaw,
+    tangential: &dyn TangentialLaw,
+    tolerance: f64,
+) -> Result<Option<LawImpact>> {
+    for (name, (b, w)) in ["w1", "w2"].iter().zip([(b1, w[0]), (b2, w[1])]) {
+        if !w.is_finite() || (b.is_wall() && w != 0.0) {
+            return Err(Error::invalid(
+                *name,
+                w,
+                "a finite spin in rad/s, 0 for a wall",
+            ));
+        }
+    }
     if b1.is_wall() {
         return Err(Error::invalid("ball1", "a wall", "body 1 must be a ball"));
     }
@@ -395,7 +421,8 @@ pub fn integrate(
     }
     let pair = HertzPair::between(b1, b2);
     let tangential_mass = 1.0 / tangential_compliance(b1, b2);
-    let slip0 = v1[1] - v2[1];
+    let arm = |b: &Body, w: f64| if b.is_wall() { 0.0 } else { b.radius() * w };
+    let slip0 = v1[1] - v2[1] + arm(b1, w[0]) + arm(b2, w[1]);
     let delta_ref = pair.max_approach(speed);
     let t_ref = pair.contact_duration(speed);
     let u_ref = slip0.abs().max(speed);
@@ -556,14 +583,25 @@ pub fn integrate(
     let normal_impulse = pair.mass * (speed + rebound);
     let tangential_impulse = tangential_mass * (slip0 - y[4]);
     let (m1, m2) = (b1.mass(), b2.mass());
-    let energy_before =
-        kinetic(m1, v1[0]) + kinetic(m1, v1[1]) + kinetic(m2, v2[0]) + kinetic(m2, v2[1]);
+    let spinning = |b: &Body, w: f64| {
+        if w == 0.0 {
+            0.0
+        } else {
+            0.5 * b.moment_of_inertia() * w * w
+        }
+    };
+    let energy_before = kinetic(m1, v1[0])
+        + kinetic(m1, v1[1])
+        + kinetic(m2, v2[0])
+        + kinetic(m2, v2[1])
+        + spinning(b1, w[0])
+        + spinning(b2, w[1]);
     let Exchange {
         v1_after,
         v2_after,
         spin_after,
         energy_after,
-    } = exchange(b1, b2, v1, v2, normal_impulse, tangential_impulse);
+    } = exchange_spinning(b1, b2, v1, v2, w, normal_impulse, tangential_impulse);
     let peak_force = history.iter().map(|s| s.force).fold(0.0, f64::max);
     Ok(Some(LawImpact {
         pair,

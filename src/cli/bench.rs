@@ -25,8 +25,8 @@ pub enum BenchKind {
     Machine(MachineArgs),
     /// Run time against error on a ladder of meshes, elements and time-step factors.
     Study(super::bench_study::StudyArgs),
-    /// Chung & Ooi's DEM benchmark tests (verification/dem-benchmarks/) by converged FE,
-    /// beside Hertz and Maw, Barber & Fawcett's theory: one report.
+    /// Chung & Ooi's DEM benchmark tests 1-7 (verification/dem-benchmarks/) by converged FE,
+    /// beside Hertz, Maw, Barber & Fawcett's theory and every DEM law: one report.
     Dem(DemArgs),
 }
 
@@ -36,7 +36,8 @@ pub struct DemArgs {
     /// Folder for report.md and cases.csv (written whole at the end; none without it).
     #[arg(long)]
     pub out: Option<std::path::PathBuf>,
-    /// Run only the cases whose names start with one of these (e.g. test1, test4-alumina@30).
+    /// Run only the cases whose names start with one of these (e.g. test1, test4-alumina@30,
+    /// test6-aluminium@w3).
     #[arg(long, num_args = 1..)]
     pub only: Vec<String>,
 }

@@ -23,7 +23,7 @@ fn test1_glass_runs_elastic_and_stiffer_than_hertz() {
     assert!((-0.05..-0.01).contains(&dt), "t_c {dt:+.4}");
     // Both files whole, the CSV with its SI header.
     let csv = std::fs::read_to_string(dir.join("cases.csv")).unwrap();
-    assert!(csv.starts_with("case,angle_deg,e,e_bar,delta_max_m,"));
+    assert!(csv.starts_with("case,angle_deg,slip_ratio,e,e_bar,delta_max_m,"));
     assert_eq!(csv.lines().count(), 2);
     let report = std::fs::read_to_string(dir.join("report.md")).unwrap();
     assert!(report.contains("| test1-glass |"), "{report}");

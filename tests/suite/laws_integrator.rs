@@ -2,7 +2,7 @@
 //! δ_max within 1e-6), and every law's integrated energy balance within 1e-8.
 
 use twoball::analytic::friction::tangential_impact;
-use twoball::analytic::impact::{integrate, LawImpact, DEFAULT_TOLERANCE};
+use twoball::analytic::impact::{integrate, integrate_spinning, LawImpact, DEFAULT_TOLERANCE};
 use twoball::analytic::laws::{ContactPair, Registry};
 use twoball::analytic::{Body, NormalImpact};
 use twoball::material::Material;
@@ -261,4 +261,60 @@ fn mindlin_coulomb_gives_tangential_rebound_and_tends_to_no_slip() {
     };
     let (a, bb) = (go(t1.as_ref()), go(t2.as_ref()));
     assert!((a - bb).abs() < 1e-5 * bb.abs(), "{a} vs {bb}");
+}
+
+#[test]
+fn a_spin_acts_through_the_slip_it_gives_the_contact_point() {
+    // A ball spinning at ω with no tangential velocity meets the partner with the contact
+    // point slipping at R ω, as a ball sliding at v_t = R ω does: every tangential law gives
+    // the same impulses, and the spin's energy closes the balance.
+    let reg = Registry::builtin();
+    let b = balls("copper-fe", 0.02);
+    let pair = ContactPair::between(&b.0, &b.1, 0.3);
+    let (n, _) = reg.build_normal("hertz", &[], &pair).unwrap();
+    let (v, slip) = (1.0, 0.4);
+    let w = slip / 0.01;
+    for tang in &reg.tangential {
+        let (t, _) = reg.build_tangential(tang.name, &[], &pair).unwrap();
+        let sliding = integrate(
+            &b.0,
+            &b.1,
+            [0.5 * v, slip],
+            [-0.5 * v, 0.0],
+            n.as_ref(),
+            t.as_ref(),
+            DEFAULT_TOLERANCE,
+        )
+        .unwrap()
+        .unwrap();
+        let spinning = integrate_spinning(
+            &b.0,
+            &b.1,
+            [0.5 * v, 0.0],
+            [-0.5 * v, 0.0],
+            [w, 0.0],
+            n.as_ref(),
+            t.as_ref(),
+            DEFAULT_TOLERANCE,
+        )
+        .unwrap()
+        .unwrap();
+        let jt = sliding.tangential_impulse;
+        assert!(
+            (spinning.tangential_impulse - jt).abs() <= 1e-9 * jt.abs().max(1e-12),
+            "{}: {} against {jt}",
+            tang.name,
+            spinning.tangential_impulse
+        );
+        assert!((spinning.slip_before - slip).abs() < 1e-12, "{}", tang.name);
+        // The spin after is the spin before less R J_t / I.
+        let d_spin = sliding.spin_after[0];
+        assert!(
+            (spinning.spin_after[0] - (w + d_spin)).abs() <= 1e-9 * w,
+            "{}",
+            tang.name
+        );
+        let res = spinning.energy_residual();
+        assert!(res.abs() < 1e-8, "{}: residual {res:e}", tang.name);
+    }
 }

@@ -2,7 +2,7 @@
 //! speeds at first touch (the quantities `twoball laws run` gives), for results.json and the
 //! printed summary.
 
-use crate::analytic::impact::{integrate, LawImpact, DEFAULT_TOLERANCE};
+use crate::analytic::impact::{integrate_spinning, LawImpact, DEFAULT_TOLERANCE};
 use crate::analytic::laws::{ContactPair, NormalLaw, Registry, TangentialLaw};
 use crate::analytic::Body;
 use crate::error::{Error, Result};
@@ -34,12 +34,14 @@ pub struct LawOutcome {
 }
 
 /// The analytical bodies of a scene at first touch: ball 1, its partner (ball 2, or a
-/// `[wall]` scene's half-space at rest), their velocities in the contact frame (m/s) and the
-/// contact pair with the scene's kinetic friction coefficient.
+/// `[wall]` scene's half-space at rest), their velocities in the contact frame (m/s), their
+/// spins about the frame's z (rad/s) and the contact pair with the scene's kinetic friction
+/// coefficient.
 struct Bodies {
     b1: Body,
     b2: Body,
     v: [[f64; 3]; 2],
+    w: [f64; 2],
     pair: ContactPair,
 }
 
@@ -50,27 +52,23 @@ fn bodies(scene: &Scene, touch: &Touch) -> Result<Bodies> {
     let [a, b] = touch.v;
     let (b2, b) = crate::study::records::outcome::analytic_partner(scene, b)?;
     let pair = ContactPair::between(&b1, &b2, mu);
+    let (_, w2) = touch.partner(scene);
     Ok(Bodies {
         b1,
         b2,
         v: [a, b],
+        w: [touch.w[0][2], w2[2]],
         pair,
     })
 }
 
-/// The impact of `b1` and `b2` at contact-frame velocities `v` (m/s; normal, tangential
-/// first) under laws `n` and `t`; errors name the law `name` (an integration that fails, or
-/// balls that do not approach).
-fn impact(
-    b1: &Body,
-    b2: &Body,
-    v: [[f64; 3]; 2],
-    n: &dyn NormalLaw,
-    t: &dyn TangentialLaw,
-    name: &str,
-) -> Result<LawImpact> {
-    let [a, b] = v;
-    integrate(b1, b2, [a[0], a[1]], [b[0], b[1]], n, t, DEFAULT_TOLERANCE)
+/// The impact of the bodies `b` at their contact-frame velocities and spins under laws `n`
+/// and `t`; errors name the law `name` (an integration that fails, or balls that do not
+/// approach).
+fn impact(b: &Bodies, n: &dyn NormalLaw, t: &dyn TangentialLaw, name: &str) -> Result<LawImpact> {
+    let [v1, v2] = b.v;
+    let (v1, v2) = ([v1[0], v1[1]], [v2[0], v2[1]]);
+    integrate_spinning(&b.b1, &b.b2, v1, v2, b.w, n, t, DEFAULT_TOLERANCE)
         .map_err(|e| Error::Numerical(format!("law {name}: {e}")))?
         .ok_or_else(|| Error::Numerical(format!("law {name}: the balls do not approach")))
 }
@@ -84,11 +82,12 @@ pub fn compare_laws(scene: &Scene, touch: &Touch) -> Result<Vec<LawOutcome>> {
     if scene.laws.laws.is_empty() {
         return Ok(Vec::new());
     }
-    let Bodies { b1, b2, v, pair } = bodies(scene, touch)?;
+    let bodies = bodies(scene, touch)?;
+    let pair = &bodies.pair;
     let registry = Registry::builtin();
     let tangential = &scene.laws.tangential;
     let (t, _) = registry
-        .build_tangential(tangential, &[], &pair)
+        .build_tangential(tangential, &[], pair)
         .map_err(|e| e.map_field(|f| format!("laws.tangential ({f})")))?;
     scene
         .laws
@@ -96,13 +95,13 @@ pub fn compare_laws(scene: &Scene, touch: &Touch) -> Result<Vec<LawOutcome>> {
         .iter()
         .map(|l| {
             let (n, p) = registry
-                .build_normal(&l.name, &l.params, &pair)
+                .build_normal(&l.name, &l.params, pair)
                 .map_err(|e| e.map_field(|f| format!("laws.params.{f}")))?;
-            let i = impact(&b1, &b2, v, n.as_ref(), t.as_ref(), &l.name)?;
+            let i = impact(&bodies, n.as_ref(), t.as_ref(), &l.name)?;
             let spec = registry.normal(&l.name)?;
-            let warning =
-                spec.validity
-                    .warning(spec.name, &pair, &p, i.delta_max, i.approach_speed);
+            let warning = spec
+                .validity
+                .warning(spec.name, pair, &p, i.delta_max, i.approach_speed);
             Ok(LawOutcome {
                 warning,
                 law: l.name.clone(),
@@ -133,15 +132,16 @@ pub struct TangentialLawOutcome {
 /// friction coefficient; a `[wall]` scene's partner the rigid half-space at rest), in the
 /// registry's order. Errors: an integration that fails (named by the law).
 pub fn tangential_laws(scene: &Scene, touch: &Touch) -> Result<Vec<TangentialLawOutcome>> {
-    let Bodies { b1, b2, v, pair } = bodies(scene, touch)?;
+    let bodies = bodies(scene, touch)?;
+    let pair = &bodies.pair;
     let registry = Registry::builtin();
-    let (n, _) = registry.build_normal("hertz", &[], &pair)?;
+    let (n, _) = registry.build_normal("hertz", &[], pair)?;
     registry
         .tangential
         .iter()
         .map(|spec| {
-            let (t, _) = registry.build_tangential(spec.name, &[], &pair)?;
-            let i = impact(&b1, &b2, v, n.as_ref(), t.as_ref(), spec.name)?;
+            let (t, _) = registry.build_tangential(spec.name, &[], pair)?;
+            let i = impact(&bodies, n.as_ref(), t.as_ref(), spec.name)?;
             Ok(TangentialLawOutcome {
                 law: spec.name.to_string(),
                 restitution: i.tangential_restitution().unwrap_or(f64::NAN),
