@@ -25,7 +25,7 @@ pub enum BenchKind {
     Machine(MachineArgs),
     /// Run time against error on a ladder of meshes, elements and time-step factors.
     Study(super::bench_study::StudyArgs),
-    /// Chung & Ooi's DEM benchmark tests 1-7 (verification/dem-benchmarks/) by converged FE,
+    /// Chung & Ooi's DEM benchmark tests 1-8 (verification/dem-benchmarks/) by converged FE,
     /// beside Hertz, Maw, Barber & Fawcett's theory and every DEM law: one report.
     Dem(DemArgs),
 }

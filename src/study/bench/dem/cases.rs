@@ -7,7 +7,7 @@ use crate::study::convergence::ladder::LadderPlan;
 use std::path::Path;
 
 /// The benchmark scenes, as committed under `verification/dem-benchmarks/`.
-const SCENES: [(&str, &str); 14] = [
+const SCENES: [(&str, &str); 15] = [
     (
         "test1-glass",
         include_str!("../../../../verification/dem-benchmarks/test1-glass.toml"),
@@ -64,6 +64,10 @@ const SCENES: [(&str, &str); 14] = [
         "test7-copper",
         include_str!("../../../../verification/dem-benchmarks/test7-copper.toml"),
     ),
+    (
+        "test8-aluminium",
+        include_str!("../../../../verification/dem-benchmarks/test8-aluminium.toml"),
+    ),
 ];
 
 /// The normal tests: 1 (two identical spheres), 2 and 3 (a sphere on a rigid plane).
@@ -108,7 +112,7 @@ struct Series {
 }
 
 /// The oblique and spinning series, in the report's order.
-const SERIES: [Series; 8] = [
+const SERIES: [Series; 9] = [
     Series {
         scene: "test4-alumina",
         key: "",
@@ -171,6 +175,13 @@ const SERIES: [Series; 8] = [
         key: "w",
         values: &[3.0, 14.0],
         sets: |w| spins(w),
+    },
+    // The 3D full model (the balls differ): about 3 min a case.
+    Series {
+        scene: "test8-aluminium",
+        key: "w",
+        values: &[3.0, 14.0],
+        sets: |w| vec![format!("ball1.angular_velocity=[0, 0, {w:?}]")],
     },
 ];
 

@@ -7,8 +7,9 @@
 //! to. The oblique and spinning tests (4: a sphere on a rigid plane at 3.9 m/s and eleven
 //! angles of incidence, the same impact between two identical balls; 5: constant normal
 //! speed, varying tangential speed; 6: a spinning sphere on a rigid plane; 7: two identical
-//! spinning spheres) run on the 3D half model with the two-level bar and are set beside Maw,
-//! Barber & Fawcett's elastic theory and every DEM tangential law.
+//! spinning spheres; 8: a spinning sphere on a heavy sphere five times its size) run on the
+//! 3D model with the two-level bar and are set beside Maw, Barber & Fawcett's elastic theory
+//! and every DEM tangential law.
 
 pub mod cases;
 pub mod laws;
