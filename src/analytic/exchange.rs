@@ -48,6 +48,19 @@ pub fn exchange_spinning(
         }
     };
     let spin_after = [spin(b1, w[0]), spin(b2, w[1])];
+    let energy_after = kinetic_energy(b1, b2, v1_after, v2_after, spin_after);
+    Exchange {
+        v1_after,
+        v2_after,
+        spin_after,
+        energy_after,
+    }
+}
+
+/// Translational plus rotational kinetic energy (J) of bodies `b1`, `b2` moving at `v1`, `v2`
+/// (`[normal, tangential]`, m/s) and spinning at `w` (rad/s; a body at rest or not spinning
+/// adds nothing, so a wall's infinite mass and inertia never enter).
+pub fn kinetic_energy(b1: &Body, b2: &Body, v1: [f64; 2], v2: [f64; 2], w: [f64; 2]) -> f64 {
     let rot = |b: &Body, w: f64| {
         if w == 0.0 {
             0.0
@@ -55,16 +68,11 @@ pub fn exchange_spinning(
             0.5 * b.moment_of_inertia() * w * w
         }
     };
-    let energy_after = kinetic(m1, v1_after[0])
-        + kinetic(m1, v1_after[1])
-        + kinetic(m2, v2_after[0])
-        + kinetic(m2, v2_after[1])
-        + rot(b1, spin_after[0])
-        + rot(b2, spin_after[1]);
-    Exchange {
-        v1_after,
-        v2_after,
-        spin_after,
-        energy_after,
-    }
+    let (m1, m2) = (b1.mass(), b2.mass());
+    kinetic(m1, v1[0])
+        + kinetic(m1, v1[1])
+        + kinetic(m2, v2[0])
+        + kinetic(m2, v2[1])
+        + rot(b1, w[0])
+        + rot(b2, w[1])
 }

@@ -9,8 +9,7 @@
 //! (|k_t ξ| = μF) and slip → stick, and separation (F = 0, or δ = 0 for a law that may pull).
 
 use super::body::{tangential_compliance, Body};
-use super::exchange::{exchange_spinning, Exchange};
-use super::friction::kinetic;
+use super::exchange::{exchange_spinning, kinetic_energy, Exchange};
 use super::hertz::HertzPair;
 use super::laws::{NormalLaw, TangentialLaw, Turn};
 use crate::error::{Error, Result};
@@ -582,20 +581,7 @@ pub fn integrate_spinning(
     let rebound = -y[1];
     let normal_impulse = pair.mass * (speed + rebound);
     let tangential_impulse = tangential_mass * (slip0 - y[4]);
-    let (m1, m2) = (b1.mass(), b2.mass());
-    let spinning = |b: &Body, w: f64| {
-        if w == 0.0 {
-            0.0
-        } else {
-            0.5 * b.moment_of_inertia() * w * w
-        }
-    };
-    let energy_before = kinetic(m1, v1[0])
-        + kinetic(m1, v1[1])
-        + kinetic(m2, v2[0])
-        + kinetic(m2, v2[1])
-        + spinning(b1, w[0])
-        + spinning(b2, w[1]);
+    let energy_before = kinetic_energy(b1, b2, v1, v2, w);
     let Exchange {
         v1_after,
         v2_after,
