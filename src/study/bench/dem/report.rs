@@ -98,18 +98,14 @@ fn normal_law_table(rows: &[&DemRow]) -> String {
     let Some(first) = rows.iter().find(|r| !r.normal_laws.is_empty()) else {
         return String::new();
     };
-    let mut s = String::from(
+    let mut s = law_columns(
         "## The DEM normal laws on the normal tests\n\n\
          Each built-in normal law (`twoball laws list`) at its elastic setting (damped laws \
          at e = 1, Kuwabara-Kono at A = 0; other parameters the pair's defaults): e, then \
          δ_max and t_c against the converged FE's.\n\n| case |",
+        1,
+        first.normal_laws.iter().map(|l| l.law.as_str()),
     );
-    for l in &first.normal_laws {
-        let _ = write!(s, " {} |", l.law);
-    }
-    s.push_str("\n|---|");
-    s.push_str(&"---|".repeat(first.normal_laws.len()));
-    s.push('\n');
     for r in rows {
         let _ = write!(s, "| {} |", r.name);
         for l in &r.normal_laws {
@@ -207,17 +203,13 @@ fn law_table(rows: &[&DemRow]) -> String {
     let Some(first) = rows.iter().find(|r| !r.laws.is_empty()) else {
         return String::new();
     };
-    let mut s = String::from(
+    let mut s = law_columns(
         "## The DEM tangential laws on the same impacts\n\n\
          Each built-in tangential law with Hertz along the normal (`twoball laws run`): the \
          contact point's e_t and ω₁ after (rad/s), beside the FE's.\n\n| case | FE |",
+        2,
+        first.laws.iter().map(|l| l.law.as_str()),
     );
-    for l in &first.laws {
-        let _ = write!(s, " {} |", l.law);
-    }
-    s.push_str("\n|---|---|");
-    s.push_str(&"---|".repeat(first.laws.len()));
-    s.push('\n');
     for r in rows {
         let _ = write!(
             s,
@@ -236,6 +228,23 @@ fn law_table(rows: &[&DemRow]) -> String {
         }
         s.push('\n');
     }
+    s.push('\n');
+    s
+}
+
+/// A law table's heading `head` (ending in its `lead` leading header cells, e.g. "| case |"),
+/// one column per law in `names`, and the separator row.
+fn law_columns<'a>(head: &str, lead: usize, names: impl Iterator<Item = &'a str>) -> String {
+    let mut s = String::from(head);
+    let mut n = 0;
+    for name in names {
+        let _ = write!(s, " {name} |");
+        n += 1;
+    }
+    s.push('\n');
+    s.push_str(&"|---".repeat(lead));
+    s.push('|');
+    s.push_str(&"---|".repeat(n));
     s.push('\n');
     s
 }
