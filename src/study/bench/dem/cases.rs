@@ -2,7 +2,7 @@
 //! each oblique series at the speeds or spins its README lists.
 
 use crate::error::{Error, Result};
-use crate::scene::{Override, Scene};
+use crate::scene::{approach, Approach, Override, Scene, Touch};
 use crate::study::convergence::ladder::LadderPlan;
 use std::path::Path;
 
@@ -70,14 +70,15 @@ const SCENES: [(&str, &str); 15] = [
     ),
 ];
 
-/// The normal tests: 1 (two identical spheres), 2 and 3 (a sphere on a rigid plane).
-pub const NORMAL: [&str; 6] = [
-    "test1-glass",
-    "test1-limestone",
-    "test2-aluminium",
-    "test2-magnesium",
-    "test3-alumina",
-    "test3-cast-iron",
+/// The normal tests: 1 (two identical spheres), 2 and 3 (a sphere on a rigid plane), each
+/// with whether it asks the damped laws for the restitution they were set to (test 3).
+pub const NORMAL: [(&str, bool); 6] = [
+    ("test1-glass", false),
+    ("test1-limestone", false),
+    ("test2-aluminium", false),
+    ("test2-magnesium", false),
+    ("test3-alumina", true),
+    ("test3-cast-iron", true),
 ];
 
 /// Test 4's angles of incidence, degrees.
@@ -207,6 +208,10 @@ pub struct DemCase {
     pub oblique: bool,
     /// Angle of incidence, degrees (test 4 and the pair; `None` otherwise).
     pub angle: Option<f64>,
+    /// True when the test asks the damped laws for the restitution they were set to (test 3).
+    pub damping: bool,
+    /// The balls at first touch (`None` if they never meet).
+    pub touch: Option<Touch>,
 }
 
 /// The scene `name` of the suite with `sets` applied.
@@ -234,26 +239,32 @@ fn velocity(v: f64, deg: f64) -> String {
 /// Fails only if a committed scene no longer reads (a defect of the build).
 pub fn cases(only: &[String]) -> Result<Vec<DemCase>> {
     let mut out = Vec::new();
-    for name in NORMAL {
+    for (name, damping) in NORMAL {
+        let scene = scene(name, &[])?;
         out.push(DemCase {
             name: name.into(),
-            scene: scene(name, &[])?,
+            touch: touch(&scene)?,
+            scene,
             plan: LadderPlan::Tolerance {
                 tolerance: NORMAL_TOLERANCE,
                 max_refinements: 2,
             },
             oblique: false,
             angle: None,
+            damping,
         });
     }
     for s in &SERIES {
         for &v in s.values {
+            let scene = scene(s.scene, &(s.sets)(v))?;
             out.push(DemCase {
                 name: format!("{}@{}{v}", s.scene, s.key),
-                scene: scene(s.scene, &(s.sets)(v))?,
+                touch: touch(&scene)?,
+                scene,
                 plan: LadderPlan::TwoLevels,
                 oblique: true,
                 angle: s.key.is_empty().then_some(v),
+                damping: false,
             });
         }
     }
@@ -261,9 +272,17 @@ pub fn cases(only: &[String]) -> Result<Vec<DemCase>> {
     Ok(out)
 }
 
+/// The balls of `scene` at first touch, `None` if they never meet.
+fn touch(scene: &Scene) -> Result<Option<Touch>> {
+    Ok(match approach(scene)? {
+        Approach::Impact(t) => Some(t),
+        Approach::NoImpact { .. } => None,
+    })
+}
+
 /// The names `--only` may start: each scene, and the oblique series' `NAME@KEY`.
 pub fn prefixes() -> String {
-    let mut names: Vec<String> = NORMAL.iter().map(|n| n.to_string()).collect();
+    let mut names: Vec<String> = NORMAL.iter().map(|(n, _)| n.to_string()).collect();
     names.extend(SERIES.iter().map(|s| {
         let what = match s.key {
             "" => "ANGLE".to_string(),
@@ -309,6 +328,10 @@ mod tests {
         assert_eq!(t7.scene.ball1.angular_velocity, [0.0, 0.0, 3.0]);
         assert_eq!(t7.scene.ball2.angular_velocity, [0.0, 0.0, 3.0]);
         assert_eq!(cases(&["test2".into()]).unwrap().len(), 2);
+        // Only test 3 asks the damped laws for their restitution; every case meets.
+        let asks: Vec<_> = all.iter().filter(|c| c.damping).map(|c| &c.name).collect();
+        assert_eq!(asks, ["test3-alumina", "test3-cast-iron"]);
+        assert!(all.iter().all(|c| c.touch.is_some()));
         assert_eq!(cases(&["test6-aluminium@w".into()]).unwrap().len(), 6);
     }
 }

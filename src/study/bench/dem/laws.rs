@@ -63,15 +63,11 @@ pub fn damping(scene: &Scene, touch: &Touch) -> Result<Vec<(String, f64, f64)>> 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::scene::{approach, Approach};
     use crate::study::bench::dem::cases::cases;
 
     fn touch(name: &str) -> (Scene, Touch) {
         let c = cases(&[name.into()]).unwrap().remove(0);
-        let Approach::Impact(t) = approach(&c.scene).unwrap() else {
-            panic!("no impact")
-        };
-        (c.scene, t)
+        (c.scene, c.touch.expect("the balls meet"))
     }
 
     #[test]

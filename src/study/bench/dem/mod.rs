@@ -19,7 +19,6 @@ pub use cases::{cases, DemCase, PAIR_ANGLES, TEST4_ANGLES};
 
 use crate::atomic::{ensure_dir, write_atomic};
 use crate::error::{Error, Result};
-use crate::scene::{approach, Approach};
 use crate::study::convergence::scene_estimate::run_scene_with_estimate;
 use crate::study::records::estimate::Estimate;
 use crate::study::run::law_compare::{tangential_laws, LawOutcome, TangentialLawOutcome};
@@ -129,8 +128,8 @@ pub fn row(case: &DemCase, r: &RunReport, laws: CaseLaws, wall: f64) -> DemRow {
 /// normal case, a frictionless one, or balls that never touch.
 fn slip_ratio(case: &DemCase) -> f64 {
     let (mu, _) = case.scene.friction_coefficients();
-    match approach(&case.scene) {
-        Ok(Approach::Impact(t)) if case.oblique && mu > 0.0 => {
+    match &case.touch {
+        Some(t) if case.oblique && mu > 0.0 => {
             // Against the partner at touch: a wall's, not its image's, normal velocity.
             let v_n = t.v[0][0] - t.partner(&case.scene).0[0];
             t.slip_speed / (mu * v_n)
@@ -141,19 +140,19 @@ fn slip_ratio(case: &DemCase) -> f64 {
 
 /// The DEM laws of `case`: errors name the law that fails.
 fn case_laws(case: &DemCase) -> Result<CaseLaws> {
-    let Approach::Impact(touch) = approach(&case.scene)? else {
+    let Some(touch) = &case.touch else {
         return Ok(CaseLaws::default());
     };
     if case.oblique {
         return Ok(CaseLaws {
-            tangential: tangential_laws(&case.scene, &touch)?,
+            tangential: tangential_laws(&case.scene, touch)?,
             ..CaseLaws::default()
         });
     }
     Ok(CaseLaws {
-        normal: laws::normal_laws(&case.scene, &touch, 1.0, 0.0)?,
-        damping: if case.name.starts_with("test3") {
-            laws::damping(&case.scene, &touch)?
+        normal: laws::normal_laws(&case.scene, touch, 1.0, 0.0)?,
+        damping: if case.damping {
+            laws::damping(&case.scene, touch)?
         } else {
             Vec::new()
         },
