@@ -20,12 +20,9 @@
 //! elements are grouped into lanes; they equal the per-element kernel up to round-off
 //! (checked to 1e-11 relative in the tests).
 
-use crate::fe::elements::batch::{
-    contiguous, finish_lanes, gather_nodes, time_updates, Batch, BatchResult, BlockState,
-    LaneResult, StepInput,
-};
-use crate::fe::elements::element::Element;
-use crate::fe::simd::{build, prefetch::prefetch_ahead, LaneIsa};
+use crate::fe::elements::batch::LaneResult;
+use crate::fe::elements::element::{Element, LaneStep};
+use crate::fe::elements::lane_state::{NoLanes, PointLanes};
 use std::mem::MaybeUninit;
 
 use crate::fe::{
@@ -37,17 +34,7 @@ use crate::fe::{
 
 /// The state of W B-bar elements, lane-wise; points in the order of
 /// [`crate::fe::elements::shape::gauss_points_2x2x2`].
-#[derive(Debug, Clone, Copy)]
-pub struct BBarLaneState<const W: usize> {
-    /// Cauchy stress at each Gauss point, Pa (Voigt [xx, yy, zz, xy, yz, zx]).
-    pub stress: [[Lanes<W>; 6]; 8],
-    /// Equivalent plastic strain at each Gauss point.
-    pub eps_p: [Lanes<W>; 8],
-    /// Plastic work so far, J.
-    pub plastic_work: Lanes<W>,
-    /// Internal energy ∫ σ:D dV dt so far, J.
-    pub internal_energy: Lanes<W>,
-}
+pub type BBarLaneState<const W: usize> = PointLanes<8, W>;
 
 /// What a group update returns, lane-wise.
 #[derive(Debug, Clone, Copy)]
@@ -239,123 +226,33 @@ pub fn update<H: Hardening, const W: usize>(
 pub struct BBarHex;
 
 impl Element for BBarHex {
-    const POINTS: usize = 8;
     const HOURGLASS: bool = false;
+    type Points<const W: usize> = BBarLaneState<W>;
+    type Extra<const W: usize> = NoLanes;
+    type Output<const W: usize> = BBarLaneOutput<W>;
 
-    /// B-bar elements W at a time: gather nodes and the eight points' state into lanes,
-    /// update ([`update`]), scatter state and forces back. Lanes past the batch end repeat
-    /// its last element and are discarded.
     #[inline(always)]
-    fn lane_loop<H: Hardening, const W: usize>(
-        isa: LaneIsa<W>,
-        law: &H,
-        b: &mut Batch<'_>,
-        inp: StepInput<'_>,
-        base: usize,
-    ) -> BatchResult {
-        let StepInput { x, v, dt, mat, .. } = inp;
-        let n = b.conn.len();
-        let mut best = (f64::INFINITY, base);
-        let mut k0 = 0;
-        while k0 < n {
-            let idx: [usize; W] = build(|l| (k0 + l).min(n - 1));
-            let live = (n - k0).min(W);
-            let (mut xe, mut ve) = (MaybeUninit::uninit(), MaybeUninit::uninit());
-            let (xe, ve) = gather_nodes(isa, &idx, b.conn, x, v, &mut xe, &mut ve);
-            // The state as rows of the point array transposed into lanes (Lanes::load_rows):
-            // every index is a local element < n of this batch's slices (points: eight per
-            // element, eight f64 each, repr(C): stress, eps_p, volume). The lane state is built
-            // from them directly, with no zero fill first (a 3.7 KB `memset` call per group).
-            debug_assert!(b.pts.len() == 8 * n && b.wp.len() == n && b.ie.len() == n);
-            let pp = b.pts.as_mut_ptr().cast::<f64>();
-            let mut st = MaybeUninit::<BBarLaneState<W>>::uninit();
-            let sp = st.as_mut_ptr();
-            // SAFETY: as above (rows of 8 f64 inside the slice); every field of `st` is written
-            // once, through raw pointers to its own storage, before it is read.
-            let st = unsafe {
-                for g in 0..8 {
-                    let rows: [usize; W] = build(|l| 64 * idx[l] + 8 * g);
-                    let f: [Lanes<W>; 7] = Lanes::load_rows(isa, pp, &rows);
-                    let stress = std::ptr::addr_of_mut!((*sp).stress).cast::<[Lanes<W>; 6]>();
-                    stress.add(g).write([f[0], f[1], f[2], f[3], f[4], f[5]]);
-                    let eps_p = std::ptr::addr_of_mut!((*sp).eps_p).cast::<Lanes<W>>();
-                    eps_p.add(g).write(f[6]);
-                }
-                std::ptr::addr_of_mut!((*sp).plastic_work).write(contiguous(isa, b.wp, &idx));
-                std::ptr::addr_of_mut!((*sp).internal_energy).write(contiguous(isa, b.ie, &idx));
-                st.assume_init_mut()
-            };
-            prefetch_ahead(b.pts.as_ptr(), 8 * (k0 + 2 * W), 8 * W);
-            let out = update(xe, ve, dt, mat, law, st);
-            if live == W {
-                for g in 0..8 {
-                    let s = &st.stress[g];
-                    let cols = [
-                        s[0],
-                        s[1],
-                        s[2],
-                        s[3],
-                        s[4],
-                        s[5],
-                        st.eps_p[g],
-                        out.point_volume[g],
-                    ];
-                    let rows: [usize; W] = build(|l| 64 * (k0 + l) + 8 * g);
-                    // SAFETY: full group: W distinct elements k0.. < n, rows of 8 f64 in the slice.
-                    unsafe { Lanes::store_rows(&cols, pp, &rows) };
-                }
-                b.wp[k0..k0 + W].copy_from_slice(&st.plastic_work.0);
-                b.ie[k0..k0 + W].copy_from_slice(&st.internal_energy.0);
-            } else {
-                for l in 0..live {
-                    let k = k0 + l;
-                    for g in 0..8 {
-                        let ip = &mut b.pts[8 * k + g];
-                        for c in 0..6 {
-                            ip.stress[c] = st.stress[g][c].0[l];
-                        }
-                        ip.eps_p = st.eps_p[g].0[l];
-                        ip.volume = out.point_volume[g].0[l];
-                    }
-                    b.wp[k] = st.plastic_work.0[l];
-                    b.ie[k] = st.internal_energy.0[l];
-                }
-            }
-            let r = LaneResult {
-                force: &out.force,
-                volume: out.volume,
-                min_jacobian: out.min_jacobian,
-                dt_crit: out.dt_crit,
-            };
-            finish_lanes(&r, b, k0, live, base, &mut best)?;
-            k0 += W;
-        }
-        Ok(best)
+    fn update<H: Hardening, const W: usize>(
+        s: LaneStep<'_, H, W>,
+        points: &mut BBarLaneState<W>,
+        _: &mut NoLanes,
+    ) -> BBarLaneOutput<W> {
+        update(s.x1, s.v, s.dt, s.mat, s.law, points)
     }
 
     #[inline(always)]
-    fn time_arithmetic<H: Hardening, const W: usize>(
-        isa: LaneIsa<W>,
-        law: &H,
-        b: &BlockState<'_>,
-        xe: &[Vec3<W>; 8],
-        ve: &[Vec3<W>; 8],
-        idx: &[usize; W],
-        dt: f64,
-        repeats: u32,
-    ) -> std::time::Duration {
-        let lane = |f: &dyn Fn(usize) -> f64| isa.lanes(std::array::from_fn(f));
-        let mat = &b.material;
-        let pt = |l: usize, g: usize| &b.points[8 * idx[l] + g];
-        let st0 = BBarLaneState::<W> {
-            stress: std::array::from_fn(|g| std::array::from_fn(|c| lane(&|l| pt(l, g).stress[c]))),
-            eps_p: std::array::from_fn(|g| lane(&|l| pt(l, g).eps_p)),
-            plastic_work: lane(&|l| b.plastic_work[idx[l]]),
-            internal_energy: lane(&|l| b.internal_energy[idx[l]]),
-        };
-        time_updates!(repeats, xe, ve, st0, |st, xr, vr| update(
-            xr, vr, dt, mat, law, &mut st
-        ))
+    fn result<const W: usize>(out: &BBarLaneOutput<W>) -> LaneResult<'_, W> {
+        LaneResult {
+            force: &out.force,
+            volume: out.volume,
+            min_jacobian: out.min_jacobian,
+            dt_crit: out.dt_crit,
+        }
+    }
+
+    #[inline(always)]
+    fn point_volumes<const W: usize>(out: &BBarLaneOutput<W>) -> [Lanes<W>; 8] {
+        out.point_volume
     }
 }
 
@@ -365,31 +262,22 @@ mod tests {
     use crate::fe::elements::{
         batch::{ElementStateMut, IntegrationPoint},
         hex_bbar,
-        hex_one_point_lanes::tests::{assert_forces_match, four_elements, lanes},
+        hex_one_point_lanes::tests::{assert_forces_match, copper, four_elements, lanes},
     };
-    use crate::material::Material;
 
     /// Four lanes of distorted, spinning, yielding elements against the per-element B-bar
     /// kernel over many steps (state carried): equal to round-off, on both the elastic and
     /// the plastic path.
     #[test]
     fn lanes_match_the_per_element_kernel() {
-        let mat = J2Material::new(&Material::preset("copper-fe").unwrap(), false);
-        let crate::fe::materials::Law::Bilinear(law) = mat.law else {
-            panic!("copper-fe hardens linearly")
-        };
+        let (mat, law) = copper();
         let h = 1e-3;
         // Lane 1 moves rigidly (spin, no strain); the others stretch hard and yield.
         let (xs, vs) = four_elements(0x0bad_cafe_2468_1357, h, 1, 50.0, [4.0, 2.0, 3.0], 0.3);
         let dt = 2e-8;
         let mut x = xs;
         let z = crate::fe::simd::LaneIsa::<4>::detect().unwrap().splat(0.0);
-        let mut st = BBarLaneState::<4> {
-            stress: [[z; 6]; 8],
-            eps_p: [z; 8],
-            plastic_work: z,
-            internal_energy: z,
-        };
+        let mut st = BBarLaneState::<4>::filled(z);
         let mut refs = [([IntegrationPoint::default(); 8], 0.0, 0.0); 4];
         let mut yielded = [false; 4];
         for _ in 0..400 {

@@ -22,12 +22,9 @@
 //! are grouped into lanes; they equal the per-element kernel up to round-off (different, not
 //! less accurate, operation order; checked to 1e-12 relative in the tests).
 
-use crate::fe::elements::batch::{
-    contiguous, finish_lanes, gather_nodes, time_updates, Batch, BatchResult, BlockState,
-    LaneResult, StepInput,
-};
-use crate::fe::elements::element::Element;
-use crate::fe::simd::{build, prefetch::prefetch_ahead, LaneIsa};
+use crate::fe::elements::batch::LaneResult;
+use crate::fe::elements::element::{Element, LaneStep};
+use crate::fe::elements::lane_state::{HourglassLanes, PointLanes};
 use crate::fe::{
     materials::{
         j2::{ddot_lanes as ddot, update_lanes},
@@ -36,7 +33,6 @@ use crate::fe::{
     simd::{cross, dot, Lanes, Vec3},
 };
 use crate::mesh::topology::HEX_FACES;
-use std::mem::MaybeUninit;
 
 /// Mode vectors A_k = Σ_I h_k(ξ_I) p_I (k = 0..7: 1, ξ, η, ζ, ηζ, ζξ, ξη, ξηζ) of nodal
 /// vectors `p` (gmsh node order), by three butterfly stages (ξ pairs, η pairs, ζ pairs).
@@ -236,22 +232,9 @@ pub fn point_update<H: Hardening, const W: usize>(
     (rot, dwp, ddot(&before, &d) + ddot(stress, &d))
 }
 
-/// The state of W one-point elements, lane-wise.
-#[derive(Debug, Clone, Copy)]
-pub struct OnePointLaneState<const W: usize> {
-    /// Cauchy stress, Pa.
-    pub stress: [Lanes<W>; 6],
-    /// Equivalent plastic strain.
-    pub eps_p: Lanes<W>,
-    /// Hourglass generalised forces Q_α, N.
-    pub hourglass: [Vec3<W>; 4],
-    /// Plastic work so far, J.
-    pub plastic_work: Lanes<W>,
-    /// Internal energy ∫ V σ:D dt so far, J.
-    pub internal_energy: Lanes<W>,
-    /// Hourglass energy so far, J.
-    pub hourglass_energy: Lanes<W>,
-}
+/// The point state of W one-point elements, lane-wise (their hourglass forces are
+/// [`HourglassLanes`]).
+pub type OnePointLanes<const W: usize> = PointLanes<1, W>;
 
 /// What a group update returns, lane-wise.
 #[derive(Debug, Clone, Copy)]
@@ -270,6 +253,7 @@ pub struct OnePointLaneOutput<const W: usize> {
 /// the mid-step configuration, Hughes-Winget rotation of stress and hourglass forces, J2
 /// update, forces on x^{n+1}. An inverted lane returns a non-positive volume and
 /// meaningless forces.
+#[allow(clippy::too_many_arguments)]
 #[inline(always)]
 pub fn update<H: Hardening, const W: usize>(
     x1: &[Vec3<W>; 8],
@@ -278,7 +262,8 @@ pub fn update<H: Hardening, const W: usize>(
     mat: &J2Material,
     law: &H,
     hg: f64,
-    st: &mut OnePointLaneState<W>,
+    points: &mut OnePointLanes<W>,
+    hourglass: &mut HourglassLanes<W>,
 ) -> OnePointLaneOutput<W> {
     let a1 = modes(x1);
     let u = modes(v);
@@ -292,20 +277,28 @@ pub fn update<H: Hardening, const W: usize>(
     let (vhm, gm) = volume_gradient(&am);
     let vm = vhm * (1.0 / 192.0);
     let l = velocity_gradient(&u, &gm, vhm.recip());
-    let (rot, dwp, dw) = point_update(mat, law, &l, None, dt, &mut st.stress, &mut st.eps_p);
-    for q in st.hourglass.iter_mut() {
+    let (rot, dwp, dw) = point_update(
+        mat,
+        law,
+        &l,
+        None,
+        dt,
+        &mut points.stress[0],
+        &mut points.eps_p[0],
+    );
+    for q in hourglass.forces.iter_mut() {
         let r = *q;
         for i in 0..3 {
             q[i] = rot[i][0] * r[0] + rot[i][1] * r[1] + rot[i][2] * r[2];
         }
     }
-    st.plastic_work += dwp * vm;
-    st.internal_energy += 0.5 * vm * dw;
+    points.plastic_work += dwp * vm;
+    points.internal_energy += 0.5 * vm * dw;
 
     let (vh1, g1) = volume_gradient(&a1);
     let r1 = vh1.recip();
     let v1 = vh1 * (1.0 / 192.0);
-    let s = st.stress;
+    let s = points.stress[0];
     let sigma = [[s[0], s[3], s[5]], [s[3], s[1], s[4]], [s[5], s[4], s[2]]];
     // P = (V σ − M)/V̂ with M = (1/8) Σ_α Q_α ⊗ A_{α+4} (the hourglass part of −γ Q).
     let mut p = [[v1.splat_like(0.0); 3]; 3];
@@ -326,7 +319,7 @@ pub fn update<H: Hardening, const W: usize>(
         let bb = 8.0 * gg * r1 * r1;
         let kdt = (hg * mat.p_modulus() * dt) * v1 * bb * (1.0 / 3.0);
         let mut e = z;
-        for (al, q) in st.hourglass.iter_mut().enumerate() {
+        for (al, q) in hourglass.forces.iter_mut().enumerate() {
             let ah = &a1[al + 4];
             let mut rate = [z; 3];
             for i in 0..3 {
@@ -345,7 +338,7 @@ pub fn update<H: Hardening, const W: usize>(
                 fm[al + 4][i] = 0.125 * q[i];
             }
         }
-        st.hourglass_energy += e;
+        hourglass.energy += e;
     }
     for i in 0..3 {
         for j in 0..3 {
@@ -394,146 +387,34 @@ pub fn critical_step<const W: usize>(
 pub struct OnePointHex;
 
 impl Element for OnePointHex {
-    const POINTS: usize = 1;
     const HOURGLASS: bool = true;
+    type Points<const W: usize> = OnePointLanes<W>;
+    type Extra<const W: usize> = HourglassLanes<W>;
+    type Output<const W: usize> = OnePointLaneOutput<W>;
 
-    /// Gathers W elements (`idx`: local element per lane) into lanes, updates them
-    /// ([`update`]), scatters state and forces back. Lanes past the batch end repeat its last
-    /// element and are discarded.
     #[inline(always)]
-    fn lane_loop<H: Hardening, const W: usize>(
-        isa: LaneIsa<W>,
-        law: &H,
-        b: &mut Batch<'_>,
-        inp: StepInput<'_>,
-        base: usize,
-    ) -> BatchResult {
-        let StepInput {
-            x, v, dt, mat, hg, ..
-        } = inp;
-        let n = b.conn.len();
-        let mut best = (f64::INFINITY, base);
-        let mut k0 = 0;
-        while k0 < n {
-            let idx: [usize; W] = build(|l| (k0 + l).min(n - 1));
-            let live = (n - k0).min(W);
-            // Gather nodal coordinates and velocities and the element state into lanes (plain
-            // loops: no closure or generic helper is left out of the AVX2 kernel).
-            let (mut xe, mut ve) = (MaybeUninit::uninit(), MaybeUninit::uninit());
-            let (xe, ve) = gather_nodes(isa, &idx, b.conn, x, v, &mut xe, &mut ve);
-            // The state as rows transposed into lanes (Lanes::load_rows): every index is a local
-            // element < n of this batch's slices, whose lengths are n (points: eight f64 each,
-            // repr(C): stress, eps_p, volume; hourglass: twelve f64 each). The lane state is
-            // built from them directly, with no zero fill first (a 1.4 KB `memset` call per
-            // group, 2 % of a subcycled default-scene run, whose level ranges are short).
-            debug_assert!(b.pts.len() == n && b.hgq.len() == n && b.wp.len() == n);
-            let (pp, hp) = (
-                b.pts.as_mut_ptr().cast::<f64>(),
-                b.hgq.as_mut_ptr().cast::<f64>(),
-            );
-            let mut st = MaybeUninit::<OnePointLaneState<W>>::uninit();
-            let sp = st.as_mut_ptr();
-            // SAFETY: as above (rows of 8 and 12 f64 inside their slices); every field of `st`
-            // is written once, through raw pointers to its own storage, before it is read.
-            let st = unsafe {
-                let f: [Lanes<W>; 7] = Lanes::load_rows(isa, pp, &build(|l| 8 * idx[l]));
-                std::ptr::addr_of_mut!((*sp).stress).write([f[0], f[1], f[2], f[3], f[4], f[5]]);
-                std::ptr::addr_of_mut!((*sp).eps_p).write(f[6]);
-                let h0: [Lanes<W>; 8] = Lanes::load_rows(isa, hp, &build(|l| 12 * idx[l]));
-                let h1: [Lanes<W>; 4] = Lanes::load_rows(isa, hp, &build(|l| 12 * idx[l] + 8));
-                let q = std::ptr::addr_of_mut!((*sp).hourglass).cast::<Lanes<W>>();
-                for (k, h) in h0.iter().chain(&h1).enumerate() {
-                    q.add(k).write(*h);
-                }
-                std::ptr::addr_of_mut!((*sp).plastic_work).write(contiguous(isa, b.wp, &idx));
-                std::ptr::addr_of_mut!((*sp).internal_energy).write(contiguous(isa, b.ie, &idx));
-                std::ptr::addr_of_mut!((*sp).hourglass_energy).write(contiguous(isa, b.ehg, &idx));
-                st.assume_init_mut()
-            };
-            prefetch_ahead(b.pts.as_ptr(), k0 + 2 * W, W);
-            prefetch_ahead(b.hgq.as_ptr(), k0 + 2 * W, W);
-            let out = update(xe, ve, dt, mat, law, hg, st);
-            if live == W {
-                let s = &st.stress;
-                let cols = [s[0], s[1], s[2], s[3], s[4], s[5], st.eps_p, out.volume];
-                let q = &st.hourglass;
-                let h0 = [
-                    q[0][0], q[0][1], q[0][2], q[1][0], q[1][1], q[1][2], q[2][0], q[2][1],
-                ];
-                let h1 = [q[2][2], q[3][0], q[3][1], q[3][2]];
-                // SAFETY: full group: W distinct elements k0.. < n, rows inside the slices.
-                unsafe {
-                    Lanes::store_rows(&cols, pp, &build(|l| 8 * (k0 + l)));
-                    Lanes::store_rows(&h0, hp, &build(|l| 12 * (k0 + l)));
-                    Lanes::store_rows(&h1, hp, &build(|l| 12 * (k0 + l) + 8));
-                }
-                b.wp[k0..k0 + W].copy_from_slice(&st.plastic_work.0);
-                b.ie[k0..k0 + W].copy_from_slice(&st.internal_energy.0);
-                b.ehg[k0..k0 + W].copy_from_slice(&st.hourglass_energy.0);
-            } else {
-                for l in 0..live {
-                    let k = k0 + l;
-                    let ip = &mut b.pts[k];
-                    for c in 0..6 {
-                        ip.stress[c] = st.stress[c].0[l];
-                    }
-                    ip.eps_p = st.eps_p.0[l];
-                    ip.volume = out.volume.0[l];
-                    b.wp[k] = st.plastic_work.0[l];
-                    b.ie[k] = st.internal_energy.0[l];
-                    b.ehg[k] = st.hourglass_energy.0[l];
-                    for a in 0..4 {
-                        for c in 0..3 {
-                            b.hgq[k][a][c] = st.hourglass[a][c].0[l];
-                        }
-                    }
-                }
-            }
-            // One point: the element volume is its only Jacobian.
-            let r = LaneResult {
-                force: &out.force,
-                volume: out.volume,
-                min_jacobian: out.volume,
-                dt_crit: out.dt_crit,
-            };
-            finish_lanes(&r, b, k0, live, base, &mut best)?;
-            k0 += W;
+    fn update<H: Hardening, const W: usize>(
+        s: LaneStep<'_, H, W>,
+        points: &mut OnePointLanes<W>,
+        hourglass: &mut HourglassLanes<W>,
+    ) -> OnePointLaneOutput<W> {
+        update(s.x1, s.v, s.dt, s.mat, s.law, s.hg, points, hourglass)
+    }
+
+    /// One point: the element volume is its only Jacobian.
+    #[inline(always)]
+    fn result<const W: usize>(out: &OnePointLaneOutput<W>) -> LaneResult<'_, W> {
+        LaneResult {
+            force: &out.force,
+            volume: out.volume,
+            min_jacobian: out.volume,
+            dt_crit: out.dt_crit,
         }
-        Ok(best)
     }
 
     #[inline(always)]
-    fn time_arithmetic<H: Hardening, const W: usize>(
-        isa: LaneIsa<W>,
-        law: &H,
-        b: &BlockState<'_>,
-        xe: &[Vec3<W>; 8],
-        ve: &[Vec3<W>; 8],
-        idx: &[usize; W],
-        dt: f64,
-        repeats: u32,
-    ) -> std::time::Duration {
-        let lane = |f: &dyn Fn(usize) -> f64| isa.lanes(std::array::from_fn(f));
-        let mat = &b.material;
-        let st0 = OnePointLaneState::<W> {
-            stress: std::array::from_fn(|c| lane(&|l| b.points[idx[l]].stress[c])),
-            eps_p: lane(&|l| b.points[idx[l]].eps_p),
-            hourglass: std::array::from_fn(|a| {
-                std::array::from_fn(|c| lane(&|l| b.hourglass[idx[l]][a][c]))
-            }),
-            plastic_work: lane(&|l| b.plastic_work[idx[l]]),
-            internal_energy: lane(&|l| b.internal_energy[idx[l]]),
-            hourglass_energy: lane(&|l| b.hourglass_energy[idx[l]]),
-        };
-        time_updates!(repeats, xe, ve, st0, |st, xr, vr| update(
-            xr,
-            vr,
-            dt,
-            mat,
-            law,
-            b.hourglass_coeff,
-            &mut st
-        ))
+    fn point_volumes<const W: usize>(out: &OnePointLaneOutput<W>) -> [Lanes<W>; 1] {
+        [out.volume]
     }
 }
 
@@ -565,6 +446,15 @@ pub(crate) mod tests {
                 q[2],
             ]
         })
+    }
+
+    /// The copper of the default scene and its linear hardening law.
+    pub(crate) fn copper() -> (J2Material, crate::fe::materials::Bilinear) {
+        let mat = J2Material::new(&Material::preset("copper-fe").unwrap(), false);
+        let crate::fe::materials::Law::Bilinear(law) = mat.law else {
+            panic!("copper-fe hardens linearly")
+        };
+        (mat, law)
     }
 
     /// Nodal vectors of one hexahedron, gmsh order.
@@ -692,24 +582,14 @@ pub(crate) mod tests {
     /// over several steps (state carried): equal to round-off.
     #[test]
     fn lanes_match_the_per_element_kernel() {
-        let mat = J2Material::new(&Material::preset("copper-fe").unwrap(), false);
-        let crate::fe::materials::Law::Bilinear(law) = mat.law else {
-            panic!("copper-fe hardens linearly")
-        };
+        let (mat, law) = copper();
         let h = 1e-3;
         // Lane 2 moves rigidly (no yield); the others stretch hard (yield within a few steps).
         let (xs, vs) = four_elements(0xdead_beef_1234_5678, h, 2, 60.0, [5.0, 0.0, 3.0], 0.0);
         let dt = 2e-8;
         let mut x = xs;
         let z = crate::fe::simd::LaneIsa::<4>::detect().unwrap().splat(0.0);
-        let mut st = OnePointLaneState::<4> {
-            stress: [z; 6],
-            eps_p: z,
-            hourglass: [[z; 3]; 4],
-            plastic_work: z,
-            internal_energy: z,
-            hourglass_energy: z,
-        };
+        let (mut st, mut hgs) = (OnePointLanes::filled(z), HourglassLanes::filled(z));
         let mut refs = [(
             [crate::fe::elements::batch::IntegrationPoint::default()],
             0.0,
@@ -726,7 +606,16 @@ pub(crate) mod tests {
                     }
                 }
             }
-            let out = update(&lanes(&x), &lanes(&vs), dt, &mat, &law, 0.05, &mut st);
+            let out = update(
+                &lanes(&x),
+                &lanes(&vs),
+                dt,
+                &mat,
+                &law,
+                0.05,
+                &mut st,
+                &mut hgs,
+            );
             for l in 0..4 {
                 let r = &mut refs[l];
                 let o = hex_one_point::update(
@@ -752,11 +641,11 @@ pub(crate) mod tests {
                 let escale = 1e-6 * mat.yield0 * h * h * h;
                 for k in 0..6 {
                     assert!(
-                        close(st.stress[k].0[l], r.0[0].stress[k], sscale),
+                        close(st.stress[0][k].0[l], r.0[0].stress[k], sscale),
                         "lane {l} stress"
                     );
                 }
-                assert!(close(st.eps_p.0[l], r.0[0].eps_p, 1e-3));
+                assert!(close(st.eps_p[0].0[l], r.0[0].eps_p, 1e-3));
                 assert!(close(out.volume.0[l], o.volume, o.volume));
                 assert!(close(out.dt_crit.0[l], o.dt_crit, o.dt_crit));
                 assert!(close(st.plastic_work.0[l], r.1, r.2.abs().max(escale)));
@@ -764,13 +653,10 @@ pub(crate) mod tests {
                 let hq = r.3.iter().flatten().fold(fscale, |m, c| m.max(c.abs()));
                 for al in 0..4 {
                     for c in 0..3 {
-                        assert!(
-                            close(st.hourglass[al][c].0[l], r.3[al][c], hq),
-                            "lane {l} Q"
-                        );
+                        assert!(close(hgs.forces[al][c].0[l], r.3[al][c], hq), "lane {l} Q");
                     }
                 }
-                assert!(close(st.hourglass_energy.0[l], r.4, r.4.abs().max(escale)));
+                assert!(close(hgs.energy.0[l], r.4, r.4.abs().max(escale)));
                 yielded[l] = r.0[0].eps_p > 0.0;
             }
         }
