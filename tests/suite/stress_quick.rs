@@ -87,7 +87,20 @@ fn classifier_catches_silent_failures() {
         c(Some(1), false, "error: numerical failure: node 3 ...", &ok),
         Class::Stopped
     );
-    for d in [ok, flag, nan, gain] {
+    // An oblique impact (results.json `tangential`) whose rebound took energy from its
+    // sliding: e = 1.04 with the kinetic energy down (ball 1 leaves at −1.04 m/s, ball 2 at
+    // 0.5 of its 1 m/s) is flagged, not impossible; with the kinetic energy up it is.
+    let oblique = |v2: &str| {
+        results("1.04", "-1.04", "0.001").replace(
+            r#""v2_after": [1.0, 0, 0]"#,
+            &format!(r#""v2_after": [{v2}, 0, 0], "tangential": {{}}"#),
+        )
+    };
+    let spun = dir_with(&oblique("0.50"));
+    assert_eq!(c(Some(0), false, "", &spun), Class::Flagged);
+    let made = dir_with(&oblique("1.0"));
+    assert_eq!(c(Some(0), false, "", &made), Class::Silent);
+    for d in [ok, flag, nan, gain, spun, made] {
         let _ = std::fs::remove_dir_all(d);
     }
 }

@@ -513,8 +513,13 @@ pub fn classify(
     };
     let err = r.energy_error.unwrap_or(f64::NAN);
     let allowed = tol.max(err);
-    let impossible = r.e.is_some_and(|e| e > 1.0 + allowed)
-        || r.kinetic_ratio.is_some_and(|k| k > 1.0 + allowed);
+    // e above 1 is impossible where the normal motion carries all the kinetic energy (a
+    // head-on impact); an oblique or spinning one (results.json `tangential`) may pass energy
+    // of its sliding or spin into the rebound (its run warns), so there only the kinetic
+    // energy is bounded, and e above 1 flags the case.
+    let head_on = v["tangential"].is_null();
+    let e_above = r.e.is_some_and(|e| e > 1.0 + allowed);
+    let impossible = (head_on && e_above) || r.kinetic_ratio.is_some_and(|k| k > 1.0 + allowed);
     r.class = if r.non_finite || !err.is_finite() || r.e.is_none() || r.kinetic_ratio.is_none() {
         r.reason = format!("non-finite or missing number in the output; {}", r.reason);
         Class::Silent
@@ -526,6 +531,15 @@ pub fn classify(
             r.reason
         );
         Class::Silent
+    } else if e_above {
+        r.reason = format!(
+            "e = {:.4} above 1 with the kinetic energy at {:.4} of its start: energy of the \
+             sliding or spin in the rebound; {}",
+            r.e.unwrap_or(f64::NAN),
+            r.kinetic_ratio.unwrap_or(f64::NAN),
+            r.reason
+        );
+        Class::Flagged
     } else if err < tol {
         Class::Clean
     } else {
@@ -698,8 +712,10 @@ pub fn summary(records: &[StressRecord], tol: f64) -> (StressCounts, String) {
          | cases | completed, energy error < {:.0} % | completed, flagged (larger error) | stopped with a reason | silent failures |\n\
          |---|---|---|---|---|\n| {} | {} | {} | {} | {} |\n\n\
          Sum of case wall times: {wall:.0} s. Silent failure = NaN/inf in the output, panic, \
-         timeout, or a physically impossible result (e or kinetic energy ratio above 1 + \
-         tolerance) without a stop.\n\n\
+         timeout, or a physically impossible result (kinetic energy ratio above 1 + tolerance, \
+         or e above it in a head-on impact) without a stop. Flagged: an energy error above \
+         the tolerance, or e above 1 + tolerance in an oblique or spinning impact whose \
+         kinetic energy did not grow.\n\n\
          | case | class | status | energy error | e | KE after/before | NaN | wall [s] | reason |\n\
          |---|---|---|---|---|---|---|---|---|\n",
         tol * 100.0,

@@ -2,7 +2,8 @@
 //! with the limit beyond which it stops meaning what it says, and says so in one line.
 //!
 //! FE checks ([`fe_warnings`]): energy-balance error above 1 %; a coefficient of restitution
-//! above 1 (the run made energy); penetration deeper than 5 % of δ_max (the penalty is too
+//! above 1 (the run made energy; in an oblique or spinning impact whose kinetic energy did
+//! not grow, the rebound took energy from the sliding or the spin); penetration deeper than 5 % of δ_max (the penalty is too
 //! soft for the contact it carries); a contact patch at δ_max narrower than 3 elements of
 //! the pole mesh (the contact is not resolved); hourglass energy above 5 % of the internal
 //! energy (the one-point elements deform in zero-energy modes); a plastic impact on the
@@ -80,6 +81,9 @@ pub struct FeFigures {
     pub hourglass: f64,
     /// Largest internal (elastic + plastic + hourglass) energy over the run, J.
     pub internal: f64,
+    /// Rigid-body kinetic energy (translation and spin) after over before, for an oblique or
+    /// spinning impact; None for a head-on one (its e alone bounds the energy).
+    pub kinetic_ratio: Option<f64>,
 }
 
 /// Elements of size `h` (m) across the contact patch at approach `delta` (m) between
@@ -103,12 +107,22 @@ pub fn fe_warnings(f: &FeFigures) -> Vec<Warning> {
         });
     }
     if f.e > 1.0 {
-        w.push(Warning {
-            check: Check::RestitutionAboveOne,
-            message: format!(
+        let message = match f.kinetic_ratio {
+            Some(k) if k <= 1.0 => format!(
+                "FE e = {:.5} is above 1 while the kinetic energy (translation and spin) is {k:.4} \
+                 of its start: the rebound took energy from the sliding or the spin, through a \
+                 contact force off the line of the centre (a faceted, coarse ball does this); \
+                 refine the mesh before trusting e",
+                f.e
+            ),
+            _ => format!(
                 "FE e = {:.5} is above 1: the run made energy (numerical, not physical)",
                 f.e
             ),
+        };
+        w.push(Warning {
+            check: Check::RestitutionAboveOne,
+            message,
         });
     }
     if f.delta_max > 0.0 && f.max_penetration > PENETRATION_LIMIT * f.delta_max {
@@ -228,6 +242,7 @@ mod tests {
             pole_size: Some(1e-4),
             hourglass: 1e-4,
             internal: 1e-2,
+            kinetic_ratio: None,
         }
     }
 
@@ -258,6 +273,22 @@ mod tests {
         f.max_penetration = 1e-8;
         f.pole_size = Some(2e-3);
         assert_eq!(one(f), Check::UnresolvedContact);
+    }
+
+    /// e above 1 in an oblique or spinning impact: energy made when the kinetic energy grew,
+    /// energy taken from the sliding or the spin when it did not.
+    #[test]
+    fn e_above_one_says_where_the_energy_came_from() {
+        let msg = |e: f64, k: Option<f64>| {
+            let mut f = clean();
+            f.e = e;
+            f.kinetic_ratio = k;
+            fe_warnings(&f)[0].message.clone()
+        };
+        assert!(msg(1.04, None).contains("made energy"));
+        assert!(msg(1.04, Some(1.02)).contains("made energy"));
+        let from_spin = msg(1.04, Some(0.98));
+        assert!(from_spin.contains("sliding or the spin") && from_spin.contains("0.9800"));
     }
 
     #[test]

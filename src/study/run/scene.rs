@@ -155,7 +155,7 @@ pub fn run_scene(scene: &Scene, opts: &RunOptions) -> Result<RunReport> {
     let fe = sim.outcome;
     let r_star = collision.pair.radius;
     let mut warnings = analytic_warnings(an.delta_max, r_star);
-    warnings.extend(fe_warnings(&fe_figures(scene, &sim, r_star)));
+    warnings.extend(fe_warnings(&fe_figures(scene, &sim, r_star, oblique)));
     warnings.extend(super::ignored::ignored_settings(
         scene,
         sim.savings.reduction,
@@ -270,8 +270,9 @@ fn pole_size(scene: &Scene) -> Option<f64> {
     Some(h(&scene.ball1.mesh)?.max(h(&scene.ball2.mesh)?))
 }
 
-/// The figures the FE warnings check, from a finished run.
-fn fe_figures(scene: &Scene, sim: &Simulation, r_star: f64) -> FeFigures {
+/// The figures the FE warnings check, from a finished run (`oblique`: an oblique or spinning
+/// impact, whose kinetic energy after over before is 1 − 2π η).
+fn fe_figures(scene: &Scene, sim: &Simulation, r_star: f64, oblique: bool) -> FeFigures {
     let peak = |f: fn(&crate::study::run::simulate::HistoryRow) -> f64| {
         sim.history.iter().map(f).fold(0.0, f64::max)
     };
@@ -284,6 +285,7 @@ fn fe_figures(scene: &Scene, sim: &Simulation, r_star: f64) -> FeFigures {
         pole_size: pole_size(scene),
         hourglass: peak(|r| r.hourglass),
         internal: peak(|r| r.elastic + r.plastic + r.hourglass),
+        kinetic_ratio: oblique.then_some(1.0 - 2.0 * std::f64::consts::PI * sim.outcome.eta),
     }
 }
 
