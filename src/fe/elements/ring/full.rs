@@ -10,9 +10,8 @@
 //! and material seam as the other formulations', at each Gauss point.
 
 use super::element::{LaneStep, Quad, RingElement, Step};
-use super::lanes::{self, RingLaneOutput, RingLaneState};
-use super::scalar::{advance_gauss_points, mid_step, output};
-use super::shape::{add_stress_forces, gauss_points, mean_of};
+use super::four_point::{update, update_lanes};
+use super::lanes::{RingLaneOutput, RingLaneState};
 use super::state::{QuadOutput, QuadState};
 use crate::fe::materials::Hardening;
 
@@ -25,16 +24,7 @@ impl RingElement for FullQuad {
 
     #[inline]
     fn update(&self, s: Step<'_, Quad>, st: &mut QuadState) -> QuadOutput {
-        let Step { x1, v, dt, mat } = s;
-        let pm = gauss_points(&mid_step(x1, v, dt));
-        let p1 = gauss_points(x1);
-        let (g1, min_j) = mean_of(&p1);
-        advance_gauss_points(st, &pm, v, None, dt, mat);
-        let mut force = [[0.0; 2]; 4];
-        for (k, p) in p1.iter().enumerate() {
-            add_stress_forces(&mut force, &st.points[k].stress, &p.grad);
-        }
-        output(x1, force, g1.volume, min_j, mat)
+        update::<false>(s, st)
     }
 
     #[inline(always)]
@@ -43,16 +33,6 @@ impl RingElement for FullQuad {
         s: LaneStep<'_, H, W>,
         st: &mut RingLaneState<W>,
     ) -> RingLaneOutput<W> {
-        let LaneStep { step, law } = s;
-        let Step { x1, v, dt, mat } = step;
-        let pm = lanes::gauss_points(&lanes::mid_step(x1, v, dt));
-        let p1 = lanes::gauss_points(x1);
-        let (g1, min_j) = lanes::mean_of(&p1);
-        lanes::advance_gauss_points(&pm, v, None, dt, mat, law, st);
-        let mut force = [[x1[0][0].splat_like(0.0); 2]; 4];
-        for (k, p) in p1.iter().enumerate() {
-            lanes::add_stress_forces(&mut force, &st.stress[k], &p.grad);
-        }
-        lanes::output(x1, force, g1.volume, min_j, mat)
+        update_lanes::<false, H, W>(s, st)
     }
 }

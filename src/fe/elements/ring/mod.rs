@@ -7,7 +7,7 @@
 //! - [`element`]: the seam every formulation implements (scalar update, lane update,
 //!   integration points), and [`formulation`]: the registry that names them;
 //! - [`one_point`], [`bbar`], [`full`]: the formulations, each with its scalar reference update beside
-//!   its lane update;
+//!   its lane update (the two four-point ones share theirs, [`four_point`]);
 //! - [`state`], [`scalar`], [`lanes`]: the state a quad keeps and what the formulations'
 //!   scalar and lane updates share (the lane updates give the scalar bits on every kernel
 //!   path).
@@ -18,6 +18,7 @@
 pub mod bbar;
 pub mod element;
 pub mod formulation;
+pub mod four_point;
 pub mod full;
 pub mod lanes;
 pub mod mass;
