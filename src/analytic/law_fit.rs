@@ -132,15 +132,9 @@ pub fn read_observations(
 /// A fitted law.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Fit {
-    /// All parameters, fitted ones at their optimum.
-    pub params: Params,
-    /// Free parameter names.
-    pub free: Vec<&'static str>,
-    /// One-standard-deviation uncertainty of each free parameter (same units; NaN if there
-    /// are no more residuals than free parameters).
-    pub sigma: Vec<f64>,
-    /// Root-mean-square relative residual over e and δ_max.
-    pub rms: f64,
+    /// The optimum: all parameters, the free ones' uncertainties, and the root-mean-square
+    /// relative residual over e and δ_max.
+    pub optimum: LeastSquares,
     /// Per observation: (observation, fitted e, fitted δ_max).
     pub rows: Vec<(Observation, f64, f64)>,
 }
@@ -273,24 +267,13 @@ pub fn fit_weighted(
         }
         Ok(r)
     };
-    let LeastSquares {
-        params,
-        free: names,
-        sigma,
-        rms,
-    } = least_squares(spec, pair, free, fixed, residuals)?;
+    let optimum = least_squares(spec, pair, free, fixed, residuals)?;
     let mut rows = vec![];
     for o in obs {
-        let (e, d, _) = predict(spec, pair, &params, b1, b2, o.speed)?;
+        let (e, d, _) = predict(spec, pair, &optimum.params, b1, b2, o.speed)?;
         rows.push((*o, e, d));
     }
-    Ok(Fit {
-        params,
-        free: names,
-        sigma,
-        rms,
-        rows,
-    })
+    Ok(Fit { optimum, rows })
 }
 
 /// The optimum of a least-squares fit of a law's parameters.

@@ -134,13 +134,16 @@ pub fn run(a: LawFitArgs, registry: &Registry) -> Result<()> {
         a.diameter,
         a.material
     );
-    for (k, v) in f.params.iter() {
-        match f.free.iter().position(|n| *n == k) {
-            Some(j) => println!("  {k} = {v:.6e} +- {:.2e} (fitted)", f.sigma[j]),
+    for (k, v) in f.optimum.params.iter() {
+        match f.optimum.free.iter().position(|n| *n == k) {
+            Some(j) => println!("  {k} = {v:.6e} +- {:.2e} (fitted)", f.optimum.sigma[j]),
             None => println!("  {k} = {v:.6e} (fixed)"),
         }
     }
-    println!("  rms relative residual (e and delta_max) = {:.4}", f.rms);
+    println!(
+        "  rms relative residual (e and delta_max) = {:.4}",
+        f.optimum.rms
+    );
     for (o, e, d) in &f.rows {
         println!(
             "  v_r = {:.4} m/s: e {:.4} vs {:.4} ({:+.2} %), delta_max {:.4e} vs {:.4e} m ({:+.2} %)",

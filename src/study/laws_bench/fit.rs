@@ -214,12 +214,13 @@ pub fn fit_metal(
                     .map(|f| LawFit {
                         law: law.to_string(),
                         params: f
+                            .optimum
                             .free
                             .iter()
-                            .zip(&f.sigma)
-                            .map(|(k, s)| (k.to_string(), f.params.get(k), *s))
+                            .zip(&f.optimum.sigma)
+                            .map(|(k, s)| (k.to_string(), f.optimum.params.get(k), *s))
                             .collect(),
-                        rms: f.rms,
+                        rms: f.optimum.rms,
                         worst_e: worst(f.rows.iter().map(|(o, e, _)| e / o.e - 1.0)),
                         worst_delta: worst(f.rows.iter().map(|(o, _, d)| d / o.delta_max - 1.0)),
                     })

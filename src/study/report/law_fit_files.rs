@@ -76,7 +76,7 @@ pub fn write_fit_files(
     let mut csv = String::from("v_r [m/s],e [-],delta_max [m],contact_duration [s]\n");
     for i in 0..41 {
         let v = lo * (hi / lo).powf(i as f64 / 40.0);
-        let (e, d, t) = predict(s.spec, s.pair, &f.params, s.ball, s.ball, v)?;
+        let (e, d, t) = predict(s.spec, s.pair, &f.optimum.params, s.ball, s.ball, v)?;
         csv.push_str(&format!("{v:.9e},{e:.9e},{d:.9e},{t:.9e}\n"));
     }
     write_atomic(dir.join("e_of_v.csv"), csv.as_bytes())?;
@@ -88,7 +88,7 @@ pub fn write_fit_files(
     );
     let scene = DeckScene::new(
         s.spec,
-        &f.params,
+        &f.optimum.params,
         s.material,
         s.diameter,
         reference,
@@ -100,7 +100,7 @@ pub fn write_fit_files(
         ..FitDecks::default()
     };
     for code in Code::ALL {
-        match deck(code, s.spec.name, &f.params, &scene) {
+        match deck(code, s.spec.name, &f.optimum.params, &scene) {
             Ok(text) => {
                 write_atomic(dir.join(code.file()), text.as_bytes())?;
                 decks.written.push(code.file());
@@ -123,10 +123,10 @@ pub fn write_fit_files(
         "source": s.source,
         "material": s.material_name,
         "diameter": s.diameter,
-        "params": f.params.iter().map(|(k, v)| (k.to_string(), num(v))).collect::<serde_json::Map<_, _>>(),
-        "free": f.free,
-        "sigma": f.free.iter().zip(&f.sigma).map(|(k, s)| (k.to_string(), num(*s))).collect::<serde_json::Map<_, _>>(),
-        "rms_relative_residual": num(f.rms),
+        "params": f.optimum.params.iter().map(|(k, v)| (k.to_string(), num(v))).collect::<serde_json::Map<_, _>>(),
+        "free": f.optimum.free,
+        "sigma": f.optimum.free.iter().zip(&f.optimum.sigma).map(|(k, s)| (k.to_string(), num(*s))).collect::<serde_json::Map<_, _>>(),
+        "rms_relative_residual": num(f.optimum.rms),
         "rows": rows,
         "reference_speed": num(reference),
         "speed_range": [num(range.0), num(range.1)],
