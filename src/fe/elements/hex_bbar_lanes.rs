@@ -262,7 +262,9 @@ mod tests {
     use crate::fe::elements::{
         batch::{ElementStateMut, IntegrationPoint},
         hex_bbar,
-        hex_one_point_lanes::tests::{assert_forces_match, copper, four_elements, lanes},
+        hex_one_point_lanes::tests::{
+            assert_forces_match, copper, drift, four_elements, lanes, zero_lanes,
+        },
     };
 
     /// Four lanes of distorted, spinning, yielding elements against the per-element B-bar
@@ -276,18 +278,12 @@ mod tests {
         let (xs, vs) = four_elements(0x0bad_cafe_2468_1357, h, 1, 50.0, [4.0, 2.0, 3.0], 0.3);
         let dt = 2e-8;
         let mut x = xs;
-        let z = crate::fe::simd::LaneIsa::<4>::detect().unwrap().splat(0.0);
+        let z = zero_lanes();
         let mut st = BBarLaneState::<4>::filled(z);
         let mut refs = [([IntegrationPoint::default(); 8], 0.0, 0.0); 4];
         let mut yielded = [false; 4];
         for _ in 0..400 {
-            for l in 0..4 {
-                for i in 0..8 {
-                    for c in 0..3 {
-                        x[l][i][c] += dt * vs[l][i][c];
-                    }
-                }
-            }
+            drift(&mut x, &vs, dt);
             let out = update(&lanes(&x), &lanes(&vs), dt, &mat, &law, &mut st);
             for l in 0..4 {
                 let r = &mut refs[l];

@@ -448,6 +448,22 @@ pub(crate) mod tests {
         })
     }
 
+    /// Moves the four elements' nodes `x` (m) by `dt` (s) at their velocities `vs` (m/s).
+    pub(crate) fn drift(x: &mut [Hex; 4], vs: &[Hex; 4], dt: f64) {
+        for (xl, vl) in x.iter_mut().zip(vs) {
+            for (xi, vi) in xl.iter_mut().zip(vl) {
+                for c in 0..3 {
+                    xi[c] += dt * vi[c];
+                }
+            }
+        }
+    }
+
+    /// Four zero lanes on this CPU's four-lane path.
+    pub(crate) fn zero_lanes() -> Lanes<4> {
+        crate::fe::simd::LaneIsa::<4>::detect().unwrap().splat(0.0)
+    }
+
     /// The copper of the default scene and its linear hardening law.
     pub(crate) fn copper() -> (J2Material, crate::fe::materials::Bilinear) {
         let mat = J2Material::new(&Material::preset("copper-fe").unwrap(), false);
@@ -588,7 +604,7 @@ pub(crate) mod tests {
         let (xs, vs) = four_elements(0xdead_beef_1234_5678, h, 2, 60.0, [5.0, 0.0, 3.0], 0.0);
         let dt = 2e-8;
         let mut x = xs;
-        let z = crate::fe::simd::LaneIsa::<4>::detect().unwrap().splat(0.0);
+        let z = zero_lanes();
         let (mut st, mut hgs) = (OnePointLanes::filled(z), HourglassLanes::filled(z));
         let mut refs = [(
             [crate::fe::elements::batch::IntegrationPoint::default()],
@@ -599,13 +615,7 @@ pub(crate) mod tests {
         ); 4];
         let mut yielded = [false; 4];
         for _ in 0..400 {
-            for l in 0..4 {
-                for i in 0..8 {
-                    for c in 0..3 {
-                        x[l][i][c] += dt * vs[l][i][c];
-                    }
-                }
-            }
+            drift(&mut x, &vs, dt);
             let out = update(
                 &lanes(&x),
                 &lanes(&vs),
