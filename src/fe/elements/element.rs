@@ -77,6 +77,16 @@ pub(crate) trait Element {
             x, v, dt, mat, hg, ..
         } = inp;
         let n = b.conn.len();
+        // The loads and stores below read and write rows unchecked: once per batch, every
+        // array holds its rows for the batch's n elements.
+        let rows = |len: usize, per: usize| len == per * n;
+        assert!(
+            rows(b.pts.len(), Self::POINTS)
+                && rows(b.wp.len(), 1)
+                && rows(b.ie.len(), 1)
+                && (!Self::HOURGLASS || (rows(b.hgq.len(), 1) && rows(b.ehg.len(), 1))),
+            "batch arrays do not match its {n} elements"
+        );
         let mut best = (f64::INFINITY, base);
         let mut k0 = 0;
         while k0 < n {
