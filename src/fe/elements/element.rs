@@ -62,6 +62,12 @@ pub(crate) trait Element {
         out: &Self::Output<W>,
     ) -> <Self::Points<W> as PointState<W>>::Volumes;
 
+    /// True when `a` holds the rows of both state parts for `n` elements.
+    fn holds(a: &StateArrays<'_>, n: usize) -> bool {
+        <Self::Points<1> as LaneState<1>>::holds(a, n)
+            && <Self::Extra<1> as LaneState<1>>::holds(a, n)
+    }
+
     /// Advances the batch `b` W elements at a time with hardening law `law`: gathers nodes
     /// and state into lanes, updates, scatters state and forces back, checks each element.
     /// Lanes past the batch end repeat its last element and are discarded.
@@ -79,12 +85,8 @@ pub(crate) trait Element {
         let n = b.conn.len();
         // The loads and stores below read and write rows unchecked: once per batch, every
         // array holds its rows for the batch's n elements.
-        let rows = |len: usize, per: usize| len == per * n;
         assert!(
-            rows(b.pts.len(), Self::POINTS)
-                && rows(b.wp.len(), 1)
-                && rows(b.ie.len(), 1)
-                && (!Self::HOURGLASS || (rows(b.hgq.len(), 1) && rows(b.ehg.len(), 1))),
+            Self::holds(&b.arrays(), n),
             "batch arrays do not match its {n} elements"
         );
         let mut best = (f64::INFINITY, base);
@@ -101,7 +103,7 @@ pub(crate) trait Element {
                 idx: &idx,
             };
             // SAFETY: every index is a local element < n of this batch, whose arrays hold
-            // their rows for n elements.
+            // both parts' rows for n elements (asserted above).
             let (points, extra) = unsafe {
                 (
                     Self::Points::<W>::load(&g, &mut ps),
@@ -160,7 +162,7 @@ pub(crate) trait Element {
         };
         let n = g.arrays.wp.len();
         assert!(
-            idx.iter().all(|&k| k < n) && g.arrays.pts.len() == Self::POINTS * n,
+            idx.iter().all(|&k| k < n) && Self::holds(&g.arrays, n),
             "lane group outside the block"
         );
         let (mut ps, mut es) = (MaybeUninit::uninit(), MaybeUninit::uninit());

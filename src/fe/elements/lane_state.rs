@@ -42,9 +42,13 @@ pub(crate) trait LaneState<const W: usize>: Copy {
     /// returns it initialised.
     ///
     /// # Safety
-    /// Every `g.idx[l]` is below the element count n = `g.arrays.wp.len()`, and the arrays
-    /// this part reads hold their rows for n elements.
+    /// Every `g.idx[l]` is below the element count n = `g.arrays.wp.len()`, and
+    /// [`LaneState::holds`]`(&g.arrays, n)`.
     unsafe fn load<'s>(g: &LaneGroup<'_, W>, slot: &'s mut MaybeUninit<Self>) -> &'s mut Self;
+
+    /// True when the arrays `a` hold this part's rows for `n` elements: the condition under
+    /// which its loads and stores, which index rows unchecked, stay inside the arrays.
+    fn holds(a: &StateArrays<'_>, n: usize) -> bool;
 
     /// Hints the prefetcher at the rows of the group two groups after local element `k0`.
     fn prefetch(b: &Batch<'_>, k0: usize);
@@ -65,7 +69,8 @@ pub struct PointLanes<const P: usize, const W: usize> {
 
 impl<const P: usize, const W: usize> PointLanes<P, W> {
     /// Every lane and field `z` (a zero state to start from).
-    pub fn filled(z: Lanes<W>) -> Self {
+    #[cfg(test)]
+    pub(crate) fn filled(z: Lanes<W>) -> Self {
         PointLanes {
             stress: [[z; 6]; P],
             eps_p: [z; P],
@@ -85,7 +90,6 @@ impl<const P: usize, const W: usize> LaneState<W> for PointLanes<P, W> {
     #[inline(always)]
     unsafe fn load<'s>(g: &LaneGroup<'_, W>, slot: &'s mut MaybeUninit<Self>) -> &'s mut Self {
         let (isa, a, idx) = (g.isa, &g.arrays, g.idx);
-        debug_assert!(a.pts.len() == P * a.wp.len() && a.ie.len() == a.wp.len());
         let pp = a.pts.as_ptr().cast::<f64>();
         let sp = slot.as_mut_ptr();
         for p in 0..P {
@@ -103,6 +107,10 @@ impl<const P: usize, const W: usize> LaneState<W> for PointLanes<P, W> {
         std::ptr::addr_of_mut!((*sp).internal_energy).write(contiguous(isa, a.ie, idx));
         // SAFETY: every field was written above.
         slot.assume_init_mut()
+    }
+
+    fn holds(a: &StateArrays<'_>, n: usize) -> bool {
+        a.pts.len() == P * n && a.wp.len() == n && a.ie.len() == n
     }
 
     #[inline(always)]
@@ -124,8 +132,8 @@ pub(crate) trait PointState<const W: usize>: LaneState<W> {
     /// volume each point represents after the update, `volume`.
     ///
     /// # Safety
-    /// `k0 + W` is at most the batch's element count, and its point array holds
-    /// [`PointState::POINTS`] points per element.
+    /// `k0 + W` is at most the batch's element count n, and [`LaneState::holds`] for the
+    /// batch's arrays and n.
     unsafe fn store_group(&self, volume: &Self::Volumes, b: &mut Batch<'_>, k0: usize);
 
     /// Writes lane `l` back to local element `k`, with its points' volumes `volume`.
@@ -139,7 +147,7 @@ impl<const P: usize, const W: usize> PointState<W> for PointLanes<P, W> {
 
     #[inline(always)]
     unsafe fn store_group(&self, volume: &[Lanes<W>; P], b: &mut Batch<'_>, k0: usize) {
-        debug_assert!(b.pts.len() == P * b.wp.len() && k0 + W <= b.wp.len());
+        debug_assert!(k0 + W <= b.wp.len());
         let pp = b.pts.as_mut_ptr().cast::<f64>();
         for g in 0..P {
             let s = &self.stress[g];
@@ -173,8 +181,8 @@ pub(crate) trait ExtraLanes<const W: usize>: LaneState<W> {
     /// Writes a full group back to local elements `k0..k0 + W`.
     ///
     /// # Safety
-    /// `k0 + W` is at most the batch's element count, and the arrays this part writes hold
-    /// their rows for every element of the batch.
+    /// `k0 + W` is at most the batch's element count n, and [`LaneState::holds`] for the
+    /// batch's arrays and n.
     unsafe fn store_group(&self, b: &mut Batch<'_>, k0: usize);
 
     /// Writes lane `l` back to local element `k`.
@@ -189,6 +197,10 @@ impl<const W: usize> LaneState<W> for NoLanes {
     #[inline(always)]
     unsafe fn load<'s>(_g: &LaneGroup<'_, W>, slot: &'s mut MaybeUninit<Self>) -> &'s mut Self {
         slot.write(NoLanes)
+    }
+
+    fn holds(_a: &StateArrays<'_>, _n: usize) -> bool {
+        true
     }
 
     #[inline(always)]
@@ -214,7 +226,8 @@ pub struct HourglassLanes<const W: usize> {
 
 impl<const W: usize> HourglassLanes<W> {
     /// Every lane and field `z` (a zero state to start from).
-    pub fn filled(z: Lanes<W>) -> Self {
+    #[cfg(test)]
+    pub(crate) fn filled(z: Lanes<W>) -> Self {
         HourglassLanes {
             forces: [[z; 3]; 4],
             energy: z,
@@ -226,7 +239,6 @@ impl<const W: usize> LaneState<W> for HourglassLanes<W> {
     #[inline(always)]
     unsafe fn load<'s>(g: &LaneGroup<'_, W>, slot: &'s mut MaybeUninit<Self>) -> &'s mut Self {
         let (isa, a, idx) = (g.isa, &g.arrays, g.idx);
-        debug_assert!(a.hgq.len() == a.wp.len() && a.ehg.len() == a.wp.len());
         let hp = a.hgq.as_ptr().cast::<f64>();
         let sp = slot.as_mut_ptr();
         // SAFETY: the caller's contract: rows of twelve f64 inside the hourglass array.
@@ -241,6 +253,10 @@ impl<const W: usize> LaneState<W> for HourglassLanes<W> {
         slot.assume_init_mut()
     }
 
+    fn holds(a: &StateArrays<'_>, n: usize) -> bool {
+        a.hgq.len() == n && a.ehg.len() == n
+    }
+
     #[inline(always)]
     fn prefetch(b: &Batch<'_>, k0: usize) {
         prefetch_ahead(b.hgq.as_ptr(), k0 + 2 * W, W);
@@ -250,7 +266,7 @@ impl<const W: usize> LaneState<W> for HourglassLanes<W> {
 impl<const W: usize> ExtraLanes<W> for HourglassLanes<W> {
     #[inline(always)]
     unsafe fn store_group(&self, b: &mut Batch<'_>, k0: usize) {
-        debug_assert!(b.hgq.len() == b.wp.len() && k0 + W <= b.wp.len());
+        debug_assert!(k0 + W <= b.wp.len());
         let hp = b.hgq.as_mut_ptr().cast::<f64>();
         let q = &self.forces;
         let h0 = [
