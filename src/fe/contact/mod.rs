@@ -5,20 +5,21 @@
 //! - [`node_to_segment::SurfacePair`]: two deformable surfaces, symmetric two-pass
 //!   node-to-segment (each surface is slave once and master once, each pass weighted ½).
 //!
-//! - [`meridian`]: the meridian section's planes (nodal, segment, kinematic) and its
+//! - [`section`]: the meridian section's planes (nodal, segment, kinematic) and its
 //!   two-boundary node-to-segment pair.
 //!
 //! All implement [`crate::fe::interaction::Interaction`]. The normal law is a penalty spring
 //! ([`penalty`]), optionally with a dashpot; friction is Coulomb with regularised stick and a
 //! return mapping ([`friction`]); candidates come from a bounding-box and bucket search
 //! ([`search`]); each step's resultants, area, penetration and energies are in
-//! [`output::ContactOutput`]; the contact duration is read from the force pulse
+//! [`output::ContactOutput`], booked by each 3D contact's [`ledger::ContactLedger`]; the contact duration is read from the force pulse
 //! ([`duration`]); [`mass_damping`] is the dynamic-relaxation damping that settles a slow
 //! load to its static answer.
 
 pub mod duration;
 pub mod friction;
 pub mod law;
+pub mod ledger;
 pub mod mass_damping;
 pub mod node_to_segment;
 pub mod output;

@@ -9,6 +9,7 @@
 
 use super::friction::StickState;
 use super::law::{respond, stored_energy, NodeKinematics, NodeLaw};
+use super::ledger::ContactLedger;
 use super::output::{ContactOutput, ContactProbe, NodeContact, OutputBuilder, PressureSample};
 use super::params::ContactParams;
 use super::penalty::{damping_constant, effective_mass, stable_step};
@@ -61,14 +62,8 @@ pub struct SurfacePair {
     /// Union of the nodes of both surfaces (each pass maps its nodes into it).
     nodes: Vec<u32>,
     force: Vec<[f64; 3]>,
-    prev_force: Vec<[f64; 3]>,
-    dt_prev: Option<f64>,
     ready: bool,
-    energy: InteractionEnergy,
-    output: ContactOutput,
-    samples: Vec<PressureSample>,
-    probe: ContactProbe,
-    friction_energy: f64,
+    ledger: ContactLedger,
     /// Global-test inflation: search margin plus the deepest allowed penetration, m.
     reach: f64,
     /// Steps on which the global bounding-box test found the surfaces apart.
@@ -199,14 +194,8 @@ impl SurfacePair {
             passes,
             nodes,
             force: vec![[0.0; 3]; n],
-            prev_force: vec![[0.0; 3]; n],
-            dt_prev: None,
             ready: false,
-            energy: InteractionEnergy::default(),
-            output: ContactOutput::default(),
-            samples: Vec::new(),
-            probe: ContactProbe::default(),
-            friction_energy: 0.0,
+            ledger: ContactLedger::new(n),
             free_steps: 0,
             reach,
             dt_cache: StepCache::default(),
@@ -216,17 +205,17 @@ impl SurfacePair {
     /// A shared handle on this pair's output that stays readable after the pair is boxed
     /// and handed to the solver.
     pub fn probe(&self) -> ContactProbe {
-        self.probe.clone()
+        self.ledger.probe()
     }
 
     /// Output of the last evaluated step (forces on body A).
     pub fn output(&self) -> &ContactOutput {
-        &self.output
+        self.ledger.output()
     }
 
     /// Pressure at every slave node in contact at the last step (both passes).
     pub fn pressures(&self) -> &[PressureSample] {
-        &self.samples
+        self.ledger.pressures()
     }
 
     /// Number of candidate-list rebuilds so far, summed over the passes.
@@ -319,7 +308,7 @@ impl Interaction for SurfacePair {
         if !self.ready {
             self.prepare(ctx);
         }
-        let dt_prev = self.dt_prev.unwrap_or(0.0);
+        let dt_prev = self.ledger.last_step();
         self.force.iter_mut().for_each(|v| *v = [0.0; 3]);
         let mut out = OutputBuilder::new(ctx.t);
         let mut stored = 0.0;
@@ -409,8 +398,7 @@ impl Interaction for SurfacePair {
                         dt: dt_prev,
                     };
                     let r = respond(&p.laws[i], &mut p.stick[i], &kin, self.params.friction);
-                    self.energy.dissipated += r.dissipated;
-                    self.friction_energy += r.friction;
+                    self.ledger.dissipate(&r);
                     stored += stored_energy(&p.laws[i], &p.stick[i], pr.gap);
                     let fs = r.force(n);
                     let li = p.slave_local[i];
@@ -445,24 +433,13 @@ impl Interaction for SurfacePair {
         }
         for (li, &g) in self.nodes.iter().enumerate() {
             let gi = g as usize;
-            let (fp, fnw) = (self.prev_force[li], self.force[li]);
-            if fp != [0.0; 3] || fnw != [0.0; 3] {
-                let avg = [
-                    0.5 * (fp[0] + fnw[0]),
-                    0.5 * (fp[1] + fnw[1]),
-                    0.5 * (fp[2] + fnw[2]),
-                ];
-                self.energy.work += dot(avg, ctx.v[gi]) * dt_prev;
+            let fnw = self.force[li];
+            if fnw != [0.0; 3] {
                 f[gi] = add(f[gi], fnw);
             }
+            self.ledger.work(li, fnw, ctx.v[gi]);
         }
-        std::mem::swap(&mut self.prev_force, &mut self.force);
-        self.energy.stored = stored;
-        let (o, s) = out.finish(stored, self.energy.dissipated, self.friction_energy);
-        self.probe.update(&o, &s);
-        self.output = o;
-        self.samples = s;
-        self.dt_prev = Some(ctx.dt);
+        self.ledger.finish(out, stored, ctx.dt);
         Ok(())
     }
 
@@ -499,7 +476,7 @@ impl Interaction for SurfacePair {
     }
 
     fn energy(&self) -> InteractionEnergy {
-        self.energy
+        self.ledger.energy()
     }
 
     fn active_nodes(&self) -> Option<&[u32]> {

@@ -3,6 +3,7 @@
 
 use super::friction::StickState;
 use super::law::{respond, stored_energy, NodeKinematics, NodeLaw};
+use super::ledger::ContactLedger;
 use super::output::{ContactOutput, ContactProbe, NodeContact, OutputBuilder, PressureSample};
 use super::params::ContactParams;
 use super::penalty::{damping_constant, stable_step};
@@ -32,13 +33,7 @@ pub struct RigidPlane {
     laws: Vec<NodeLaw>,
     ready: bool,
     stick: Vec<StickState>,
-    prev_force: Vec<[f64; 3]>,
-    dt_prev: Option<f64>,
-    energy: InteractionEnergy,
-    output: ContactOutput,
-    samples: Vec<PressureSample>,
-    probe: ContactProbe,
-    friction_energy: f64,
+    ledger: ContactLedger,
     /// The stable step: the node laws change only in `prepare`, which clears it.
     dt_cache: StepCache,
 }
@@ -108,13 +103,7 @@ impl RigidPlane {
             laws,
             ready: false,
             stick: vec![StickState::default(); n],
-            prev_force: vec![[0.0; 3]; n],
-            dt_prev: None,
-            energy: InteractionEnergy::default(),
-            output: ContactOutput::default(),
-            samples: Vec::new(),
-            probe: ContactProbe::default(),
-            friction_energy: 0.0,
+            ledger: ContactLedger::new(n),
             dt_cache: StepCache::default(),
         })
     }
@@ -141,17 +130,17 @@ impl RigidPlane {
     /// A shared handle on this pair's output that stays readable after the pair is boxed
     /// and handed to the solver.
     pub fn probe(&self) -> ContactProbe {
-        self.probe.clone()
+        self.ledger.probe()
     }
 
     /// Output of the last evaluated step.
     pub fn output(&self) -> &ContactOutput {
-        &self.output
+        self.ledger.output()
     }
 
     /// Pressure at every node in contact at the last evaluated step.
     pub fn pressures(&self) -> &[PressureSample] {
-        &self.samples
+        self.ledger.pressures()
     }
 
     /// Normal penalty stiffness of each surface node (after the first step for the SOFT rule), N/m.
@@ -208,7 +197,7 @@ impl Interaction for RigidPlane {
             [0.0; 3]
         };
         let n = self.normal;
-        let dt_prev = self.dt_prev.unwrap_or(0.0);
+        let dt_prev = self.ledger.last_step();
         let mut out = OutputBuilder::new(ctx.t);
         let mut stored = 0.0;
         for (i, &g) in self.surface.nodes.iter().enumerate() {
@@ -237,8 +226,7 @@ impl Interaction for RigidPlane {
                     &kin,
                     self.params.friction,
                 );
-                self.energy.dissipated += r.dissipated;
-                self.friction_energy += r.friction;
+                self.ledger.dissipate(&r);
                 stored += stored_energy(&self.laws[i], &self.stick[i], gap);
                 force = r.force(n);
                 let s = PressureSample {
@@ -262,22 +250,9 @@ impl Interaction for RigidPlane {
                 self.stick[i] = StickState::default();
             }
             add_into(f, gi, force);
-            // Trapezoidal work of the contact force over x^{n-1} → x^n = v^{n-1/2} Δt.
-            let fp = self.prev_force[i];
-            let avg = [
-                0.5 * (fp[0] + force[0]),
-                0.5 * (fp[1] + force[1]),
-                0.5 * (fp[2] + force[2]),
-            ];
-            self.energy.work += dot(avg, ctx.v[gi]) * dt_prev;
-            self.prev_force[i] = force;
+            self.ledger.work(i, force, ctx.v[gi]);
         }
-        self.energy.stored = stored;
-        let (o, s) = out.finish(stored, self.energy.dissipated, self.friction_energy);
-        self.probe.update(&o, &s);
-        self.output = o;
-        self.samples = s;
-        self.dt_prev = Some(ctx.dt);
+        self.ledger.finish(out, stored, ctx.dt);
         Ok(())
     }
 
@@ -287,7 +262,7 @@ impl Interaction for RigidPlane {
     }
 
     fn energy(&self) -> InteractionEnergy {
-        self.energy
+        self.ledger.energy()
     }
 
     fn active_nodes(&self) -> Option<&[u32]> {

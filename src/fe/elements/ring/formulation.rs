@@ -80,8 +80,8 @@ impl QuadFormulation {
     pub fn with<V: RingVisitor>(self, v: V) -> V::Output {
         match self {
             QuadFormulation::OnePoint { hourglass } => v.visit(OnePointQuad { hourglass }),
-            QuadFormulation::SelectiveReduced => v.visit(BBarQuad),
-            QuadFormulation::Full => v.visit(FullQuad),
+            QuadFormulation::SelectiveReduced => v.visit(BBarQuad {}),
+            QuadFormulation::Full => v.visit(FullQuad {}),
         }
     }
 }

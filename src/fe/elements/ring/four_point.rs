@@ -5,16 +5,39 @@
 //! forces then carry each point's pressure on the difference between the mean divergence
 //! operator and its own, W_g (B_gᵀσ + p (B̄_vol − B_g,vol)).
 
-use super::element::{LaneStep, Quad, Step};
+use super::element::{LaneStep, Quad, RingElement, Step};
 use super::lanes::{self, RingLaneOutput, RingLaneState};
 use super::scalar::{advance_gauss_points, mid_step, output};
 use super::shape::{add_stress_forces, gauss_points, mean_of, velocity_gradient, Gradient};
 use super::state::{QuadOutput, QuadState};
 use crate::fe::{materials::Hardening, tensor::Sym};
 
+/// A ring quad with four Gauss points; `MEAN`: with the element's mean dilatation (the
+/// B-bar quad, [`super::bbar::BBarQuad`]), else fully integrated ([`super::full::FullQuad`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct FourPointQuad<const MEAN: bool>;
+
+impl<const MEAN: bool> RingElement for FourPointQuad<MEAN> {
+    const POINTS: usize = 4;
+
+    #[inline]
+    fn update(&self, s: Step<'_, Quad>, st: &mut QuadState) -> QuadOutput {
+        update::<MEAN>(s, st)
+    }
+
+    #[inline(always)]
+    fn update_lanes<H: Hardening, const W: usize>(
+        &self,
+        s: LaneStep<'_, H, W>,
+        st: &mut RingLaneState<W>,
+    ) -> RingLaneOutput<W> {
+        update_lanes::<MEAN, H, W>(s, st)
+    }
+}
+
 /// The scalar update of one quad; `MEAN`: the B-bar quad's mean dilatation.
 #[inline]
-pub(super) fn update<const MEAN: bool>(s: Step<'_, Quad>, st: &mut QuadState) -> QuadOutput {
+fn update<const MEAN: bool>(s: Step<'_, Quad>, st: &mut QuadState) -> QuadOutput {
     let Step { x1, v, dt, mat } = s;
     let pm = gauss_points(&mid_step(x1, v, dt));
     let p1 = gauss_points(x1);
@@ -51,7 +74,7 @@ fn add_mean_dilatation_forces(f: &mut [[f64; 2]; 4], s: &Sym, g: &Gradient, mean
 
 /// The update of W quads, lane-wise (the scalar bits on every kernel path).
 #[inline(always)]
-pub(super) fn update_lanes<const MEAN: bool, H: Hardening, const W: usize>(
+fn update_lanes<const MEAN: bool, H: Hardening, const W: usize>(
     s: LaneStep<'_, H, W>,
     st: &mut RingLaneState<W>,
 ) -> RingLaneOutput<W> {

@@ -9,30 +9,7 @@
 //! mean dilatation instead. Elastic runs with ν well below ½ do not lock. Objective update
 //! and material seam as the other formulations', at each Gauss point.
 
-use super::element::{LaneStep, Quad, RingElement, Step};
-use super::four_point::{update, update_lanes};
-use super::lanes::{RingLaneOutput, RingLaneState};
-use super::state::{QuadOutput, QuadState};
-use crate::fe::materials::Hardening;
+use super::four_point::FourPointQuad;
 
 /// The fully integrated (2x2 Gauss) quad.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub struct FullQuad;
-
-impl RingElement for FullQuad {
-    const POINTS: usize = 4;
-
-    #[inline]
-    fn update(&self, s: Step<'_, Quad>, st: &mut QuadState) -> QuadOutput {
-        update::<false>(s, st)
-    }
-
-    #[inline(always)]
-    fn update_lanes<H: Hardening, const W: usize>(
-        &self,
-        s: LaneStep<'_, H, W>,
-        st: &mut RingLaneState<W>,
-    ) -> RingLaneOutput<W> {
-        update_lanes::<false, H, W>(s, st)
-    }
-}
+pub type FullQuad = FourPointQuad<false>;
