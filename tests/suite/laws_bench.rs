@@ -272,7 +272,8 @@ fn a_bad_plan_is_one_line_naming_the_flag() {
 
 /// The oblique points (one run of the 3D half model each) keep their cache files when the
 /// head-on plan changes: their model is their own, not the plan's. `--ignored`: the oblique
-/// point is a 3D run of about 80 s (the oblique run itself is tested in `contact_oblique`).
+/// point is two 3D runs (levels −1 and 0) of about a minute (the oblique run itself is tested
+/// in `contact_oblique`).
 #[test]
 #[ignore]
 fn oblique_points_are_cached_apart_from_the_head_on_plan() {
@@ -281,7 +282,7 @@ fn oblique_points_are_cached_apart_from_the_head_on_plan() {
     let quiet = |_: &str| {};
     let matrix = Matrix::from_toml(
         "metals = [\"copper-fe\"]\nspeeds = [10.0]\ndiameters = [0.02]\n\
-         [oblique]\nmetals = [\"copper-fe\"]\ndiameter = 0.005\nratios = [0.5]",
+         [oblique]\nmetals = [\"copper-fe\"]\ndiameter = 0.005\nratios = [0.5]\nelastic = [false]",
         "tiny-oblique",
     )
     .unwrap();

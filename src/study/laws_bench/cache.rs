@@ -47,17 +47,23 @@ impl CacheKey for HeadOnPoint {
 impl CacheKey for ObliquePoint {
     fn key(&self) -> String {
         format!(
-            "oblique_{}_D{:.4e}_vn{:.6e}_r{:.6e}",
-            self.metal, self.diameter, self.normal_speed, self.ratio
+            "oblique_{}{}_D{:.4e}_vn{:.6e}_r{:.6e}",
+            self.metal,
+            if self.elastic { "-elastic" } else { "" },
+            self.diameter,
+            self.normal_speed,
+            self.ratio
         )
     }
     fn describe(&self) -> String {
         format!(
-            "oblique {} D = {} mm v_n = {} m/s v_t/v_n = {}",
+            "oblique {}{} D = {} mm v_n = {} m/s v_t/v_n = {:.4} (psi = {:.3})",
             self.metal,
+            if self.elastic { " (elastic)" } else { "" },
             1e3 * self.diameter,
             self.normal_speed,
-            self.ratio
+            self.ratio,
+            self.angle
         )
     }
     fn cost(&self) -> f64 {

@@ -10,12 +10,13 @@ use crate::error::{Error, Result};
 use crate::fe::elements::ring::QuadFormulation;
 use crate::mesh::section::band::depth_for;
 use crate::scene::Scene;
+use crate::study::convergence::ladder::LadderPlan;
 use crate::study::convergence::phase_ensemble::{
     converged_head_on, HeadOnCase, HeadOnTarget, PhasePlan, MIN_LEVEL,
 };
+use crate::study::convergence::scene_estimate::run_scene_with_estimate;
 use crate::study::records::estimate::value_and_error;
 use crate::study::records::estimate::Estimate;
-use crate::study::run::scene::run_scene;
 use crate::study::run::section_impact::PlaneContact;
 use crate::study::run::simulate::RunOptions;
 use serde::{Deserialize, Serialize};
@@ -51,24 +52,29 @@ pub struct FePoint {
 }
 
 /// What the FE says about one oblique point (contact frame: normal x, tangential y, spins
-/// about z).
+/// about z), each figure with its two-level error bar (mesh levels −1 and 0).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct ObliqueFe {
     /// Coefficient of restitution, -.
-    pub e: f64,
+    #[serde(with = "value_and_error")]
+    pub e: Estimate,
     /// Tangential restitution of the contact points −u⁺/u⁻, -.
-    pub tangential_restitution: f64,
+    #[serde(with = "value_and_error")]
+    pub tangential_restitution: Estimate,
     /// Spin of ball 1 after the impact, rad/s.
-    pub spin: f64,
+    #[serde(with = "value_and_error")]
+    pub spin: Estimate,
     /// Tangential velocity of ball 1 after the impact, m/s.
     pub v1t_after: f64,
     /// Maximum approach, m.
-    pub delta_max: f64,
+    #[serde(with = "value_and_error")]
+    pub delta_max: Estimate,
     /// Contact duration, s.
-    pub contact_duration: f64,
-    /// Largest relative energy error of the run.
+    #[serde(with = "value_and_error")]
+    pub contact_duration: Estimate,
+    /// Largest relative energy error of the level-0 run.
     pub energy_error: f64,
-    /// Seconds of the run (wall time; the 3D loop may use more than one core).
+    /// Seconds of both runs (wall time; the 3D loop may use more than one core).
     pub wall_seconds: f64,
 }
 
@@ -260,9 +266,11 @@ impl FePlan {
 pub const FE_MODEL: &str =
     "section phase ensemble with error bars, kinematic symmetry plane, smoothed peak force";
 
-/// The FE model of the oblique points: one run of the 3D half model on the default graded
-/// meshes ([`oblique_fe`]), whatever the head-on plan (its cache files are not tied to it).
-pub const OBLIQUE_MODEL: &str = "3D half model, default graded meshes, one run";
+/// The FE model of the oblique points: the 3D half model on the default graded meshes (level
+/// 0) and on meshes twice as coarse (level −1) for the error bars ([`oblique_fe`]), whatever
+/// the head-on plan (its cache files are not tied to it).
+pub const OBLIQUE_MODEL: &str =
+    "3D half model, default graded meshes, two-level error bars (levels -1 and 0)";
 
 /// Hertz's contact radius a = √(R*δ_max) (m) of the point's pair at its speed.
 ///
@@ -342,52 +350,61 @@ impl FePoint {
 
 /// The scene of an oblique point: two identical balls touching along x, relative velocity
 /// (v_n, ratio·v_n, 0) split equally, default (graded) meshes, reduction chosen by the
-/// scene reader's `auto` (the half model).
+/// scene reader's `auto` (the half model); the elastic twin with the yield strength
+/// [`super::matrix::ELASTIC_YIELD`].
 pub fn oblique_scene(p: &ObliquePoint) -> Result<Scene> {
     let (vn, vt) = (0.5 * p.normal_speed, 0.5 * p.ratio * p.normal_speed);
+    let material = if p.elastic {
+        format!(
+            "{{ preset = \"{}\", yield = {:e} }}",
+            p.metal, p.material.yield_strength
+        )
+    } else {
+        format!("\"{}\"", p.metal)
+    };
     let ball = |v: [f64; 2]| {
         format!(
-            "material = \"{}\"\ndiameter = {:e}\nvelocity = [{:e}, {:e}, 0.0]\n",
-            p.metal, p.diameter, v[0], v[1]
+            "material = {material}\ndiameter = {:e}\nvelocity = [{:e}, {:e}, 0.0]\n",
+            p.diameter, v[0], v[1]
         )
     };
     let text = format!("[ball1]\n{}\n[ball2]\n{}", ball([vn, vt]), ball([-vn, -vt]));
     Scene::from_toml(&text, Path::new("."), &[])
 }
 
-/// The FE answer for one oblique point (one run of the 3D model the scene reader picks).
+/// The FE answer for one oblique point: the 3D model the scene reader picks, on the
+/// scene's meshes and on meshes twice as coarse, each figure with its two-level bar.
 ///
-/// Errors: a scene or run that fails.
+/// Errors: a scene or run that fails, an impact without slip at touch.
 pub fn oblique_fe(p: &ObliquePoint) -> Result<ObliqueFe> {
     let scene = oblique_scene(p)?;
-    let r = run_scene(
+    let r = run_scene_with_estimate(
         &scene,
         &RunOptions {
             history_rows: 200,
             ..RunOptions::default()
         },
+        LadderPlan::TwoLevels,
     )?;
-    let e =
-        r.e.ok_or_else(|| Error::Numerical("oblique point: the balls do not collide".into()))?;
-    let radius = 0.5 * p.diameter;
-    // Contact points: ball 1's at +R x, ball 2's at −R x; their y velocities.
-    let slip = |v1: [f64; 3], w1: [f64; 3], v2: [f64; 3], w2: [f64; 3]| {
-        v1[1] + radius * w1[2] - (v2[1] - radius * w2[2])
-    };
-    let before = slip(
-        scene.ball1.velocity,
-        scene.ball1.angular_velocity,
-        scene.ball2.velocity,
-        scene.ball2.angular_velocity,
-    );
-    let after = slip(r.v1_after, r.w1_after, r.v2_after, r.w2_after);
+    let missing = |what: &str| Error::Numerical(format!("oblique point: no {what}"));
+    let est = r
+        .error_estimate
+        .as_ref()
+        .ok_or_else(|| missing("error estimate (the balls do not collide)"))?;
+    let tangential = est
+        .tangential
+        .as_ref()
+        .ok_or_else(|| missing("tangential figures"))?;
+    let restitution = tangential
+        .restitution
+        .ok_or_else(|| missing("slip at touch"))?;
     Ok(ObliqueFe {
-        e,
-        tangential_restitution: -after / before,
-        spin: r.w1_after[2],
+        e: est.e.as_recorded(),
+        tangential_restitution: restitution.as_recorded(),
+        spin: tangential.spin1_after.as_recorded(),
         v1t_after: r.v1_after[1],
-        delta_max: r.delta_max,
-        contact_duration: r.contact_duration,
+        delta_max: est.delta_max.as_recorded(),
+        contact_duration: est.contact_duration.as_recorded(),
         energy_error: r.energy_error,
         wall_seconds: r.wall_time_s,
     })

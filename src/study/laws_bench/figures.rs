@@ -1,9 +1,13 @@
 //! The benchmark's SVG figures: e(v) per metal (every law as a line, FE points with error
-//! bars), e against v/v_y for both diameters (where D drops out), F(δ) loading-unloading
-//! loops at three speeds and δ(t) (FE pilot curve against every law).
+//! bars), e against v/v_y for both diameters (where D drops out), the oblique points' e_t
+//! and spin against the normalised angle of incidence (every tangential law, FE with bars,
+//! the elastic theory), F(δ) loading-unloading loops at three speeds and δ(t) (FE pilot
+//! curve against every law).
 
+use super::fe::ObliqueFe;
 use super::law_side::{head_on_law, thin};
 use super::matrix::log_spaced;
+use super::oblique_report::{group, groups, response};
 use super::{BenchResults, HeadOnResult};
 use crate::analytic::laws::Registry;
 use crate::atomic::write_atomic;
@@ -142,6 +146,108 @@ pub fn loop_speeds(speeds: &[f64]) -> Vec<f64> {
     out
 }
 
+/// The quantity an oblique chart plots.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum ObliqueQuantity {
+    /// Tangential restitution e_t of the contact points.
+    Restitution,
+    /// Spin of ball 1 after, rad/s.
+    Spin,
+}
+
+/// e_t or ω against ψ₁ for one metal and response: each tangential law (lines through the
+/// matrix's angles), FE points with their bars, and on the elastic twin Maw, Barber &
+/// Fawcett's theory. `None` without points.
+fn oblique_chart(
+    r: &BenchResults,
+    metal: &str,
+    elastic: bool,
+    q: ObliqueQuantity,
+) -> Option<Chart> {
+    let pts = group(r, metal, elastic);
+    let first = pts.first()?;
+    let pick_fe = |f: &ObliqueFe| match q {
+        ObliqueQuantity::Restitution => f.tangential_restitution,
+        ObliqueQuantity::Spin => f.spin,
+    };
+    let mut series: Vec<Series> = r
+        .tangential_laws
+        .iter()
+        .enumerate()
+        .map(|(k, law)| Series {
+            label: law.clone(),
+            points: pts
+                .iter()
+                .filter_map(|o| {
+                    let l = o.laws.get(k)?;
+                    let y = match q {
+                        ObliqueQuantity::Restitution => l.tangential_restitution,
+                        ObliqueQuantity::Spin => l.spin,
+                    };
+                    Some((o.point.angle, y))
+                })
+                .collect(),
+            style: Style::Line,
+        })
+        .collect();
+    let theory: Vec<(f64, f64)> = pts
+        .iter()
+        .filter_map(|o| {
+            let t = o.theory?;
+            let y = match q {
+                ObliqueQuantity::Restitution => t.tangential_restitution,
+                ObliqueQuantity::Spin => t.spin,
+            };
+            Some((o.point.angle, y))
+        })
+        .collect();
+    if !theory.is_empty() {
+        series.push(Series {
+            label: "Maw, Barber & Fawcett".into(),
+            points: theory,
+            style: Style::Line,
+        });
+    }
+    let (mut points, mut bars) = (vec![], vec![]);
+    for o in &pts {
+        if let Some(f) = o.fe.as_ref().and_then(|f| f.done()) {
+            let v = pick_fe(f);
+            points.push((o.point.angle, v.finest));
+            if v.error.is_finite() {
+                bars.push((o.point.angle, v.finest - v.error));
+                bars.push((o.point.angle, v.finest + v.error));
+            }
+        }
+    }
+    series.push(Series {
+        label: "FE".into(),
+        points,
+        style: Style::Points,
+    });
+    if !bars.is_empty() {
+        series.push(Series {
+            label: "FE error bar".into(),
+            points: bars,
+            style: Style::Bars,
+        });
+    }
+    let (what, unit) = match q {
+        ObliqueQuantity::Restitution => ("tangential restitution e_t", "(-)"),
+        ObliqueQuantity::Spin => ("spin of ball 1 after", "(rad/s)"),
+    };
+    Some(Chart {
+        title: format!(
+            "{metal} ({}), D = {} mm, v_n = {} m/s: {what}",
+            response(elastic),
+            1e3 * first.point.diameter,
+            first.point.normal_speed
+        ),
+        x_label: "normalised angle of incidence psi1 = kappa v_t/(mu v_n) (-)".into(),
+        y_label: format!("{what} {unit}"),
+        series,
+    })
+}
+
 /// One curve chart of point `h`: FE pilot curve and every law, columns `cx`, `cy` of the
 /// (t, δ, F) rows scaled by `sx`, `sy`.
 fn curve_chart(
@@ -210,6 +316,34 @@ pub fn write_figures(out: &Path, r: &BenchResults, registry: &Registry) -> Resul
         "FE e against v/v_y, every metal at both diameters".into(),
         &e_of_v_over_vy(r),
     )?;
+    for (metal, elastic) in groups(r) {
+        for (q, name, what) in [
+            (
+                ObliqueQuantity::Restitution,
+                "et",
+                "tangential restitution e_t",
+            ),
+            (ObliqueQuantity::Spin, "spin", "spin of ball 1 after"),
+        ] {
+            if let Some(c) = oblique_chart(r, &metal, elastic, q) {
+                let twin = if elastic { "_elastic" } else { "" };
+                let theory = if elastic {
+                    ", Maw, Barber & Fawcett's theory"
+                } else {
+                    ""
+                };
+                write(
+                    format!("oblique_{name}_{metal}{twin}.svg"),
+                    format!(
+                        "{what} against ψ₁, {metal} ({}): every tangential law (lines), FE \
+                         (points with their bars){theory}",
+                        response(elastic)
+                    ),
+                    &c,
+                )?;
+            }
+        }
+    }
     let Some(metal) = r.matrix.metals.first() else {
         return Ok(figs);
     };

@@ -48,6 +48,39 @@ pub struct ObliqueLaw {
     pub v1t_after: f64,
 }
 
+/// Maw, Barber & Fawcett's elastic theory on one oblique point.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Theory {
+    /// Tangential restitution of the contact points −u⁺/u⁻, -.
+    pub tangential_restitution: f64,
+    /// Spin of ball 1 after the impact about n × t, rad/s.
+    pub spin: f64,
+}
+
+/// The theory ([`crate::analytic::maw_barber_fawcett::impact`] at its default resolution)
+/// on oblique point `p`: ball 1 at the relative velocity against ball 2 at rest (the same
+/// relative motion as the FE's equal and opposite speeds).
+///
+/// Errors: a ball the body rejects, an impact that fails.
+pub fn theory_on_point(p: &ObliquePoint) -> Result<Theory> {
+    use crate::analytic::maw_barber_fawcett::{impact, DEFAULT_RESOLUTION};
+    let (b, _) = pair_of(p.material, p.diameter)?;
+    let v = [p.normal_speed, p.ratio * p.normal_speed];
+    let i = impact(
+        &b,
+        &b,
+        [v, [0.0, 0.0]],
+        [0.0, 0.0],
+        p.material.mu,
+        DEFAULT_RESOLUTION,
+    )?
+    .ok_or_else(|| Error::invalid("oblique.normal_speed", p.normal_speed, "> 0 m/s"))?;
+    Ok(Theory {
+        tangential_restitution: i.tangential_restitution().unwrap_or(f64::NAN),
+        spin: i.spin_after[0],
+    })
+}
+
 /// `rows` thinned to at most `n` evenly spaced rows, the first and last kept.
 pub fn thin<T: Copy>(rows: &[T], n: usize) -> Vec<T> {
     if rows.len() <= n || n < 2 {

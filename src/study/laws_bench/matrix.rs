@@ -19,8 +19,26 @@ pub const DEFAULT_SPEED_RANGE: (f64, f64, usize) = (0.01, 10.0, 8);
 /// Ball diameters of the default matrix, m.
 pub const DEFAULT_DIAMETERS: [f64; 2] = [0.005, 0.02];
 
-/// Tangential-to-normal speed ratios of the default oblique impacts.
-pub const DEFAULT_RATIOS: [f64; 3] = [0.25, 0.5, 1.0];
+/// Normalised angles of incidence ψ₁ = κ v_t/(μ v_n) of the default oblique impacts (Maw,
+/// Barber & Fawcett 1976; κ = 2(1 − ν)/(2 − ν) for one material): from an impact that
+/// mostly sticks (ψ₁ = 0.25) to one that slides throughout (ψ₁ = 8; the theory's curve:
+/// `twoball laws mbf`).
+pub const DEFAULT_ANGLES: [f64; 10] = [0.25, 0.5, 1.0, 1.5, 2.0, 2.5, 3.0, 4.0, 5.0, 8.0];
+
+/// The metals of the default oblique impacts.
+pub const DEFAULT_OBLIQUE_METALS: [&str; 3] = ["copper-fe", "steel", "aluminum"];
+
+/// A yield strength no impact of the bench reaches, Pa: an oblique point's elastic twin.
+pub const ELASTIC_YIELD: f64 = 1e11;
+
+/// How the oblique impacts' tangential speeds are given.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Incidence {
+    /// Relative tangential over relative normal speed, v_t/v_n.
+    Ratios(Vec<f64>),
+    /// Maw, Barber & Fawcett's normalised angles ψ₁ = κ v_t/(μ v_n) of the metal's pair.
+    Angles(Vec<f64>),
+}
 
 /// The oblique impacts (3D half model) for the tangential laws.
 #[derive(Debug, Clone, PartialEq)]
@@ -31,8 +49,11 @@ pub struct Oblique {
     pub diameter: f64,
     /// Relative normal speed, m/s.
     pub normal_speed: f64,
-    /// Relative tangential over relative normal speed.
-    pub ratios: Vec<f64>,
+    /// The tangential speeds.
+    pub incidence: Incidence,
+    /// Which responses: `false` the metal as it is, `true` its elastic twin (yield strength
+    /// [`ELASTIC_YIELD`]).
+    pub elastic: Vec<bool>,
 }
 
 /// The whole matrix.
@@ -63,10 +84,14 @@ impl Default for Matrix {
             speeds: log_spaced(lo, hi, n),
             diameters: DEFAULT_DIAMETERS.to_vec(),
             oblique: Some(Oblique {
-                metals: vec!["copper-fe".into(), "steel".into()],
+                metals: DEFAULT_OBLIQUE_METALS
+                    .iter()
+                    .map(|s| s.to_string())
+                    .collect(),
                 diameter: 0.02,
                 normal_speed: 1.0,
-                ratios: DEFAULT_RATIOS.to_vec(),
+                incidence: Incidence::Angles(DEFAULT_ANGLES.to_vec()),
+                elastic: vec![false, true],
             }),
         }
     }
@@ -91,7 +116,7 @@ pub struct HeadOnPoint {
 pub struct ObliquePoint {
     /// Metal preset name.
     pub metal: String,
-    /// The metal.
+    /// The metal (its elastic twin's yield strength when `elastic`).
     pub material: Material,
     /// Ball diameter, m.
     pub diameter: f64,
@@ -99,6 +124,19 @@ pub struct ObliquePoint {
     pub normal_speed: f64,
     /// Tangential over normal relative speed.
     pub ratio: f64,
+    /// Maw, Barber & Fawcett's normalised angle of incidence ψ₁ = κ ratio/μ, -.
+    pub angle: f64,
+    /// The elastic twin of the metal (yield strength [`ELASTIC_YIELD`]).
+    pub elastic: bool,
+}
+
+/// κ/μ of two balls of `material`: ψ₁ = (κ/μ) v_t/v_n.
+///
+/// Errors: a material the ball rejects.
+pub fn angle_per_ratio(material: &Material, diameter: f64) -> Result<f64> {
+    let b = Body::ball(*material, diameter, "ball")?;
+    let pair = crate::analytic::laws::ContactPair::between(&b, &b, material.mu);
+    Ok(crate::analytic::maw_barber_fawcett::stiffness_ratio(&pair) / material.mu)
 }
 
 /// The relative approach speed v_y (m/s) at which a pair of two identical balls of
@@ -146,15 +184,32 @@ impl Matrix {
         };
         let mut out = vec![];
         for (i, metal) in o.metals.iter().enumerate() {
-            let material = preset(metal, &format!("oblique.metals[{i}]"))?;
-            for &ratio in &o.ratios {
-                out.push(ObliquePoint {
-                    metal: metal.clone(),
-                    material,
-                    diameter: o.diameter,
-                    normal_speed: o.normal_speed,
-                    ratio,
-                });
+            let metal_itself = preset(metal, &format!("oblique.metals[{i}]"))?;
+            let per_ratio = angle_per_ratio(&metal_itself, o.diameter)?;
+            for &elastic in &o.elastic {
+                let material = if elastic {
+                    Material {
+                        yield_strength: ELASTIC_YIELD,
+                        ..metal_itself
+                    }
+                } else {
+                    metal_itself
+                };
+                let ratios: Vec<f64> = match &o.incidence {
+                    Incidence::Ratios(r) => r.clone(),
+                    Incidence::Angles(a) => a.iter().map(|a| a / per_ratio).collect(),
+                };
+                for ratio in ratios {
+                    out.push(ObliquePoint {
+                        metal: metal.clone(),
+                        material,
+                        diameter: o.diameter,
+                        normal_speed: o.normal_speed,
+                        ratio,
+                        angle: ratio * per_ratio,
+                        elastic,
+                    });
+                }
             }
         }
         Ok(out)
@@ -163,7 +218,9 @@ impl Matrix {
     /// Reads a matrix from TOML text (`source` names it in errors). Keys, each optional
     /// (default: [`Matrix::default`]'s): `metals` (preset names), `speeds` (relative speeds,
     /// m/s, 1e-3..100), `diameters` (m, 1e-3..0.2), and a table `[oblique]` with `metals`,
-    /// `diameter` (m), `normal_speed` (m/s), `ratios` (0..10), or `oblique = false`.
+    /// `diameter` (m), `normal_speed` (m/s), `angles` (ψ₁, 1e-3..50) or `ratios` (v_t/v_n,
+    /// 1e-3..10), `elastic` (a list of booleans: the metal itself, its elastic twin), or
+    /// `oblique = false`.
     ///
     /// Errors: one line naming the field, its value and the allowed range (an unknown key,
     /// a wrong type, a value out of range, an unknown metal, an empty list).
@@ -244,6 +301,14 @@ fn numbers(v: &Value, field: &str, lo: f64, hi: f64, unit: &str) -> Result<Vec<f
         .collect()
 }
 
+/// A non-empty list of booleans.
+fn booleans(v: &Value, field: &str) -> Result<Vec<bool>> {
+    v.as_array()
+        .filter(|a| !a.is_empty())
+        .and_then(|a| a.iter().map(Value::as_bool).collect::<Option<Vec<bool>>>())
+        .ok_or_else(|| Error::invalid(field, v, "a non-empty list of booleans, e.g. [false, true]"))
+}
+
 /// The `[oblique]` table over `base` (or `oblique = false`).
 fn oblique(v: &Value, base: Option<Oblique>) -> Result<Option<Oblique>> {
     if v.as_bool() == Some(false) {
@@ -256,7 +321,8 @@ fn oblique(v: &Value, base: Option<Oblique>) -> Result<Option<Oblique>> {
         metals: vec!["copper-fe".into()],
         diameter: 0.02,
         normal_speed: 1.0,
-        ratios: DEFAULT_RATIOS.to_vec(),
+        incidence: Incidence::Angles(DEFAULT_ANGLES.to_vec()),
+        elastic: vec![false],
     });
     for (key, value) in t {
         let field = format!("oblique.{key}");
@@ -264,12 +330,14 @@ fn oblique(v: &Value, base: Option<Oblique>) -> Result<Option<Oblique>> {
             "metals" => o.metals = metals(value, &field)?,
             "diameter" => o.diameter = number(value, &field, 1e-3, 0.2, "m")?,
             "normal_speed" => o.normal_speed = number(value, &field, 1e-2, 20.0, "m/s")?,
-            "ratios" => o.ratios = numbers(value, &field, 1e-3, 10.0, "(-)")?,
+            "ratios" => o.incidence = Incidence::Ratios(numbers(value, &field, 1e-3, 10.0, "(-)")?),
+            "angles" => o.incidence = Incidence::Angles(numbers(value, &field, 1e-3, 50.0, "(-)")?),
+            "elastic" => o.elastic = booleans(value, &field)?,
             _ => {
                 return Err(Error::invalid(
                     field,
                     value,
-                    "keys metals, diameter, normal_speed, ratios",
+                    "keys metals, diameter, normal_speed, angles, ratios, elastic",
                 ))
             }
         }
@@ -313,6 +381,48 @@ mod tests {
             .unwrap()
             .oblique
             .is_none());
+    }
+
+    /// The default oblique points: ten angles of incidence on three metals and their elastic
+    /// twins; each point's ψ₁ is Maw, Barber & Fawcett's normalised angle of its pair at its
+    /// speeds, and a twin differs from its metal by the yield strength alone.
+    #[test]
+    fn default_oblique_points_span_the_angles_on_metals_and_twins() {
+        let pts = Matrix::default().oblique_points().unwrap();
+        assert_eq!(pts.len(), 3 * 2 * DEFAULT_ANGLES.len());
+        for p in &pts {
+            let b = Body::ball(p.material, p.diameter, "ball").unwrap();
+            let pair = crate::analytic::laws::ContactPair::between(&b, &b, p.material.mu);
+            let psi = crate::analytic::maw_barber_fawcett::normalised_angle(
+                &pair,
+                p.ratio * p.normal_speed,
+                p.normal_speed,
+            );
+            assert!((psi / p.angle - 1.0).abs() < 1e-12, "{p:?}: {psi}");
+            assert!(DEFAULT_ANGLES
+                .iter()
+                .any(|a| (a / p.angle - 1.0).abs() < 1e-12));
+            let metal = Material::preset(&p.metal).unwrap();
+            let expected = if p.elastic {
+                Material {
+                    yield_strength: ELASTIC_YIELD,
+                    ..metal
+                }
+            } else {
+                metal
+            };
+            assert_eq!(p.material, expected);
+        }
+        let m = Matrix::from_toml("[oblique]\nangles = [1.0]\nelastic = [true]", "m").unwrap();
+        let pts = m.oblique_points().unwrap();
+        assert_eq!(pts.len(), 3);
+        assert!(pts
+            .iter()
+            .all(|p| p.elastic && (p.angle - 1.0).abs() < 1e-12));
+        let e = Matrix::from_toml("[oblique]\nelastic = [1]", "m")
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("oblique.elastic") && !e.contains('\n'), "{e}");
     }
 
     /// v_y of the paper's copper pair: E* = 67.3 GPa, σ_p = 257 MPa, R* = 5 mm, m* =

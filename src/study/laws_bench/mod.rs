@@ -26,6 +26,7 @@ pub mod law_side;
 pub mod loop_fit;
 pub mod loops;
 pub mod matrix;
+pub mod oblique_report;
 pub mod ranking;
 pub mod report;
 pub mod similarity;
@@ -100,6 +101,8 @@ pub struct ObliqueResult {
     pub fe: Option<Stored<ObliqueFe>>,
     /// Every tangential law, in registry order.
     pub laws: Vec<ObliqueLaw>,
+    /// Maw, Barber & Fawcett's elastic theory on an elastic twin's point (`None` otherwise).
+    pub theory: Option<law_side::Theory>,
 }
 
 /// Everything a benchmark run produced.
@@ -273,9 +276,17 @@ pub fn run_bench(
         .into_iter()
         .zip(ofe)
         .map(|(point, fe)| {
-            let normal = ranking::best_for(&rank, &point.metal).unwrap_or("thornton");
+            let normal = if point.elastic {
+                "hertz"
+            } else {
+                ranking::best_for(&rank, &point.metal).unwrap_or("thornton")
+            };
             Ok(ObliqueResult {
                 laws: law_side::tangential_laws_on_point(registry, normal, &point)?,
+                theory: point
+                    .elastic
+                    .then(|| law_side::theory_on_point(&point))
+                    .transpose()?,
                 point,
                 fe,
             })

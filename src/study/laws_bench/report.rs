@@ -26,15 +26,6 @@ fn pct(x: f64) -> String {
     }
 }
 
-/// A number in 4 significant digits, or `n/a`.
-fn g4(x: f64) -> String {
-    if x.is_finite() {
-        format!("{x:.4}")
-    } else {
-        "n/a".into()
-    }
-}
-
 /// A value ± its error (the error only when estimated).
 fn bar(value: f64, error: f64, scale: f64, digits: usize) -> String {
     if error.is_finite() {
@@ -89,8 +80,8 @@ fn header(s: &mut String, command: &str, r: &BenchResults) {
          converged answer\" and \"Is the ensemble's bar honest?\"){}. Every normal law of \
          `twoball laws` with its default parameters for the pair (as `twoball laws run`), \
          integrated with the Coulomb tangential law (no tangential speed). Errors are relative, \
-         (law − FE)/FE, in per cent. Oblique impacts: the 3D half model (default graded mesh, \
-         one run, no error bar) against every tangential law. v_y is the relative speed at which the pair \
+         (law − FE)/FE, in per cent. Oblique impacts: the 3D half model (default graded meshes, two-level error bars) \
+         against every tangential law. v_y is the relative speed at which the pair \
          starts to yield: the Hertz impact whose maximum approach is the three-phase model's \
          yield approach δ₁ = R*(πσ_p/(2E*))² (Li, Yang & Shi eq. 10, σ_p = (1 + π/2)σ_s; two-ball \
          E*, R* = R/2, m* = m/2), v_y = √(16E*√R*δ₁^(5/2)/(15m*)); it does not depend on D. \
@@ -671,59 +662,6 @@ fn similarity_check(s: &mut String, r: &BenchResults, small: f64, large: f64) {
     let _ = writeln!(s);
 }
 
-fn oblique_section(s: &mut String, r: &BenchResults) {
-    if r.oblique.is_empty() {
-        return;
-    }
-    let _ = writeln!(s, "## Oblique impacts: tangential laws\n");
-    let _ = writeln!(
-        s,
-        "Relative normal speed v_n, tangential v_t; tangential restitution e_t = −u⁺/u⁻ of the \
-         contact points and spin ω of ball 1 after (rad/s, about n × t). Each tangential law is \
-         paired with the metal's best-ranked normal law (named). Differences: e_t law − FE \
-         (absolute), spin (law − FE)/FE in per cent.\n"
-    );
-    let _ = writeln!(
-        s,
-        "| metal | D (mm) | v_n (m/s) | v_t/v_n | FE e | FE e_t | FE ω (rad/s) | tangential law (normal law) | e_t | e_t − FE | ω | ω error (%) |"
-    );
-    let _ = writeln!(s, "|---|---|---|---|---|---|---|---|---|---|---|---|");
-    for o in &r.oblique {
-        let p = &o.point;
-        let lead = format!(
-            "| {} | {} | {} | {} |",
-            p.metal,
-            1e3 * p.diameter,
-            p.normal_speed,
-            p.ratio
-        );
-        let Some(f) = o.fe.as_ref().and_then(|f| f.done()) else {
-            let why = match &o.fe {
-                Some(super::cache::Stored::Failed(m)) => format!("failed: {}", m.replace('|', "/")),
-                _ => "not run".into(),
-            };
-            let _ = writeln!(s, "{lead} {why} | | | | | | | | |");
-            continue;
-        };
-        for l in &o.laws {
-            let _ = writeln!(
-                s,
-                "{lead} {} | {} | {:.2} | {} ({}) | {} | {:+.3} | {:.2} | {} |",
-                g4(f.e),
-                g4(f.tangential_restitution),
-                f.spin,
-                l.law,
-                l.normal_law,
-                g4(l.tangential_restitution),
-                l.tangential_restitution - f.tangential_restitution,
-                l.spin,
-                pct(l.spin / f.spin - 1.0)
-            );
-        }
-    }
-    let _ = writeln!(s);
-}
-
 fn fit_table(s: &mut String, title: &str, fits: &[(String, std::result::Result<LawFit, String>)]) {
     let _ = writeln!(
         s,
@@ -883,7 +821,7 @@ pub fn report_text(
     validity_section(&mut s, r);
     failures_section(&mut s, r);
     diameter_section(&mut s, r);
-    oblique_section(&mut s, r);
+    super::oblique_report::oblique_section(&mut s, r);
     fit_section(&mut s, &r.fits);
     let _ = writeln!(s, "## Figures\n");
     for f in figures {
