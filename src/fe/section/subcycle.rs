@@ -196,7 +196,6 @@ impl SectionSolver {
         }
         StepCarry {
             ext: 0.0,
-            kc: 0.0,
             next: 0.0,
             fine: None,
         }

@@ -1,5 +1,7 @@
 //! Energy accounting in the spirit of LS-DYNA's GLSTAT: where the energy of the model is at
-//! one instant, and how well the discrete energy balance holds.
+//! one instant, and how well the discrete energy balance holds. One report for both explicit
+//! models: the 3D solver fills every field, the section model those it keeps (the balance
+//! of nodal work and the per-part sums are the 3D solver's alone).
 
 use serde::Serialize;
 
@@ -26,13 +28,14 @@ pub struct PartEnergy {
 
 /// The energy state of the whole model at time `time`, J.
 ///
-/// Two independent balances are reported:
+/// Two independent balances are reported (the first by the 3D solver only):
 /// - `balance_error`: the Box 6.1 check |W_kin + W_int − W_ext − W_kin⁰| / max(W_kin, W_int,
 ///   W_ext), with W_int and W_ext integrated over nodal forces by the trapezoidal rule
 ///   (W_int includes hourglass forces);
 /// - `energy_ratio`: GLSTAT's total / initial total, where total = kinetic_central + internal
 ///   (elastic + plastic) + hourglass + interaction energy (stored + dissipated, as reported by
-///   the interactions themselves, which are treated as part of the closed system).
+///   the interactions themselves, which are treated as part of the closed system), less the
+///   work of the model's own loads and damping (`load_work`).
 #[derive(Debug, Clone, Default, PartialEq, Serialize)]
 pub struct EnergyReport {
     /// Time, s.
@@ -59,27 +62,33 @@ pub struct EnergyReport {
     pub plastic: f64,
     /// Hourglass energy, J.
     pub hourglass: f64,
-    /// Work of the internal nodal forces (trapezoidal), J.
+    /// Work of the internal nodal forces (trapezoidal), J (3D solver; 0 on the section).
     pub internal_work: f64,
-    /// Work of the interaction (external) nodal forces on the solid (trapezoidal), J.
+    /// Work of the interaction (external) nodal forces on the solid (trapezoidal), J (3D
+    /// solver; 0 on the section).
     pub external_work: f64,
+    /// Work of the model's own nodal loads and mass-proportional damping on the body, J (the
+    /// section's loads and dynamic-relaxation damping; 0 in the 3D solver, which has none).
+    pub load_work: f64,
     /// Energy stored in interactions (penalty springs), J.
     pub interaction_stored: f64,
     /// Energy dissipated by interactions (friction, damping), J.
     pub interaction_dissipated: f64,
     /// Work the interactions report they did, J.
     pub interaction_work: f64,
-    /// Total = kinetic_central + internal + hourglass + interaction stored + dissipated, J.
+    /// Total = kinetic_central + internal + hourglass + interaction stored + dissipated −
+    /// load work, J.
     pub total: f64,
     /// Total at t = 0, J.
     pub initial_total: f64,
     /// total / initial_total (1 is perfect).
     pub energy_ratio: f64,
-    /// Relative Box 6.1 energy-balance error (see the type's doc).
+    /// Relative Box 6.1 energy-balance error (see the type's doc; 3D solver, 0 on the
+    /// section).
     pub balance_error: f64,
     /// Largest `balance_error` seen at any energy check so far.
     pub max_balance_error: f64,
-    /// Per-part sums.
+    /// Per-part sums (3D solver; empty on the section).
     pub parts: Vec<PartEnergy>,
 }
 

@@ -609,7 +609,7 @@ impl HeadOn {
                     elastic: scale * (en.internal - en.plastic),
                     plastic: scale * en.plastic,
                     hourglass: scale * en.hourglass,
-                    contact_stored: scale * en.contact,
+                    contact_stored: scale * en.interaction_stored,
                     total: scale * en.total,
                     impulse,
                 };
