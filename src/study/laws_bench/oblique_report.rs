@@ -25,7 +25,7 @@ pub fn groups(r: &BenchResults) -> Vec<(String, bool)> {
     out
 }
 
-/// "elastic twin" or "as it is": the response's name.
+/// The response's name: "elastic twin", or "elastic-plastic" for the metal itself.
 pub fn response(elastic: bool) -> &'static str {
     if elastic {
         "elastic twin"
