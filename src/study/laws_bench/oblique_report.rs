@@ -2,6 +2,8 @@
 //! and rebound spin, with the FE's error bars, over Maw, Barber & Fawcett's normalised angle
 //! of incidence, for each metal and its elastic twin; the laws ranked per group.
 
+use super::fe::ObliqueFe;
+use super::matrix::ObliquePoint;
 use super::{BenchResults, ObliqueResult};
 use std::fmt::Write as _;
 
@@ -87,6 +89,15 @@ pub fn rank_tangential(pts: &[&ObliqueResult], laws: &[String]) -> Vec<Tangentia
     out
 }
 
+/// The FE's tangential over μ times its normal impulse on ball 1, in the frame of touch:
+/// J_t/(μJ_n) = Δv_t/(μ(1 + e)v_n/2), from ball 1's tangential velocity before (v_t/2) and after
+/// and the restitution e (1 in gross sliding by the rigid-body exchange; less while the contact
+/// sticks in part).
+pub fn impulse_ratio(p: &ObliquePoint, f: &ObliqueFe) -> f64 {
+    let dvt = 0.5 * p.ratio * p.normal_speed - f.v1t_after;
+    dvt / (p.material.mu * (1.0 + f.e.finest) * 0.5 * p.normal_speed)
+}
+
 /// A value ± its error in `digits` decimals (the error only when estimated).
 fn with_bar(value: f64, error: f64, digits: usize) -> String {
     if error.is_finite() {
@@ -114,7 +125,9 @@ pub fn oblique_section(s: &mut String, r: &BenchResults) {
          spin of ball 1 after (rad/s, about n × t). The elastic twin is the metal with a yield \
          strength of 100 GPa. Each tangential law is paired with Hertz on the elastic twin and \
          with the metal's best-ranked normal law otherwise (named). Theory: Maw, Barber & \
-         Fawcett's elastic impact (`twoball laws mbf`) on the elastic twin.\n"
+         Fawcett's elastic impact (`twoball laws mbf`) on the elastic twin. FE J_t/(μJ_n): ball \
+         1's tangential over μ times its normal impulse in the frame of touch (1 in gross \
+         sliding by the rigid-body exchange).\n"
     );
     let _ = writeln!(
         s,
@@ -164,9 +177,9 @@ pub fn oblique_section(s: &mut String, r: &BenchResults) {
         let _ = writeln!(s, "{title}, FE with its bar and each law:\n");
         let _ = writeln!(
             s,
-            "| metal | response | ψ₁ | v_t/v_n | normal law | FE e | FE | theory | {laws} |"
+            "| metal | response | ψ₁ | v_t/v_n | normal law | FE e | FE J_t/(μJ_n) | FE | theory | {laws} |"
         );
-        let _ = writeln!(s, "|---|---|---|---|---|---|---|---|{dashes}");
+        let _ = writeln!(s, "|---|---|---|---|---|---|---|---|---|{dashes}");
         for o in &r.oblique {
             let p = &o.point;
             let normal = o.laws.first().map_or("", |l| l.normal_law.as_str());
@@ -184,7 +197,7 @@ pub fn oblique_section(s: &mut String, r: &BenchResults) {
                     }
                     _ => "not run".into(),
                 };
-                let _ = writeln!(s, "{lead} | {why} | |{}", " |".repeat(o.laws.len()));
+                let _ = writeln!(s, "{lead} | {why} | | |{}", " |".repeat(o.laws.len()));
                 continue;
             };
             let (fe, theory, cells): (String, String, Vec<String>) = if spin {
@@ -208,8 +221,9 @@ pub fn oblique_section(s: &mut String, r: &BenchResults) {
             };
             let _ = writeln!(
                 s,
-                "{lead} {:.4} | {fe} | {theory} | {} |",
+                "{lead} {:.4} | {:.4} | {fe} | {theory} | {} |",
                 f.e.finest,
+                impulse_ratio(p, f),
                 cells.join(" | ")
             );
         }
@@ -262,6 +276,20 @@ mod tests {
             laws: vec![law("far", 0.5, -20.0), law("near", off, -10.0)],
             theory: None,
         }
+    }
+
+    /// Ball 1 losing μ(1 + e)v_n/2 of its tangential speed took the full Coulomb impulse.
+    #[test]
+    fn the_impulse_ratio_is_one_at_the_coulomb_limit() {
+        let o = point(0.2, 0.01, 0.0);
+        let Some(Stored::Done(mut f)) = o.fe.clone() else {
+            unreachable!()
+        };
+        let (p, mu) = (&o.point, o.point.material.mu);
+        f.v1t_after = 0.5 * p.ratio * p.normal_speed - mu * (1.0 + 0.4) * 0.5 * p.normal_speed;
+        assert!((impulse_ratio(p, &f) - 1.0).abs() < 1e-12);
+        f.v1t_after = 0.5 * p.ratio * p.normal_speed;
+        assert_eq!(impulse_ratio(p, &f), 0.0);
     }
 
     /// The RMS errors are those of the points, the bar count counts the points inside the
