@@ -4,6 +4,7 @@
 
 use super::fe::ObliqueFe;
 use super::matrix::ObliquePoint;
+use super::report::bar;
 use super::{BenchResults, ObliqueResult};
 use std::fmt::Write as _;
 
@@ -96,15 +97,6 @@ pub fn rank_tangential(pts: &[&ObliqueResult], laws: &[String]) -> Vec<Tangentia
 pub fn impulse_ratio(p: &ObliquePoint, f: &ObliqueFe) -> f64 {
     let dvt = 0.5 * p.ratio * p.normal_speed - f.v1t_after;
     dvt / (p.material.mu * (1.0 + f.e.finest) * 0.5 * p.normal_speed)
-}
-
-/// A value ± its error in `digits` decimals (the error only when estimated).
-fn with_bar(value: f64, error: f64, digits: usize) -> String {
-    if error.is_finite() {
-        format!("{value:.digits$} ± {error:.digits$}")
-    } else {
-        format!("{value:.digits$}")
-    }
 }
 
 /// Appends the oblique section to `s`.
@@ -202,14 +194,14 @@ pub fn oblique_section(s: &mut String, r: &BenchResults) {
             };
             let (fe, theory, cells): (String, String, Vec<String>) = if spin {
                 (
-                    with_bar(f.spin.finest, f.spin.error, 2),
+                    bar(f.spin.finest, f.spin.error, 1.0, 2),
                     o.theory.map_or(String::new(), |t| format!("{:.2}", t.spin)),
                     o.laws.iter().map(|l| format!("{:.2}", l.spin)).collect(),
                 )
             } else {
                 let t = &f.tangential_restitution;
                 (
-                    with_bar(t.finest, t.error, 4),
+                    bar(t.finest, t.error, 1.0, 4),
                     o.theory.map_or(String::new(), |t| {
                         format!("{:.4}", t.tangential_restitution)
                     }),

@@ -27,7 +27,7 @@ fn pct(x: f64) -> String {
 }
 
 /// A value ± its error (the error only when estimated).
-fn bar(value: f64, error: f64, scale: f64, digits: usize) -> String {
+pub(super) fn bar(value: f64, error: f64, scale: f64, digits: usize) -> String {
     if error.is_finite() {
         format!(
             "{:.*} ± {:.*}",
