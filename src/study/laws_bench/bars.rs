@@ -83,3 +83,18 @@ pub fn metal_bars(r: &BenchResults) -> Vec<MetalBars> {
         })
         .collect()
 }
+
+/// A value ± its error (the error only when estimated).
+pub(super) fn bar(value: f64, error: f64, scale: f64, digits: usize) -> String {
+    if error.is_finite() {
+        format!(
+            "{:.*} ± {:.*}",
+            digits,
+            scale * value,
+            digits,
+            scale * error
+        )
+    } else {
+        format!("{:.*}", digits, scale * value)
+    }
+}

@@ -2,9 +2,9 @@
 //! and rebound spin, with the FE's error bars, over Maw, Barber & Fawcett's normalised angle
 //! of incidence, for each metal and its elastic twin; the laws ranked per group.
 
+use super::bars::bar;
 use super::fe::ObliqueFe;
 use super::matrix::ObliquePoint;
-use super::report::bar;
 use super::{BenchResults, ObliqueResult};
 use std::fmt::Write as _;
 

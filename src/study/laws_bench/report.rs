@@ -2,7 +2,7 @@
 //! metal, the ranking, where each law fails (in numbers), D = 5 against 20 mm, the oblique
 //! impacts, the fits and the cost.
 
-use super::bars::{metal_bars, TARGET_E_BAR};
+use super::bars::{bar, metal_bars, TARGET_E_BAR};
 use super::calibrated::MetalCalibration;
 use super::figures::Figure;
 use super::fit::{LawFit, MetalFit, FIT_RANGE, TARGET_E_ERROR};
@@ -23,21 +23,6 @@ fn pct(x: f64) -> String {
         format!("{:+.1}", 100.0 * x)
     } else {
         "n/a".into()
-    }
-}
-
-/// A value ± its error (the error only when estimated).
-pub(super) fn bar(value: f64, error: f64, scale: f64, digits: usize) -> String {
-    if error.is_finite() {
-        format!(
-            "{:.*} ± {:.*}",
-            digits,
-            scale * value,
-            digits,
-            scale * error
-        )
-    } else {
-        format!("{:.*}", digits, scale * value)
     }
 }
 
