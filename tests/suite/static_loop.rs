@@ -8,7 +8,7 @@
 use std::process::Command;
 use twoball::fe::elements::ring::QuadFormulation;
 use twoball::material::Material;
-use twoball::study::run::quasi_static::{run_loop, LoadTo, StaticCase, Support};
+use twoball::study::run::quasi_static::{run_loop, LoadTo, LoopMesh, StaticCase, Support};
 
 fn case(material: Material, support: Support, to: LoadTo) -> StaticCase {
     StaticCase {
@@ -17,7 +17,9 @@ fn case(material: Material, support: Support, to: LoadTo) -> StaticCase {
         formulation: QuadFormulation::default(),
         support,
         to,
-        sizing_radius: 5e-4,
+        mesh: LoopMesh::Ladder {
+            sizing_radius: 5e-4,
+        },
         level: 0,
         increments: 8,
     }
@@ -308,8 +310,8 @@ fn a_loop_that_cannot_converge_fails_in_one_line_and_writes_nothing() {
 /// the energy before touch within the run's energy error.
 #[test]
 fn an_elastic_impact_leaves_only_vibration() {
-    use twoball::scene::Scene;
-    use twoball::study::convergence::dynamic_static::{energy_after, vibration_hold};
+    use twoball::scene::{Scene, SolverSettings};
+    use twoball::study::convergence::dynamic_static::{energy_after, same_mesh, vibration_hold};
     use twoball::study::convergence::scene_estimate::run_scene_alone;
     use twoball::study::run::simulation::RunOptions;
     let mut scene = Scene::default();
@@ -330,6 +332,30 @@ fn an_elastic_impact_leaves_only_vibration() {
     let sum = d.rigid_body + d.vibration + d.locked_elastic + d.hourglass;
     assert!((sum - 1.0).abs() < 2.0 * fe.energy_error + 1e-4, "{sum}");
     assert!(d.window > 0.9 * vibration_hold(&scene), "{d:?}");
+    // The free ball's loop on the run's own mesh returns its work, and with the vibration
+    // taken off predicts the run's e to the locked-in, hourglass and energy-error terms.
+    let unheld = Scene {
+        solver: SolverSettings {
+            hold_time: None,
+            ..scene.solver.clone()
+        },
+        ..scene.clone()
+    };
+    let m = same_mesh(&unheld, &d).unwrap();
+    println!("{m:?}, elements {}", fe.elements);
+    assert_eq!(m.quads, fe.elements);
+    assert_eq!(m.split.plastic, 0.0);
+    assert!((m.e_static.finest - 1.0).abs() < 2e-3, "{m:?}");
+    let rest = (m.e_static.extrapolated.powi(2) - 1.0).abs()
+        + d.locked_elastic.abs()
+        + d.hourglass
+        + 2.0 * fe.energy_error;
+    assert!(
+        (m.e_predicted.powi(2) - d.rigid_body).abs() <= rest + 1e-6,
+        "{} vs {}",
+        m.e_predicted.powi(2),
+        d.rigid_body
+    );
 }
 
 #[test]

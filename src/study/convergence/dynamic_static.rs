@@ -25,10 +25,11 @@ use super::static_ladder::{
     DEFAULT_LEVEL,
 };
 use crate::error::{Error, Result};
+use crate::scene::MeshSettings;
 use crate::scene::Scene;
 use crate::study::records::estimate::{estimate, Estimate};
 use crate::study::run::history::HistoryRow;
-use crate::study::run::quasi_static::{StaticLoop, Support};
+use crate::study::run::quasi_static::{run_loop, LoopMesh, StaticCase, StaticLoop, Support};
 use crate::study::run::scene::RunReport;
 use crate::study::run::simulation::RunOptions;
 use serde::Serialize;
@@ -89,7 +90,30 @@ pub struct DynamicStatic {
     pub e_predicted: f64,
     /// The static loops' numbers.
     pub static_estimate: LoopEstimate,
+    /// The free ball's loop on the dynamic run's own mesh.
+    pub same_mesh: SameMesh,
 }
+
+/// The free ball's loop on the mesh of the dynamic run whose energies are split
+/// ([`EnergyAfter`]), so that the account compares the two load paths on one
+/// discretisation; its increments are refined ([`SAME_MESH_LEVELS`]) and e_qs extrapolated
+/// in them.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct SameMesh {
+    /// Quads of the mesh.
+    pub quads: usize,
+    /// Increments of loading (and of unloading) of each loop, coarse to fine.
+    pub increments: Vec<usize>,
+    /// The quasi-static e over the increments.
+    pub e_static: Estimate,
+    /// The finest loop's split.
+    pub split: StaticSplit,
+    /// √(e_qs² − E_vib / KE₀) with e_qs extrapolated in the increments.
+    pub e_predicted: f64,
+}
+
+/// The increment levels of the same-mesh loops: [`DEFAULT_INCREMENTS`] · 2^level each.
+pub const SAME_MESH_LEVELS: [u32; 3] = [1, 2, 3];
 
 /// The energies after separation of a head-on run's history: rows after the last one with
 /// a contact force. The balls are identical (or ball 2 is a wall, at rest); each ball's mass
@@ -196,7 +220,48 @@ pub fn run_compare(scene: &Scene, report: &RunReport) -> Result<DynamicStatic> {
         .unwrap_or_default();
     let energy = energy_after(history)?;
     let (loops, est) = static_image(scene, DEFAULT_LEVEL, DEFAULT_INCREMENTS)?;
-    Ok(compare(e, delta, pair, energy, &loops, est))
+    let same = same_mesh(scene, &energy)?;
+    Ok(compare(e, delta, pair, energy, &loops, est, same))
+}
+
+/// The free ball's loops on ball 1's built-in section mesh (the dynamic run's), at the
+/// increments of [`SAME_MESH_LEVELS`], against the dynamic run's `energy`.
+///
+/// Errors: a ball-1 mesh file; those of [`case_of_scene`] and [`run_loop`].
+pub fn same_mesh(scene: &Scene, energy: &EnergyAfter) -> Result<SameMesh> {
+    let MeshSettings::Builtin { size, pole_size } = scene.ball1.mesh else {
+        return Err(Error::Parse(
+            "compare-static: ball1.mesh.file is set; the static loop needs the built-in mesher"
+                .into(),
+        ));
+    };
+    let case = StaticCase {
+        mesh: LoopMesh::Builtin { size, pole_size },
+        ..case_of_scene(scene, Support::Free, None, 0, DEFAULT_INCREMENTS)?
+    };
+    let loops = SAME_MESH_LEVELS
+        .iter()
+        .map(|&level| run_loop(&StaticCase { level, ..case }))
+        .collect::<Result<Vec<_>>>()?;
+    let values: Vec<f64> = loops.iter().map(|l| l.summary.e).collect();
+    let e_static = estimate(&values, 2.0).ok_or_else(|| {
+        Error::Numerical(format!(
+            "compare-static: no estimate of e_qs from {values:?}"
+        ))
+    })?;
+    let finest = loops.last().expect("three loops");
+    Ok(SameMesh {
+        quads: finest.quads,
+        increments: SAME_MESH_LEVELS
+            .iter()
+            .map(|&level| StaticCase { level, ..case }.steps())
+            .collect(),
+        e_static,
+        split: static_split(finest),
+        e_predicted: (e_static.extrapolated.powi(2) - energy.vibration)
+            .max(0.0)
+            .sqrt(),
+    })
 }
 
 /// Puts the two sides together. `pair` is 2 for identical balls (δ of the centres is twice
@@ -208,6 +273,7 @@ pub fn compare(
     dynamic_energy: EnergyAfter,
     loops: &[StaticLoop],
     static_estimate: LoopEstimate,
+    same_mesh: SameMesh,
 ) -> DynamicStatic {
     let finest = loops.last().expect("a ladder has loops");
     let e_static = static_estimate.e;
@@ -222,6 +288,7 @@ pub fn compare(
             .max(0.0)
             .sqrt(),
         static_estimate,
+        same_mesh,
     }
 }
 
@@ -282,6 +349,39 @@ impl DynamicStatic {
             self.e_predicted,
             e_run,
             pct(e_run, self.e_predicted)
+        );
+        let m = &self.same_mesh;
+        let rest = (m.split.plastic + m.split.locked_elastic)
+            - (d.plastic + d.locked_elastic + d.hourglass);
+        out += &format!(
+            "  on the dynamic run's own mesh ({} quads), the free ball's loop at {:?} \
+             increments: e_qs {:.5} ± {:.5} (extrapolated in the increments {:.5}); shares of \
+             W_in: returned {:.5}, locked elastic {:.5}, plastic {:.5}\n",
+            m.quads,
+            m.increments,
+            m.e_static.finest,
+            m.e_static.error,
+            m.e_static.extrapolated,
+            m.split.returned,
+            m.split.locked_elastic,
+            m.split.plastic
+        );
+        out += &format!(
+            "  one mesh's account: e² {:.5} (dynamic run) = {:.5} (quasi-static, finest \
+             increments) − {:.5} (vibration) {:+.5} (plastic, locked-in and hourglass energy: \
+             static less dynamic) {:+.5} (energy error)\n",
+            d.rigid_body,
+            m.split.returned,
+            d.vibration,
+            rest,
+            d.rigid_body - (m.split.returned - d.vibration + rest)
+        );
+        out += &format!(
+            "  e predicted on one mesh √(e_qs² − E_vib/KE₀) = {:.5} against the dynamic run's \
+             {:.5}: {:+.2} %\n",
+            m.e_predicted,
+            e_run,
+            pct(e_run, m.e_predicted)
         );
         out
     }

@@ -9,7 +9,7 @@ use crate::error::{Error, Result};
 use crate::scene::Scene;
 use crate::study::records::estimate::{estimate, Estimate};
 use crate::study::run::quasi_static::{
-    run_loop, LoadTo, LoopSummary, StaticCase, StaticLoop, Support,
+    run_loop, LoadTo, LoopMesh, LoopSummary, StaticCase, StaticLoop, Support,
 };
 use serde::Serialize;
 
@@ -125,7 +125,9 @@ pub fn case_of_scene(
         formulation: case.formulation,
         support,
         to: LoadTo::Work(0.0),
-        sizing_radius: hertz_contact_radius(&case),
+        mesh: LoopMesh::Ladder {
+            sizing_radius: hertz_contact_radius(&case),
+        },
         level,
         increments,
     };

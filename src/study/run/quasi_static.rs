@@ -25,7 +25,7 @@ use crate::fe::implicit::static_solver::{Prescribed, Settings, StaticSolver, Tar
 use crate::fe::materials::J2Material;
 use crate::fe::section::solver::SectionModel;
 use crate::material::Material;
-use crate::mesh::section::ladder_ball;
+use crate::mesh::section::{ball, ladder_ball, SectionSpec};
 use serde::{Deserialize, Serialize};
 
 /// How the ball is held against the plane.
@@ -64,6 +64,25 @@ pub enum LoadTo {
     Work(f64),
 }
 
+/// The section mesh of a loop.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum LoopMesh {
+    /// The static ladder's mesh at the case's level (`mesh::section::ladder_ball`), sized
+    /// from an estimate of the largest contact radius, m.
+    Ladder {
+        /// Contact radius the mesh is sized from, m.
+        sizing_radius: f64,
+    },
+    /// A scene's built-in section mesh (`mesh::section::ball`), the mesh of its dynamic run
+    /// on the meridian section; the case's level sets only the increments.
+    Builtin {
+        /// Far-field element size, m.
+        size: f64,
+        /// Element size at the contact pole, m.
+        pole_size: f64,
+    },
+}
+
 /// One loop's case.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct StaticCase {
@@ -77,9 +96,10 @@ pub struct StaticCase {
     pub support: Support,
     /// Where loading stops.
     pub to: LoadTo,
-    /// Contact radius the mesh is sized from, m (an estimate of the largest).
-    pub sizing_radius: f64,
-    /// Ladder level of the mesh (`mesh::section::ladder_ball`).
+    /// The mesh the loop runs on.
+    pub mesh: LoopMesh,
+    /// Ladder level: of the mesh (with [`LoopMesh::Ladder`]) and of the increments
+    /// ([`StaticCase::steps`]).
     pub level: u32,
     /// Increments of loading (and as many of unloading) at level 0, ≥ 4; each level
     /// doubles them ([`StaticCase::steps`]), so that a ladder refines the load path with the
@@ -176,7 +196,16 @@ struct Rig {
 impl Rig {
     fn new(case: &StaticCase) -> Result<Rig> {
         let radius = case.diameter / 2.0;
-        let mesh = ladder_ball(case.diameter, case.sizing_radius, case.level)?;
+        let mesh = match case.mesh {
+            LoopMesh::Ladder { sizing_radius } => {
+                ladder_ball(case.diameter, sizing_radius, case.level)?
+            }
+            LoopMesh::Builtin { size, pole_size } => ball(&SectionSpec {
+                diameter: case.diameter,
+                size,
+                pole_size: Some(pole_size),
+            })?,
+        };
         let (nodes, quads) = match case.support {
             Support::Free => (mesh.nodes, mesh.quads),
             Support::Held => upper_half(&mesh.nodes, &mesh.quads),
