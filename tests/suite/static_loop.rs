@@ -337,7 +337,7 @@ fn an_elastic_impact_leaves_only_vibration() {
     let unheld = Scene {
         solver: SolverSettings {
             hold_time: None,
-            ..scene.solver.clone()
+            ..scene.solver
         },
         ..scene.clone()
     };
