@@ -183,6 +183,26 @@ pub struct Ladder {
 }
 
 impl Ladder {
+    /// The `twoball bench study` command that runs this ladder (its folder `DIR`).
+    pub fn command(&self) -> String {
+        let list = |v: &[f64]| {
+            v.iter()
+                .map(|x| format!("{x}"))
+                .collect::<Vec<_>>()
+                .join(",")
+        };
+        let elements: Vec<&str> = self.elements.iter().map(|&f| element_name(f)).collect();
+        format!(
+            "twoball bench study --out DIR --densities {} --elements {} --time-step-factor {} \
+             --time-step-factors {} --pole-refinements {}",
+            list(&self.densities),
+            elements.join(","),
+            self.base_factor,
+            list(&self.time_step_factors),
+            list(&self.pole_refinements)
+        )
+    }
+
     /// Checks the ladder, naming the bad field.
     pub fn validated(self) -> Result<Self> {
         if self.densities.len() < 3 {
@@ -571,7 +591,11 @@ pub fn write_outputs(runs: &[Measured], ladder: &Ladder, dir: &Path) -> Result<S
         refs.push(references(runs, ladder, el)?);
     }
     write_atomic(dir.join("bench-study.csv"), csv(runs, &refs[0]).as_bytes())?;
-    let md = markdown(runs, &refs);
+    let md = format!(
+        "Written by `{}`.\n\n{}",
+        ladder.command(),
+        markdown(runs, &refs)
+    );
     write_atomic(dir.join("bench-study.md"), md.as_bytes())?;
     write_atomic(
         dir.join("bench-study.svg"),
