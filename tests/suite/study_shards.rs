@@ -85,7 +85,7 @@ fn slurm_tasks_of_the_paper_sweep_are_balanced_by_estimated_cost() {
 /// The estimate is elements x steps: against the element updates the committed 144-case run
 /// measured (verification/ansys/sweep.csv; subcycling lowers them), it is an upper bound
 /// within a factor 3, and regrouping that run's measured wall times by the 8-way plan gives
-/// shards within 1.5x of the mean, where dealing by case order (the old `index mod 8`) does not.
+/// shards within 1.5x of the mean, where dealing by case order (`index mod 8`) does not.
 #[test]
 fn estimated_cost_tracks_the_measured_work_of_the_paper_sweep() {
     let spec = SweepSpec::from_file(Path::new(PAPER)).unwrap();
