@@ -5,8 +5,8 @@
 use crate::analytic::laws::Registry;
 use crate::error::{Error, Result};
 use crate::study::convergence::static_ladder::{
-    case_of_scene, impact_of_scene, run_loop_ladder, LoopEstimate, DEFAULT_INCREMENTS,
-    DEFAULT_LEVEL,
+    banded_case, case_of_scene, impact_of_scene, run_loop_ladder, BandPilot, LoopEstimate,
+    DEFAULT_BAND_SPLIT, DEFAULT_INCREMENTS, DEFAULT_LEVEL,
 };
 use crate::study::laws_bench::loops::{csv, laws_on_loop, table, LoopPair};
 use crate::study::records::estimate::Estimate;
@@ -45,6 +45,11 @@ pub struct StaticArgs {
     /// Increments of loading (and of unloading) at level 0; each level doubles them.
     #[arg(long, default_value_t = DEFAULT_INCREMENTS)]
     pub increments: usize,
+    /// Split the surface rings at the contact edge SPLIT-fold on every level (the edge read
+    /// from a plain level-0 loop; an odd split keeps the shells near the surface), or `none`
+    /// for the plain ladder.
+    #[arg(long, value_name = "SPLIT|none", default_value_t = DEFAULT_BAND_SPLIT.to_string())]
+    pub band: String,
     /// Folder for loop.csv (the finest level's loop) and results.json.
     #[arg(long)]
     pub out: Option<PathBuf>,
@@ -69,10 +74,31 @@ pub fn run(a: StaticArgs) -> Result<()> {
             return Err(Error::invalid("--to", t, "approach, force or work"));
         }
     };
+    let split = match a.band.as_str() {
+        "none" => None,
+        v => Some(
+            v.parse::<usize>()
+                .map_err(|_| Error::invalid("--band", v, "a split 1..=8 or none"))?,
+        ),
+    };
     let case = case_of_scene(&scene, support, to, a.level, a.increments)?;
+    let (case, band) = match split {
+        Some(split) => {
+            let (case, band) = banded_case(&case, split)?;
+            (case, Some(band))
+        }
+        None => (case, None),
+    };
     let (loops, est) = run_loop_ladder(&case, a.levels)?;
     let finest = loops.last().expect("at least two levels");
     print!("{}", summary(&case, &loops, &est));
+    if let Some(b) = &band {
+        println!(
+            "  edge band: rings split {}-fold at the contact edge {:.4e} m of the plain level-0 \
+             loop ({} quads, {} Newton iterations)",
+            b.split, b.edge_m, b.pilot_quads, b.pilot_iterations
+        );
+    }
     let (speed, wall) = impact_of_scene(&scene)?;
     let pair = LoopPair {
         material: case.material,
@@ -93,7 +119,7 @@ pub fn run(a: StaticArgs) -> Result<()> {
         if let Some(laws) = &laws {
             crate::atomic::write_atomic(dir.join("laws.csv"), csv(finest, laws).as_bytes())?;
         }
-        let json = results_json(&case, &pair, &loops, &est)?;
+        let json = results_json(&case, &pair, &loops, &est, band.as_ref())?;
         crate::atomic::write_atomic(dir.join("results.json"), json.as_bytes())?;
         println!("wrote {}", dir.display());
     }
@@ -196,6 +222,7 @@ fn results_json(
     pair: &LoopPair,
     loops: &[StaticLoop],
     est: &LoopEstimate,
+    band: Option<&BandPilot>,
 ) -> Result<String> {
     let levels: Vec<serde_json::Value> = loops
         .iter()
@@ -217,6 +244,7 @@ fn results_json(
         "element": case.formulation,
         "load_to": case.to,
         "finest_level": case.level,
+        "band": band,
         "estimate": est,
         "levels": levels,
     });

@@ -21,8 +21,8 @@
 
 use super::scene_estimate::run_scene_alone;
 use super::static_ladder::{
-    case_of_scene, impact_of_scene, run_loop_ladder, LoopEstimate, DEFAULT_INCREMENTS,
-    DEFAULT_LEVEL,
+    banded_case, case_of_scene, impact_of_scene, run_loop_ladder, LoopEstimate, DEFAULT_BAND_SPLIT,
+    DEFAULT_INCREMENTS, DEFAULT_LEVEL,
 };
 use crate::error::{Error, Result};
 use crate::scene::MeshSettings;
@@ -174,17 +174,18 @@ pub fn vibration_hold(scene: &Scene) -> f64 {
     HOLD_SHEAR_TRANSITS * scene.ball1.diameter / (m.shear_modulus() / m.rho).sqrt()
 }
 
-/// The static loops of `scene`'s free ball to the work one ball brings (ladder `level`,
-/// two levels, `increments` at level 0).
+/// The static loops of `scene`'s free ball to the work one ball brings (the banded ladder's
+/// `level` and the one below, `increments` at level 0; [`banded_case`]).
 ///
-/// Errors: those of [`case_of_scene`] and [`run_loop_ladder`].
+/// Errors: those of [`case_of_scene`], [`banded_case`] and [`run_loop_ladder`].
 pub fn static_image(
     scene: &Scene,
     level: u32,
     increments: usize,
 ) -> Result<(Vec<StaticLoop>, LoopEstimate)> {
     let case = case_of_scene(scene, Support::Free, None, level, increments)?;
-    run_loop_ladder(&case, 2)
+    let (banded, _) = banded_case(&case, DEFAULT_BAND_SPLIT)?;
+    run_loop_ladder(&banded, 2)
 }
 
 /// The comparison for `scene`, whose dynamic run gave `report`: the vibration run (the

@@ -25,7 +25,7 @@ use crate::fe::implicit::static_solver::{Prescribed, Settings, StaticSolver, Tar
 use crate::fe::materials::J2Material;
 use crate::fe::section::solver::SectionModel;
 use crate::material::Material;
-use crate::mesh::section::{ball, ladder_ball, SectionSpec};
+use crate::mesh::section::{ball, ladder_ball, ladder_ball_banded, EdgeBand, SectionSpec};
 use serde::{Deserialize, Serialize};
 
 /// How the ball is held against the plane.
@@ -73,6 +73,15 @@ pub enum LoopMesh {
         /// Contact radius the mesh is sized from, m.
         sizing_radius: f64,
     },
+    /// The static ladder's mesh with an edge band of finer surface rings at the contact
+    /// edge (`mesh::section::ladder_ball_banded`), which shrinks the sawtooth of the plastic
+    /// e over the ring spacing.
+    Banded {
+        /// Contact radius the mesh is sized from, m.
+        sizing_radius: f64,
+        /// The band.
+        band: EdgeBand,
+    },
     /// A scene's built-in section mesh (`mesh::section::ball`), the mesh of its dynamic run
     /// on the meridian section; the case's level sets only the increments.
     Builtin {
@@ -98,7 +107,8 @@ pub struct StaticCase {
     pub to: LoadTo,
     /// The mesh the loop runs on.
     pub mesh: LoopMesh,
-    /// Ladder level: of the mesh (with [`LoopMesh::Ladder`]) and of the increments
+    /// Ladder level: of the mesh (with [`LoopMesh::Ladder`] or [`LoopMesh::Banded`]) and of
+    /// the increments
     /// ([`StaticCase::steps`]).
     pub level: u32,
     /// Increments of loading (and as many of unloading) at level 0, ≥ 4; each level
@@ -200,6 +210,10 @@ impl Rig {
             LoopMesh::Ladder { sizing_radius } => {
                 ladder_ball(case.diameter, sizing_radius, case.level)?
             }
+            LoopMesh::Banded {
+                sizing_radius,
+                band,
+            } => ladder_ball_banded(case.diameter, sizing_radius, case.level, &band)?,
             LoopMesh::Builtin { size, pole_size } => ball(&SectionSpec {
                 diameter: case.diameter,
                 size,
