@@ -40,13 +40,24 @@ pub fn run_deck(code: Code, dir: &Path, d: f64, speed: f64, tensile: bool) -> Re
         Code::Lammps => cmd.args(["-in", code.file(), "-var", "vr", &v, "-log", "none"]),
         _ => cmd.args(["-n", "-x", code.file(), &v]),
     };
+    // LIGGGHTS and LAMMPS start as Open MPI singletons, which by default spawn a support
+    // daemon and connect to it; under load that start-up can fail before MPI_Init completes.
+    // A serial deck never spawns processes, so the daemon is not started.
+    cmd.env("OMPI_MCA_ess_singleton_isolated", "1");
     let trace = dir.join("trace.txt");
     let _ = std::fs::remove_file(&trace);
-    let out = cmd.current_dir(dir).output().map_err(|e| {
-        Error::External(format!(
-            "{exe}: cannot start ({e}); scripts/setup.sh installs it"
-        ))
-    })?;
+    let start = |cmd: &mut Command| {
+        cmd.current_dir(dir).output().map_err(|e| {
+            Error::External(format!(
+                "{exe}: cannot start ({e}); scripts/setup.sh installs it"
+            ))
+        })
+    };
+    let mut out = start(&mut cmd)?;
+    // A start-up that failed inside MPI_Init never read the deck: it is tried once more.
+    if !out.status.success() && mpi_start_failed(&out.stdout, &out.stderr) {
+        out = start(&mut cmd)?;
+    }
     if !out.status.success() || !trace.exists() {
         let text = String::from_utf8_lossy(&out.stdout).into_owned()
             + &String::from_utf8_lossy(&out.stderr);
@@ -65,6 +76,12 @@ pub fn run_deck(code: Code, dir: &Path, d: f64, speed: f64, tensile: bool) -> Re
     }
     let text = std::fs::read_to_string(&trace).map_err(|e| Error::io(&trace, e))?;
     read(&text, &trace.display().to_string(), d, speed, tensile)
+}
+
+/// Whether a program's output says Open MPI gave up before `MPI_Init` completed.
+fn mpi_start_failed(stdout: &[u8], stderr: &[u8]) -> bool {
+    let says = |b: &[u8]| String::from_utf8_lossy(b).contains("before MPI_INIT completed");
+    says(stdout) || says(stderr)
 }
 
 /// e, δ_max (m) and contact duration (s) of `twoball laws run` for `spec` with `params` on
@@ -89,4 +106,22 @@ pub fn law_outcome(
 /// Whether a law with `params` may pull (its contact then ends at zero overlap).
 pub fn tensile(spec: &NormalSpec, params: &Params) -> bool {
     spec.params.iter().any(|p| p.key == "tension") && params.get("tension") >= 0.5
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn only_an_mpi_start_up_failure_is_tried_again() {
+        let start =
+            b"*** on a NULL communicator\n[vm:18871] Local abort before MPI_INIT completed \
+                      completed successfully, but am not able to aggregate error messages";
+        assert!(mpi_start_failed(b"", start));
+        assert!(mpi_start_failed(start, b""));
+        assert!(!mpi_start_failed(
+            b"ERROR: Unknown command: pair_styl hertz",
+            b""
+        ));
+    }
 }
