@@ -4,6 +4,7 @@
 
 use crate::analytic::laws::Registry;
 use crate::error::{Error, Result};
+use crate::mesh::section::band::MAX_SPLIT;
 use crate::study::convergence::static_ladder::{
     banded_case, case_of_scene, impact_of_scene, run_loop_ladder, BandPilot, LoopEstimate,
     DEFAULT_BAND_SPLIT, DEFAULT_INCREMENTS, DEFAULT_LEVEL,
@@ -76,10 +77,9 @@ pub fn run(a: StaticArgs) -> Result<()> {
     };
     let split = match a.band.as_str() {
         "none" => None,
-        v => Some(
-            v.parse::<usize>()
-                .map_err(|_| Error::invalid("--band", v, "a split 1..=8 or none"))?,
-        ),
+        v => Some(v.parse::<usize>().map_err(|_| {
+            Error::invalid("--band", v, format!("a split 1..={MAX_SPLIT} or none"))
+        })?),
     };
     let case = case_of_scene(&scene, support, to, a.level, a.increments)?;
     let (case, band) = match split {

@@ -255,6 +255,8 @@ fn a_loop_fit_recovers_the_parameter_of_a_loop_the_law_made() {
 fn bad_input_gets_one_line() {
     for (args, needle) in [
         (vec!["static", "--support", "sideways"], "--support"),
+        (vec!["static", "--band", "many"], "--band"),
+        (vec!["static", "--band", "0"], "band.split"),
         (vec!["static", "--to", "speed", "--value", "1"], "--to"),
         (
             vec!["static", "--to", "force", "--value", "-3"],
