@@ -20,7 +20,7 @@ use crate::mesh::ball::{core_point, invert, Plan, CONTACT_HALF_ANGLE_DEG, MAX_EL
 use std::collections::BTreeMap;
 
 /// What to mesh: the meridian section of a ball. Lengths in metres.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq)]
 pub struct SectionSpec {
     /// Ball diameter D, m.
     pub diameter: f64,

@@ -25,12 +25,12 @@ use super::static_ladder::{
     DEFAULT_INCREMENTS, DEFAULT_LEVEL,
 };
 use crate::error::{Error, Result};
-use crate::scene::MeshSettings;
 use crate::scene::Scene;
 use crate::study::records::estimate::{estimate, Estimate};
 use crate::study::run::history::HistoryRow;
 use crate::study::run::quasi_static::{run_loop, LoopMesh, StaticCase, StaticLoop, Support};
 use crate::study::run::scene::RunReport;
+use crate::study::run::section::section_spec;
 use crate::study::run::simulation::RunOptions;
 use serde::Serialize;
 
@@ -228,16 +228,10 @@ pub fn run_compare(scene: &Scene, report: &RunReport) -> Result<DynamicStatic> {
 /// The free ball's loops on ball 1's built-in section mesh (the dynamic run's), at the
 /// increments of [`SAME_MESH_LEVELS`], against the dynamic run's `energy`.
 ///
-/// Errors: a ball-1 mesh file; those of [`case_of_scene`] and [`run_loop`].
+/// Errors: those of [`section_spec`], [`case_of_scene`] and [`run_loop`].
 pub fn same_mesh(scene: &Scene, energy: &EnergyAfter) -> Result<SameMesh> {
-    let MeshSettings::Builtin { size, pole_size } = scene.ball1.mesh else {
-        return Err(Error::Parse(
-            "compare-static: ball1.mesh.file is set; the static loop needs the built-in mesher"
-                .into(),
-        ));
-    };
     let case = StaticCase {
-        mesh: LoopMesh::Builtin { size, pole_size },
+        mesh: LoopMesh::Builtin(section_spec("ball1", &scene.ball1)?),
         ..case_of_scene(scene, Support::Free, None, 0, DEFAULT_INCREMENTS)?
     };
     let loops = SAME_MESH_LEVELS
@@ -333,17 +327,7 @@ impl DynamicStatic {
             s.returned, s.locked_elastic, s.plastic
         );
         let e_run = d.rigid_body.sqrt();
-        let rest = (s.plastic + s.locked_elastic) - (d.plastic + d.locked_elastic + d.hourglass);
-        out += &format!(
-            "  the two runs' account: e² {:.5} (dynamic run) = {:.5} (quasi-static) − {:.5} \
-             (vibration) {:+.5} (plastic, locked-in and hourglass energy: static less \
-             dynamic) {:+.5} (energy error)\n",
-            d.rigid_body,
-            s.returned,
-            d.vibration,
-            rest,
-            d.rigid_body - (s.returned - d.vibration + rest)
-        );
+        out += &account("the two runs' account", "quasi-static", d, s);
         out += &format!(
             "  e predicted √(e_qs² − E_vib/KE₀) = {:.5} against the dynamic run's {:.5}: \
              {:+.2} %\n",
@@ -352,8 +336,6 @@ impl DynamicStatic {
             pct(e_run, self.e_predicted)
         );
         let m = &self.same_mesh;
-        let rest = (m.split.plastic + m.split.locked_elastic)
-            - (d.plastic + d.locked_elastic + d.hourglass);
         out += &format!(
             "  on the dynamic run's own mesh ({} quads), the free ball's loop at {:?} \
              increments: e_qs {:.5} ± {:.5} (extrapolated in the increments {:.5}); shares of \
@@ -367,15 +349,11 @@ impl DynamicStatic {
             m.split.locked_elastic,
             m.split.plastic
         );
-        out += &format!(
-            "  one mesh's account: e² {:.5} (dynamic run) = {:.5} (quasi-static, finest \
-             increments) − {:.5} (vibration) {:+.5} (plastic, locked-in and hourglass energy: \
-             static less dynamic) {:+.5} (energy error)\n",
-            d.rigid_body,
-            m.split.returned,
-            d.vibration,
-            rest,
-            d.rigid_body - (m.split.returned - d.vibration + rest)
+        out += &account(
+            "one mesh's account",
+            "quasi-static, finest increments",
+            d,
+            &m.split,
         );
         out += &format!(
             "  e predicted on one mesh √(e_qs² − E_vib/KE₀) = {:.5} against the dynamic run's \
@@ -386,4 +364,20 @@ impl DynamicStatic {
         );
         out
     }
+}
+
+/// One printed line of the account e²_dyn = e_qs² − E_vib/KE₀ + (static less dynamic plastic,
+/// locked-in and hourglass energy) + energy error, all shares, for the dynamic run's `d` and
+/// the loop's split `s`.
+fn account(label: &str, loop_label: &str, d: &EnergyAfter, s: &StaticSplit) -> String {
+    let rest = (s.plastic + s.locked_elastic) - (d.plastic + d.locked_elastic + d.hourglass);
+    format!(
+        "  {label}: e² {:.5} (dynamic run) = {:.5} ({loop_label}) − {:.5} (vibration) {:+.5} \
+         (plastic, locked-in and hourglass energy: static less dynamic) {:+.5} (energy error)\n",
+        d.rigid_body,
+        s.returned,
+        d.vibration,
+        rest,
+        d.rigid_body - (s.returned - d.vibration + rest)
+    )
 }

@@ -82,14 +82,10 @@ pub enum LoopMesh {
         /// The band.
         band: EdgeBand,
     },
-    /// A scene's built-in section mesh (`mesh::section::ball`), the mesh of its dynamic run
-    /// on the meridian section; the case's level sets only the increments.
-    Builtin {
-        /// Far-field element size, m.
-        size: f64,
-        /// Element size at the contact pole, m.
-        pole_size: f64,
-    },
+    /// A scene's built-in section mesh (`mesh::section::ball`; [`super::section::section_spec`]),
+    /// the mesh of its dynamic run on the meridian section; the case's level sets only the
+    /// increments.
+    Builtin(SectionSpec),
 }
 
 /// One loop's case.
@@ -108,8 +104,7 @@ pub struct StaticCase {
     /// The mesh the loop runs on.
     pub mesh: LoopMesh,
     /// Ladder level: of the mesh (with [`LoopMesh::Ladder`] or [`LoopMesh::Banded`]) and of
-    /// the increments
-    /// ([`StaticCase::steps`]).
+    /// the increments ([`StaticCase::steps`]).
     pub level: u32,
     /// Increments of loading (and as many of unloading) at level 0, ≥ 4; each level
     /// doubles them ([`StaticCase::steps`]), so that a ladder refines the load path with the
@@ -214,11 +209,7 @@ impl Rig {
                 sizing_radius,
                 band,
             } => ladder_ball_banded(case.diameter, sizing_radius, case.level, &band)?,
-            LoopMesh::Builtin { size, pole_size } => ball(&SectionSpec {
-                diameter: case.diameter,
-                size,
-                pole_size: Some(pole_size),
-            })?,
+            LoopMesh::Builtin(spec) => ball(&spec)?,
         };
         let (nodes, quads) = match case.support {
             Support::Free => (mesh.nodes, mesh.quads),

@@ -49,13 +49,19 @@ pub(super) struct SectionRun<'a> {
 /// Errors: a mesh file (the section model meshes its own sections), or sizes the section
 /// mesher rejects (named from the scene root).
 pub fn section_mesh(name: &str, b: &BallScene) -> Result<SectionMesh> {
-    match &b.mesh {
-        MeshSettings::Builtin { size, pole_size } => ball(&SectionSpec {
+    ball(&section_spec(name, b)?).map_err(|e| e.within(&format!("{name}.mesh")))
+}
+
+/// The meridian mesh settings of ball `name` from its built-in mesh settings.
+///
+/// Errors: a mesh file (the section model meshes its own sections).
+pub fn section_spec(name: &str, b: &BallScene) -> Result<SectionSpec> {
+    match b.mesh {
+        MeshSettings::Builtin { size, pole_size } => Ok(SectionSpec {
             diameter: b.diameter,
-            size: *size,
-            pole_size: Some(*pole_size),
-        })
-        .map_err(|e| e.within(&format!("{name}.mesh"))),
+            size,
+            pole_size: Some(pole_size),
+        }),
         MeshSettings::File { .. } => Err(Error::Parse(format!(
             "{name}.mesh.file is set: the axisymmetric model needs the built-in mesher \
              (set reduction.symmetry = \"off\" to run the file's 3D mesh)"
