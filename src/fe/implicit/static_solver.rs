@@ -279,10 +279,11 @@ impl StaticSolver {
             };
             let (eval, rel) = self.newton(&mut du, &mut load, &system, &mut report)?;
             let f_ext = self.loads(load);
-            let changes = match plane {
+            let (added, released) = match plane {
                 Some(p) => self.settle(p, &mut active, &du, &eval.f_int, &f_ext, tol),
-                None => 0,
+                None => (0, 0),
             };
+            let changes = added + released;
             if changes == 0 {
                 if rel <= self.settings.residual_tol {
                     break eval;
@@ -293,13 +294,17 @@ impl StaticSolver {
                 continue;
             }
             report.active_changes += changes;
-            // A new active set starts again from the committed state: from the last set's
-            // solution, the nodes it adds or releases can throw Newton into cycles.
-            du.iter_mut().for_each(|d| *d = [0.0; 2]);
-            load = match target.load_control {
-                Some(_) => self.load_factor,
-                None => start_load,
-            };
+            // A set that lands nodes starts again from the committed state: from the last
+            // set's solution, the nodes it adds can throw Newton into cycles. A set that
+            // only releases nodes (their pull is within the loose tolerance of zero, or
+            // nearly so) goes on from that solution, which it barely moves.
+            if added > 0 {
+                du.iter_mut().for_each(|d| *d = [0.0; 2]);
+                load = match target.load_control {
+                    Some(_) => self.load_factor,
+                    None => start_load,
+                };
+            }
             if report.active_changes > self.settings.max_active_changes {
                 return Err(Error::Numerical(format!(
                     "static contact: the active set did not settle after {} changes at load \
@@ -586,7 +591,7 @@ impl StaticSolver {
 
     /// Adds nodes across the plane to the active set and releases nodes the plane pulls by
     /// more than the residual `tol` allows (relative to the largest axial nodal force);
-    /// returns the number of changes.
+    /// returns the numbers of nodes added and released.
     fn settle(
         &self,
         plane: ExactPlane,
@@ -595,27 +600,27 @@ impl StaticSolver {
         f_int: &[[f64; 2]],
         f_ext: &[[f64; 2]],
         tol: f64,
-    ) -> usize {
+    ) -> (usize, usize) {
         let scale = f_int
             .iter()
             .map(|f| f[1].abs())
             .fold(0.0f64, f64::max)
             .max(1e-300);
-        let mut changes = 0;
+        let (mut added, mut released) = (0, 0);
         for i in 0..active.len() {
             let z = self.x[i][1] + du[i][1];
             if active[i] {
                 let pressure = plane.pressure_of(f_int[i][1] - f_ext[i][1]);
                 if pressure < -tol.max(1e-12) * scale {
                     active[i] = false;
-                    changes += 1;
+                    released += 1;
                 }
             } else if plane.gap(z) < -self.gap_tol {
                 active[i] = true;
-                changes += 1;
+                added += 1;
             }
         }
-        changes
+        (added, released)
     }
 
     fn element_nodes(&self, e: usize, du: &[[f64; 2]]) -> (Quad, Quad) {
