@@ -160,10 +160,10 @@ pub fn bench_with(a: LawBenchArgs, registry: &Registry) -> Result<()> {
         command,
     };
     let r = run_bench(&opts, registry, &|line: &str| eprintln!("{line}"))?;
-    let [h, o] = r.stats;
+    let [h, o, l] = r.stats;
     println!(
-        "FE points: head-on {} run, {} from the cache, {} scaled, {} missing; oblique {} run, {} from the cache, {} missing",
-        h.computed, h.reused, h.scaled, h.missing, o.computed, o.reused, o.missing
+        "FE points: head-on {} run, {} from the cache, {} scaled, {} missing; oblique {} run, {} from the cache, {} missing; loops {} run, {} from the cache, {} missing",
+        h.computed, h.reused, h.scaled, h.missing, o.computed, o.reused, o.missing, l.computed, l.reused, l.missing
     );
     if let Some(p) = r.report {
         println!("wrote {}", p.display());

@@ -20,7 +20,8 @@ fn scratch(name: &str) -> PathBuf {
 
 fn tiny() -> Matrix {
     Matrix::from_toml(
-        "metals = [\"copper-fe\"]\nspeeds = [3.7276, 10.0]\ndiameters = [0.02]\noblique = false",
+        "metals = [\"copper-fe\"]\nspeeds = [3.7276, 10.0]\ndiameters = [0.02]\noblique = false\n\
+         loops = false",
         "tiny",
     )
     .unwrap()
@@ -151,6 +152,63 @@ fn tiny_matrix_runs_end_to_end_and_reuses_its_cache() {
     let _ = std::fs::remove_dir_all(&empty);
 }
 
+/// The bench's quasi-static part on one loop (aluminum, D = 20 mm, 1.39 m/s: v/v_y = 10):
+/// the FE loop is cached and reused, every normal law is set on it, and the report and a
+/// figure show them. Physics: the loop leaves a permanent approach that the elastic Hertz
+/// law cannot (its unloading retraces its loading), and a plastic law (Thornton's) follows
+/// the loop's unloading closer than Hertz.
+#[test]
+fn the_bench_sets_every_normal_law_on_its_quasi_static_loop() {
+    let out = scratch("laws-bench-loops");
+    let registry = Registry::builtin();
+    let quiet = |_: &str| {};
+    let mut opts = options(&out, Mode::Full);
+    opts.matrix = Matrix::from_toml(
+        "metals = [\"aluminum\"]\nspeeds = [1.3895]\ndiameters = [0.02]\noblique = false",
+        "one loop",
+    )
+    .unwrap();
+    let first = run_bench(&opts, &registry, &quiet).unwrap();
+    assert_eq!((first.stats[2].computed, first.stats[2].reused), (1, 0));
+    let r = first.results.unwrap();
+    let l = &r.loops[0];
+    let fe = l.fe.as_ref().unwrap().done().unwrap();
+    assert!(fe.e.finest > 0.5 && fe.e.finest < 1.0, "{:?}", fe.e);
+    assert!(fe.e.relative_error.unwrap() < 0.02, "{:?}", fe.e);
+    assert!(fe.residual_approach.finest > 0.0);
+    assert_eq!(l.laws.len(), registry.normal.len());
+    let law = |name: &str| l.laws.iter().find(|x| x.law == name).unwrap();
+    assert!(law("hertz").residual_approach.abs() < 1e-12 * fe.delta_max.finest);
+    assert!(law("thornton").unloading_rms < law("hertz").unloading_rms);
+    assert!(l
+        .laws
+        .iter()
+        .all(|x| x.loading_rms.is_finite() && x.unloading_rms.is_finite()));
+    let report = std::fs::read_to_string(out.join("REPORT.md")).unwrap();
+    let part = &report[report.find("## Quasi-static loops").unwrap()..];
+    for s in &registry.normal {
+        assert!(
+            part.contains(&format!("| {} |", s.name)),
+            "loop table lacks {}",
+            s.name
+        );
+    }
+    let figure = std::fs::read_dir(&out)
+        .unwrap()
+        .filter_map(|e| e.ok())
+        .any(|e| {
+            e.file_name()
+                .to_string_lossy()
+                .starts_with("static_loop_aluminum_v")
+        });
+    assert!(figure, "no static loop figure");
+    let second = run_bench(&opts, &registry, &quiet).unwrap();
+    assert_eq!((second.stats[2].computed, second.stats[2].reused), (0, 1));
+    let again = std::fs::read_to_string(out.join("REPORT.md")).unwrap();
+    assert_eq!(again, report, "a rerun from the cache changed the report");
+    let _ = std::fs::remove_dir_all(&out);
+}
+
 #[test]
 fn a_bad_matrix_file_is_one_line_naming_the_field() {
     let dir = scratch("laws-bench-bad");
@@ -160,6 +218,7 @@ fn a_bad_matrix_file_is_one_line_naming_the_field() {
         ("metals = [\"copper-fe\", \"gold\"]", "metals[1]"),
         ("[oblique]\nratios = [0.5, -1]", "oblique.ratios[1]"),
         ("speed = [1.0]", "speed"),
+        ("loops = 3", "loops"),
     ];
     for (text, field) in cases {
         let m = dir.join("matrix.toml");

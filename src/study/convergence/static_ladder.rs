@@ -165,9 +165,7 @@ pub fn impact_of_scene(scene: &Scene) -> Result<(f64, bool)> {
 }
 
 /// The loop case of a head-on `scene` (identical balls, or a ball on a rigid wall): its ball
-/// on a rigid plane, its section element, the mesh sized from Hertz's contact radius of the
-/// impact, loaded to `to` or, when `None`, to the kinetic energy one ball brings to the plane
-/// (½ m v², v its speed against the mirror plane or the wall).
+/// on a rigid plane, as [`case_of_head_on`].
 ///
 /// Errors: a scene the section does not run head-on (one line saying why); those of the
 /// scene's approach.
@@ -178,7 +176,26 @@ pub fn case_of_scene(
     level: u32,
     increments: usize,
 ) -> Result<StaticCase> {
-    let case = static_image_of(scene)?;
+    Ok(case_of_head_on(
+        &static_image_of(scene)?,
+        support,
+        to,
+        level,
+        increments,
+    ))
+}
+
+/// The loop case of a head-on `case`: its ball on a rigid plane, its section element, the
+/// mesh sized from Hertz's contact radius of the impact, loaded to `to` or, when `None`, to
+/// the kinetic energy one ball brings to the plane (½ m v², v its speed against the mirror
+/// plane or the wall).
+pub fn case_of_head_on(
+    case: &HeadOnCase,
+    support: Support,
+    to: Option<LoadTo>,
+    level: u32,
+    increments: usize,
+) -> StaticCase {
     let speed = match case.target {
         HeadOnTarget::IdenticalBall => case.relative_speed / 2.0,
         HeadOnTarget::RigidWall => case.relative_speed,
@@ -190,14 +207,14 @@ pub fn case_of_scene(
         support,
         to: LoadTo::Work(0.0),
         mesh: LoopMesh::Ladder {
-            sizing_radius: hertz_contact_radius(&case),
+            sizing_radius: hertz_contact_radius(case),
         },
         level,
         increments,
     };
     let work = LoadTo::Work(0.5 * loop_case.ball_mass() * speed * speed);
-    Ok(StaticCase {
+    StaticCase {
         to: to.unwrap_or(work),
         ..loop_case
-    })
+    }
 }

@@ -1,14 +1,15 @@
 //! The benchmark's SVG figures: e(v) per metal (every law as a line, FE points with error
 //! bars), e against v/v_y for both diameters (where D drops out), the oblique points' e_t
 //! and spin against the normalised angle of incidence (every tangential law, FE with bars,
-//! the elastic theory), F(δ) loading-unloading loops at three speeds and δ(t) (FE pilot
-//! curve against every law).
+//! the elastic theory), each metal's quasi-static FE loop against every normal law, F(δ)
+//! loading-unloading loops at three speeds and δ(t) (FE pilot curve against every law).
 
 use super::fe::ObliqueFe;
 use super::law_side::{head_on_law, thin};
-use super::matrix::log_spaced;
+use super::loops::phases;
+use super::matrix::{log_spaced, loop_speeds};
 use super::oblique_report::{group, groups, response};
-use super::{BenchResults, HeadOnResult};
+use super::{BenchResults, HeadOnResult, LoopResult};
 use crate::analytic::laws::Registry;
 use crate::atomic::write_atomic;
 use crate::error::{Error, Result};
@@ -127,23 +128,6 @@ fn e_of_v_over_vy(r: &BenchResults) -> Chart {
         y_label: "coefficient of restitution e (-)".into(),
         series,
     }
-}
-
-/// The matrix speeds nearest 0.1, 1 and 10 m/s (distinct, ascending).
-pub fn loop_speeds(speeds: &[f64]) -> Vec<f64> {
-    let mut out: Vec<f64> = vec![];
-    for target in [0.1f64, 1.0, 10.0] {
-        let best = speeds
-            .iter()
-            .copied()
-            .min_by(|a, b| (a / target).ln().abs().total_cmp(&(b / target).ln().abs()));
-        if let Some(v) = best {
-            if !out.contains(&v) {
-                out.push(v);
-            }
-        }
-    }
-    out
 }
 
 /// The quantity an oblique chart plots.
@@ -286,6 +270,45 @@ fn curve_chart(
     }
 }
 
+/// The quasi-static loop `l` of the pair's approach (µm) and force (N): the finest FE loop
+/// (points) and each normal law's curve on it (lines). `None` without an FE loop.
+fn static_loop_chart(l: &LoopResult) -> Option<Chart> {
+    let fe = l.fe.as_ref().and_then(|f| f.done())?;
+    let delta: Vec<f64> = phases(&fe.finest).map(|(_, p)| 2e6 * p.approach).collect();
+    let mut series: Vec<Series> = l
+        .laws
+        .iter()
+        .map(|law| Series {
+            label: law.law.clone(),
+            points: delta
+                .iter()
+                .copied()
+                .zip(law.forces.iter().copied())
+                .collect(),
+            style: Style::Line,
+        })
+        .collect();
+    series.push(Series {
+        label: "FE (static loop, finest level)".into(),
+        points: phases(&fe.finest)
+            .map(|(_, p)| (2e6 * p.approach, p.force))
+            .collect(),
+        style: Style::Points,
+    });
+    let p = &l.point;
+    Some(Chart {
+        title: format!(
+            "{}, D = {} mm, v = {:.3} m/s: quasi-static F(delta)",
+            p.metal,
+            1e3 * p.diameter,
+            p.speed
+        ),
+        x_label: "approach of the pair delta (um)".into(),
+        y_label: "normal force F (N)".into(),
+        series,
+    })
+}
+
 /// Writes the figures into `out` (law lines from `registry`) and returns them in report
 /// order.
 ///
@@ -342,6 +365,24 @@ pub fn write_figures(out: &Path, r: &BenchResults, registry: &Registry) -> Resul
                     &c,
                 )?;
             }
+        }
+    }
+    for metal in &r.matrix.metals {
+        let loops: Vec<&LoopResult> = r.loops.iter().filter(|l| &l.point.metal == metal).collect();
+        let Some(l) = loops.get(1).or(loops.first()) else {
+            continue;
+        };
+        if let Some(c) = static_loop_chart(l) {
+            write(
+                format!("static_loop_{metal}_v{:.3}.svg", l.point.speed),
+                format!(
+                    "quasi-static F(δ), {metal}, D = {} mm, v = {:.3} m/s: FE loop (points) and \
+                     every normal law (lines)",
+                    1e3 * l.point.diameter,
+                    l.point.speed
+                ),
+                &c,
+            )?;
         }
     }
     let Some(metal) = r.matrix.metals.first() else {

@@ -67,6 +67,8 @@ pub struct Matrix {
     pub diameters: Vec<f64>,
     /// The oblique impacts (`None`: no oblique points).
     pub oblique: Option<Oblique>,
+    /// Whether the bench runs the quasi-static loops ([`Matrix::loop_points`]).
+    pub loops: bool,
 }
 
 /// `n` log-spaced values from `lo` to `hi` (both included; `n` ≥ 2).
@@ -93,8 +95,26 @@ impl Default for Matrix {
                 incidence: Incidence::Angles(DEFAULT_ANGLES.to_vec()),
                 elastic: vec![false, true],
             }),
+            loops: true,
         }
     }
+}
+
+/// The matrix speeds nearest 0.1, 1 and 10 m/s (distinct, ascending).
+pub fn loop_speeds(speeds: &[f64]) -> Vec<f64> {
+    let mut out: Vec<f64> = vec![];
+    for target in [0.1f64, 1.0, 10.0] {
+        let best = speeds
+            .iter()
+            .copied()
+            .min_by(|a, b| (a / target).ln().abs().total_cmp(&(b / target).ln().abs()));
+        if let Some(v) = best {
+            if !out.contains(&v) {
+                out.push(v);
+            }
+        }
+    }
+    out
 }
 
 /// One head-on FE point: two identical balls approaching at `speed`.
@@ -175,6 +195,22 @@ impl Matrix {
         Ok(out)
     }
 
+    /// The quasi-static loops' points (none without `loops`): every metal at the largest
+    /// diameter and the [`loop_speeds`].
+    ///
+    /// Errors: an unknown metal.
+    pub fn loop_points(&self) -> Result<Vec<HeadOnPoint>> {
+        if !self.loops {
+            return Ok(vec![]);
+        }
+        let d = self.diameters.iter().copied().fold(f64::NAN, f64::max);
+        Ok(self
+            .head_on_points()?
+            .into_iter()
+            .filter(|p| p.diameter == d && loop_speeds(&self.speeds).contains(&p.speed))
+            .collect())
+    }
+
     /// The oblique points (none without `oblique`).
     ///
     /// Errors: an unknown metal.
@@ -220,7 +256,7 @@ impl Matrix {
     /// m/s, 1e-3..100), `diameters` (m, 1e-3..0.2), and a table `[oblique]` with `metals`,
     /// `diameter` (m), `normal_speed` (m/s), `angles` (ψ₁, 1e-3..50) or `ratios` (v_t/v_n,
     /// 1e-3..10), `elastic` (a list of booleans: the metal itself, its elastic twin), or
-    /// `oblique = false`.
+    /// `oblique = false`, and `loops` (a boolean: the quasi-static loops, default true).
     ///
     /// Errors: one line naming the field, its value and the allowed range (an unknown key,
     /// a wrong type, a value out of range, an unknown metal, an empty list).
@@ -238,11 +274,16 @@ impl Matrix {
                 "speeds" => m.speeds = numbers(value, "speeds", 1e-3, 100.0, "m/s")?,
                 "diameters" => m.diameters = numbers(value, "diameters", 1e-3, 0.2, "m")?,
                 "oblique" => m.oblique = oblique(value, m.oblique.take())?,
+                "loops" => {
+                    m.loops = value
+                        .as_bool()
+                        .ok_or_else(|| Error::invalid("loops", value, "true or false"))?
+                }
                 other => {
                     return Err(Error::invalid(
                         other,
                         value,
-                        "keys metals, speeds, diameters, oblique",
+                        "keys metals, speeds, diameters, oblique, loops",
                     ))
                 }
             }

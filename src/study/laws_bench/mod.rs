@@ -10,6 +10,8 @@
 //! - [`law_side`]: the laws on the same points;
 //! - [`loops`]: the laws' quasi-static curves against an FE loop (`twoball static --laws`);
 //!   [`loop_fit`]: a law fitted to such a loop (`twoball laws fit --against-static`);
+//!   [`loop_points`]: the bench's FE loops (per metal, at three speeds) and the laws on them,
+//!   [`loop_report`] their part of the report;
 //! - [`bars`]: the FE error bars in e per metal and the laws within them;
 //! - [`ranking`]: each law's errors against FE and the ranking;
 //! - [`calibrated`]: the damped laws calibrated at one point per metal and ranked;
@@ -24,6 +26,8 @@ pub mod figures;
 pub mod fit;
 pub mod law_side;
 pub mod loop_fit;
+pub mod loop_points;
+pub mod loop_report;
 pub mod loops;
 pub mod matrix;
 pub mod oblique_report;
@@ -37,6 +41,8 @@ use crate::error::Result;
 use cache::{CacheStats, FeCache, Stored};
 use fe::{FePlan, FePoint, ObliqueFe};
 use law_side::{LawPoint, ObliqueLaw};
+use loop_points::{LoopCase, LoopFe};
+use loops::LawOnLoop;
 use matrix::{HeadOnPoint, Matrix, ObliquePoint};
 use rayon::prelude::*;
 use std::path::PathBuf;
@@ -105,6 +111,17 @@ pub struct ObliqueResult {
     pub theory: Option<law_side::Theory>,
 }
 
+/// One quasi-static loop: FE and every normal law on it.
+#[derive(Debug, Clone)]
+pub struct LoopResult {
+    /// The head-on point whose ball the loop loads.
+    pub point: HeadOnPoint,
+    /// The FE loop (None: not in the cache with `--laws-only`).
+    pub fe: Option<Stored<LoopFe>>,
+    /// Every normal law on the finest loop, in registry order (empty without the FE loop).
+    pub laws: Vec<LawOnLoop>,
+}
+
 /// Everything a benchmark run produced.
 #[derive(Debug, Clone)]
 pub struct BenchResults {
@@ -120,19 +137,21 @@ pub struct BenchResults {
     pub head_on: Vec<HeadOnResult>,
     /// The oblique points.
     pub oblique: Vec<ObliqueResult>,
+    /// The quasi-static loops.
+    pub loops: Vec<LoopResult>,
     /// The fits, one per metal.
     pub fits: Vec<fit::MetalFit>,
     /// The damped laws calibrated per metal and ranked.
     pub calibrated: Vec<calibrated::MetalCalibration>,
-    /// Cache use of the head-on and oblique FE points.
-    pub stats: [CacheStats; 2],
+    /// Cache use of the head-on and oblique FE points and of the loops.
+    pub stats: [CacheStats; 3],
 }
 
 /// What `run_bench` did.
 #[derive(Debug, Clone)]
 pub struct BenchSummary {
-    /// Cache use of the head-on and oblique FE points.
-    pub stats: [CacheStats; 2],
+    /// Cache use of the head-on and oblique FE points and of the loops.
+    pub stats: [CacheStats; 3],
     /// The report written (None with [`Mode::FeOnly`]).
     pub report: Option<PathBuf>,
     /// The results (None with [`Mode::FeOnly`]).
@@ -247,7 +266,21 @@ pub fn run_bench(
         fe::oblique_fe,
         progress,
     )?;
-    let stats = [s1, s2];
+    let loop_cases: Vec<LoopCase> = opts
+        .matrix
+        .loop_points()?
+        .into_iter()
+        .map(LoopCase)
+        .collect();
+    let loop_cache = FeCache::new(&opts.out, loop_points::LOOP_MODEL);
+    let (lfe, s3) = loop_cache.run_all(
+        &loop_cases,
+        opts.jobs,
+        laws_only,
+        loop_points::loop_fe,
+        progress,
+    )?;
+    let stats = [s1, s2, s3];
     if opts.mode == Mode::FeOnly {
         return Ok(BenchSummary {
             stats,
@@ -292,6 +325,17 @@ pub fn run_bench(
             })
         })
         .collect::<Result<Vec<_>>>()?;
+    let loops = loop_cases
+        .into_iter()
+        .zip(lfe)
+        .map(|(LoopCase(point), fe)| {
+            let laws = match fe.as_ref().and_then(|f| f.done()) {
+                Some(f) => loop_points::laws_on(f, &point, registry)?,
+                None => vec![],
+            };
+            Ok(LoopResult { point, fe, laws })
+        })
+        .collect::<Result<Vec<_>>>()?;
     progress("fits");
     let dmax = opts
         .matrix
@@ -316,6 +360,7 @@ pub fn run_bench(
         tangential_laws: registry.tangential.iter().map(|s| s.name.into()).collect(),
         head_on,
         oblique,
+        loops,
         fits,
         calibrated,
         stats,

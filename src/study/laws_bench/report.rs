@@ -1,6 +1,6 @@
 //! REPORT.md of the benchmark: the matrix, the FE points, each law's errors over speed per
 //! metal, the ranking, where each law fails (in numbers), D = 5 against 20 mm, the oblique
-//! impacts, the fits and the cost.
+//! impacts, the quasi-static loops, the fits and the cost.
 
 use super::bars::{bar, metal_bars, TARGET_E_BAR};
 use super::calibrated::MetalCalibration;
@@ -807,6 +807,7 @@ pub fn report_text(
     failures_section(&mut s, r);
     diameter_section(&mut s, r);
     super::oblique_report::oblique_section(&mut s, r);
+    super::loop_report::loop_section(&mut s, r);
     fit_section(&mut s, &r.fits);
     let _ = writeln!(s, "## Figures\n");
     for f in figures {

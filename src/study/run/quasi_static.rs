@@ -126,7 +126,7 @@ impl StaticCase {
 }
 
 /// One point of a loop.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct LoopPoint {
     /// Approach δ, m.
     pub approach: f64,
@@ -165,7 +165,7 @@ pub struct LoopSummary {
 }
 
 /// A loop on one mesh.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct StaticLoop {
     /// Quads of the mesh.
     pub quads: usize,
