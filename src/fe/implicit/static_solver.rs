@@ -296,8 +296,8 @@ impl StaticSolver {
             report.active_changes += changes;
             // A set that lands nodes starts again from the committed state: from the last
             // set's solution, the nodes it adds can throw Newton into cycles. A set that
-            // only releases nodes (their pull is within the loose tolerance of zero, or
-            // nearly so) goes on from that solution, which it barely moves.
+            // only releases nodes (whose pull exceeds the tolerance, usually just) goes on
+            // from that solution, which releasing them barely moves.
             if added > 0 {
                 du.iter_mut().for_each(|d| *d = [0.0; 2]);
                 load = match target.load_control {

@@ -368,8 +368,20 @@ pub fn write_figures(out: &Path, r: &BenchResults, registry: &Registry) -> Resul
         }
     }
     for metal in &r.matrix.metals {
-        let loops: Vec<&LoopResult> = r.loops.iter().filter(|l| &l.point.metal == metal).collect();
-        let Some(l) = loops.get(1).or(loops.first()) else {
+        // The loop at the middle loop speed, else the first with an FE loop.
+        let done: Vec<&LoopResult> = r
+            .loops
+            .iter()
+            .filter(|l| {
+                &l.point.metal == metal && l.fe.as_ref().is_some_and(|f| f.done().is_some())
+            })
+            .collect();
+        let middle = loop_speeds(&r.matrix.speeds).get(1).copied();
+        let Some(l) = done
+            .iter()
+            .find(|l| Some(l.point.speed) == middle)
+            .or(done.first())
+        else {
             continue;
         };
         if let Some(c) = static_loop_chart(l) {

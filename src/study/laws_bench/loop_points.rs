@@ -42,7 +42,8 @@ impl CacheKey for LoopCase {
             p.speed
         )
     }
-    /// About the same at every speed (the mesh follows the contact radius).
+    /// Within a factor of two at every speed (the mesh follows the contact radius; the
+    /// fastest loops take twice the increments), so all alike.
     fn cost(&self) -> f64 {
         1.0
     }

@@ -3,6 +3,7 @@
 //! the loading and the unloading branch of the finest loop.
 
 use super::bars::bar;
+use super::cache::Stored;
 use super::matrix::yield_speed;
 use super::{BenchResults, LoopResult};
 use std::fmt::Write as _;
@@ -31,19 +32,26 @@ fn fe_table(s: &mut String, r: &BenchResults) {
     for l in &r.loops {
         let p = &l.point;
         let vy = yield_speed(&p.material, p.diameter).unwrap_or(f64::NAN);
-        let Some(f) = l.fe.as_ref().and_then(|f| f.done()) else {
-            let _ = writeln!(
-                s,
-                "| {} | {:.4} | {:.3} | no FE loop | | | | | |",
-                p.metal,
-                p.speed,
-                p.speed / vy
-            );
-            continue;
+        let f = match &l.fe {
+            Some(Stored::Done(f)) => f,
+            missing => {
+                let why = match missing {
+                    Some(Stored::Failed(m)) => format!("FE failed: {m}"),
+                    _ => "not in the cache".to_string(),
+                };
+                let _ = writeln!(
+                    s,
+                    "| {} | {:.4} | {:.3} | {why} | | | | | |",
+                    p.metal,
+                    p.speed,
+                    p.speed / vy
+                );
+                continue;
+            }
         };
         let (dyn_cell, gap) = match dynamic_e(r, l) {
             Some((e, err)) => (
-                bar(e, err, 1.0, 4),
+                bar(e, err, 1.0, 5),
                 format!("{:+.2} %", 100.0 * (e / f.e.finest - 1.0)),
             ),
             None => ("n/a".into(), "n/a".into()),
@@ -55,14 +63,14 @@ fn fe_table(s: &mut String, r: &BenchResults) {
             p.speed,
             p.speed / vy,
             bar(2.0 * f.delta_max.finest, 2.0 * f.delta_max.error, 1e6, 3),
-            bar(f.force_at_max.finest, f.force_at_max.error, 1.0, 1),
+            bar(f.force_at_max.finest, f.force_at_max.error, 1.0, 2),
             bar(
                 2.0 * f.residual_approach.finest,
                 2.0 * f.residual_approach.error,
                 1e6,
                 3
             ),
-            bar(f.e.finest, f.e.error, 1.0, 4),
+            bar(f.e.finest, f.e.error, 1.0, 5),
         );
     }
     let _ = writeln!(s);
@@ -78,7 +86,7 @@ fn law_table(s: &mut String, r: &BenchResults, metal: &str) {
     let mut head = String::from("| law |");
     let mut rule = String::from("|---|");
     for l in &loops {
-        let _ = write!(head, " v = {:.4} m/s |", l.point.speed);
+        let _ = write!(head, " v = {:.4} m/s: RMS (%) |", l.point.speed);
         rule.push_str("---|");
     }
     let _ = writeln!(s, "{head}\n{rule}");
