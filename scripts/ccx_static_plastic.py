@@ -123,6 +123,20 @@ def loop(dat, factor):
     return u, f
 
 
+def release(uu, fu, floor):
+    """The release (m) of the unloading branch `uu`, `fu` (from the peak down) and the work
+    it returns below its last point above `floor` (J), with that point's index: along F = c (u - u_r)^(3/2) through the last two such points (Hertz's law of
+    the unloaded, flattened cap, as twoball's loop closes its own), so neither depends on
+    where the increments fall."""
+    above = np.nonzero(fu > floor)[0]
+    if len(above) < 2:
+        raise CheckError("the unloading branch has fewer than two points above the release floor")
+    a, b = above[-2], above[-1]
+    ratio = (fu[a] / fu[b]) ** (2.0 / 3.0)
+    u_r = uu[b] - (uu[a] - uu[b]) / (ratio - 1.0)
+    return float(u_r), float(0.4 * fu[b] * (uu[b] - u_r)), b
+
+
 def at(u, f, x):
     """F at travel x on a monotone branch, linearly interpolated."""
     return float(np.interp(x, u, f))
@@ -174,16 +188,17 @@ def main(argv=None):
         u, f = loop(work / "job.dat", 180.0)
         k = int(np.argmax(u))
         ul, fl = u[: k + 1], f[: k + 1]
-        uu, fu = u[k:][::-1], f[k:][::-1]
         w_load = float(np.trapezoid(fl, ul))
-        w_unload = float(np.trapezoid(fu, uu))
+        ud, fd = u[k:], f[k:]
+        u_r, tail, b = release(ud, fd, 1e-3 * fl[-1])
+        w_unload = float(-np.trapezoid(fd[: b + 1], ud[: b + 1])) + tail
         res = {
             "delta_max_m": a.delta_max, "travel_m": travel, "h_c_m": m["h_c"],
             "elements": m["n_body"], "element": a.element, "increments": len(u) - 1,
             "F_half_N": at(ul, fl, 0.5 * travel), "F_max_N": float(fl[-1]),
             "W_load_J": w_load, "W_unload_J": w_unload,
             "e_quasi_static": math.sqrt(max(w_unload, 0.0) / w_load),
-            "residual_travel_m": float(uu[np.nonzero(fu > 1e-3 * fl[-1])[0][0]]) if (fu > 1e-3 * fl[-1]).any() else 0.0,
+            "residual_travel_m": u_r,
             "ccx_wall_s": wall,
         }
         print(f"ccx {a.element}: {m['n_body']} elements, h_c = {m['h_c']:.3e} m, {len(u) - 1} increments, {wall:.1f} s")
