@@ -38,7 +38,7 @@ pub mod similarity;
 use crate::analytic::law_fit::Observation;
 use crate::analytic::laws::Registry;
 use crate::error::Result;
-use cache::{CacheStats, FeCache, Stored};
+use cache::{CacheKey, CacheStats, FeCache, Stored};
 use fe::{FePlan, FePoint, ObliqueFe};
 use law_side::{LawPoint, ObliqueLaw};
 use loop_points::{LoopCase, LoopFe};
@@ -243,6 +243,25 @@ fn head_on_fe_all(
     Ok((fe, stats))
 }
 
+/// The FE answers of `points` under the FE model `model`, through the bench's cache
+/// (`opts.jobs` at once; none run with `--laws-only`), and the cache's use.
+///
+/// Errors: a cache file that cannot be written, the thread pool.
+fn cached<P, T>(
+    opts: &BenchOptions,
+    model: &str,
+    points: &[P],
+    run: impl Fn(&P) -> Result<T> + Sync,
+    progress: &(dyn Fn(&str) + Sync),
+) -> Result<(Vec<Option<Stored<T>>>, CacheStats)>
+where
+    P: CacheKey + Sync,
+    T: serde::Serialize + serde::de::DeserializeOwned + Send,
+{
+    let laws_only = opts.mode == Mode::LawsOnly;
+    FeCache::new(&opts.out, model).run_all(points, opts.jobs, laws_only, run, progress)
+}
+
 /// Runs the benchmark: FE points (cached, `jobs` at once), the laws, the fits, the report
 /// and figures in `opts.out`. `progress` receives one line per FE point run and per stage.
 ///
@@ -254,15 +273,13 @@ pub fn run_bench(
     progress: &(dyn Fn(&str) + Sync),
 ) -> Result<BenchSummary> {
     let cache = FeCache::new(&opts.out, &opts.plan.model());
-    let laws_only = opts.mode == Mode::LawsOnly;
     let points = opts.matrix.head_on_points()?;
     let (fe, s1) = head_on_fe_all(opts, &cache, &points, progress)?;
     let oblique_points = opts.matrix.oblique_points()?;
-    let oblique_cache = FeCache::new(&opts.out, fe::OBLIQUE_MODEL);
-    let (ofe, s2) = oblique_cache.run_all(
+    let (ofe, s2) = cached(
+        opts,
+        fe::OBLIQUE_MODEL,
         &oblique_points,
-        opts.jobs,
-        laws_only,
         fe::oblique_fe,
         progress,
     )?;
@@ -272,11 +289,10 @@ pub fn run_bench(
         .into_iter()
         .map(LoopCase)
         .collect();
-    let loop_cache = FeCache::new(&opts.out, loop_points::LOOP_MODEL);
-    let (lfe, s3) = loop_cache.run_all(
+    let (lfe, s3) = cached(
+        opts,
+        loop_points::LOOP_MODEL,
         &loop_cases,
-        opts.jobs,
-        laws_only,
         loop_points::loop_fe,
         progress,
     )?;
