@@ -270,10 +270,16 @@ fn curve_chart(
     }
 }
 
+/// Law forces above this multiple of the FE peak force are left out of a loop figure, so
+/// that the elastic laws (several times the FE force) do not flatten the plastic ones.
+pub const LOOP_FIGURE_FORCE_CAP: f64 = 1.5;
+
 /// The quasi-static loop `l` of the pair's approach (µm) and force (N): the finest FE loop
-/// (points) and each normal law's curve on it (lines). `None` without an FE loop.
+/// (points) and each normal law's curve on it up to [`LOOP_FIGURE_FORCE_CAP`] times the FE
+/// peak force (lines). `None` without an FE loop.
 fn static_loop_chart(l: &LoopResult) -> Option<Chart> {
     let fe = l.fe.as_ref().and_then(|f| f.done())?;
+    let cap = LOOP_FIGURE_FORCE_CAP * fe.finest.summary.force_at_max;
     let delta: Vec<f64> = phases(&fe.finest).map(|(_, p)| 2e6 * p.approach).collect();
     let mut series: Vec<Series> = l
         .laws
@@ -284,6 +290,7 @@ fn static_loop_chart(l: &LoopResult) -> Option<Chart> {
                 .iter()
                 .copied()
                 .zip(law.forces.iter().copied())
+                .filter(|&(_, f)| f <= cap)
                 .collect(),
             style: Style::Line,
         })
@@ -389,7 +396,7 @@ pub fn write_figures(out: &Path, r: &BenchResults, registry: &Registry) -> Resul
                 format!("static_loop_{metal}_v{:.3}.svg", l.point.speed),
                 format!(
                     "quasi-static F(δ), {metal}, D = {} mm, v = {:.3} m/s: FE loop (points) and \
-                     every normal law (lines)",
+                     every normal law (lines, up to 1.5 times the FE peak force)",
                     1e3 * l.point.diameter,
                     l.point.speed
                 ),
