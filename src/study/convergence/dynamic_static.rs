@@ -21,7 +21,7 @@
 
 use super::scene_estimate::run_scene_alone;
 use super::static_ladder::{
-    banded_case, case_of_scene, impact_of_scene, run_loop_ladder, LoopEstimate, DEFAULT_BAND_SPLIT,
+    case_of_scene, free_ball_ladder, impact_of_scene, static_image_of, LoopEstimate,
     DEFAULT_INCREMENTS, DEFAULT_LEVEL,
 };
 use crate::error::{Error, Result};
@@ -174,18 +174,16 @@ pub fn vibration_hold(scene: &Scene) -> f64 {
     HOLD_SHEAR_TRANSITS * scene.ball1.diameter / (m.shear_modulus() / m.rho).sqrt()
 }
 
-/// The static loops of `scene`'s free ball to the work one ball brings (the banded ladder's
-/// `level` and the one below, `increments` at level 0; [`banded_case`]).
+/// The static loops of `scene`'s free ball to the work one ball brings
+/// ([`free_ball_ladder`]).
 ///
-/// Errors: those of [`case_of_scene`], [`banded_case`] and [`run_loop_ladder`].
+/// Errors: a scene that is not one ball on a plane; those of [`free_ball_ladder`].
 pub fn static_image(
     scene: &Scene,
     level: u32,
     increments: usize,
 ) -> Result<(Vec<StaticLoop>, LoopEstimate)> {
-    let case = case_of_scene(scene, Support::Free, None, level, increments)?;
-    let (banded, _) = banded_case(&case, DEFAULT_BAND_SPLIT)?;
-    run_loop_ladder(&banded, 2)
+    free_ball_ladder(&static_image_of(scene)?, level, increments)
 }
 
 /// The comparison for `scene`, whose dynamic run gave `report`: the vibration run (the

@@ -142,7 +142,7 @@ pub fn run_loop_ladder(case: &StaticCase, levels: u32) -> Result<(Vec<StaticLoop
 /// balls, or a ball on a rigid wall).
 ///
 /// Errors: any other scene (one line saying why); those of the scene's approach.
-fn static_image_of(scene: &Scene) -> Result<HeadOnCase> {
+pub fn static_image_of(scene: &Scene) -> Result<HeadOnCase> {
     head_on_case(scene, 0.0)?.map_err(|why| {
         Error::invalid(
             "scene",
@@ -217,4 +217,18 @@ pub fn case_of_head_on(
         to: to.unwrap_or(work),
         ..loop_case
     }
+}
+
+/// The free ball's loops of a head-on `case` to the work one ball brings: the banded ladder
+/// (band [`DEFAULT_BAND_SPLIT`]) on `level` and the level below, `increments` at level 0.
+///
+/// Errors: those of [`banded_case`] and [`run_loop_ladder`].
+pub fn free_ball_ladder(
+    case: &HeadOnCase,
+    level: u32,
+    increments: usize,
+) -> Result<(Vec<StaticLoop>, LoopEstimate)> {
+    let plain = case_of_head_on(case, Support::Free, None, level, increments);
+    let (banded, _) = banded_case(&plain, DEFAULT_BAND_SPLIT)?;
+    run_loop_ladder(&banded, 2)
 }

@@ -13,11 +13,10 @@ use super::matrix::HeadOnPoint;
 use crate::analytic::laws::Registry;
 use crate::error::{Error, Result};
 use crate::study::convergence::static_ladder::{
-    banded_case, case_of_head_on, run_loop_ladder, DEFAULT_BAND_SPLIT, DEFAULT_INCREMENTS,
-    DEFAULT_LEVEL,
+    free_ball_ladder, DEFAULT_INCREMENTS, DEFAULT_LEVEL,
 };
 use crate::study::records::estimate::{value_and_error, Estimate};
-use crate::study::run::quasi_static::{StaticLoop, Support};
+use crate::study::run::quasi_static::StaticLoop;
 use serde::{Deserialize, Serialize};
 
 /// The FE model of the loops, as their cache files name it.
@@ -73,19 +72,12 @@ pub struct LoopFe {
 /// The loop of `case`'s ball, free, loaded to the kinetic energy it brings to the symmetry
 /// plane, with its bars (as `twoball static --support free` on the pair's scene).
 ///
-/// Errors: those of [`banded_case`] and [`run_loop_ladder`] (a contact radius outside the
-/// ladder's range, a static solve that does not converge).
+/// Errors: those of [`free_ball_ladder`] (a contact radius outside the ladder's range, a
+/// static solve that does not converge).
 pub fn loop_fe(case: &LoopCase) -> Result<LoopFe> {
     let start = std::time::Instant::now();
-    let plain = case_of_head_on(
-        &head_on_case(&case.0),
-        Support::Free,
-        None,
-        DEFAULT_LEVEL,
-        DEFAULT_INCREMENTS,
-    );
-    let (banded, _) = banded_case(&plain, DEFAULT_BAND_SPLIT)?;
-    let (mut loops, est) = run_loop_ladder(&banded, 2)?;
+    let (mut loops, est) =
+        free_ball_ladder(&head_on_case(&case.0), DEFAULT_LEVEL, DEFAULT_INCREMENTS)?;
     let finest = loops
         .pop()
         .ok_or_else(|| Error::Numerical("static ladder: no loop".into()))?;

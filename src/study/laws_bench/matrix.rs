@@ -204,10 +204,11 @@ impl Matrix {
             return Ok(vec![]);
         }
         let d = self.diameters.iter().copied().fold(f64::NAN, f64::max);
+        let speeds = loop_speeds(&self.speeds);
         Ok(self
             .head_on_points()?
             .into_iter()
-            .filter(|p| p.diameter == d && loop_speeds(&self.speeds).contains(&p.speed))
+            .filter(|p| p.diameter == d && speeds.contains(&p.speed))
             .collect())
     }
 
