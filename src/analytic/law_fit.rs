@@ -210,24 +210,12 @@ impl Weights {
     };
 }
 
-/// Fits the `free` parameters of `spec` (others at `fixed` overrides or defaults) to `obs`.
-/// Errors: no observations, an unknown or duplicate free key, a law that fails to integrate.
-pub fn fit(
-    spec: &NormalSpec,
-    pair: &ContactPair,
-    b1: &Body,
-    b2: &Body,
-    obs: &[Observation],
-    free: &[String],
-    fixed: &[(String, f64)],
-) -> Result<Fit> {
-    fit_weighted(spec, pair, b1, b2, obs, free, fixed, Weights::BOTH)
-}
-
-/// [`fit`] with the relative residuals of e and δ_max weighted by `w` (each weight finite and
-/// ≥ 0, not both 0); the rms residual and the uncertainties count only the residuals with a
-/// positive weight.
-/// Errors: as [`fit`]; weights out of range.
+/// Fits the `free` parameters of `spec` (others at `fixed` overrides or defaults) to `obs`,
+/// with the relative residuals of e and δ_max weighted by `w` (each weight finite and ≥ 0,
+/// not both 0; `twoball laws fit` uses [`Weights::BOTH`]); the rms residual and the
+/// uncertainties count only the residuals with a positive weight.
+/// Errors: no observations, an unknown or duplicate free key, a law that fails to integrate,
+/// weights out of range.
 #[allow(clippy::too_many_arguments)]
 pub fn fit_weighted(
     spec: &NormalSpec,

@@ -53,20 +53,10 @@ fn grid(a: f64, b: f64, n: usize) -> Vec<f64> {
         .collect()
 }
 
-/// The axis of a figure: names, the SI-to-plot factor and the grid.
-struct Axis {
-    name: &'static str,
-    title: &'static str,
-    x_label: &'static str,
-    x_column: &'static str,
-    x_scale: f64,
-    x: Vec<f64>,
-}
-
-/// The figure on `axis` with one curve per parameter of `family`: its legend `label(p)` and
-/// η at each x from `eta_at(p, x)`.
+/// The figure `axis` (its names, SI-to-plot factor and x grid; no curves yet) with one curve
+/// per parameter of `family`: its legend `label(p)` and η at each x from `eta_at(p, x)`.
 fn family<P: Copy>(
-    axis: Axis,
+    axis: Figure,
     family: &[P],
     label: impl Fn(P) -> String,
     eta_at: impl Fn(P, f64) -> Result<f64>,
@@ -82,15 +72,7 @@ fn family<P: Copy>(
             Ok((label(p), ys))
         })
         .collect::<Result<_>>()?;
-    Ok(Figure {
-        name: axis.name,
-        title: axis.title,
-        x_label: axis.x_label,
-        x_column: axis.x_column,
-        x_scale: axis.x_scale,
-        x: axis.x,
-        curves,
-    })
+    Ok(Figure { curves, ..axis })
 }
 
 /// η of a head-on base-case impact between balls 1 and 2 of `base` changed by `m1` and `m2`.
@@ -113,13 +95,14 @@ fn eta_of_pair(
 /// 0.1 m/s, right ball −1 m/s.
 pub fn figure11() -> Result<Figure> {
     let base = base_material()?;
-    let axis = Axis {
+    let axis = Figure {
         name: "fig11_density",
         title: "Fig. 11: energy dissipation factor vs density",
         x_label: "density of the balls (kg/m^3)",
         x_column: "density_kg_per_m3",
         x_scale: 1.0,
         x: grid(4000.0, 12000.0, 41),
+        curves: Vec::new(),
     };
     let label = |v: f64| format!("left ball {v:.1} m/s");
     family(axis, &[1.0, 0.1], label, |v, rho| {
@@ -132,13 +115,14 @@ pub fn figure11() -> Result<Figure> {
 /// 0.2, 0.6 and 1.0 m/s (right ball none).
 pub fn figure12() -> Result<Figure> {
     let base = base_material()?;
-    let axis = Axis {
+    let axis = Figure {
         name: "fig12_friction",
         title: "Fig. 12: energy dissipation factor vs friction coefficient",
         x_label: "dynamic friction coefficient (-)",
         x_column: "mu",
         x_scale: 1.0,
         x: grid(0.1, 0.6, 26),
+        curves: Vec::new(),
     };
     let label = |vt: f64| format!("left tangential {vt:.1} m/s");
     family(axis, &[0.2, 0.6, 1.0], label, |vt, mu| {
@@ -150,13 +134,14 @@ pub fn figure12() -> Result<Figure> {
 /// E₂/E₁ = 100, 10, 2, 1, 0.5, 0.1.
 pub fn figure13() -> Result<Figure> {
     let base = base_material()?;
-    let axis = Axis {
+    let axis = Figure {
         name: "fig13_modulus",
         title: "Fig. 13: energy dissipation factor vs elastic modulus",
         x_label: "elastic modulus E1 (GPa)",
         x_column: "E1_GPa",
         x_scale: 1e-9,
         x: grid(100e9, 400e9, 31),
+        curves: Vec::new(),
     };
     let ratios = [100.0, 10.0, 2.0, 1.0, 0.5, 0.1];
     family(
@@ -171,13 +156,14 @@ pub fn figure13() -> Result<Figure> {
 /// σ_s2/σ_s1 = 0.1, 0.5, 1, 2, 10, 100 (σ_s = 0 has no elastic phase; the grid starts at 10).
 pub fn figure14() -> Result<Figure> {
     let base = base_material()?;
-    let axis = Axis {
+    let axis = Figure {
         name: "fig14_yield",
         title: "Fig. 14: energy dissipation factor vs yield strength",
         x_label: "yield strength sigma_s1 (MPa)",
         x_column: "yield1_MPa",
         x_scale: 1e-6,
         x: grid(10e6, 450e6, 45),
+        curves: Vec::new(),
     };
     let ratios = [0.1, 0.5, 1.0, 2.0, 10.0, 100.0];
     family(

@@ -6,6 +6,7 @@ use crate::analytic::damping_index::{
     ReadingScore, Table1Row, TABLE1_SPEEDS, ZETA_TABLE_SCALE,
 };
 use crate::analytic::friction::TangentialExit;
+use crate::analytic::hertz::HertzPair;
 use crate::analytic::parametric::all_figures;
 use crate::analytic::{collide_with_mu, Body, Collision};
 use crate::error::{Error, Result};
@@ -148,7 +149,7 @@ fn apply_sets(m: Material, flag: &str, sets: &[String], ball: u8) -> Result<Mate
         };
         *slot = Some(v);
     }
-    apply(m, &o).validated(&prefix).map_err(|e| {
+    m.overridden(&o).validated(&prefix).map_err(|e| {
         e.map_field(|field| {
             let key = field.rsplit('.').next().unwrap_or(&field).to_string();
             set_flag_of(sets, ball, &key).unwrap_or(field)
@@ -173,35 +174,6 @@ fn set_flag_of(sets: &[String], ball: u8, key: &str) -> Option<String> {
             Some(_) => None,
         }
     })
-}
-
-/// Field replacement without validation (validated by the caller with a precise prefix).
-fn apply(mut m: Material, o: &MaterialOverrides) -> Material {
-    if let Some(v) = o.youngs {
-        m.youngs = v;
-    }
-    if let Some(v) = o.nu {
-        m.nu = v;
-    }
-    if let Some(v) = o.rho {
-        m.rho = v;
-    }
-    if let Some(v) = o.yield_strength {
-        m.yield_strength = v;
-    }
-    if let Some(v) = o.tangent {
-        m.tangent = v;
-    }
-    if let Some(v) = o.mu {
-        m.mu = v;
-        if o.mu_static.is_none() {
-            m.mu_static = m.mu_static.max(v);
-        }
-    }
-    if let Some(v) = o.mu_static {
-        m.mu_static = v;
-    }
-    m
 }
 
 /// The two bodies described by the flags.
@@ -237,7 +209,7 @@ pub(super) fn bodies(a: &BodyArgs) -> Result<(Body, Body)> {
 }
 
 /// Finite numbers as JSON numbers, anything else as null (no NaN is ever written).
-fn num(x: f64) -> Value {
+pub(super) fn num(x: f64) -> Value {
     if x.is_finite() {
         json!(x)
     } else {
@@ -260,16 +232,10 @@ fn collision_json(c: &Collision, b1: &Body, b2: &Body) -> Value {
             approach,
         }) => ("stick", json!(phase.number()), num(time), num(approach)),
     };
-    json!({
+    let out = json!({
         "impact": c.impact,
         "yielded": n.is_some_and(|n| n.yielded),
         "e": opt(&|n| n.e),
-        "v1_after": num(c.v1_after[0]),
-        "v2_after": num(c.v2_after[0]),
-        "v1t_after": num(c.v1_after[1]),
-        "v2t_after": num(c.v2_after[1]),
-        "w1_after": num(c.spin_after[0]),
-        "w2_after": num(c.spin_after[1]),
         "delta1": opt(&|n| n.delta1),
         "delta2": opt(&|n| n.delta2),
         "delta_p": opt(&|n| n.delta_p),
@@ -289,14 +255,47 @@ fn collision_json(c: &Collision, b1: &Body, b2: &Body) -> Value {
         "tangential_exit_phase": exit_phase,
         "tangential_exit_time": exit_time,
         "tangential_exit_delta": exit_delta,
-        "e_star": num(c.pair.modulus),
-        "r_star": num(c.pair.radius),
-        "m_star": num(c.pair.mass),
-        "sigma_p": num(b1.yield_pressure().min(b2.yield_pressure())),
-        "mu": num(c.mu),
+    });
+    let out = merged(out, after_json(c.v1_after, c.v2_after, c.spin_after));
+    let sigma_p = b1.yield_pressure().min(b2.yield_pressure());
+    merged(out, pair_json(&c.pair, sigma_p, c.mu, b1, b2))
+}
+
+/// The velocities after impact, as `twoball analytic --json` and `twoball laws run --json`
+/// write them: `v1_after`, `v2_after`, `v1t_after`, `v2t_after` from the `[normal,
+/// tangential]` velocities `v1`, `v2` (m/s), `w1_after`, `w2_after` from the spins (rad/s).
+pub(super) fn after_json(v1: [f64; 2], v2: [f64; 2], spin: [f64; 2]) -> Value {
+    json!({
+        "v1_after": num(v1[0]),
+        "v2_after": num(v2[0]),
+        "v1t_after": num(v1[1]),
+        "v2t_after": num(v2[1]),
+        "w1_after": num(spin[0]),
+        "w2_after": num(spin[1]),
+    })
+}
+
+/// The pair's keys of both `--json` objects: `e_star` (Pa), `r_star` (m), `m_star` (kg) of
+/// `pair`, the yield pressure `sigma_p` (Pa), the friction coefficient `mu` and the masses
+/// `m1`, `m2` (kg) of the bodies.
+pub(super) fn pair_json(pair: &HertzPair, sigma_p: f64, mu: f64, b1: &Body, b2: &Body) -> Value {
+    json!({
+        "e_star": num(pair.modulus),
+        "r_star": num(pair.radius),
+        "m_star": num(pair.mass),
+        "sigma_p": num(sigma_p),
+        "mu": num(mu),
         "m1": num(b1.mass()),
         "m2": num(b2.mass()),
     })
+}
+
+/// The JSON object `out` with the keys of the object `more` added.
+pub(super) fn merged(mut out: Value, more: Value) -> Value {
+    if let (Value::Object(o), Value::Object(m)) = (&mut out, more) {
+        o.extend(m);
+    }
+    out
 }
 
 fn describe(b: &Body, name: &str) -> String {

@@ -2,7 +2,7 @@
 //! tangential law (same ball, speed and JSON flags as `twoball analytic`); `laws fit`: fit a
 //! law's parameters to restitution and maximum-approach data and export them for DEM codes.
 
-use super::analytic::{bodies, AnalyticArgs};
+use super::analytic::{after_json, bodies, merged, num, pair_json, AnalyticArgs};
 use super::law_params::parse_params;
 use crate::analytic::collision::pair_friction;
 use crate::analytic::friction::{normal_energy_loss, revised_eta, zhang_energy_loss};
@@ -195,15 +195,6 @@ pub struct LawRunArgs {
     pub ball: AnalyticArgs,
 }
 
-/// Finite numbers as JSON numbers, anything else as null.
-fn num(x: f64) -> Value {
-    if x.is_finite() {
-        json!(x)
-    } else {
-        Value::Null
-    }
-}
-
 fn params_json(p: &Params) -> Value {
     let mut m = Map::new();
     for (k, v) in p.iter() {
@@ -274,22 +265,19 @@ pub fn run_json(a: &LawRunArgs, r: &LawRun) -> Value {
     let (b1, b2) = &r.bodies;
     let (v1, v2) = r.v;
     let pair = ContactPair::between(b1, b2, r.mu);
-    let mut out = json!({
+    let out = json!({
         "law": a.law,
         "tangential_law": a.tangential,
         "params": params_json(&r.params.0),
         "tangential_params": params_json(&r.params.1),
         "impact": r.impact.is_some(),
         "v_r": num(v1[0] - v2[0]),
-        "e_star": num(pair.hertz.modulus),
-        "r_star": num(pair.hertz.radius),
-        "m_star": num(pair.hertz.mass),
-        "sigma_p": num(pair.yield_pressure),
-        "mu": num(r.mu),
-        "m1": num(b1.mass()),
-        "m2": num(b2.mass()),
         "tangential_exit": Value::Null,
     });
+    let out = merged(
+        out,
+        pair_json(&pair.hertz, pair.yield_pressure, r.mu, b1, b2),
+    );
     let Some(i) = &r.impact else {
         return out;
     };
@@ -301,12 +289,6 @@ pub fn run_json(a: &LawRunArgs, r: &LawRun) -> Value {
     let extra = json!({
         "yielded": !i.phase_times.is_empty(),
         "e": num(i.e),
-        "v1_after": num(i.v1_after[0]),
-        "v2_after": num(i.v2_after[0]),
-        "v1t_after": num(i.v1_after[1]),
-        "v2t_after": num(i.v2_after[1]),
-        "w1_after": num(i.spin_after[0]),
-        "w2_after": num(i.spin_after[1]),
         "delta1": i.phase_times.first().and_then(|t| i.history.iter().find(|s| s.t == *t)).map_or(Value::Null, |s| num(s.delta)),
         "delta2": num(i.delta_max),
         "delta_p": num(i.delta_end),
@@ -331,10 +313,8 @@ pub fn run_json(a: &LawRunArgs, r: &LawRun) -> Value {
         "tangential_impulse": num(i.tangential_impulse),
         "steps": i.steps,
     });
-    if let (Value::Object(o), Value::Object(e)) = (&mut out, extra) {
-        o.extend(e);
-    }
-    out
+    let out = merged(out, after_json(i.v1_after, i.v2_after, i.spin_after));
+    merged(out, extra)
 }
 
 fn print_run(a: &LawRunArgs, r: &LawRun) {

@@ -4,7 +4,7 @@
 //! (`--against-static DIR`, `study::laws_bench::loop_fit`).
 
 use super::law_params::parse_params;
-use crate::analytic::law_fit::{fit, read_observations};
+use crate::analytic::law_fit::{fit_weighted, read_observations, Weights};
 use crate::analytic::laws::{ContactPair, NormalSpec, Registry};
 use crate::analytic::Body;
 use crate::error::{Error, Result};
@@ -112,7 +112,7 @@ pub fn run(a: LawFitArgs, registry: &Registry) -> Result<()> {
             ),
         ));
     }
-    let f = fit(&spec, &pair, &b, &b, &obs, &free, &fixed)?;
+    let f = fit_weighted(&spec, &pair, &b, &b, &obs, &free, &fixed, Weights::BOTH)?;
     let decks = write_fit_files(
         &a.out,
         &FitSetting {

@@ -56,19 +56,34 @@ pub fn candidate_pairs(
 }
 
 #[cfg(test)]
-mod tests {
+pub(super) mod tests {
     use super::*;
+
+    /// The next number in [0, 1) of a 64-bit linear congruential generator at `seed`.
+    pub(crate) fn uniform(seed: &mut u64) -> f64 {
+        *seed = seed
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        (*seed >> 11) as f64 / (1u64 << 53) as f64
+    }
+
+    /// Asserts that the sorted pairs `found` hold every pair of centres `p` closer than `d` (m),
+    /// as brute force finds them.
+    pub(crate) fn assert_holds_touching(p: &[Vector3<f64>], d: f64, found: &[(usize, usize)]) {
+        for i in 0..p.len() {
+            for j in i + 1..p.len() {
+                if (p[i] - p[j]).norm() < d {
+                    assert!(found.binary_search(&(i, j)).is_ok(), "{i} {j}");
+                }
+            }
+        }
+    }
 
     /// Every touching pair of a random packing is found, as brute force finds it.
     #[test]
     fn finds_every_touching_pair_that_brute_force_finds() {
         let mut seed = 12345u64;
-        let mut rnd = || {
-            seed = seed
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            (seed >> 11) as f64 / (1u64 << 53) as f64
-        };
+        let mut rnd = || uniform(&mut seed);
         let extent = Vector3::new(0.1, 0.04, 0.035);
         let d = 0.02;
         for _ in 0..20 {
@@ -76,13 +91,7 @@ mod tests {
                 .map(|_| Vector3::new(rnd() * 0.12 - 0.01, rnd() * 0.04, rnd() * 0.035))
                 .collect();
             let found = candidate_pairs(&p, Vector3::zeros(), extent, d);
-            for i in 0..p.len() {
-                for j in i + 1..p.len() {
-                    if (p[i] - p[j]).norm() < d {
-                        assert!(found.binary_search(&(i, j)).is_ok(), "{i} {j}");
-                    }
-                }
-            }
+            assert_holds_touching(&p, d, &found);
             assert!(found.len() < 40 * 39 / 2);
         }
     }

@@ -262,39 +262,18 @@ impl DamperFile {
         let wall = Material::preset(&self.container.material).map_err(|e| e.within("box"))?;
         let size = o.box_size.unwrap_or(self.container.size);
         let mut laws = LawChoice::default();
-        if let Some(n) = &self.laws.normal {
-            laws.normal = n.clone();
-        }
-        if let Some(n) = &self.laws.tangential {
-            laws.tangential = n.clone();
-        }
-        laws.normal_params = self
-            .laws
-            .normal_params
-            .iter()
-            .map(|(k, v)| (k.clone(), *v))
-            .collect();
-        laws.tangential_params = self
-            .laws
-            .tangential_params
-            .iter()
-            .map(|(k, v)| (k.clone(), *v))
-            .collect();
-        laws.mu_ball = self.laws.mu_ball;
-        laws.mu_wall = self.laws.mu_wall;
-        if let Some(n) = &o.normal {
-            laws.normal = n.clone();
-            laws.normal_params.clear();
-        }
-        if let Some(n) = &o.tangential {
-            laws.tangential = n.clone();
-            laws.tangential_params.clear();
-        }
-        laws.normal_params.extend(o.normal_params.iter().cloned());
-        laws.tangential_params
-            .extend(o.tangential_params.iter().cloned());
-        laws.mu_ball = o.mu_ball.or(laws.mu_ball);
-        laws.mu_wall = o.mu_wall.or(laws.mu_wall);
+        (laws.normal, laws.normal_params) = chosen_law(
+            &laws.normal,
+            (&self.laws.normal, &self.laws.normal_params),
+            (&o.normal, &o.normal_params),
+        );
+        (laws.tangential, laws.tangential_params) = chosen_law(
+            &laws.tangential,
+            (&self.laws.tangential, &self.laws.tangential_params),
+            (&o.tangential, &o.tangential_params),
+        );
+        laws.mu_ball = o.mu_ball.or(self.laws.mu_ball);
+        laws.mu_wall = o.mu_wall.or(self.laws.mu_wall);
         let duration = o.duration.unwrap_or(self.run.duration);
         let window = (self.run.window[0], self.run.window[1].min(duration));
         if !(window.0 >= 0.0 && window.1 > window.0) {
@@ -376,4 +355,22 @@ impl DamperFile {
         }
         Ok(out)
     }
+}
+
+/// One law of a case (normal or tangential) and its parameter overrides: `default`, replaced
+/// by the file's name with the file's parameters, then by the command line's name (which
+/// drops the file's parameters), with the command line's parameters appended (later win).
+fn chosen_law(
+    default: &str,
+    file: (&Option<String>, &BTreeMap<String, f64>),
+    line: (&Option<String>, &[(String, f64)]),
+) -> (String, Vec<(String, f64)>) {
+    let mut name = file.0.as_deref().unwrap_or(default).to_string();
+    let mut params: Vec<(String, f64)> = file.1.iter().map(|(k, v)| (k.clone(), *v)).collect();
+    if let Some(n) = line.0 {
+        name.clone_from(n);
+        params.clear();
+    }
+    params.extend(line.1.iter().cloned());
+    (name, params)
 }

@@ -80,18 +80,14 @@ impl NeighbourList {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::damper::cells::tests::{assert_holds_touching, uniform};
 
     /// Balls drifting at random: every pair the brute force finds touching is in the list,
     /// which is rebuilt far less often than every step.
     #[test]
     fn keeps_every_touching_pair_between_rebuilds() {
         let mut seed = 987654321u64;
-        let mut rnd = || {
-            seed = seed
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            (seed >> 11) as f64 / (1u64 << 53) as f64 - 0.5
-        };
+        let mut rnd = || uniform(&mut seed) - 0.5;
         let extent = Vector3::new(0.1, 0.04, 0.035);
         let r = vec![0.01; 12];
         let mut p: Vec<Vector3<f64>> = (0..12)
@@ -110,13 +106,7 @@ mod tests {
                 *x += u;
             }
             let pairs = list.pairs(&p, &r, Vector3::zeros(), extent).to_vec();
-            for i in 0..p.len() {
-                for j in i + 1..p.len() {
-                    if (p[i] - p[j]).norm() < 0.02 {
-                        assert!(pairs.binary_search(&(i, j)).is_ok(), "{i} {j}");
-                    }
-                }
-            }
+            assert_holds_touching(&p, 0.02, &pairs);
         }
         assert!(
             list.builds > 1 && list.builds < steps / 5,

@@ -224,20 +224,31 @@ impl DamperSimulation {
 
     fn kick(&mut self, h: f64) {
         for i in 0..self.mass.len() {
-            self.velocity[i] += self.force[i] * (h / self.mass[i]);
-            self.spin[i] += self.torque[i] * (h / self.inertia[i]);
+            (self.velocity[i], self.spin[i]) = self.kicked(i, h);
         }
-        self.frame_v += self.frame_force * h / self.frame.mass;
+        self.frame_v = self.frame_kicked(h);
     }
 
     /// Predicts the velocities to the end of the step from the mid-step ones and the last
     /// accelerations (v, ω of every ball and the frame's velocity), `h` the half step (s).
     fn predict(&mut self, h: f64) {
         for i in 0..self.mass.len() {
-            self.pred_v[i] = self.velocity[i] + self.force[i] * (h / self.mass[i]);
-            self.pred_w[i] = self.spin[i] + self.torque[i] * (h / self.inertia[i]);
+            (self.pred_v[i], self.pred_w[i]) = self.kicked(i, h);
         }
-        self.pred_frame = self.frame_v + self.frame_force * h / self.frame.mass;
+        self.pred_frame = self.frame_kicked(h);
+    }
+
+    /// Ball `i`'s velocity (m/s) and spin (rad/s) after its force and torque act for `h` (s).
+    fn kicked(&self, i: usize, h: f64) -> (Vector3<f64>, Vector3<f64>) {
+        (
+            self.velocity[i] + self.force[i] * (h / self.mass[i]),
+            self.spin[i] + self.torque[i] * (h / self.inertia[i]),
+        )
+    }
+
+    /// The frame's velocity (m/s) after the force on it acts for `h` (s).
+    fn frame_kicked(&self, h: f64) -> f64 {
+        self.frame_v + self.frame_force * h / self.frame.mass
     }
 
     /// Ball `i`'s kinematics against wall `wall` (0..6, see [`Partner::Wall`]) if it touches

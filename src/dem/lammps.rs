@@ -46,13 +46,11 @@ pub fn tsuji_root(alpha: f64) -> Option<f64> {
 
 /// The LAMMPS deck of `law` with `params`, or the one-line refusal.
 pub fn deck(law: &str, params: &Params, s: &DeckScene) -> Result<String> {
-    let tension = |p: &Params| p.get("tension") >= 0.5;
-    let limit = |t: bool| if t { "" } else { " limit_damping" };
     let (normal, note) = match law {
         "hertz" => {
             let kn = 4.0 / 3.0 * deck_modulus(params, s);
             (
-                format!("hertz {kn:.12e} 0.0 tangential linear_nohistory 0.0 {mu:.12e} damping velocity", mu = s.mu),
+                coefficients(&format!("hertz {kn:.12e} 0.0"), s.mu, "velocity"),
                 format!("Maps exactly: k_n = (4/3) E_star sqrt(R_star/R*) = {kn:.9e} Pa, no damping."),
             )
         }
@@ -71,18 +69,15 @@ pub fn deck(law: &str, params: &Params, s: &DeckScene) -> Result<String> {
                     .as_str(),
                 ));
             };
-            let t = tension(params);
-            (
-                format!(
-                    "hertz {kn:.12e} {e0:.15e} tangential linear_nohistory 0.0 {mu:.12e} damping tsuji{}",
-                    limit(t),
-                    mu = s.mu
-                ),
+            damped(
+                &format!("hertz {kn:.12e} {e0:.15e}"),
+                "tsuji",
+                params,
+                s,
                 format!(
                     "Maps exactly: k_n = (4/3) E_star sqrt(R_star/R*) = {kn:.9e} Pa; the law's damping is sqrt(5)|beta| sqrt(m* k_n a)\n\
                      # with |beta| = {b:.9e} (e = {e}); LAMMPS's tsuji damping is alpha(e0) sqrt(m* k_n a) with Tsuji's polynomial alpha,\n\
-                     # so the coefficient written is e0 = {e0:.12} (alpha(e0) = sqrt(5)|beta|), NOT the restitution e. {}",
-                    if t { "Attraction allowed (tension = 1)." } else { "limit_damping: force >= 0 (tension = 0)." },
+                     # so the coefficient written is e0 = {e0:.12} (alpha(e0) = sqrt(5)|beta|), NOT the restitution e.",
                     b = damping_ratio(e),
                 ),
             )
@@ -91,33 +86,27 @@ pub fn deck(law: &str, params: &Params, s: &DeckScene) -> Result<String> {
             let e_deck = deck_modulus(params, s);
             let kn = 4.0 / 3.0 * e_deck;
             let eta = 2.0 * e_deck * params.get("A") / s.mass();
-            let t = tension(params);
-            (
-                format!(
-                    "hertz {kn:.12e} {eta:.12e} tangential linear_nohistory 0.0 {mu:.12e} damping viscoelastic{}",
-                    limit(t),
-                    mu = s.mu
-                ),
+            damped(
+                &format!("hertz {kn:.12e} {eta:.12e}"),
+                "viscoelastic",
+                params,
+                s,
                 format!(
                     "Maps exactly: k_n = (4/3) E_star sqrt(R_star/R*) = {kn:.9e} Pa; viscoelastic damping eta0 a m* with\n\
-                     # eta0 = 2 E* A/m* = {eta:.9e} 1/(m s) gives K (3/2) A sqrt(delta) delta_dot. {}",
-                    if t { "Attraction allowed (tension = 1)." } else { "limit_damping: force >= 0 (tension = 0)." }
+                     # eta0 = 2 E* A/m* = {eta:.9e} 1/(m s) gives K (3/2) A sqrt(delta) delta_dot."
                 ),
             )
         }
         "linear-dashpot" => {
             let k = params.get("k");
             let c = 2.0 * damping_ratio(params.get("e")) * (k * s.mass()).sqrt();
-            let t = tension(params);
-            (
+            damped(
+                &format!("hooke {k:.12e} {c:.12e}"),
+                "velocity",
+                params,
+                s,
                 format!(
-                    "hooke {k:.12e} {c:.12e} tangential linear_nohistory 0.0 {mu:.12e} damping velocity{}",
-                    limit(t),
-                    mu = s.mu
-                ),
-                format!(
-                    "Maps exactly: k = {k:.9e} N/m, velocity damping eta0 = c = 2 zeta sqrt(k m*) = {c:.9e} N s/m. {}",
-                    if t { "Attraction allowed (tension = 1)." } else { "limit_damping: force >= 0 (tension = 0)." }
+                    "Maps exactly: k = {k:.9e} N/m, velocity damping eta0 = c = 2 zeta sqrt(k m*) = {c:.9e} N s/m."
                 ),
             )
         }
@@ -133,26 +122,37 @@ pub fn deck(law: &str, params: &Params, s: &DeckScene) -> Result<String> {
     let run = "lmp -in lammps.in -var vr VR -log none";
     let mut out = s.header("#", "LAMMPS (pair_style granular)", run, params);
     out += &format!("# {note}\n");
-    let b = 2.0 * s.diameter;
-    out += &format!(
-        "variable vr index {v:.12e}\n\
-         units si\n\
-         atom_style sphere\n\
-         atom_modify map array\n\
-         boundary f f f\n\
-         newton off\n\
-         comm_modify vel yes\n\
-         region box block -{b:e} {b:e} -{b:e} {b:e} -{b:e} {b:e} units box\n\
-         create_box 1 box\n\
-         neighbor {skin:e} bin\n\
-         neigh_modify delay 0\n\
-         pair_style granular\n\
-         pair_coeff * * {normal}\n",
-        v = s.speed,
-        skin = s.diameter / 10.0,
-    );
+    out += &s.box_and_neighbours("sphere", "comm_modify vel yes\n");
+    out += &format!("pair_style granular\npair_coeff * * {normal}\n");
     out += &s.two_atoms_and_trace();
     Ok(out)
+}
+
+/// The `pair_coeff` coefficients: the normal model with its coefficients `normal`, the
+/// tangential model without history at friction coefficient `mu`, and `damping`.
+fn coefficients(normal: &str, mu: f64, damping: &str) -> String {
+    format!("{normal} tangential linear_nohistory 0.0 {mu:.12e} damping {damping}")
+}
+
+/// The coefficients and note of a damped law: `normal` with the damping model `model`,
+/// `limit_damping` added (the force clipped at 0) unless the law's force may pull
+/// (`tension`), and the mapping's `note` followed by what it says of the force's sign.
+fn damped(
+    normal: &str,
+    model: &str,
+    params: &Params,
+    s: &DeckScene,
+    note: String,
+) -> (String, String) {
+    let (limit, sign) = if params.tension() {
+        ("", "Attraction allowed (tension = 1).")
+    } else {
+        (" limit_damping", "limit_damping: force >= 0 (tension = 0).")
+    };
+    (
+        coefficients(normal, s.mu, &format!("{model}{limit}")),
+        format!("{note} {sign}"),
+    )
 }
 
 #[cfg(test)]

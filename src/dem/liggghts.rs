@@ -31,7 +31,7 @@ pub fn deck(law: &str, params: &Params, s: &DeckScene) -> Result<String> {
             let (e, tension) = if law == "hertz" {
                 (1.0, true)
             } else {
-                (params.get("e"), params.get("tension") >= 0.5)
+                (params.get("e"), params.tension())
             };
             (
                 format!(
@@ -56,7 +56,7 @@ pub fn deck(law: &str, params: &Params, s: &DeckScene) -> Result<String> {
         "linear-dashpot" => {
             let k = params.get("k");
             let c = 2.0 * damping_ratio(params.get("e")) * (k * s.mass()).sqrt();
-            let tension = params.get("tension") >= 0.5;
+            let tension = params.tension();
             (
                 format!(
                     "hooke/stiffness tangential history limitForce {}",
@@ -106,23 +106,9 @@ pub fn deck(law: &str, params: &Params, s: &DeckScene) -> Result<String> {
             range.0, range.1, HYSTERESIS_TOLERANCE
         );
     }
-    let box_half = 2.0 * s.diameter;
-    out += &format!(
-        "variable vr index {v:.12e}\n\
-         units si\n\
-         atom_style granular\n\
-         atom_modify map array\n\
-         boundary f f f\n\
-         newton off\n\
-         communicate single vel yes\n\
-         hard_particles yes\n\
-         region box block -{b:e} {b:e} -{b:e} {b:e} -{b:e} {b:e} units box\n\
-         create_box 1 box\n\
-         neighbor {skin:e} bin\n\
-         neigh_modify delay 0\n",
-        v = s.speed,
-        b = box_half,
-        skin = s.diameter / 10.0
+    out += &s.box_and_neighbours(
+        "granular",
+        "communicate single vel yes\nhard_particles yes\n",
     );
     for (i, p) in props.iter().enumerate() {
         out += &format!("fix m{} all property/global {p}\n", i + 1);

@@ -105,7 +105,7 @@ pub fn law_outcome(
 
 /// Whether a law with `params` may pull (its contact then ends at zero overlap).
 pub fn tensile(spec: &NormalSpec, params: &Params) -> bool {
-    spec.params.iter().any(|p| p.key == "tension") && params.get("tension") >= 0.5
+    spec.params.iter().any(|p| p.key == "tension") && params.tension()
 }
 
 #[cfg(test)]

@@ -92,6 +92,29 @@ impl DeckScene {
         })
     }
 
+    /// The head of a LAMMPS-family input (LAMMPS, LIGGGHTS) before its pair style: the
+    /// reference speed as the variable `vr` (m/s), SI units, atoms of `atom_style`, the
+    /// `communication` lines (each ending in a newline), a box reaching one diameter (m)
+    /// beyond the balls on every side and the neighbour list with a skin of D/10 (m).
+    pub fn box_and_neighbours(&self, atom_style: &str, communication: &str) -> String {
+        format!(
+            "variable vr index {v:.12e}\n\
+             units si\n\
+             atom_style {atom_style}\n\
+             atom_modify map array\n\
+             boundary f f f\n\
+             newton off\n\
+             {communication}\
+             region box block -{b:e} {b:e} -{b:e} {b:e} -{b:e} {b:e} units box\n\
+             create_box 1 box\n\
+             neighbor {skin:e} bin\n\
+             neigh_modify delay 0\n",
+            v = self.speed,
+            b = 2.0 * self.diameter,
+            skin = self.diameter / 10.0,
+        )
+    }
+
     /// The tail of a LAMMPS-family input (LAMMPS, LIGGGHTS) after its pair style: the step,
     /// the two balls touching at the origin with relative speed `${vr}` (m/s), the trace
     /// `t x1 x2 v1 v2 f1` (SI) written to `trace.txt` every step, and the run.

@@ -22,7 +22,7 @@ use crate::error::Result;
 /// The Yade script of `law` with `params`, or the one-line refusal.
 pub fn deck(law: &str, params: &Params, s: &DeckScene) -> Result<String> {
     let clipped = |p: &Params| -> Result<()> {
-        if p.get("tension") >= 0.5 {
+        if p.tension() {
             Err(cannot(
                 Code::Yade,
                 law,

@@ -141,7 +141,13 @@ impl Material {
     }
 
     /// This material with the given fields replaced, validated.
-    pub fn with_overrides(mut self, o: &MaterialOverrides) -> Result<Material> {
+    pub fn with_overrides(self, o: &MaterialOverrides) -> Result<Material> {
+        self.overridden(o).validated("material")
+    }
+
+    /// This material with the given fields replaced, not validated (the caller validates it
+    /// with a prefix of its own).
+    pub fn overridden(mut self, o: &MaterialOverrides) -> Material {
         if let Some(v) = o.youngs {
             self.youngs = v;
         }
@@ -168,7 +174,7 @@ impl Material {
         if let Some(v) = o.mu_static {
             self.mu_static = v;
         }
-        self.validated("material")
+        self
     }
 
     /// Checks every field; `prefix` names the material in messages (e.g. `ball1.material`).
@@ -271,58 +277,20 @@ mod tests {
     #[test]
     fn bad_values_name_field_value_and_range() {
         let base = Material::preset("copper").unwrap();
-        let cases: [(MaterialOverrides, &str); 7] = [
-            (
-                MaterialOverrides {
-                    youngs: Some(-1.0),
-                    ..Default::default()
-                },
-                "E",
-            ),
-            (
-                MaterialOverrides {
-                    nu: Some(0.5),
-                    ..Default::default()
-                },
-                "nu",
-            ),
-            (
-                MaterialOverrides {
-                    nu: Some(-1.0),
-                    ..Default::default()
-                },
-                "nu",
-            ),
-            (
-                MaterialOverrides {
-                    rho: Some(0.0),
-                    ..Default::default()
-                },
-                "rho",
-            ),
-            (
-                MaterialOverrides {
-                    yield_strength: Some(f64::NAN),
-                    ..Default::default()
-                },
-                "yield",
-            ),
-            (
-                MaterialOverrides {
-                    mu: Some(-0.1),
-                    ..Default::default()
-                },
-                "mu",
-            ),
-            (
-                MaterialOverrides {
-                    youngs: Some(f64::INFINITY),
-                    ..Default::default()
-                },
-                "E",
-            ),
+        /// Sets one field of the overrides.
+        type Set = fn(&mut MaterialOverrides);
+        let cases: [(Set, &str); 7] = [
+            (|o| o.youngs = Some(-1.0), "E"),
+            (|o| o.nu = Some(0.5), "nu"),
+            (|o| o.nu = Some(-1.0), "nu"),
+            (|o| o.rho = Some(0.0), "rho"),
+            (|o| o.yield_strength = Some(f64::NAN), "yield"),
+            (|o| o.mu = Some(-0.1), "mu"),
+            (|o| o.youngs = Some(f64::INFINITY), "E"),
         ];
-        for (o, field) in cases {
+        for (set, field) in cases {
+            let mut o = MaterialOverrides::default();
+            set(&mut o);
             let e = base.with_overrides(&o).unwrap_err().to_string();
             assert!(e.contains(&format!("material.{field} =")), "{e}");
             assert!(e.contains("allowed"), "{e}");

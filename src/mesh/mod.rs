@@ -14,7 +14,19 @@ pub mod section;
 pub mod topology;
 pub mod vtu;
 
+use crate::error::{Error, Result};
 use std::collections::BTreeMap;
+
+/// Fails on the first node of `nodes` (coordinates, m) that is not finite: a mesh file never
+/// holds one.
+pub(crate) fn check_finite_nodes(nodes: &[[f64; 3]]) -> Result<()> {
+    match nodes.iter().position(|p| !p.iter().all(|v| v.is_finite())) {
+        Some(i) => Err(Error::Numerical(format!(
+            "mesh node {i} is not finite; not written"
+        ))),
+        None => Ok(()),
+    }
+}
 
 /// The hexahedra of a structured block of `cells` = [n_i, n_j, n_k] cells, i fastest, with
 /// node numbers `id(i, j, k)` for i ≤ n_i, j ≤ n_j, k ≤ n_k (gmsh/VTK node order).

@@ -720,15 +720,7 @@ fn assemble(raw: Raw, name: &str) -> Result<Loaded> {
 /// name becomes a physical point group of its name, one point element per node, grouped the
 /// same way. Reading the text back with [`parse`] gives the same mesh.
 pub fn to_msh41(mesh: &Mesh) -> Result<String> {
-    if let Some(i) = mesh
-        .nodes
-        .iter()
-        .position(|p| !p.iter().all(|v| v.is_finite()))
-    {
-        return Err(Error::Numerical(format!(
-            "mesh node {i} is not finite; not written"
-        )));
-    }
+    super::check_finite_nodes(&mesh.nodes)?;
     let face_names: Vec<&String> = mesh
         .face_sets
         .iter()

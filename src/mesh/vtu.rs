@@ -262,16 +262,7 @@ fn check_all(grid: &Grid, point_fields: &[Field], cell_fields: &[Field]) -> Resu
     for f in cell_fields {
         f.check(grid.cells(), "cell")?;
     }
-    if let Some(i) = grid
-        .points
-        .iter()
-        .position(|p| !p.iter().all(|v| v.is_finite()))
-    {
-        return Err(Error::Numerical(format!(
-            "mesh node {i} is not finite; not written"
-        )));
-    }
-    Ok(())
+    super::check_finite_nodes(grid.points)
 }
 
 /// The mesh and fields as a `.vtu` file in `format`, with the data set's time `time` (s)

@@ -89,11 +89,7 @@ impl<'a> Reader<'a> {
         let Some(v) = self.raw(key) else {
             return Ok(None);
         };
-        let x = match v {
-            Value::Float(f) => *f,
-            Value::Integer(i) => *i as f64,
-            other => return Err(self.wrong_type(key, other, "a number")),
-        };
+        let x = number(v).ok_or_else(|| self.wrong_type(key, v, "a number"))?;
         if x.is_finite() && ok(x) {
             Ok(Some(x))
         } else {
@@ -151,11 +147,7 @@ impl<'a> Reader<'a> {
         }
         let mut out = [0.0; N];
         for (i, c) in a.iter().enumerate() {
-            let x = match c {
-                Value::Float(f) => *f,
-                Value::Integer(n) => *n as f64,
-                _ => return Err(self.wrong_type(key, v, &what)),
-            };
+            let x = number(c).ok_or_else(|| self.wrong_type(key, v, &what))?;
             if !(x.is_finite() && ok(x)) {
                 return Err(Error::invalid(
                     format!("{}[{i}]", self.key_path(key)),
@@ -213,6 +205,15 @@ impl<'a> Reader<'a> {
             }
         }
         Ok(())
+    }
+}
+
+/// A TOML number (a float, or an integer taken as a real), else `None`.
+fn number(v: &Value) -> Option<f64> {
+    match v {
+        Value::Float(f) => Some(*f),
+        Value::Integer(i) => Some(*i as f64),
+        _ => None,
     }
 }
 

@@ -53,7 +53,7 @@ pub const SPEC: NormalSpec = NormalSpec {
             radius: p.get("R_star"),
             mass: pair.hertz.mass,
             beta: (l / (l * l + PI * PI).sqrt()).abs(),
-            tension: p.get("tension") >= 0.5,
+            tension: p.tension(),
         })
     },
 };

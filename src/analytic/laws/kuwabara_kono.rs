@@ -55,7 +55,7 @@ pub const SPEC: NormalSpec = NormalSpec {
         Box::new(KuwabaraKono {
             stiffness: stiffness(p),
             dissipation: p.get("A"),
-            tension: p.get("tension") >= 0.5,
+            tension: p.tension(),
         })
     },
 };

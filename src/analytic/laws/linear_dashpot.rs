@@ -66,7 +66,7 @@ pub const SPEC: NormalSpec = NormalSpec {
             stiffness: p.get("k"),
             damping_ratio: damping_ratio(p.get("e")),
             mass: pair.hertz.mass,
-            tension: p.get("tension") >= 0.5,
+            tension: p.tension(),
         })
     },
 };

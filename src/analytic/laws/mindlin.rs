@@ -12,9 +12,25 @@ pub struct Mindlin {
     pub radius: f64,
 }
 
+impl Mindlin {
+    /// The spring of `pair` with the `G_star` parameter of `p`.
+    pub fn from_params(pair: &ContactPair, p: &Params) -> Mindlin {
+        Mindlin {
+            shear_modulus: p.get("G_star"),
+            radius: pair.hertz.radius,
+        }
+    }
+}
+
+/// Mindlin's no-slip stiffness k_t = 8 G* √(R* δ), N/m, for G* (Pa), R* (m) and approach δ
+/// (m; none below 0).
+pub fn no_slip_stiffness(shear_modulus: f64, radius: f64, delta: f64) -> f64 {
+    8.0 * shear_modulus * (radius * delta.max(0.0)).sqrt()
+}
+
 impl TangentialLaw for Mindlin {
     fn stiffness(&self, delta: f64) -> f64 {
-        8.0 * self.shear_modulus * (self.radius * delta.max(0.0)).sqrt()
+        no_slip_stiffness(self.shear_modulus, self.radius, delta)
     }
 
     fn friction(&self) -> f64 {
@@ -39,10 +55,5 @@ pub const SPEC: TangentialSpec = TangentialSpec {
     source: "R. D. Mindlin, J. Appl. Mech. 16 (1949) 259-268",
     dem_codes: "EDEM (Hertz-Mindlin no slip, with the Coulomb cap), LIGGGHTS (tangential history stiffness)",
     params: &[SHEAR_MODULUS],
-    build: |pair: &ContactPair, p: &Params| {
-        Box::new(Mindlin {
-            shear_modulus: p.get("G_star"),
-            radius: pair.hertz.radius,
-        })
-    },
+    build: |pair: &ContactPair, p: &Params| Box::new(Mindlin::from_params(pair, p)),
 };

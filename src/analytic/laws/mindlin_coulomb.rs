@@ -5,23 +5,21 @@
 //! which the rigid Coulomb impulse cannot.
 
 use super::coulomb::FRICTION;
-use super::mindlin::SHEAR_MODULUS;
+use super::mindlin::{Mindlin, SHEAR_MODULUS};
 use super::{ContactPair, Params, TangentialLaw, TangentialSpec};
 
 /// Mindlin spring with Coulomb truncation.
 #[derive(Debug, Clone, Copy)]
 pub struct MindlinCoulomb {
-    /// G*, Pa.
-    pub shear_modulus: f64,
-    /// R*, m.
-    pub radius: f64,
+    /// The Mindlin spring (G*, R*).
+    pub spring: Mindlin,
     /// μ.
     pub mu: f64,
 }
 
 impl TangentialLaw for MindlinCoulomb {
     fn stiffness(&self, delta: f64) -> f64 {
-        8.0 * self.shear_modulus * (self.radius * delta.max(0.0)).sqrt()
+        self.spring.stiffness(delta)
     }
 
     fn friction(&self) -> f64 {
@@ -38,8 +36,7 @@ pub const SPEC: TangentialSpec = TangentialSpec {
     params: &[SHEAR_MODULUS, FRICTION],
     build: |pair: &ContactPair, p: &Params| {
         Box::new(MindlinCoulomb {
-            shear_modulus: p.get("G_star"),
-            radius: pair.hertz.radius,
+            spring: Mindlin::from_params(pair, p),
             mu: p.get("mu"),
         })
     },

@@ -80,6 +80,12 @@ impl Params {
             .unwrap_or_else(|| panic!("law parameter {key} is not declared"))
     }
 
+    /// Whether the `tension` parameter ([`TENSION`]) lets the force pull (a value ≥ 0.5);
+    /// panics, as [`Params::get`], for a law that does not declare it.
+    pub fn tension(&self) -> bool {
+        self.get("tension") >= 0.5
+    }
+
     /// (key, value) pairs in declaration order.
     pub fn iter(&self) -> impl Iterator<Item = (&'static str, f64)> + '_ {
         self.values.iter().copied()

@@ -87,21 +87,12 @@ impl Registry {
 
     /// The normal law called `name`; the error lists the known names.
     pub fn normal(&self, name: &str) -> Result<&NormalSpec> {
-        self.normal.iter().find(|s| s.name == name).ok_or_else(|| {
-            let names: Vec<&str> = self.normal.iter().map(|s| s.name).collect();
-            Error::invalid("--law", name, format!("one of {}", names.join(", ")))
-        })
+        by_name(&self.normal, name, "--law", |s| s.name)
     }
 
     /// The tangential law called `name`; the error lists the known names.
     pub fn tangential(&self, name: &str) -> Result<&TangentialSpec> {
-        self.tangential
-            .iter()
-            .find(|s| s.name == name)
-            .ok_or_else(|| {
-                let names: Vec<&str> = self.tangential.iter().map(|s| s.name).collect();
-                Error::invalid("--tangential", name, format!("one of {}", names.join(", ")))
-            })
+        by_name(&self.tangential, name, "--tangential", |s| s.name)
     }
 
     /// Builds normal law `name` for `pair` with parameter `overrides` (key, value).
@@ -127,4 +118,18 @@ impl Registry {
         let params = Params::resolve(spec.name, spec.params, overrides, pair)?;
         Ok(((spec.build)(pair, &params), params))
     }
+}
+
+/// The spec of `specs` whose `name_of` is `name`; the error names the option `flag` and lists
+/// the known names.
+fn by_name<'a, S>(
+    specs: &'a [S],
+    name: &str,
+    flag: &str,
+    name_of: impl Fn(&S) -> &'static str,
+) -> Result<&'a S> {
+    specs.iter().find(|s| name_of(s) == name).ok_or_else(|| {
+        let names: Vec<&str> = specs.iter().map(name_of).collect();
+        Error::invalid(flag, name, format!("one of {}", names.join(", ")))
+    })
 }

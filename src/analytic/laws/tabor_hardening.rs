@@ -7,7 +7,9 @@
 //! the three-phase model's σ_p.
 
 use super::quasi_static::max_approach;
-use super::thornton::enlarged_radius;
+use super::thornton::{
+    enlarged_radius, enlarged_unloading, hertz_max_approach, hertzian_rebound, yielding_loading,
+};
 use super::{ClosedForm, ContactPair, NormalLaw, NormalSpec, ParamSpec, Params, Turn};
 use std::f64::consts::PI;
 
@@ -55,24 +57,22 @@ impl TaborHardening {
         };
         flat(a, b.min(sh)) + rising(a.max(sh), b)
     }
-
-    fn hertz(&self, delta: f64) -> f64 {
-        4.0 / 3.0 * self.modulus * self.radius.sqrt() * delta.max(0.0).powf(1.5)
-    }
 }
 
 impl NormalLaw for TaborHardening {
     fn loading(&self, delta: f64, _rate: f64, _speed: f64) -> f64 {
-        let dy = self.yield_approach();
-        if delta <= dy {
-            self.hertz(delta)
-        } else {
-            self.hertz(dy) + PI * self.radius * self.pressure_integral(dy, delta)
-        }
+        let plastic = |dy: f64| PI * self.radius * self.pressure_integral(dy, delta);
+        yielding_loading(
+            self.modulus,
+            self.radius,
+            self.yield_approach(),
+            delta,
+            plastic,
+        )
     }
 
     fn unloading(&self, delta: f64, _rate: f64, _speed: f64, turn: &Turn) -> f64 {
-        super::thornton::enlarged_unloading(self.modulus, self.radius, delta, turn)
+        enlarged_unloading(self.modulus, self.radius, delta, turn)
     }
 
     fn residual(&self, delta: f64, force: f64) -> f64 {
@@ -90,14 +90,9 @@ impl NormalLaw for TaborHardening {
 
     fn closed_form(&self, speed: f64, mass: f64) -> Option<ClosedForm> {
         let e0 = 0.5 * mass * speed * speed;
-        let guess = (1.25 * e0 / (4.0 / 3.0 * self.modulus * self.radius.sqrt())).powf(0.4);
+        let guess = hertz_max_approach(self.modulus, self.radius, e0);
         let delta_max = max_approach(self, e0, guess);
-        let turn = Turn::new(self, delta_max, self.loading(delta_max, 0.0, speed));
-        let dp = turn.residual();
-        Some(ClosedForm {
-            e: (0.4 * turn.force * (delta_max - dp) / e0).sqrt().min(1.0),
-            delta_max,
-        })
+        Some(hertzian_rebound(self, speed, e0, delta_max))
     }
 }
 

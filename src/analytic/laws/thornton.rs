@@ -27,7 +27,35 @@ impl Thornton {
     }
 
     fn hertz(&self, delta: f64) -> f64 {
-        4.0 / 3.0 * self.modulus * self.radius.sqrt() * delta.max(0.0).powf(1.5)
+        hertz_force(self.modulus, self.radius, delta)
+    }
+}
+
+/// Hertz force (4/3) E √R δ^{3/2}, N, for modulus E (Pa), radius R (m) and approach δ (m;
+/// none below 0).
+pub fn hertz_force(modulus: f64, radius: f64, delta: f64) -> f64 {
+    4.0 / 3.0 * modulus * radius.sqrt() * delta.max(0.0).powf(1.5)
+}
+
+/// Maximum approach (m) at which a Hertz contact (E in Pa, R in m) has taken up `energy` (J).
+pub fn hertz_max_approach(modulus: f64, radius: f64, energy: f64) -> f64 {
+    (1.25 * energy / (4.0 / 3.0 * modulus * radius.sqrt())).powf(0.4)
+}
+
+/// Loading force of a Thornton-type law at approach `delta` (m), N: Hertz (E in Pa, R in m)
+/// up to the yield approach `yield_approach` (m); beyond it the Hertz force there plus
+/// `plastic(yield_approach)` (N), the force gained since yield.
+pub fn yielding_loading(
+    modulus: f64,
+    radius: f64,
+    yield_approach: f64,
+    delta: f64,
+    plastic: impl FnOnce(f64) -> f64,
+) -> f64 {
+    if delta <= yield_approach {
+        hertz_force(modulus, radius, delta)
+    } else {
+        hertz_force(modulus, radius, yield_approach) + plastic(yield_approach)
     }
 }
 
@@ -46,17 +74,19 @@ pub fn enlarged_unloading(modulus: f64, radius: f64, delta: f64, turn: &Turn) ->
         return 0.0;
     }
     let (rp, dp) = enlarged_radius(modulus, radius, turn.delta, turn.force);
-    4.0 / 3.0 * modulus * rp.sqrt() * (delta - dp).max(0.0).powf(1.5)
+    hertz_force(modulus, rp, delta - dp)
 }
 
 impl NormalLaw for Thornton {
     fn loading(&self, delta: f64, _rate: f64, _speed: f64) -> f64 {
-        let dy = self.yield_approach();
-        if delta <= dy {
-            self.hertz(delta)
-        } else {
-            self.hertz(dy) + PI * self.limit_pressure * self.radius * (delta - dy)
-        }
+        let plastic = |dy: f64| PI * self.limit_pressure * self.radius * (delta - dy);
+        yielding_loading(
+            self.modulus,
+            self.radius,
+            self.yield_approach(),
+            delta,
+            plastic,
+        )
     }
 
     fn unloading(&self, delta: f64, _rate: f64, _speed: f64, turn: &Turn) -> f64 {
@@ -77,19 +107,26 @@ impl NormalLaw for Thornton {
         let fy = self.hertz(dy);
         let wy = 0.4 * fy * dy;
         let delta_max = if e0 <= wy {
-            (1.25 * e0 / (4.0 / 3.0 * self.modulus * self.radius.sqrt())).powf(0.4)
+            hertz_max_approach(self.modulus, self.radius, e0)
         } else {
             let c = PI * self.limit_pressure * self.radius;
             let x = 2.0 * (e0 - wy) / (fy + (fy * fy + 2.0 * c * (e0 - wy)).sqrt());
             dy + x
         };
-        let turn = Turn::new(self, delta_max, self.loading(delta_max, 0.0, speed));
-        let dp = turn.residual();
-        let back = 0.4 * turn.force * (delta_max - dp);
-        Some(ClosedForm {
-            e: (back / e0).sqrt().min(1.0),
-            delta_max,
-        })
+        Some(hertzian_rebound(self, speed, e0, delta_max))
+    }
+}
+
+/// The closed form of a law that unloads along a Hertz curve (an enlarged radius), from the
+/// maximum approach `delta_max` (m) it reaches from the kinetic energy `e0` (J) of approach
+/// speed `speed` (m/s): the unloading returns (2/5) F_max (δ_max − δ_p), so e² = that / e0.
+pub fn hertzian_rebound<L: NormalLaw>(law: &L, speed: f64, e0: f64, delta_max: f64) -> ClosedForm {
+    let turn = Turn::new(law, delta_max, law.loading(delta_max, 0.0, speed));
+    let dp = turn.residual();
+    let back = 0.4 * turn.force * (delta_max - dp);
+    ClosedForm {
+        e: (back / e0).sqrt().min(1.0),
+        delta_max,
     }
 }
 

@@ -17,7 +17,7 @@
 //! Hertz contact), it equals Mindlin's 8 G* a ξ as μ → ∞, and it reaches μF at full slip.
 
 use super::coulomb::FRICTION;
-use super::mindlin::SHEAR_MODULUS;
+use super::mindlin::{no_slip_stiffness, SHEAR_MODULUS};
 use super::{ContactPair, Params, TangentialLaw, TangentialSpec};
 
 /// Mindlin-Deresiewicz / Thornton-Yin tangential law with slip memory.
@@ -47,7 +47,7 @@ impl ThorntonYin {
 
 impl TangentialLaw for ThorntonYin {
     fn stiffness(&self, delta: f64) -> f64 {
-        8.0 * self.shear_modulus * (self.radius * delta.max(0.0)).sqrt()
+        no_slip_stiffness(self.shear_modulus, self.radius, delta)
     }
 
     fn friction(&self) -> f64 {

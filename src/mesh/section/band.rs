@@ -214,15 +214,20 @@ mod tests {
         1e-3 + 9e-3 * f
     }
 
+    /// The band [`inner`, `outer`] (m) with `split` shells through the depth.
+    fn through_depth(inner: f64, outer: f64, split: usize) -> EdgeBand {
+        EdgeBand {
+            inner,
+            outer,
+            split,
+            depth: 1.0,
+        }
+    }
+
     #[test]
     fn only_the_intervals_in_the_band_are_split() {
         // The spacings below are those between the layers' rings.
-        let band = EdgeBand {
-            inner: 3.5e-3,
-            outer: 4.5e-3,
-            split: 4,
-            depth: 1.0,
-        };
+        let band = through_depth(3.5e-3, 4.5e-3, 4);
         let f = layer_fractions(9, Some(&band), radius).unwrap();
         // The intervals [3, 4] and [4, 5] mm overlap the band: 3 extra fractions each.
         assert_eq!(f.len(), 9 + 6);
@@ -240,12 +245,7 @@ mod tests {
 
     #[test]
     fn a_band_inside_the_core_or_out_of_range_is_refused() {
-        let inside = EdgeBand {
-            inner: 0.5e-3,
-            outer: 2e-3,
-            split: 2,
-            depth: 1.0,
-        };
+        let inside = through_depth(0.5e-3, 2e-3, 2);
         let e = layer_fractions(9, Some(&inside), radius).unwrap_err();
         assert!(e.to_string().contains("band.inner"), "{e}");
         let r = 10e-3;
