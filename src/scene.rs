@@ -168,6 +168,16 @@ pub struct SolverSettings {
     pub max_steps: u64,
     /// Multi-time-step integration (`auto`: on when the predicted saving is worth it).
     pub subcycling: crate::fe::subcycle::Subcycling,
+    /// Mass-scaling budget of either model: the added mass over the model's mass that may
+    /// raise its smallest elements' steps ([`crate::fe::mass_scaling`]; 0 ≤ budget ≤ 1e-2;
+    /// default 0: none).
+    #[serde(skip_serializing_if = "is_zero")]
+    pub mass_scaling: f64,
+}
+
+/// True for 0 (a setting at its default is not written).
+fn is_zero(x: &f64) -> bool {
+    *x == 0.0
 }
 
 /// What to write besides results.json and history.csv.
@@ -276,7 +286,7 @@ const BALL_KEYS: [&str; 6] = [
 ];
 const MESH_KEYS: [&str; 3] = ["size", "pole_size", "file"];
 const CONTACT_KEYS: [&str; 3] = ["penalty_factor", "friction", "plane"];
-const SOLVER_KEYS: [&str; 7] = [
+const SOLVER_KEYS: [&str; 8] = [
     "element",
     "section_element",
     "time_step_factor",
@@ -284,6 +294,7 @@ const SOLVER_KEYS: [&str; 7] = [
     "hold_time",
     "max_steps",
     "subcycling",
+    "mass_scaling",
 ];
 const OUTPUT_KEYS: [&str; 2] = ["history_interval", "vtu_snapshots"];
 const REDUCTION_KEYS: [&str; 4] = [
@@ -624,6 +635,7 @@ fn read_solver(s: Option<Reader<'_>>) -> Result<SolverSettings> {
         hold_time: None,
         max_steps: 2_000_000,
         subcycling: crate::fe::subcycle::Subcycling::Auto,
+        mass_scaling: 0.0,
     };
     let Some(s) = s else { return Ok(out) };
     s.only(&SOLVER_KEYS)?;
@@ -656,6 +668,14 @@ fn read_solver(s: Option<Reader<'_>>) -> Result<SolverSettings> {
             "on" => Subcycling::On,
             _ => Subcycling::Off,
         };
+    }
+    let budget = crate::fe::mass_scaling::MAX_BUDGET;
+    if let Some(b) = s.f64(
+        "mass_scaling",
+        |b| (0.0..=budget).contains(&b),
+        "0 <= mass_scaling <= 0.01 (added mass over the model's)",
+    )? {
+        out.mass_scaling = b;
     }
     Ok(out)
 }

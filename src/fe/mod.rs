@@ -11,6 +11,7 @@
 //!   interactions the loops call);
 //! - [`implicit`]: the quasi-static implicit solver of the section (Newton-Raphson, element
 //!   tangents from the elements' own updates, sparse LU, an exact rigid plane);
+//! - [`mass_scaling`]: density factors within an added-mass budget, for both models;
 //! - [`linear`]: small-strain linear tools for verification (modal analysis, Lamb's modes);
 //! - [`section`]: the section model (the meridian section) of a head-on impact: ring quads, ring masses, mass
 //!   scaling, its loop and subcycling;
@@ -21,6 +22,7 @@ pub mod contact;
 pub mod elements;
 pub mod implicit;
 pub mod linear;
+pub mod mass_scaling;
 pub mod materials;
 pub mod model;
 pub mod section;

@@ -53,8 +53,11 @@ pub struct ElementBlock {
     pub hourglass_energy: Vec<f64>,
     /// Volume per element, m³.
     pub volume: Vec<f64>,
-    /// Critical time step per element, s.
+    /// Critical time step per element, s (times `step_scale` where mass-scaled).
     pub dt_crit: Vec<f64>,
+    /// Factor √s_e on each element's Courant step, s_e its density factor
+    /// ([`crate::fe::mass_scaling`]); empty: none (every factor 1).
+    pub step_scale: Vec<f64>,
     /// The kernel path of the element loop (the widest the CPU has, within a cap).
     pub kernel: Kernel,
 }
@@ -87,6 +90,7 @@ impl ElementBlock {
             hourglass_energy: vec![0.0; nhg],
             volume: vec![0.0; n],
             dt_crit: vec![f64::INFINITY; n],
+            step_scale: Vec::new(),
             kernel: Kernel::widest(KernelPath::Avx512),
         }
     }
@@ -153,6 +157,19 @@ impl ElementBlock {
     /// their state. Panics if `range` is out of bounds or `forces` has the wrong length
     /// (programming errors, not input errors).
     pub fn update_range(
+        &mut self,
+        range: std::ops::Range<usize>,
+        x: &[[f64; 3]],
+        v: &[[f64; 3]],
+        dt: f64,
+        forces: &mut [[[f64; 3]; 8]],
+    ) -> Result<(f64, usize), (usize, ElementFailure)> {
+        let best = self.update_range_unscaled(range.clone(), x, v, dt, forces)?;
+        Ok(self.scale_steps(range, best))
+    }
+
+    /// [`ElementBlock::update_range`] before the mass-scaling factors on the steps.
+    fn update_range_unscaled(
         &mut self,
         range: std::ops::Range<usize>,
         x: &[[f64; 3]],
@@ -265,6 +282,36 @@ impl ElementBlock {
     /// group, not the later batches), as after a failure of [`ElementBlock::update_range`]:
     /// either way the solver stops.
     pub fn update_range_into_nodes(
+        &mut self,
+        range: std::ops::Range<usize>,
+        x: &[[f64; 3]],
+        v: &[[f64; 3]],
+        dt: f64,
+        f_int: &mut [[f64; 4]],
+    ) -> Result<(f64, usize), (usize, ElementFailure)> {
+        let best = self.update_into_nodes_unscaled(range.clone(), x, v, dt, f_int)?;
+        Ok(self.scale_steps(range, best))
+    }
+
+    /// Multiplies the steps of the local elements `range` by `step_scale` and returns the
+    /// smallest with its global element (the lowest-numbered on a tie); `best` unchanged
+    /// without mass scaling.
+    fn scale_steps(&mut self, range: std::ops::Range<usize>, best: (f64, usize)) -> (f64, usize) {
+        if self.step_scale.is_empty() {
+            return best;
+        }
+        let mut best = (f64::INFINITY, usize::MAX);
+        for k in range {
+            self.dt_crit[k] *= self.step_scale[k];
+            if self.dt_crit[k] < best.0 {
+                best = (self.dt_crit[k], self.first + k);
+            }
+        }
+        best
+    }
+
+    /// [`ElementBlock::update_range_into_nodes`] before the mass-scaling factors on the steps.
+    fn update_into_nodes_unscaled(
         &mut self,
         range: std::ops::Range<usize>,
         x: &[[f64; 3]],

@@ -1,55 +1,12 @@
-//! Mass scaling within a budget: the smallest quads of a section get a higher density, so
-//! that no quad's Courant step is below a target step, and the target is the largest whose
-//! added mass stays within a given fraction of the section's mass (the idea of LS-DYNA's
-//! DT2MS and Abaqus's fixed mass scaling, with the target chosen from the budget).
-//!
-//! Why it is sound here: the quads that limit the step of a head-on section are those of
-//! the contact pole and of an edge band, a region of size a (the contact radius) whose wave
-//! transit a/c is three to four orders of magnitude shorter than the contact duration. A
-//! density raised by s there slows that transit by √s and adds the mass s − 1 times the
-//! region's, a fraction of about (a/R)³ of the ball's: the contact there stays
-//! quasi-static. The budget bounds the added mass; its effect on e, δ_max and the contact
-//! duration is measured, not assumed (docs/contact-penalty.md, "Mass scaling of the contact
-//! region").
-//!
-//! A quad's step scales as √s: dt_e = l_e √(s ρ / M) with l_e its characteristic length
-//! and M its P-wave modulus, so s_e = max(1, (T / dt_e)²) for a target step T.
+//! Mass scaling of the section's ring quads: their Courant steps and ring masses, given to
+//! the one mechanism both models use ([`crate::fe::mass_scaling`], where the method and why
+//! it is sound are).
 
 use crate::error::{Error, Result};
 use crate::fe::elements::ring::mass::element_masses;
 use crate::fe::elements::ring::shape::characteristic_length;
-
-/// Largest mass-scaling budget (added mass over the section's mass) accepted.
-pub const MAX_BUDGET: f64 = 1e-2;
-
-/// Bisection steps on ln T: the target is found to a relative 1e-12 of its bracket.
-const BISECTIONS: usize = 80;
-
-/// The density factors of a section and what they cost.
-#[derive(Debug, Clone, PartialEq)]
-pub struct MassScaling {
-    /// Density factor of each quad (≥ 1; 1 where the quad's own step is at least the target).
-    pub scale: Vec<f64>,
-    /// The target Courant step T, s (before the step factor): no scaled quad's step is below it.
-    pub target_step: f64,
-    /// The smallest Courant step of the unscaled quads, s.
-    pub unscaled_step: f64,
-    /// Added mass over the section's mass (≤ the budget).
-    pub added_fraction: f64,
-}
-
-/// Checks a budget: a finite fraction in [0, [`MAX_BUDGET`]].
-pub fn check_budget(budget: f64) -> Result<()> {
-    if budget.is_finite() && (0.0..=MAX_BUDGET).contains(&budget) {
-        Ok(())
-    } else {
-        Err(Error::invalid(
-            "mass_scaling",
-            budget,
-            format!("0 <= mass_scaling <= {MAX_BUDGET} (added mass over the section's)"),
-        ))
-    }
-}
+use crate::fe::mass_scaling::for_elements;
+pub use crate::fe::mass_scaling::{check_budget, MassScaling, MAX_BUDGET};
 
 /// Courant step (s) and ring mass (kg) of each quad of `nodes` (r, z in m) and `quads`, with
 /// `wave_speed` and `rho` (m/s, kg/m³) the quad's material's.
@@ -68,14 +25,6 @@ fn steps_and_masses(
             (characteristic_length(&x) / wave_speed(e), m)
         })
         .collect()
-}
-
-/// Mass (kg) added by raising every quad of `quads` (Courant step, mass) to the step `t` (s).
-fn added_mass(quads: &[(f64, f64)], t: f64) -> f64 {
-    quads
-        .iter()
-        .map(|&(dt, m)| m * ((t / dt).powi(2) - 1.0).max(0.0))
-        .sum()
 }
 
 /// The density factors that raise the smallest quads of the section (`nodes` in m, `quads`
@@ -97,50 +46,7 @@ pub fn within_budget(
         return Err(Error::invalid("mesh.quads", 0, "at least one quad"));
     }
     let sm = steps_and_masses(nodes, quads, wave_speed, rho);
-    if let Some(e) = sm
-        .iter()
-        .position(|&(dt, m)| !(dt.is_finite() && dt > 0.0 && m.is_finite() && m > 0.0))
-    {
-        return Err(Error::invalid(
-            format!("mesh.quads[{e}]"),
-            format!("step {:.3e} s, mass {:.3e} kg", sm[e].0, sm[e].1),
-            "a positive, finite Courant step and mass",
-        ));
-    }
-    let (lo, hi) = sm
-        .iter()
-        .fold((f64::INFINITY, 0.0f64), |(lo, hi), &(dt, _)| {
-            (lo.min(dt), hi.max(dt))
-        });
-    let total: f64 = sm.iter().map(|&(_, m)| m).sum();
-    let allowed = budget * total;
-    // added_mass is continuous and increasing in t, zero at lo: bisect ln t on [lo, hi].
-    let target = if budget == 0.0 {
-        lo
-    } else if added_mass(&sm, hi) <= allowed {
-        hi
-    } else {
-        let (mut a, mut b) = (lo.ln(), hi.ln());
-        for _ in 0..BISECTIONS {
-            let mid = 0.5 * (a + b);
-            if added_mass(&sm, mid.exp()) <= allowed {
-                a = mid;
-            } else {
-                b = mid;
-            }
-        }
-        a.exp()
-    };
-    let scale = sm
-        .iter()
-        .map(|&(dt, _)| (target / dt).powi(2).max(1.0))
-        .collect();
-    Ok(MassScaling {
-        scale,
-        target_step: target,
-        unscaled_step: lo,
-        added_fraction: added_mass(&sm, target) / total,
-    })
+    for_elements(&sm, budget, "mesh.quads")
 }
 
 #[cfg(test)]

@@ -6,6 +6,7 @@
 //! the current frame; every array is allocated once in [`Solver::new`].
 
 use crate::error::{EnergyGrowth, Error, Result};
+use crate::fe::mass_scaling::{for_elements, hex_steps_and_masses};
 use crate::fe::{
     elements::{ElementBlock, ElementFailure},
     materials::J2Material,
@@ -68,6 +69,15 @@ pub struct Settings {
     /// Time the phases of every step ([`crate::fe::solver::profile`]; default off).
     #[serde(skip)]
     pub profile: bool,
+    /// Mass-scaling budget: the added mass over the model's mass that may raise the smallest
+    /// elements' steps ([`crate::fe::mass_scaling`]; 0 ≤ budget ≤ 1e-2; default 0: none).
+    #[serde(skip_serializing_if = "is_zero")]
+    pub mass_scaling: f64,
+}
+
+/// True for 0 (a setting at its default is not written).
+fn is_zero(x: &f64) -> bool {
+    *x == 0.0
 }
 
 impl Default for Settings {
@@ -85,6 +95,7 @@ impl Default for Settings {
             linear_geometry: false,
             kernel_cap: KernelPath::Avx512,
             profile: false,
+            mass_scaling: 0.0,
         }
     }
 }
@@ -146,6 +157,7 @@ impl Settings {
                 "at least 1 step",
             ));
         }
+        crate::fe::mass_scaling::check_budget(self.mass_scaling)?;
         Ok(self)
     }
 }
@@ -291,14 +303,17 @@ impl Solver {
             ));
         }
         let n = model.nodes.len();
-        // 1. Initial conditions and lumped mass.
+        // 1. Initial conditions and lumped mass (densities raised where mass-scaled).
+        let density_scale = density_scale(&model, settings.mass_scaling)?;
         let mut mass = vec![0.0; n];
         let mut blocks = Vec::with_capacity(model.parts.len());
         for (p, part) in model.parts.iter().enumerate() {
             let conn: Vec<[u32; 8]> = model.hexes[part.elements.clone()].to_vec();
+            let scale = density_scale.as_ref().map(|s| &s[p]);
             for (k, h) in conn.iter().enumerate() {
                 let xe = h.map(|i| model.nodes[i as usize]);
-                let me = element_lumped_mass(&xe, part.material.rho).map_err(|e| {
+                let rho = scale.map_or(part.material.rho, |s| part.material.rho * s[k]);
+                let me = element_lumped_mass(&xe, rho).map_err(|e| {
                     Error::Numerical(format!(
                         "part {} element {}: {e}",
                         part.name,
@@ -319,6 +334,9 @@ impl Solver {
                 settings.hourglass,
             );
             block.set_kernel_cap(settings.kernel_cap);
+            if let Some(s) = scale {
+                block.step_scale = s.iter().map(|f| f.sqrt()).collect();
+            }
             blocks.push(block);
         }
         if let Some(i) = mass.iter().position(|m| m.is_nan() || *m <= 0.0) {
@@ -1214,6 +1232,34 @@ impl Solver {
 }
 
 /// The 3D model's phases: single rate, or subcycled by element levels.
+/// The density factors of the elements of each part of `model` (part by part, in the
+/// order of the part's elements) within the mass-scaling `budget`
+/// ([`crate::fe::mass_scaling`]), `None` for a budget of 0 (no element touched).
+fn density_scale(model: &Model, budget: f64) -> Result<Option<Vec<Vec<f64>>>> {
+    if budget == 0.0 {
+        return Ok(None);
+    }
+    let mut sm = Vec::with_capacity(model.hexes.len());
+    for part in &model.parts {
+        let m = part.material;
+        sm.extend(hex_steps_and_masses(
+            &model.nodes,
+            &model.hexes[part.elements.clone()],
+            |_| m.dilatational_wave_speed(),
+            |_| m.rho,
+        )?);
+    }
+    let scale = for_elements(&sm, budget, "model.hexes")?.scale;
+    let mut rest = scale.as_slice();
+    let mut per_part = Vec::with_capacity(model.parts.len());
+    for part in &model.parts {
+        let (this, next) = rest.split_at(part.elements.len());
+        per_part.push(this.to_vec());
+        rest = next;
+    }
+    Ok(Some(per_part))
+}
+
 impl CentralDifference for Solver {
     /// The powers of the internal and external forces (W) at the step's start and end.
     type Carry = [(f64, f64); 2];

@@ -162,6 +162,7 @@ fn head_on(run: &SectionRun<'_>) -> Result<HeadOn> {
     h.fkn = 10.0 * scene.contact.penalty_factor;
     h.plane_contact = plane_contact(scene);
     h.time_step_factor = scene.solver.time_step_factor;
+    h.mass_scaling = scene.solver.mass_scaling;
     let duration = usable_duration(run.expected_duration);
     h.hold_time = Some(
         scene

@@ -461,6 +461,7 @@ pub fn simulate(
         time_step_factor: scene.solver.time_step_factor,
         subcycling: scene.solver.subcycling,
         profile: opts.profile,
+        mass_scaling: scene.solver.mass_scaling,
         ..Settings::default()
     };
     let run = move |mut solver: Solver| -> Result<Simulation> {

@@ -72,6 +72,7 @@ pub fn scaled(scene: &Scene, k: f64) -> Option<Scene> {
         hold_time,
         max_steps,
         subcycling,
+        mass_scaling,
     } = solver;
     let OutputSettings {
         history_interval,
@@ -101,6 +102,8 @@ pub fn scaled(scene: &Scene, k: f64) -> Option<Scene> {
             hold_time: hold_time.map(|t| k * t),
             max_steps,
             subcycling,
+            // A fraction of the model's mass: the same at every scale.
+            mass_scaling,
         },
         output: OutputSettings {
             history_interval: history_interval.map(|t| k * t),
