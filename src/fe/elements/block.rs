@@ -164,19 +164,6 @@ impl ElementBlock {
         dt: f64,
         forces: &mut [[[f64; 3]; 8]],
     ) -> Result<(f64, usize), (usize, ElementFailure)> {
-        let best = self.update_range_unscaled(range.clone(), x, v, dt, forces)?;
-        Ok(self.scale_steps(range, best))
-    }
-
-    /// [`ElementBlock::update_range`] before the mass-scaling factors on the steps.
-    fn update_range_unscaled(
-        &mut self,
-        range: std::ops::Range<usize>,
-        x: &[[f64; 3]],
-        v: &[[f64; 3]],
-        dt: f64,
-        forces: &mut [[[f64; 3]; 8]],
-    ) -> Result<(f64, usize), (usize, ElementFailure)> {
         assert_eq!(
             forces.len(),
             range.len(),
@@ -258,7 +245,7 @@ impl ElementBlock {
                     }),
                 },
             );
-        res
+        res.map(|best| self.scale_steps(range, best))
     }
 
     /// Panics unless every node index of the local elements `range` is below `len` (the
@@ -282,36 +269,6 @@ impl ElementBlock {
     /// group, not the later batches), as after a failure of [`ElementBlock::update_range`]:
     /// either way the solver stops.
     pub fn update_range_into_nodes(
-        &mut self,
-        range: std::ops::Range<usize>,
-        x: &[[f64; 3]],
-        v: &[[f64; 3]],
-        dt: f64,
-        f_int: &mut [[f64; 4]],
-    ) -> Result<(f64, usize), (usize, ElementFailure)> {
-        let best = self.update_into_nodes_unscaled(range.clone(), x, v, dt, f_int)?;
-        Ok(self.scale_steps(range, best))
-    }
-
-    /// Multiplies the steps of the local elements `range` by `step_scale` and returns the
-    /// smallest with its global element (the lowest-numbered on a tie); `best` unchanged
-    /// without mass scaling.
-    fn scale_steps(&mut self, range: std::ops::Range<usize>, best: (f64, usize)) -> (f64, usize) {
-        if self.step_scale.is_empty() {
-            return best;
-        }
-        let mut best = (f64::INFINITY, usize::MAX);
-        for k in range {
-            self.dt_crit[k] *= self.step_scale[k];
-            if self.dt_crit[k] < best.0 {
-                best = (self.dt_crit[k], self.first + k);
-            }
-        }
-        best
-    }
-
-    /// [`ElementBlock::update_range_into_nodes`] before the mass-scaling factors on the steps.
-    fn update_into_nodes_unscaled(
         &mut self,
         range: std::ops::Range<usize>,
         x: &[[f64; 3]],
@@ -353,7 +310,24 @@ impl ElementBlock {
             }
             k = e;
         }
-        Ok(best)
+        Ok(self.scale_steps(range, best))
+    }
+
+    /// Multiplies the steps of the local elements `range` by `step_scale` and returns the
+    /// smallest with its global element (the lowest-numbered on a tie); `best` unchanged
+    /// without mass scaling.
+    fn scale_steps(&mut self, range: std::ops::Range<usize>, best: (f64, usize)) -> (f64, usize) {
+        if self.step_scale.is_empty() {
+            return best;
+        }
+        let mut best = (f64::INFINITY, usize::MAX);
+        for k in range {
+            self.dt_crit[k] *= self.step_scale[k];
+            if self.dt_crit[k] < best.0 {
+                best = (self.dt_crit[k], self.first + k);
+            }
+        }
+        best
     }
 
     /// Mean stress over the integration points of local element `k`, Pa.
