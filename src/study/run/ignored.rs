@@ -86,6 +86,7 @@ pub const SETTINGS: &[Setting] = &[
     },
     used("solver.max_steps"),
     used("solver.subcycling"),
+    used("solver.mass_scaling"),
     used("output.history_interval"),
     used("output.vtu_snapshots"),
     used("reduction.symmetry"),
