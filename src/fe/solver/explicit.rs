@@ -1231,7 +1231,6 @@ impl Solver {
     }
 }
 
-/// The 3D model's phases: single rate, or subcycled by element levels.
 /// The density factors of the elements of each part of `model` (part by part, in the
 /// order of the part's elements) within the mass-scaling `budget`
 /// ([`crate::fe::mass_scaling`]), `None` for a budget of 0 (no element touched).
@@ -1260,6 +1259,7 @@ fn density_scale(model: &Model, budget: f64) -> Result<Option<Vec<Vec<f64>>>> {
     Ok(Some(per_part))
 }
 
+/// The 3D model's phases: single rate, or subcycled by element levels.
 impl CentralDifference for Solver {
     /// The powers of the internal and external forces (W) at the step's start and end.
     type Carry = [(f64, f64); 2];
