@@ -342,35 +342,14 @@ pub fn machine(repeats: usize, out: &mut impl Write) -> Result<()> {
         writeln!(out, "fma_throughput_avx512,1,{:.2},Gflop/s", f * 1e-9).map_err(put)?;
         writeln!(out, "mul_add_separate_avx512,1,{:.2},Gflop/s", s * 1e-9).map_err(put)?;
     }
-    let gather = (0..repeats)
-        .filter_map(|_| gather_512(20_000))
-        .reduce(f64::min);
-    if let Some(g) = gather {
-        writeln!(out, "gather_avx512,1,{:.3},ns per 8-lane gather", g * 1e9).map_err(put)?;
-    }
-    let rows = (0..repeats)
-        .filter_map(|_| rows_512(20_000))
-        .reduce(f64::min);
-    if let Some(r) = rows {
-        writeln!(
-            out,
-            "node_rows_avx512,1,{:.3},ns per 8-lane vector",
-            r * 1e9
-        )
-        .map_err(put)?;
-    }
+    let gather = best_time(repeats, || gather_512(20_000));
+    write_ns(out, "gather_avx512", gather, "ns per 8-lane gather")?;
+    let rows = best_time(repeats, || rows_512(20_000));
+    write_ns(out, "node_rows_avx512", rows, "ns per 8-lane vector")?;
     for offset in [0, 16] {
-        let t = (0..repeats)
-            .filter_map(|_| row_update_512(offset, 200))
-            .reduce(f64::min);
-        if let Some(t) = t {
-            writeln!(
-                out,
-                "row_update_512_offset_{offset}b,1,{:.3},ns per 64-byte row",
-                t * 1e9
-            )
-            .map_err(put)?;
-        }
+        let t = best_time(repeats, || row_update_512(offset, 200));
+        let measure = format!("row_update_512_offset_{offset}b");
+        write_ns(out, &measure, t, "ns per 64-byte row")?;
     }
     // 24 MB: about the working set of `bench kernel`'s default 55 000-element ball.
     for (label, bytes) in [
@@ -398,6 +377,20 @@ pub fn machine(repeats: usize, out: &mut impl Write) -> Result<()> {
         }
     }
     Ok(())
+}
+
+/// The least of `repeats` timings `time()` (s); None when it cannot be measured here.
+fn best_time(repeats: usize, mut time: impl FnMut() -> Option<f64>) -> Option<f64> {
+    (0..repeats).filter_map(|_| time()).reduce(f64::min)
+}
+
+/// Writes the row `measure,1,value,unit` of a time `t` (s) in nanoseconds to 3 decimals; no
+/// row when `t` is None.
+fn write_ns(out: &mut impl Write, measure: &str, t: Option<f64>, unit: &str) -> Result<()> {
+    match t {
+        Some(t) => writeln!(out, "{measure},1,{:.3},{unit}", t * 1e9).map_err(put),
+        None => Ok(()),
+    }
 }
 
 /// A failed write of the results.

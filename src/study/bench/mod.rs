@@ -52,11 +52,7 @@ fn one() -> f64 {
 impl Setting {
     /// A short label, e.g. `one-point m=1.41 s=0.9`.
     pub fn label(&self) -> String {
-        let pole = if self.pole_refinement == 1.0 {
-            String::new()
-        } else {
-            format!(" pole/{}", self.pole_refinement)
-        };
+        let pole = self.pole_tag(|k| format!(" pole/{k}"));
         format!(
             "{} m={:.3}{pole} s={}",
             element_name(self.element),
@@ -66,11 +62,7 @@ impl Setting {
     }
 
     fn file_stem(&self) -> String {
-        let pole = if self.pole_refinement == 1.0 {
-            String::new()
-        } else {
-            format!("_k{:.3}", self.pole_refinement)
-        };
+        let pole = self.pole_tag(|k| format!("_k{k:.3}"));
         format!(
             "{}_m{:.4}{pole}_s{:.3}",
             element_name(self.element),
@@ -92,6 +84,15 @@ impl Setting {
     /// Whether this setting is a level of the mesh ladder (no extra pole refinement).
     fn on_ladder(&self) -> bool {
         self.pole_refinement == 1.0
+    }
+
+    /// Nothing on the mesh ladder, else `tag` of the extra pole refinement k.
+    fn pole_tag(&self, tag: impl FnOnce(f64) -> String) -> String {
+        if self.on_ladder() {
+            String::new()
+        } else {
+            tag(self.pole_refinement)
+        }
     }
 }
 

@@ -60,7 +60,7 @@ pub fn within<R>(token: Option<&CancelToken>, f: impl FnOnce() -> R) -> R {
 
 /// The cancel token this thread works within, if any (to hand on to worker threads).
 pub fn current() -> Option<CancelToken> {
-    TOKEN.with(|t| t.borrow().clone())
+    crate::study::common::scoped::current(&TOKEN)
 }
 
 fn token_cancelled() -> bool {

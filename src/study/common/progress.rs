@@ -100,7 +100,7 @@ pub fn reporting<R>(hook: Option<&Hook>, f: impl FnOnce() -> R) -> R {
 
 /// The progress receiver of this thread, if any (to hand on to worker threads).
 pub fn current() -> Option<Hook> {
-    HOOK.with(|h| h.borrow().clone())
+    crate::study::common::scoped::current(&HOOK)
 }
 
 /// Simulated-time units of the terminal bar: nanoseconds.
@@ -427,5 +427,5 @@ pub fn counting_members<R>(cases: Option<&Arc<Cases>>, f: impl FnOnce() -> R) ->
 
 /// The member counter of this thread, if any (to hand on to worker threads).
 pub fn members() -> Option<Arc<Cases>> {
-    MEMBERS.with(|m| m.borrow().clone())
+    crate::study::common::scoped::current(&MEMBERS)
 }

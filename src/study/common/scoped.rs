@@ -25,3 +25,8 @@ pub fn with_value<T: Clone + 'static, R>(
     let _restore = Restore(key, before);
     f()
 }
+
+/// The value `key` holds on this thread, if any (to hand on to worker threads).
+pub fn current<T: Clone + 'static>(key: &'static LocalKey<RefCell<Option<T>>>) -> Option<T> {
+    key.with(|k| k.borrow().clone())
+}

@@ -31,11 +31,6 @@ pub struct Figure {
     pub caption: String,
 }
 
-/// The largest diameter of the matrix, m.
-fn largest_diameter(r: &BenchResults) -> f64 {
-    r.matrix.diameters.iter().copied().fold(f64::NAN, f64::max)
-}
-
 /// The head-on points of `metal` at `diameter`, speeds ascending.
 fn points_of<'a>(r: &'a BenchResults, metal: &str, diameter: f64) -> Vec<&'a HeadOnResult> {
     r.head_on
@@ -76,7 +71,7 @@ fn fe_series(pts: &[&HeadOnResult], label: &str, x: impl Fn(&HeadOnResult) -> f6
 /// e(log10 v) of every law (lines over the matrix's speed range) and FE, for `metal` at the
 /// largest diameter.
 fn e_of_v(r: &BenchResults, registry: &Registry, metal: &str) -> Result<Option<Chart>> {
-    let d = largest_diameter(r);
+    let d = r.matrix.largest_diameter();
     let pts = points_of(r, metal, d);
     let Some(first) = pts.first() else {
         return Ok(None);
@@ -232,18 +227,61 @@ fn oblique_chart(
     })
 }
 
-/// One curve chart of point `h`: FE pilot curve and every law, columns `cx`, `cy` of the
-/// (t, δ, F) rows scaled by `sx`, `sy`.
-fn curve_chart(
+/// A figure of one head-on point's contact history (rows t, δ, F): what it plots and how it
+/// is named.
+struct HistoryFigure {
+    /// First word of the file name (`loop` → `loop_{metal}_v{v}.svg`).
+    stem: &'static str,
+    /// What the chart's title ends with.
+    title: &'static str,
+    /// What the caption begins with.
+    caption: &'static str,
+    /// The x and y axes: each its column of the (t, δ, F) rows, the factor from the rows'
+    /// SI unit to the axis' unit, and its label.
+    axes: [(usize, f64, &'static str); 2],
+}
+
+/// The loading-unloading loop F(δ), δ in µm.
+const LOOP_FIGURE: HistoryFigure = HistoryFigure {
+    stem: "loop",
+    title: "F(delta)",
+    caption: "F(δ) loading-unloading",
+    axes: [
+        (1, 1e6, "approach delta (um)"),
+        (2, 1.0, "normal force F (N)"),
+    ],
+};
+
+/// The approach δ(t), t and δ in µs and µm.
+const DELTA_T_FIGURE: HistoryFigure = HistoryFigure {
+    stem: "delta_t",
+    title: "delta(t)",
+    caption: "δ(t)",
+    axes: [(0, 1e6, "time t (us)"), (1, 1e6, "approach delta (um)")],
+};
+
+/// File name, caption and chart of figure `fig` of point `h` of `metal` at diameter `d` (m)
+/// and speed `v` (m/s).
+fn history_figure(
+    fig: &HistoryFigure,
     h: &HeadOnResult,
-    cols: (usize, usize),
-    scale: (f64, f64),
-    labels: [&str; 3],
-) -> Chart {
+    metal: &str,
+    d: f64,
+    v: f64,
+) -> (String, String, Chart) {
+    let at = format!("{metal}, D = {} mm, v = {v:.3} m/s", 1e3 * d);
+    let chart = curve_chart(h, fig, format!("{at}: {}", fig.title));
+    let file = format!("{}_{metal}_v{v:.3}.svg", fig.stem);
+    (file, format!("{}, {at}", fig.caption), chart)
+}
+
+/// The chart titled `title` of figure `fig` of point `h`: the FE pilot curve and every law.
+fn curve_chart(h: &HeadOnResult, fig: &HistoryFigure, title: String) -> Chart {
+    let [(cx, sx, x_label), (cy, sy, y_label)] = fig.axes;
     let pick = |rows: &[[f64; 3]]| -> Vec<(f64, f64)> {
         thin(rows, FIGURE_ROWS)
             .iter()
-            .map(|r| (scale.0 * r[cols.0], scale.1 * r[cols.1]))
+            .map(|r| (sx * r[cx], sy * r[cy]))
             .collect()
     };
     let mut series: Vec<Series> = h
@@ -263,9 +301,9 @@ fn curve_chart(
         });
     }
     Chart {
-        title: labels[0].to_string(),
-        x_label: labels[1].into(),
-        y_label: labels[2].into(),
+        title,
+        x_label: x_label.into(),
+        y_label: y_label.into(),
         series,
     }
 }
@@ -328,7 +366,7 @@ pub fn write_figures(out: &Path, r: &BenchResults, registry: &Registry) -> Resul
         figs.push(Figure { file, caption });
         Ok(())
     };
-    let d = largest_diameter(r);
+    let d = r.matrix.largest_diameter();
     for metal in &r.matrix.metals {
         if let Some(c) = e_of_v(r, registry, metal)? {
             write(
@@ -413,36 +451,13 @@ pub fn write_figures(out: &Path, r: &BenchResults, registry: &Registry) -> Resul
         let Some(h) = pts.iter().find(|h| h.point.speed == v) else {
             continue;
         };
-        let title = format!("{metal}, D = {} mm, v = {v:.3} m/s: F(delta)", 1e3 * d);
-        let c = curve_chart(
-            h,
-            (1, 2),
-            (1e6, 1.0),
-            [&title, "approach delta (um)", "normal force F (N)"],
-        );
-        write(
-            format!("loop_{metal}_v{v:.3}.svg"),
-            format!(
-                "F(δ) loading-unloading, {metal}, D = {} mm, v = {v:.3} m/s",
-                1e3 * d
-            ),
-            &c,
-        )?;
+        let (file, caption, c) = history_figure(&LOOP_FIGURE, h, metal, d, v);
+        write(file, caption, &c)?;
     }
     if let Some(&v) = loop_speeds(&speeds).get(1).or(speeds.first()) {
         if let Some(h) = pts.iter().find(|h| h.point.speed == v) {
-            let title = format!("{metal}, D = {} mm, v = {v:.3} m/s: delta(t)", 1e3 * d);
-            let c = curve_chart(
-                h,
-                (0, 1),
-                (1e6, 1e6),
-                [&title, "time t (us)", "approach delta (um)"],
-            );
-            write(
-                format!("delta_t_{metal}_v{v:.3}.svg"),
-                format!("δ(t), {metal}, D = {} mm, v = {v:.3} m/s", 1e3 * d),
-                &c,
-            )?;
+            let (file, caption, c) = history_figure(&DELTA_T_FIGURE, h, metal, d, v);
+            write(file, caption, &c)?;
         }
     }
     Ok(figs)

@@ -195,6 +195,11 @@ impl Matrix {
         Ok(out)
     }
 
+    /// The largest ball diameter, m (NaN without diameters).
+    pub fn largest_diameter(&self) -> f64 {
+        self.diameters.iter().copied().fold(f64::NAN, f64::max)
+    }
+
     /// The quasi-static loops' points (none without `loops`): every metal at the largest
     /// diameter and the [`loop_speeds`].
     ///
@@ -203,7 +208,7 @@ impl Matrix {
         if !self.loops {
             return Ok(vec![]);
         }
-        let d = self.diameters.iter().copied().fold(f64::NAN, f64::max);
+        let d = self.largest_diameter();
         let speeds = loop_speeds(&self.speeds);
         Ok(self
             .head_on_points()?

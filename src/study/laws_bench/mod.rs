@@ -353,12 +353,7 @@ pub fn run_bench(
         })
         .collect::<Result<Vec<_>>>()?;
     progress("fits");
-    let dmax = opts
-        .matrix
-        .diameters
-        .iter()
-        .copied()
-        .fold(f64::NAN, f64::max);
+    let dmax = opts.matrix.largest_diameter();
     let fits = opts
         .matrix
         .metals

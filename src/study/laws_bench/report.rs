@@ -489,7 +489,7 @@ fn failures_section(s: &mut String, r: &BenchResults) {
          ±{:.0} % of FE, and its worst errors in e, δ_max and t_c with the speed where they occur.\n",
         100.0 * HOLDS_E
     );
-    let d = r.matrix.diameters.iter().copied().fold(f64::NAN, f64::max);
+    let d = r.matrix.largest_diameter();
     for metal in &r.matrix.metals {
         let pts = points(r, metal, d);
         if pts.iter().all(|h| h.fe_done().is_none()) {

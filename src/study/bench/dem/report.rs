@@ -95,32 +95,22 @@ fn normal_table(rows: &[&DemRow]) -> String {
 /// Every DEM normal law at its elastic setting against the converged FE: e, and δ_max and
 /// t_c as differences from the FE's.
 fn normal_law_table(rows: &[&DemRow]) -> String {
-    let Some(first) = rows.iter().find(|r| !r.normal_laws.is_empty()) else {
-        return String::new();
-    };
-    let mut s = law_columns(
-        "## The DEM normal laws on the normal tests\n\n\
+    let head = "## The DEM normal laws on the normal tests\n\n\
          Each built-in normal law (`twoball laws list`) at its elastic setting (damped laws \
          at e = 1, Kuwabara-Kono at A = 0; other parameters the pair's defaults): e, then \
-         δ_max and t_c against the converged FE's.\n\n| case |",
-        1,
-        first.normal_laws.iter().map(|l| l.law.as_str()),
-    );
-    for r in rows {
-        let _ = write!(s, "| {} |", r.name);
-        for l in &r.normal_laws {
-            let _ = write!(
-                s,
-                " {} / {} / {} |",
+         δ_max and t_c against the converged FE's.\n\n| case |";
+    law_table_of(rows, head, 1, |r| {
+        let laws = r.normal_laws.iter().map(|l| {
+            let cell = format!(
+                "{} / {} / {}",
                 plain(l.e, 3),
                 percent(l.delta_max, r.delta_max.0),
                 percent(l.contact_duration, r.contact_duration.0)
             );
-        }
-        s.push('\n');
-    }
-    s.push('\n');
-    s
+            (l.law.as_str(), cell)
+        });
+        (format!("| {} |", r.name), laws.collect())
+    })
 }
 
 /// Test 3: each damped law's e against the e it was set to, one table per case.
@@ -200,31 +190,42 @@ fn oblique_table(rows: &[&DemRow]) -> String {
 /// The oblique cases' tangential laws (Hertz along the normal): e_t and ω₁ after (rad/s)
 /// of each, beside the FE's.
 fn law_table(rows: &[&DemRow]) -> String {
-    let Some(first) = rows.iter().find(|r| !r.laws.is_empty()) else {
-        return String::new();
-    };
-    let mut s = law_columns(
-        "## The DEM tangential laws on the same impacts\n\n\
+    let head = "## The DEM tangential laws on the same impacts\n\n\
          Each built-in tangential law with Hertz along the normal (`twoball laws run`): the \
-         contact point's e_t and ω₁ after (rad/s), beside the FE's.\n\n| case | FE |",
-        2,
-        first.laws.iter().map(|l| l.law.as_str()),
-    );
-    for r in rows {
-        let _ = write!(
-            s,
+         contact point's e_t and ω₁ after (rad/s), beside the FE's.\n\n| case | FE |";
+    law_table_of(rows, head, 2, |r| {
+        let laws = r.laws.iter().map(|l| {
+            let cell = format!("{} / {}", plain(l.restitution, 3), plain(l.spin1_after, 3));
+            (l.law.as_str(), cell)
+        });
+        let fe = format!(
             "| {} | {} / {} |",
             r.name,
             plain(r.tangential_restitution.0, 3),
             plain(r.spin_after.0, 3)
         );
-        for l in &r.laws {
-            let _ = write!(
-                s,
-                " {} / {} |",
-                plain(l.restitution, 3),
-                plain(l.spin1_after, 3)
-            );
+        (fe, laws.collect())
+    })
+}
+
+/// A law table: heading `head` ending in its `lead` leading header cells, a column per law
+/// of the first row that has laws (no table when none has), then per row its leading cells
+/// and a cell per law, both from `cells` (each law as its name and its cell).
+fn law_table_of<'r>(
+    rows: &[&'r DemRow],
+    head: &str,
+    lead: usize,
+    cells: impl Fn(&'r DemRow) -> (String, Vec<(&'r str, String)>),
+) -> String {
+    let table: Vec<_> = rows.iter().map(|r| cells(r)).collect();
+    let Some((_, first)) = table.iter().find(|(_, laws)| !laws.is_empty()) else {
+        return String::new();
+    };
+    let mut s = law_columns(head, lead, first.iter().map(|l| l.0));
+    for (leading, laws) in &table {
+        s.push_str(leading);
+        for (_, cell) in laws {
+            let _ = write!(s, " {cell} |");
         }
         s.push('\n');
     }
