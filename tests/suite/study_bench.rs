@@ -93,24 +93,16 @@ fn stdout_of(args: &[&str]) -> String {
 }
 
 /// `bench kernel --phases` prints, per formulation, the element phase and the kernel's
-/// arithmetic alone; the arithmetic is part of the element phase, so it cannot take longer
-/// (1.5x leaves room for timer noise on a small ball), and it is most of it (measured 0.5-0.7
-/// of the phase), so a probe whose work was optimised away (near 0 ns) or that timed
-/// something else fails one bound or the other. Then `--kernel portable` runs the portable
-/// path on two threads with the same bits as one.
+/// arithmetic alone, both positive and finite; then `--kernel portable` runs the portable
+/// path on two threads with the same bits as one. Nothing here depends on how long anything
+/// took (the timing bounds are the ignored test below).
 #[test]
-fn kernel_phases_report_arithmetic_within_the_element_phase() {
+fn kernel_phases_are_printed_and_the_portable_path_keeps_its_bits_on_two_threads() {
     let small = ["bench", "kernel", "--size-per-d", "0.2", "--steps", "3"];
-    // Two wall-clock timings taken one after the other: on a loaded machine one of them can
-    // be stretched by another process. The bounds must hold in one of three attempts.
-    let mut failures = Vec::new();
-    for _ in 0..3 {
-        match arithmetic_within_element_phase(&small) {
-            Ok(()) => break,
-            Err(why) => failures.push(why),
-        }
+    let (phases, alone, text) = phase_timings(&small);
+    for t in phases.iter().chain(&alone) {
+        assert!(t.is_finite() && *t > 0.0, "{text}");
     }
-    assert!(failures.len() < 3, "{}", failures.join("\n---\n"));
     let text = stdout_of(
         &[
             &small[..],
@@ -129,9 +121,20 @@ fn kernel_phases_report_arithmetic_within_the_element_phase() {
     }
 }
 
-/// One `bench kernel --phases` run: Err with the reason when the probe's arithmetic is not
-/// within (0.1, 1.5) of the element phase for both formulations.
-fn arithmetic_within_element_phase(small: &[&str]) -> Result<(), String> {
+/// The arithmetic is part of the element phase, so it cannot take longer (1.5x leaves room
+/// for timer noise on a small ball), and it is most of it (measured 0.5-0.7 of the phase), so
+/// a probe whose work was optimised away (near 0 ns) or that timed something else fails one
+/// bound or the other. Wall-clock timings: run on an idle machine with `--ignored`.
+#[test]
+#[ignore = "wall-clock timing: run on an idle machine"]
+fn kernel_arithmetic_lies_within_its_element_phase_on_an_idle_machine() {
+    let small = ["bench", "kernel", "--size-per-d", "0.2", "--steps", "3"];
+    arithmetic_within_element_phase(&small).unwrap();
+}
+
+/// The element-phase and arithmetic-alone times (ns per element-cycle) of one
+/// `bench kernel --phases` run, per formulation, and its output.
+fn phase_timings(small: &[&str]) -> (Vec<f64>, Vec<f64>, String) {
     let text = stdout_of(&[small, &["--repeats", "1", "--threads", "1", "--phases"]].concat());
     let last_number = |line: &str| -> f64 {
         line.split_whitespace()
@@ -151,6 +154,13 @@ fn arithmetic_within_element_phase(small: &[&str]) -> Result<(), String> {
         .collect();
     assert_eq!(phases.len(), 2, "{text}");
     assert_eq!(alone.len(), 2, "{text}");
+    (phases, alone, text)
+}
+
+/// One `bench kernel --phases` run: Err with the reason when the probe's arithmetic is not
+/// within (0.1, 1.5) of the element phase for both formulations.
+fn arithmetic_within_element_phase(small: &[&str]) -> Result<(), String> {
+    let (phases, alone, text) = phase_timings(small);
     for (p, a) in phases.iter().zip(&alone) {
         assert!(a.is_finite(), "{text}");
         if *a <= 0.1 * p {
