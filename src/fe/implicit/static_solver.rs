@@ -53,7 +53,7 @@ pub struct Target {
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Settings {
     /// Converged when the residual norm on the free degrees of freedom falls below this
-    /// fraction of the force scale (the loads' and reactions' norm); default 1e-10.
+    /// fraction of the force scale (the loads' and reactions' norm); default 1e-8.
     pub residual_tol: f64,
     /// Newton iterations allowed per active set (default 40).
     pub max_iterations: usize,
@@ -64,7 +64,7 @@ pub struct Settings {
 impl Default for Settings {
     fn default() -> Self {
         Settings {
-            residual_tol: 1e-10,
+            residual_tol: 1e-8,
             max_iterations: 40,
             max_active_changes: 20,
         }
@@ -256,9 +256,12 @@ impl StaticSolver {
             (Some(p), Some(z)) => Some(ExactPlane { z, ..p }),
             (p, _) => p,
         };
-        let mut active = self.active.clone();
         let step = self.control_step(target, plane);
         let (mut du, predicted_load) = self.prediction(step, n);
+        let mut active = self.active.clone();
+        if let Some(p) = plane {
+            self.land_predicted(p, &mut active, &du);
+        }
         let start_load = match target.load_control {
             Some(_) => predicted_load,
             None => target.load_factor,
@@ -321,9 +324,7 @@ impl StaticSolver {
         self.f_int = eval.f_int;
         self.active = active;
         let dload = load - self.load_factor;
-        self.last = step
-            .filter(|_| report.active_changes == 0)
-            .map(|h| (du, dload, h));
+        self.last = step.map(|h| (du, dload, h));
         self.load_factor = load;
         self.plane = plane;
         Ok(report)
@@ -501,6 +502,15 @@ impl StaticSolver {
                     (d, dload)
                 }
             };
+            // The identity rows' exact solution is their prescribed correction; the LU
+            // returns it only to its round-off (the rows' scale against the stiffness'),
+            // which would leave the constraints unmet by 1e-14 m forever.
+            let mut d = d;
+            for (k, g) in open.iter().enumerate() {
+                if constrained[k] {
+                    d[k] = *g;
+                }
+            }
             report.iterations += 1;
             let mut alpha = 1.0;
             loop {
@@ -621,6 +631,17 @@ impl StaticSolver {
             }
         }
         (added, released)
+    }
+
+    /// Adds to the active set the nodes the predicted increment `du` (m) carries across the
+    /// plane: a node that the increment lands is then held from the first iteration, instead
+    /// of found across after Newton has converged without it (a second solve from zero).
+    fn land_predicted(&self, plane: ExactPlane, active: &mut [bool], du: &[[f64; 2]]) {
+        for (i, a) in active.iter_mut().enumerate() {
+            if !*a && plane.gap(self.x[i][1] + du[i][1]) < -self.gap_tol {
+                *a = true;
+            }
+        }
     }
 
     fn element_nodes(&self, e: usize, du: &[[f64; 2]]) -> (Quad, Quad) {

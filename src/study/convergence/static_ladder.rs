@@ -19,8 +19,9 @@ use crate::mesh::section::{ladder_ball, EdgeBand};
 use crate::scene::Scene;
 use crate::study::records::estimate::{estimate, Estimate};
 use crate::study::run::quasi_static::{
-    run_loop, LoadTo, LoopMesh, LoopSummary, StaticCase, StaticLoop, Support,
+    peak_of, run_loop, LoadTo, LoopMesh, LoopSummary, StaticCase, StaticLoop, Support,
 };
+use rayon::prelude::*;
 use serde::Serialize;
 
 /// The finest ladder level of a loop unless asked otherwise (levels 0 and 1 behind the
@@ -44,12 +45,20 @@ pub struct BandPilot {
     pub split: usize,
     /// Quads of the pilot's mesh.
     pub pilot_quads: usize,
-    /// Newton iterations of the pilot loop.
+    /// Newton iterations of the pilot's loading (its unloading is not run).
     pub pilot_iterations: usize,
 }
 
+/// Increments of the pilot's loading for a case of `increments` at level 0: a quarter (at
+/// least 4). The pilot only reads which surface ring is the outermost on the plane at δ_max,
+/// which the increments barely move, so it need not follow the load path finely.
+fn pilot_increments(increments: usize) -> usize {
+    (increments / 4).max(4)
+}
+
 /// `case` (on the plain ladder) with every level meshed with an edge band split `split`-fold
-/// at the contact edge of its plain level-0 loop, and where the band went.
+/// at the contact edge of its plain level-0 loading (with [`pilot_increments`]), and where
+/// the band went.
 ///
 /// Errors: a bad `split`, a case not on the plain ladder; those of the pilot loop (a band
 /// that does not fit a level fails when the ladder meshes it).
@@ -62,8 +71,12 @@ pub fn banded_case(case: &StaticCase, split: usize) -> Result<(StaticCase, BandP
             "the plain ladder (the band is placed from its level 0)",
         ));
     };
-    let pilot = run_loop(&StaticCase { level: 0, ..*case })?;
-    let r = pilot.summary.contact_radius;
+    let pilot = peak_of(&StaticCase {
+        level: 0,
+        increments: pilot_increments(case.increments),
+        ..*case
+    })?;
+    let r = pilot.point.contact_radius;
     let q = ring_ratio(&ladder_ball(case.diameter, sizing_radius, 0)?, r)?;
     let edge = 0.5 * r * (1.0 + q);
     let banded = StaticCase {
@@ -116,6 +129,7 @@ pub fn run_loop_ladder(case: &StaticCase, levels: u32) -> Result<(Vec<StaticLoop
         ));
     }
     let loops = (case.level + 1 - levels..=case.level)
+        .into_par_iter()
         .map(|level| run_loop(&StaticCase { level, ..*case }))
         .collect::<Result<Vec<_>>>()?;
     let of = |name: &str, f: fn(&LoopSummary) -> f64| -> Result<Estimate> {

@@ -386,20 +386,7 @@ fn check(case: &StaticCase) -> Result<()> {
 ///
 /// Errors: a bad case, a mesh out of range, a static solve that does not converge.
 pub fn run_loop(case: &StaticCase) -> Result<StaticLoop> {
-    check(case)?;
-    // The loading takes about `increments` steps of the control towards Hertz's estimate;
-    // a ball that meets its target within the first quarter of them (much softer than
-    // Hertz) starts again with the estimate scaled to where the target was met.
-    let mut c_est = control_estimate(case);
-    let (mut rig, loading) = loop {
-        let mut rig = Rig::new(case)?;
-        let loading = load(&mut rig, case, c_est)?;
-        let steps = loading.len() - 1;
-        if 4 * steps >= case.steps() {
-            break (rig, loading);
-        }
-        c_est *= steps as f64 / case.steps() as f64;
-    };
+    let (mut rig, loading) = load_to_target(case)?;
     let peak = *loading.last().expect("the peak");
     let peak_residuals = rig.residuals.clone();
     let c_peak = rig.control();
@@ -433,6 +420,49 @@ pub fn run_loop(case: &StaticCase) -> Result<StaticLoop> {
         unloading,
         summary,
     })
+}
+
+/// The loading half of a loop: where it met its target and what that cost.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct LoadedPeak {
+    /// The point where loading met its target.
+    pub point: LoopPoint,
+    /// Quads of the mesh.
+    pub quads: usize,
+    /// Newton iterations of the loading (of the increments kept).
+    pub iterations: usize,
+}
+
+/// The loading half of the loop of `case`, which alone fixes its peak (δ_max, contact
+/// radius): the unloading's cost saved where only the peak is wanted.
+///
+/// Errors: as [`run_loop`].
+pub fn peak_of(case: &StaticCase) -> Result<LoadedPeak> {
+    let (rig, loading) = load_to_target(case)?;
+    Ok(LoadedPeak {
+        point: *loading.last().expect("the peak"),
+        quads: rig.solver.states().len(),
+        iterations: rig.iterations,
+    })
+}
+
+/// The rig of `case` loaded to its target, and its loading points from touch.
+///
+/// The loading takes about `increments` steps of the control towards Hertz's estimate; a
+/// ball that meets its target within the first quarter of them (much softer than Hertz)
+/// starts again with the estimate scaled to where the target was met.
+fn load_to_target(case: &StaticCase) -> Result<(Rig, Vec<LoopPoint>)> {
+    check(case)?;
+    let mut c_est = control_estimate(case);
+    loop {
+        let mut rig = Rig::new(case)?;
+        let loading = load(&mut rig, case, c_est)?;
+        let steps = loading.len() - 1;
+        if 4 * steps >= case.steps() {
+            return Ok((rig, loading));
+        }
+        c_est *= steps as f64 / case.steps() as f64;
+    }
 }
 
 /// Loads in equal steps of the driven nodes' travel, about `c_est` / increments each, until
