@@ -389,9 +389,15 @@ impl<const W: usize> Lanes<W> {
         if W == 8 {
             return avx512::sqrt(self);
         }
+        self.map(f64::sqrt)
+    }
+
+    /// Lane-wise `f(self)`, with this value's token.
+    #[inline(always)]
+    fn map(self, f: impl Fn(f64) -> f64) -> Self {
         let mut r = self.0;
         for x in &mut r {
-            *x = x.sqrt();
+            *x = f(*x);
         }
         Lanes(r, self.1)
     }
@@ -452,33 +458,23 @@ macro_rules! lane_op {
         impl<const W: usize> $tr for Lanes<W> {
             type Output = Self;
             #[inline(always)]
-            #[allow(clippy::assign_op_pattern)]
             fn $f(self, o: Self) -> Self {
                 #[cfg(target_arch = "x86_64")]
                 if W == 8 {
                     return avx512::$f(self, o);
                 }
-                let mut r = self.0;
-                for l in 0..W {
-                    r[l] = r[l] $op o.0[l];
-                }
-                Lanes(r, self.1)
+                self.zip_with(o, |a, b| a $op b)
             }
         }
         impl<const W: usize> $tr<f64> for Lanes<W> {
             type Output = Self;
             #[inline(always)]
-            #[allow(clippy::assign_op_pattern)]
             fn $f(self, o: f64) -> Self {
                 #[cfg(target_arch = "x86_64")]
                 if W == 8 {
                     return avx512::$f(self, self.splat_like(o));
                 }
-                let mut r = self.0;
-                for l in 0..W {
-                    r[l] = r[l] $op o;
-                }
-                Lanes(r, self.1)
+                self.map(|a| a $op o)
             }
         }
     };
@@ -494,17 +490,12 @@ macro_rules! scalar_lane_op {
         impl<const W: usize> $tr<Lanes<W>> for f64 {
             type Output = Lanes<W>;
             #[inline(always)]
-            #[allow(clippy::assign_op_pattern)]
             fn $f(self, o: Lanes<W>) -> Lanes<W> {
                 #[cfg(target_arch = "x86_64")]
                 if W == 8 {
                     return avx512::$f(o.splat_like(self), o);
                 }
-                let mut r = o.0;
-                for l in 0..W {
-                    r[l] = r[l] $op self;
-                }
-                Lanes(r, o.1)
+                o.map(|a| a $op self)
             }
         }
     };
@@ -520,11 +511,7 @@ impl<const W: usize> Neg for Lanes<W> {
         if W == 8 {
             return avx512::neg(self);
         }
-        let mut r = self.0;
-        for x in &mut r {
-            *x = -*x;
-        }
-        Lanes(r, self.1)
+        self.map(|x| -x)
     }
 }
 
