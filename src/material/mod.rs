@@ -80,6 +80,13 @@ pub const PRESET_NAMES: [&str; 12] = [
     "steel-4340",
 ];
 
+/// Sets `field` to `value` when one is given.
+fn replace(field: &mut f64, value: Option<f64>) {
+    if let Some(v) = value {
+        *field = v;
+    }
+}
+
 impl Material {
     /// Builds a material from engineering units (E in GPa, yield in MPa) with `tangent = E/100`
     /// and μ_s = μ_d; used for the presets.
@@ -148,21 +155,11 @@ impl Material {
     /// This material with the given fields replaced, not validated (the caller validates it
     /// with a prefix of its own).
     pub fn overridden(mut self, o: &MaterialOverrides) -> Material {
-        if let Some(v) = o.youngs {
-            self.youngs = v;
-        }
-        if let Some(v) = o.nu {
-            self.nu = v;
-        }
-        if let Some(v) = o.rho {
-            self.rho = v;
-        }
-        if let Some(v) = o.yield_strength {
-            self.yield_strength = v;
-        }
-        if let Some(v) = o.tangent {
-            self.tangent = v;
-        }
+        replace(&mut self.youngs, o.youngs);
+        replace(&mut self.nu, o.nu);
+        replace(&mut self.rho, o.rho);
+        replace(&mut self.yield_strength, o.yield_strength);
+        replace(&mut self.tangent, o.tangent);
         if let Some(v) = o.mu {
             self.mu = v;
             // One coefficient given: keep the paper's single-coefficient convention unless
@@ -171,9 +168,7 @@ impl Material {
                 self.mu_static = self.mu_static.max(v);
             }
         }
-        if let Some(v) = o.mu_static {
-            self.mu_static = v;
-        }
+        replace(&mut self.mu_static, o.mu_static);
         self
     }
 

@@ -17,6 +17,18 @@ pub mod vtu;
 use crate::error::{Error, Result};
 use std::collections::BTreeMap;
 
+/// Natural coordinates (ξ, η, ζ) of the eight nodes of a hexahedron, in gmsh/VTK order.
+pub const HEX_NODE_XI: [[f64; 3]; 8] = [
+    [-1.0, -1.0, -1.0],
+    [1.0, -1.0, -1.0],
+    [1.0, 1.0, -1.0],
+    [-1.0, 1.0, -1.0],
+    [-1.0, -1.0, 1.0],
+    [1.0, -1.0, 1.0],
+    [1.0, 1.0, 1.0],
+    [-1.0, 1.0, 1.0],
+];
+
 /// Fails on the first node of `nodes` (coordinates, m) that is not finite: a mesh file never
 /// holds one.
 pub(crate) fn check_finite_nodes(nodes: &[[f64; 3]]) -> Result<()> {

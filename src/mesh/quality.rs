@@ -4,7 +4,7 @@
 //! with the element count, so both are reported; the scaled Jacobian (1 for a cube, 0 for a
 //! degenerate corner, negative for an inverted one) measures how far elements are from cubes.
 
-use super::Mesh;
+use super::{Mesh, HEX_NODE_XI};
 use serde::Serialize;
 
 /// For each hex corner, its three edge neighbours ordered so that their triple product is
@@ -90,17 +90,6 @@ pub fn scaled_jacobian(p: &[[f64; 3]; 8]) -> f64 {
 /// quadratic in each reference coordinate, so 2 x 2 x 2 Gauss points integrate it exactly.
 /// Negative for an inverted node order.
 pub fn hex_volume(p: &[[f64; 3]; 8]) -> f64 {
-    // Reference corners in gmsh order.
-    const R: [[f64; 3]; 8] = [
-        [-1., -1., -1.],
-        [1., -1., -1.],
-        [1., 1., -1.],
-        [-1., 1., -1.],
-        [-1., -1., 1.],
-        [1., -1., 1.],
-        [1., 1., 1.],
-        [-1., 1., 1.],
-    ];
     let g = 1.0 / 3f64.sqrt();
     let mut vol = 0.0;
     for gx in [-g, g] {
@@ -108,7 +97,7 @@ pub fn hex_volume(p: &[[f64; 3]; 8]) -> f64 {
             for gz in [-g, g] {
                 let q = [gx, gy, gz];
                 let mut jac = [[0.0; 3]; 3]; // jac[a][d] = d x_a / d xi_d
-                for (n, r) in R.iter().enumerate() {
+                for (n, r) in HEX_NODE_XI.iter().enumerate() {
                     let f = [1.0 + r[0] * q[0], 1.0 + r[1] * q[1], 1.0 + r[2] * q[2]];
                     let dn = [
                         0.125 * r[0] * f[1] * f[2],

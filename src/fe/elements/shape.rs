@@ -7,16 +7,7 @@
 use crate::fe::tensor::{inverse, Mat3};
 
 /// Natural coordinates (ξ, η, ζ) of the eight nodes.
-pub const NODE_XI: [[f64; 3]; 8] = [
-    [-1.0, -1.0, -1.0],
-    [1.0, -1.0, -1.0],
-    [1.0, 1.0, -1.0],
-    [-1.0, 1.0, -1.0],
-    [-1.0, -1.0, 1.0],
-    [1.0, -1.0, 1.0],
-    [1.0, 1.0, 1.0],
-    [-1.0, 1.0, 1.0],
-];
+pub const NODE_XI: [[f64; 3]; 8] = crate::mesh::HEX_NODE_XI;
 
 /// The nodes at mid-step t^{n+1/2}, x^{n+1} − (Δt/2) v^{n+1/2} (m), from the positions `x1`
 /// (m) and velocities `v` (m/s) of a step of `dt` (s).
@@ -91,6 +82,24 @@ pub fn spatial_gradients(x: &[[f64; 3]; 8], dn: &[[f64; 3]; 8]) -> ([[f64; 3]; 8
         ]
     });
     (g, det)
+}
+
+/// The volume (m³) and the volume integral ∫ ∂N_I/∂x dV (m², shape [node][x, y, z]) of the
+/// hexahedron `x` by 2x2x2 Gauss quadrature (exact for a trilinear hexahedron).
+#[cfg(test)]
+pub(crate) fn gauss_volume_gradient(x: &[[f64; 3]; 8]) -> (f64, [[f64; 3]; 8]) {
+    let mut volume = 0.0;
+    let mut integral = [[0.0; 3]; 8];
+    for p in gauss_points_2x2x2() {
+        let (g, j) = spatial_gradients(x, &natural_derivatives(p));
+        volume += j;
+        for i in 0..8 {
+            for k in 0..3 {
+                integral[i][k] += g[i][k] * j;
+            }
+        }
+    }
+    (volume, integral)
 }
 
 #[cfg(test)]

@@ -285,25 +285,36 @@ impl SectionSolver {
 
     fn constrain_velocities(&mut self) {
         for i in 0..self.v.len() {
-            let fx = self.model.fixed[i];
-            if self.axis[i] || fx[0] {
-                self.v[i][0] = 0.0;
-            }
-            if fx[1] {
-                self.v[i][1] = 0.0;
-            }
+            let held = self.held(i);
+            zero_held(&mut self.v[i], held);
         }
+    }
+
+    /// The directions (r, z) held at zero at node `i`: r on the axis, and the fixed ones.
+    #[inline]
+    fn held(&self, i: usize) -> [bool; 2] {
+        [
+            self.axis[i] || self.model.fixed[i][0],
+            self.model.fixed[i][1],
+        ]
     }
 
     /// Sets a_r = 0 on the axis and the fixed directions of node `i`.
     #[inline]
     pub(super) fn constrain_acceleration(&mut self, i: usize) {
-        if self.axis[i] || self.model.fixed[i][0] {
-            self.a[i][0] = 0.0;
+        let held = self.held(i);
+        zero_held(&mut self.a[i], held);
+    }
+
+    /// The opening half kick of node `i` over a step of `dt` (s): v^{n+1/2} = v^n + Δt/2 a^n,
+    /// zero in the held directions.
+    #[inline]
+    pub(super) fn half_kick(&mut self, i: usize, dt: f64) {
+        for c in 0..2 {
+            self.v_half[i][c] = self.v[i][c] + 0.5 * dt * self.a[i][c];
         }
-        if self.model.fixed[i][1] {
-            self.a[i][1] = 0.0;
-        }
+        let held = self.held(i);
+        zero_held(&mut self.v_half[i], held);
     }
 
     /// Lets a kinematic contact holding node `i` correct its acceleration at a kick that
@@ -455,15 +466,7 @@ impl SectionSolver {
         let n = self.x.len();
         std::mem::swap(&mut self.v_prev, &mut self.v_half);
         for i in 0..n {
-            for c in 0..2 {
-                self.v_half[i][c] = self.v[i][c] + 0.5 * dt * self.a[i][c];
-            }
-            if self.axis[i] || self.model.fixed[i][0] {
-                self.v_half[i][0] = 0.0;
-            }
-            if self.model.fixed[i][1] {
-                self.v_half[i][1] = 0.0;
-            }
+            self.half_kick(i, dt);
         }
         // Work of loads and damping over the step, with the mid-step velocity.
         let alpha = self.model.damping;
@@ -824,6 +827,16 @@ impl<E: RingElement, const W: usize> LawVisitor for Group<'_, E, W> {
             dt_min = dt_min.min(s.finish_element(e as usize, &out.lane(l))?);
         }
         Ok(dt_min)
+    }
+}
+
+/// Zeroes the components of `v` in the `held` directions.
+#[inline]
+fn zero_held(v: &mut [f64; 2], held: [bool; 2]) {
+    for (x, h) in v.iter_mut().zip(held) {
+        if h {
+            *x = 0.0;
+        }
     }
 }
 

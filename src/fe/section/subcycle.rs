@@ -288,15 +288,7 @@ impl SectionSolver {
     /// The opening half kick of node `i` with its step `big` (s): v^{n+1/2} = v^n + big/2 a^n.
     fn open_kick(&mut self, i: usize, big: f64) {
         self.v_prev[i] = self.v_half[i];
-        for c in 0..2 {
-            self.v_half[i][c] = self.v[i][c] + 0.5 * big * self.a[i][c];
-        }
-        if self.axis[i] || self.model.fixed[i][0] {
-            self.v_half[i][0] = 0.0;
-        }
-        if self.model.fixed[i][1] {
-            self.v_half[i][1] = 0.0;
-        }
+        self.half_kick(i, big);
     }
 
     /// The fine step h (s) of the next cycle from the current limits, and its schedule, or

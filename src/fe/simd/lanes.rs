@@ -389,9 +389,25 @@ impl<const W: usize> Lanes<W> {
         if W == 8 {
             return avx512::sqrt(self);
         }
+        self.map(f64::sqrt)
+    }
+
+    /// Lane-wise `f(self)`, with this value's token.
+    #[inline(always)]
+    fn map(self, f: impl Fn(f64) -> f64) -> Self {
         let mut r = self.0;
         for x in &mut r {
-            *x = x.sqrt();
+            *x = f(*x);
+        }
+        Lanes(r, self.1)
+    }
+
+    /// Lane-wise `f(self, o)`, with this value's token.
+    #[inline(always)]
+    fn zip_with(self, o: Self, f: impl Fn(f64, f64) -> f64) -> Self {
+        let mut r = self.0;
+        for l in 0..W {
+            r[l] = f(r[l], o.0[l]);
         }
         Lanes(r, self.1)
     }
@@ -399,21 +415,13 @@ impl<const W: usize> Lanes<W> {
     /// Lane-wise maximum (the `f64::max` rule: a NaN lane yields the other operand).
     #[inline(always)]
     pub fn max(self, o: Self) -> Self {
-        let mut r = self.0;
-        for l in 0..W {
-            r[l] = r[l].max(o.0[l]);
-        }
-        Lanes(r, self.1)
+        self.zip_with(o, f64::max)
     }
 
     /// Lane-wise minimum (the `f64::min` rule: a NaN lane yields the other operand).
     #[inline(always)]
     pub fn min(self, o: Self) -> Self {
-        let mut r = self.0;
-        for l in 0..W {
-            r[l] = r[l].min(o.0[l]);
-        }
-        Lanes(r, self.1)
+        self.zip_with(o, f64::min)
     }
 
     /// Lane-wise reciprocal 1/x.
@@ -450,33 +458,23 @@ macro_rules! lane_op {
         impl<const W: usize> $tr for Lanes<W> {
             type Output = Self;
             #[inline(always)]
-            #[allow(clippy::assign_op_pattern)]
             fn $f(self, o: Self) -> Self {
                 #[cfg(target_arch = "x86_64")]
                 if W == 8 {
                     return avx512::$f(self, o);
                 }
-                let mut r = self.0;
-                for l in 0..W {
-                    r[l] = r[l] $op o.0[l];
-                }
-                Lanes(r, self.1)
+                self.zip_with(o, |a, b| a $op b)
             }
         }
         impl<const W: usize> $tr<f64> for Lanes<W> {
             type Output = Self;
             #[inline(always)]
-            #[allow(clippy::assign_op_pattern)]
             fn $f(self, o: f64) -> Self {
                 #[cfg(target_arch = "x86_64")]
                 if W == 8 {
                     return avx512::$f(self, self.splat_like(o));
                 }
-                let mut r = self.0;
-                for l in 0..W {
-                    r[l] = r[l] $op o;
-                }
-                Lanes(r, self.1)
+                self.map(|a| a $op o)
             }
         }
     };
@@ -486,37 +484,24 @@ lane_op!(Sub, sub, -);
 lane_op!(Mul, mul, *);
 lane_op!(Div, div, /);
 
-impl<const W: usize> Mul<Lanes<W>> for f64 {
-    type Output = Lanes<W>;
-    #[inline(always)]
-    fn mul(self, o: Lanes<W>) -> Lanes<W> {
-        #[cfg(target_arch = "x86_64")]
-        if W == 8 {
-            return avx512::mul(o.splat_like(self), o);
+/// A commutative operator with a scalar on the left: `s op lanes`, every lane `lane op s`.
+macro_rules! scalar_lane_op {
+    ($tr:ident, $f:ident, $op:tt) => {
+        impl<const W: usize> $tr<Lanes<W>> for f64 {
+            type Output = Lanes<W>;
+            #[inline(always)]
+            fn $f(self, o: Lanes<W>) -> Lanes<W> {
+                #[cfg(target_arch = "x86_64")]
+                if W == 8 {
+                    return avx512::$f(o.splat_like(self), o);
+                }
+                o.map(|a| a $op self)
+            }
         }
-        let mut r = o.0;
-        for l in 0..W {
-            r[l] *= self;
-        }
-        Lanes(r, o.1)
-    }
+    };
 }
-
-impl<const W: usize> Add<Lanes<W>> for f64 {
-    type Output = Lanes<W>;
-    #[inline(always)]
-    fn add(self, o: Lanes<W>) -> Lanes<W> {
-        #[cfg(target_arch = "x86_64")]
-        if W == 8 {
-            return avx512::add(o.splat_like(self), o);
-        }
-        let mut r = o.0;
-        for l in 0..W {
-            r[l] += self;
-        }
-        Lanes(r, o.1)
-    }
-}
+scalar_lane_op!(Mul, mul, *);
+scalar_lane_op!(Add, add, +);
 
 impl<const W: usize> Neg for Lanes<W> {
     type Output = Self;
@@ -526,11 +511,7 @@ impl<const W: usize> Neg for Lanes<W> {
         if W == 8 {
             return avx512::neg(self);
         }
-        let mut r = self.0;
-        for x in &mut r {
-            *x = -*x;
-        }
-        Lanes(r, self.1)
+        self.map(|x| -x)
     }
 }
 

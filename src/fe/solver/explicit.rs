@@ -475,6 +475,14 @@ impl Solver {
             .iter()
             .any(|it| it.active_nodes().is_none());
         self.kicked = (0..n as u32).collect();
+        self.gather_kicked(&mut sub);
+        self.sub = Some(sub);
+        self.kick_accelerations()
+    }
+
+    /// Gathers the element forces of the kicked nodes into their closing (`f_int`) and
+    /// opening (`f_open`) internal forces, N ([`Subcycler::gather_kicks`]).
+    fn gather_kicked(&mut self, sub: &mut Subcycler) {
         sub.gather_kicks(
             &self.kicked,
             &self.inc_ptr,
@@ -483,8 +491,6 @@ impl Solver {
             &mut self.f_int,
             &mut self.f_open,
         );
-        self.sub = Some(sub);
-        self.kick_accelerations()
     }
 
     /// One time step n → n+1, Box 6.1 steps 4-12 ([`central_difference::step`]). With
@@ -577,14 +583,7 @@ impl Solver {
             self.kicked.clear();
             self.kicked.extend_from_slice(sub.due_nodes());
         }
-        sub.gather_kicks(
-            &self.kicked,
-            &self.inc_ptr,
-            &self.inc,
-            &self.elem_force,
-            &mut self.f_int,
-            &mut self.f_open,
-        );
+        self.gather_kicked(sub);
         self.profile.lap(StepPhase::Gather);
         self.external_forces()
     }

@@ -9,7 +9,7 @@
 //! ([`super::element::RingElement::update`]), which stays the reference; the test in
 //! [`super::formulation`] checks it for every registered element.
 
-use super::shape::GAUSS_SHAPE;
+use super::shape::{radius_and_jacobian, GAUSS_SHAPE};
 use super::state::{PointState, QuadOutput, QuadState};
 use crate::fe::materials::{
     j2::{ddot_lanes, update_lanes},
@@ -128,28 +128,6 @@ impl<const W: usize> RingLaneOutput<W> {
     }
 }
 
-/// The radius r (m) and the Jacobian jac[a][c] = ∂x_a/∂ξ_c (m) of W quads `x` at the point
-/// with shape values `n` and natural derivatives `d` (shape::radius_and_jacobian).
-#[inline(always)]
-fn radius_and_jacobian<const W: usize>(
-    x: &Nodes<W>,
-    n: &[f64; 4],
-    d: &[[f64; 2]; 4],
-) -> (Lanes<W>, [[Lanes<W>; 2]; 2]) {
-    let z = x[0][0].splat_like(0.0);
-    let mut r = z;
-    let mut jac = [[z; 2]; 2];
-    for i in 0..4 {
-        r += n[i] * x[i][0];
-        for a in 0..2 {
-            for c in 0..2 {
-                jac[a][c] += d[i][c] * x[i][a];
-            }
-        }
-    }
-    (r, jac)
-}
-
 /// [`super::shape::mean_gradient`] of W quads: the operator and the smallest Jacobian.
 #[inline(always)]
 pub(super) fn mean_gradient<const W: usize>(x: &Nodes<W>) -> (Gradient<W>, Lanes<W>) {
@@ -159,7 +137,7 @@ pub(super) fn mean_gradient<const W: usize>(x: &Nodes<W>) -> (Gradient<W>, Lanes
     let mut sum = z;
     let mut min_j = z.splat_like(f64::INFINITY);
     for (n, d) in &GAUSS_SHAPE {
-        let (r, jac) = radius_and_jacobian(x, n, d);
+        let (r, jac) = radius_and_jacobian(x, n, d, z);
         let det_j = jac[0][0] * jac[1][1] - jac[0][1] * jac[1][0];
         min_j = min_j.min(det_j);
         sum += r * det_j;
@@ -240,7 +218,7 @@ pub(super) fn gauss_points<const W: usize>(x: &Nodes<W>) -> [Point<W>; 4] {
         det_j: z,
     }; 4];
     for (p, (n, d)) in pts.iter_mut().zip(&GAUSS_SHAPE) {
-        let (r, jac) = radius_and_jacobian(x, n, d);
+        let (r, jac) = radius_and_jacobian(x, n, d, z);
         let det_j = jac[0][0] * jac[1][1] - jac[0][1] * jac[1][0];
         let inv = det_j.recip();
         for i in 0..4 {

@@ -6,6 +6,7 @@
 //! rate is the 3D [`Sym`](crate::fe::tensor::Sym) [rr, zz, θθ, rz, 0, 0].
 
 use std::f64::consts::PI;
+use std::ops::{AddAssign, Mul};
 
 /// Natural coordinates (ξ, η) of the four nodes, counter-clockwise.
 pub const NODE_XI: [[f64; 2]; 4] = [[-1.0, -1.0], [1.0, -1.0], [1.0, 1.0], [-1.0, 1.0]];
@@ -89,12 +90,22 @@ pub(super) const GAUSS_SHAPE: [([f64; 4], [[f64; 2]; 4]); 4] = {
     t
 };
 
-/// The radius r (m) and the Jacobian jac[a][c] = ∂x_a/∂ξ_c (m) of the quad `x` (m) at the
-/// point with shape values `n` and natural derivatives `d`.
+/// The radius r (m) and the Jacobian jac[a][c] = ∂x_a/∂ξ_c (m) of the quad `x` (m; one quad
+/// in f64, or W quads in lanes) at the point with shape values `n` and natural derivatives
+/// `d`, the sums starting from `zero`.
 #[inline(always)]
-fn radius_and_jacobian(x: &[[f64; 2]; 4], n: &[f64; 4], d: &[[f64; 2]; 4]) -> (f64, [[f64; 2]; 2]) {
-    let mut jac = [[0.0; 2]; 2];
-    let mut r = 0.0;
+pub(super) fn radius_and_jacobian<T>(
+    x: &[[T; 2]; 4],
+    n: &[f64; 4],
+    d: &[[f64; 2]; 4],
+    zero: T,
+) -> (T, [[T; 2]; 2])
+where
+    T: Copy + AddAssign,
+    f64: Mul<T, Output = T>,
+{
+    let mut jac = [[zero; 2]; 2];
+    let mut r = zero;
     for i in 0..4 {
         r += n[i] * x[i][0];
         for a in 0..2 {
@@ -110,7 +121,7 @@ fn radius_and_jacobian(x: &[[f64; 2]; 4], n: &[f64; 4], d: &[[f64; 2]; 4]) -> (f
 /// point and Gauss weight `w` (see [`point`]).
 #[inline(always)]
 fn point_of(x: &[[f64; 2]; 4], n: &[f64; 4], d: &[[f64; 2]; 4], w: f64) -> Point {
-    let (r, jac) = radius_and_jacobian(x, n, d);
+    let (r, jac) = radius_and_jacobian(x, n, d, 0.0);
     let det_j = jac[0][0] * jac[1][1] - jac[0][1] * jac[1][0];
     let inv = 1.0 / det_j;
     let mut b = [[0.0; 2]; 4];
@@ -162,7 +173,7 @@ pub fn mean_gradient(x: &[[f64; 2]; 4]) -> (Gradient, f64) {
     let mut sum = 0.0;
     let mut min_j = f64::INFINITY;
     for (n, d) in &GAUSS_SHAPE {
-        let (r, jac) = radius_and_jacobian(x, n, d);
+        let (r, jac) = radius_and_jacobian(x, n, d, 0.0);
         let det_j = jac[0][0] * jac[1][1] - jac[0][1] * jac[1][0];
         min_j = min_j.min(det_j);
         sum += r * det_j;
