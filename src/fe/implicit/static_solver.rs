@@ -88,6 +88,10 @@ pub struct Increment {
 /// The relative residual an active set that may still change is solved to.
 const LOOSE_TOL: f64 = 1e-6;
 
+/// Newton iterations after which a residual still above the force scale itself counts as
+/// diverged: the increment is cut at once instead of after every allowed iteration.
+const DIVERGED_AFTER: usize = 10;
+
 /// The longest step, relative to the last one, that the last increment predicts.
 const MAX_PREDICTION: f64 = 4.0;
 
@@ -473,13 +477,16 @@ impl StaticSolver {
         let f_ext = self.loads(*load);
         let mut r = residual(&eval.f_int, &f_ext, constrained);
         let mut rel = norm(&r) / force_scale(&eval.f_int, &f_ext, constrained);
-        for _ in 0..self.settings.max_iterations {
+        for k in 0..self.settings.max_iterations {
             let open = gap(du);
             let limit = 1e-3 * self.gap_tol;
             let met = open.iter().all(|g| g.abs() <= limit) && control_gap(du).abs() <= limit;
             report.residuals.push(rel);
             if met && rel <= tol {
                 return Ok((eval, rel));
+            }
+            if k >= DIVERGED_AFTER && rel > 1.0 {
+                break;
             }
             let rhs: Vec<f64> = r.iter().zip(&open).map(|(a, b)| a + b).collect();
             let tangents = self.tangents(du);
@@ -545,7 +552,7 @@ impl StaticSolver {
         Err(Error::Numerical(format!(
             "static Newton: relative residual {rel:.3e} after {} iterations (tolerance {tol:.1e}); \
              take smaller increments",
-            self.settings.max_iterations
+            report.residuals.len() - 1
         )))
     }
 
