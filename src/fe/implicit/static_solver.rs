@@ -55,7 +55,8 @@ pub struct Settings {
     /// Converged when the residual norm on the free degrees of freedom falls below this
     /// fraction of the force scale (the loads' and reactions' norm); default 1e-8.
     pub residual_tol: f64,
-    /// Newton iterations allowed per active set (default 40).
+    /// Newton iterations allowed per active set (default 40; fewer when the residual is still
+    /// above the force scale after 10 of them).
     pub max_iterations: usize,
     /// Active-set changes allowed per increment (default 20).
     pub max_active_changes: usize,
@@ -510,8 +511,8 @@ impl StaticSolver {
                 }
             };
             // The identity rows' exact solution is their prescribed correction; the LU
-            // returns it only to its round-off (the rows' scale against the stiffness'),
-            // which would leave the constraints unmet by 1e-14 m forever.
+            // returns it only to its round-off against the stiffness (about 1e-14 m), above
+            // the check's 1e-3 gap tolerance, and unmet constraints switch the line search off.
             let mut d = d;
             for (k, g) in open.iter().enumerate() {
                 if constrained[k] {

@@ -52,7 +52,7 @@ pub struct BandPilot {
 /// Increments of the pilot's loading for a case of `increments` at level 0: a quarter (at
 /// least 4). The pilot only reads which surface ring is the outermost on the plane at δ_max,
 /// which the increments barely move, so it need not follow the load path finely.
-fn pilot_increments(increments: usize) -> usize {
+pub fn pilot_increments(increments: usize) -> usize {
     (increments / 4).max(4)
 }
 
