@@ -10,11 +10,11 @@
 //! - [`contact`]: contact search and laws, rigid planes, the meridian section's contacts (the
 //!   interactions the loops call);
 //! - [`implicit`]: the quasi-static implicit solver of the section (Newton-Raphson, element
-//!   tangents from the elements' own updates, sparse LU, an exact rigid plane);
+//!   tangents from the elements' own updates, sparse LDLᵀ and refinement, an exact rigid plane);
 //! - [`mass_scaling`]: density factors within an added-mass budget, for both models;
 //! - [`linear`]: small-strain linear tools for verification (modal analysis, Lamb's modes);
-//! - [`section`]: the section model (the meridian section) of a head-on impact: ring quads, ring masses, mass
-//!   scaling, its loop and subcycling;
+//! - [`section`]: the section model (the meridian section) of a head-on impact: ring quads,
+//!   ring masses, mass scaling, its loop and subcycling;
 //! - [`model`] (what the solver is given) and [`tensor`] (small tensor algebra).
 // Index loops mirror the index notation of the formulas (σ_ij B_Ij, ...): keep them.
 #![allow(clippy::needless_range_loop)]

@@ -48,21 +48,35 @@ pub fn increment_tangent(
     du: &Quad,
     st0: &QuadState,
 ) -> [[f64; 8]; 8] {
+    increment_tangent_and_flow(form, mat, x0, du, st0).0
+}
+
+/// [`increment_tangent`] and whether any of its evaluations flowed plastically (the tangent
+/// then depends on the increment through the return mapping, not only through the geometry).
+pub fn increment_tangent_and_flow(
+    form: QuadFormulation,
+    mat: &J2Material,
+    x0: &Quad,
+    du: &Quad,
+    st0: &QuadState,
+) -> ([[f64; 8]; 8], bool) {
     let h = STEP * characteristic_length(x0);
     let mut k = [[0.0; 8]; 8];
+    let mut flowed = false;
     for j in 0..8 {
         let (node, c) = (j / 2, j % 2);
         let mut plus = *du;
         plus[node][c] += h;
         let mut minus = *du;
         minus[node][c] -= h;
-        let fp = increment_forces(form, mat, x0, &plus, st0).0.force;
-        let fm = increment_forces(form, mat, x0, &minus, st0).0.force;
+        let (fp, sp) = increment_forces(form, mat, x0, &plus, st0);
+        let (fm, sm) = increment_forces(form, mat, x0, &minus, st0);
+        flowed |= sp.plastic_work != st0.plastic_work || sm.plastic_work != st0.plastic_work;
         for i in 0..8 {
-            k[i][j] = (fp[i / 2][i % 2] - fm[i / 2][i % 2]) / (2.0 * h);
+            k[i][j] = (fp.force[i / 2][i % 2] - fm.force[i / 2][i % 2]) / (2.0 * h);
         }
     }
-    k
+    (k, flowed)
 }
 
 #[cfg(test)]

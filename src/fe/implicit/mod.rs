@@ -3,7 +3,8 @@
 //!
 //! - [`element_tangent`]: one ring element over a load increment, forces and tangent from
 //!   the element's own explicit update (one copy of the kinematics and of every law);
-//! - [`system`]: the sparse tangent and its LU (faer);
+//! - [`system`]: the sparse tangent and its solve (faer: LDLᵀ of the symmetric part,
+//!   refined);
 //! - [`plane`]: the rigid frictionless plane, enforced exactly by an active set;
 //! - [`static_solver`]: Newton-Raphson with line search, increment by increment.
 

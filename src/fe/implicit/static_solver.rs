@@ -1,6 +1,6 @@
 //! The quasi-static implicit solver of a meridian section: equilibrium f_int(x) = f_ext at
 //! each load increment by Newton-Raphson with a backtracking line search, the tangent of
-//! every element from its own update ([`super::element_tangent`]), the sparse LU of
+//! every element from its own update ([`super::element_tangent`]), the sparse solve of
 //! [`super::system`], and a rigid frictionless plane enforced exactly by an active set
 //! ([`super::plane`]). Geometrically nonlinear (updated Lagrangian, the explicit elements'
 //! objective update); rate-dependent laws at their reference rate ([`Law::quasi_static`]).
@@ -12,11 +12,12 @@
 //!
 //! [`Law::quasi_static`]: crate::material::hardening::Law::quasi_static
 
-use super::element_tangent::{increment_forces, increment_tangent};
+use super::element_tangent::{increment_forces, increment_tangent_and_flow};
 use super::plane::ExactPlane;
 use super::system::Pattern;
 use crate::error::{Error, Result};
 use crate::fe::elements::ring::element::Quad;
+use crate::fe::elements::ring::shape::characteristic_length;
 use crate::fe::elements::ring::QuadState;
 use crate::fe::materials::J2Material;
 use crate::fe::section::solver::SectionModel;
@@ -127,6 +128,21 @@ struct System<'a> {
     control: Option<(usize, f64)>,
     tol: f64,
 }
+
+/// The element tangents of one Newton solve and whether each was taken where its quad
+/// flows plastically.
+#[derive(Default)]
+struct TangentCache {
+    blocks: Vec<[[f64; 8]; 8]>,
+    plastic: Vec<bool>,
+    /// The quads' nodal increments (m) where each tangent was taken, and their sizes (m).
+    taken_at: Vec<Quad>,
+    size: Vec<f64>,
+}
+
+/// The nodal movement (relative to the quad's size) below which an elastic quad's tangent is
+/// kept within one Newton solve ([`StaticSolver::refresh_tangents`]).
+const TANGENT_DRIFT: f64 = 1e-5;
 
 /// The forces and trial states of every quad for one displacement increment.
 struct Evaluation {
@@ -475,6 +491,7 @@ impl StaticSolver {
             })
             .collect();
         let mut eval = self.evaluate(du)?;
+        let mut cache = TangentCache::default();
         let f_ext = self.loads(*load);
         let mut r = residual(&eval.f_int, &f_ext, constrained);
         let mut rel = norm(&r) / force_scale(&eval.f_int, &f_ext, constrained);
@@ -490,13 +507,14 @@ impl StaticSolver {
                 break;
             }
             let rhs: Vec<f64> = r.iter().zip(&open).map(|(a, b)| a + b).collect();
-            let tangents = self.tangents(du);
+            self.refresh_tangents(du, &eval.states, &mut cache);
+            let tangents = &cache.blocks;
             let (d, dload) = match control {
-                None => (self.pattern.solve(&tangents, constrained, &rhs)?, 0.0),
+                None => (self.pattern.solve(tangents, constrained, &rhs)?, 0.0),
                 Some((c, _)) => {
                     let cols =
                         self.pattern
-                            .solve_columns(&tangents, constrained, &[&rhs, &reference])?;
+                            .solve_columns(tangents, constrained, &[&rhs, &reference])?;
                     let (a, b) = (&cols[0], &cols[1]);
                     let dload = (control_gap(du) - a[c]) / b[c];
                     if !dload.is_finite() {
@@ -510,7 +528,7 @@ impl StaticSolver {
                     (d, dload)
                 }
             };
-            // The identity rows' exact solution is their prescribed correction; the LU
+            // The identity rows' exact solution is their prescribed correction; a sparse solve
             // returns it only to its round-off against the stiffness (about 1e-14 m), above
             // the check's 1e-3 gap tolerance, and unmet constraints switch the line search off.
             let mut d = d;
@@ -590,13 +608,39 @@ impl StaticSolver {
         Ok(Evaluation { f_int, states })
     }
 
-    /// Every quad's tangent (N/m) at the increment `du`, in mesh order.
-    fn tangents(&self, du: &[[f64; 2]]) -> Vec<[[f64; 8]; 8]> {
-        (0..self.model.quads.len())
-            .into_par_iter()
-            .map(|e| {
+    /// Brings every quad's tangent (N/m) in `cache` to the increment `du` whose trial states
+    /// are `trial`. A quad's tangent is taken again unless it was taken without plastic flow
+    /// in any of its evaluations, the quad does not flow now, and its nodes have moved by
+    /// at most [`TANGENT_DRIFT`] of its size since: an elastic quad's tangent changes with
+    /// the increment only through its geometry and stress, by about that fraction, so Newton
+    /// keeps its quadratic convergence to residuals far below the tolerance.
+    fn refresh_tangents(&self, du: &[[f64; 2]], trial: &[QuadState], cache: &mut TangentCache) {
+        let quads = self.model.quads.len();
+        let first = cache.blocks.is_empty();
+        if first {
+            cache.size = (0..quads)
+                .map(|e| characteristic_length(&self.element_nodes(e, du).0))
+                .collect();
+        }
+        let stale: Vec<usize> = (0..quads)
+            .filter(|&e| {
+                if first || cache.plastic[e] || trial[e].plastic_work != self.states[e].plastic_work
+                {
+                    return true;
+                }
+                let now = self.element_nodes(e, du).1;
+                let drift = (0..4)
+                    .flat_map(|k| (0..2).map(move |c| (k, c)))
+                    .map(|(k, c)| (now[k][c] - cache.taken_at[e][k][c]).abs())
+                    .fold(0.0f64, f64::max);
+                drift > TANGENT_DRIFT * cache.size[e]
+            })
+            .collect();
+        let fresh: Vec<([[f64; 8]; 8], bool)> = stale
+            .par_iter()
+            .map(|&e| {
                 let (x0, d) = self.element_nodes(e, du);
-                increment_tangent(
+                increment_tangent_and_flow(
                     self.model.formulation,
                     self.material(e),
                     &x0,
@@ -604,7 +648,17 @@ impl StaticSolver {
                     &self.states[e],
                 )
             })
-            .collect()
+            .collect();
+        if first {
+            (cache.blocks, cache.plastic) = fresh.into_iter().unzip();
+            cache.taken_at = (0..quads).map(|e| self.element_nodes(e, du).1).collect();
+            return;
+        }
+        for (&e, (k, flowed)) in stale.iter().zip(fresh) {
+            cache.blocks[e] = k;
+            cache.plastic[e] = flowed;
+            cache.taken_at[e] = self.element_nodes(e, du).1;
+        }
     }
 
     /// Adds nodes across the plane to the active set and releases nodes the plane pulls by

@@ -21,7 +21,6 @@ use crate::study::records::estimate::{estimate, Estimate};
 use crate::study::run::quasi_static::{
     peak_of, run_loop, LoadTo, LoopMesh, LoopSummary, StaticCase, StaticLoop, Support,
 };
-use rayon::prelude::*;
 use serde::Serialize;
 
 /// The finest ladder level of a loop unless asked otherwise (levels 0 and 1 behind the
@@ -128,10 +127,7 @@ pub fn run_loop_ladder(case: &StaticCase, levels: u32) -> Result<(Vec<StaticLoop
             "2 or 3 levels, the coarsest at level >= 0",
         ));
     }
-    let loops = (case.level + 1 - levels..=case.level)
-        .into_par_iter()
-        .map(|level| run_loop(&StaticCase { level, ..*case }))
-        .collect::<Result<Vec<_>>>()?;
+    let loops = run_levels(case, case.level + 1 - levels)?;
     let of = |name: &str, f: fn(&LoopSummary) -> f64| -> Result<Estimate> {
         let v: Vec<f64> = loops.iter().map(|l| f(&l.summary)).collect();
         estimate(&v, 2.0).ok_or_else(|| {
@@ -150,6 +146,36 @@ pub fn run_loop_ladder(case: &StaticCase, levels: u32) -> Result<(Vec<StaticLoop
         contact_radius: of("contact radius", |s| s.contact_radius)?,
     };
     Ok((loops, est))
+}
+
+/// The loops of `case` on levels `first ..= case.level`, coarse to fine. The finest level
+/// (the longest, by about four times the next) runs on the shared thread pool, the coarser
+/// ones meanwhile on a thread of their own: the finest level's sequential linear solves then
+/// never wait behind the coarser levels' element work, which a shared pool's work stealing
+/// lets them do. Each loop's numbers do not depend on the threads that run it.
+fn run_levels(case: &StaticCase, first: u32) -> Result<Vec<StaticLoop>> {
+    let coarse = || -> Result<Vec<StaticLoop>> {
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(1)
+            .build()
+            .map_err(|e| Error::Numerical(format!("static ladder: no thread pool ({e})")))?;
+        pool.install(|| {
+            (first..case.level)
+                .map(|level| run_loop(&StaticCase { level, ..*case }))
+                .collect()
+        })
+    };
+    let (coarse, finest) = std::thread::scope(|s| {
+        let coarse = s.spawn(coarse);
+        let finest = run_loop(case);
+        let coarse = coarse
+            .join()
+            .unwrap_or_else(|panic| std::panic::resume_unwind(panic));
+        (coarse, finest)
+    });
+    let mut loops = coarse?;
+    loops.push(finest?);
+    Ok(loops)
 }
 
 /// The head-on case of a `scene` whose static image is one ball on a plane (identical
