@@ -18,7 +18,7 @@ use super::system::Pattern;
 use crate::error::{Error, Result};
 use crate::fe::elements::ring::element::Quad;
 use crate::fe::elements::ring::shape::characteristic_length;
-use crate::fe::elements::ring::QuadState;
+use crate::fe::elements::ring::{QuadFormulation, QuadState};
 use crate::fe::materials::J2Material;
 use crate::fe::section::solver::SectionModel;
 use rayon::prelude::*;
@@ -128,6 +128,10 @@ struct System<'a> {
     control: Option<(usize, f64)>,
     tol: f64,
 }
+
+/// A function of one quad over an increment: its formulation, material, nodes at the start
+/// (m), nodal increments (m) and committed state.
+type QuadOp<T> = fn(QuadFormulation, &J2Material, &Quad, &Quad, &QuadState) -> T;
 
 /// The element tangents of one Newton solve and whether each was taken where its quad
 /// flows plastically.
@@ -580,16 +584,7 @@ impl StaticSolver {
     fn evaluate(&self, du: &[[f64; 2]]) -> Result<Evaluation> {
         let outs: Vec<_> = (0..self.model.quads.len())
             .into_par_iter()
-            .map(|e| {
-                let (x0, d) = self.element_nodes(e, du);
-                increment_forces(
-                    self.model.formulation,
-                    self.material(e),
-                    &x0,
-                    &d,
-                    &self.states[e],
-                )
-            })
+            .map(|e| self.on_quad(e, du, increment_forces))
             .collect();
         let mut f_int = vec![[0.0; 2]; self.x.len()];
         let mut states = Vec::with_capacity(outs.len());
@@ -638,16 +633,7 @@ impl StaticSolver {
             .collect();
         let fresh: Vec<([[f64; 8]; 8], bool)> = stale
             .par_iter()
-            .map(|&e| {
-                let (x0, d) = self.element_nodes(e, du);
-                increment_tangent_and_flow(
-                    self.model.formulation,
-                    self.material(e),
-                    &x0,
-                    &d,
-                    &self.states[e],
-                )
-            })
+            .map(|&e| self.on_quad(e, du, increment_tangent_and_flow))
             .collect();
         if first {
             (cache.blocks, cache.plastic) = fresh.into_iter().unzip();
@@ -709,6 +695,19 @@ impl StaticSolver {
     fn element_nodes(&self, e: usize, du: &[[f64; 2]]) -> (Quad, Quad) {
         let q = self.model.quads[e];
         (q.map(|i| self.x[i as usize]), q.map(|i| du[i as usize]))
+    }
+
+    /// `op` (a function of [`super::element_tangent`]) on quad `e` moved by the increment
+    /// `du` (m) from its committed state.
+    fn on_quad<T>(&self, e: usize, du: &[[f64; 2]], op: QuadOp<T>) -> T {
+        let (x0, d) = self.element_nodes(e, du);
+        op(
+            self.model.formulation,
+            self.material(e),
+            &x0,
+            &d,
+            &self.states[e],
+        )
     }
 
     fn material(&self, e: usize) -> &J2Material {
