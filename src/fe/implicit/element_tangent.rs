@@ -40,20 +40,10 @@ pub fn increment_forces(
 }
 
 /// The tangent ∂f/∂Δu of [`increment_forces`] (N/m, 8 × 8, row and column 2k + c for node k
-/// and component c = r, z), by central differences of step 1e-7 of the element size.
+/// and component c = r, z), by central differences of step 1e-7 of the element size, and
+/// whether any of its evaluations flowed plastically (the tangent then depends on the
+/// increment through the return mapping, not only through the geometry).
 pub fn increment_tangent(
-    form: QuadFormulation,
-    mat: &J2Material,
-    x0: &Quad,
-    du: &Quad,
-    st0: &QuadState,
-) -> [[f64; 8]; 8] {
-    increment_tangent_and_flow(form, mat, x0, du, st0).0
-}
-
-/// [`increment_tangent`] and whether any of its evaluations flowed plastically (the tangent
-/// then depends on the increment through the return mapping, not only through the geometry).
-pub fn increment_tangent_and_flow(
     form: QuadFormulation,
     mat: &J2Material,
     x0: &Quad,
@@ -97,7 +87,7 @@ mod tests {
         for form in QuadFormulation::ALL {
             let st = QuadState::default();
             let zero = [[0.0; 2]; 4];
-            let k = increment_tangent(form, &mat, &quad(), &zero, &st);
+            let k = increment_tangent(form, &mat, &quad(), &zero, &st).0;
             let du: Quad = [[1e-9, -2e-9], [3e-9, 0.5e-9], [-1e-9, 2e-9], [0.0, 1e-9]];
             let f = increment_forces(form, &mat, &quad(), &du, &st).0.force;
             let scale = k.iter().flatten().fold(0.0f64, |a, b| a.max(b.abs()));

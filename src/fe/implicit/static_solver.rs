@@ -12,7 +12,7 @@
 //!
 //! [`Law::quasi_static`]: crate::material::hardening::Law::quasi_static
 
-use super::element_tangent::{increment_forces, increment_tangent_and_flow};
+use super::element_tangent::{increment_forces, increment_tangent};
 use super::plane::ExactPlane;
 use super::system::Pattern;
 use crate::error::{Error, Result};
@@ -133,15 +133,28 @@ struct System<'a> {
 /// (m), nodal increments (m) and committed state.
 type QuadOp<T> = fn(QuadFormulation, &J2Material, &Quad, &Quad, &QuadState) -> T;
 
-/// The element tangents of one Newton solve and whether each was taken where its quad
-/// flows plastically.
-#[derive(Default)]
+/// The element tangents of one Newton solve, where each was taken and whether any of its
+/// evaluations flowed plastically.
 struct TangentCache {
     blocks: Vec<[[f64; 8]; 8]>,
     plastic: Vec<bool>,
     /// The quads' nodal increments (m) where each tangent was taken, and their sizes (m).
     taken_at: Vec<Quad>,
     size: Vec<f64>,
+}
+
+impl TangentCache {
+    /// A cache of `sizes.len()` quads with no tangent taken yet (each marked plastic, so the
+    /// first refresh takes them all).
+    fn empty(sizes: Vec<f64>) -> Self {
+        let n = sizes.len();
+        TangentCache {
+            blocks: vec![[[0.0; 8]; 8]; n],
+            plastic: vec![true; n],
+            taken_at: vec![[[0.0; 2]; 4]; n],
+            size: sizes,
+        }
+    }
 }
 
 /// The nodal movement (relative to the quad's size) below which an elastic quad's tangent is
@@ -495,7 +508,11 @@ impl StaticSolver {
             })
             .collect();
         let mut eval = self.evaluate(du)?;
-        let mut cache = TangentCache::default();
+        let mut cache = TangentCache::empty(
+            (0..self.model.quads.len())
+                .map(|e| characteristic_length(&self.element_nodes(e, du).0))
+                .collect(),
+        );
         let f_ext = self.loads(*load);
         let mut r = residual(&eval.f_int, &f_ext, constrained);
         let mut rel = norm(&r) / force_scale(&eval.f_int, &f_ext, constrained);
@@ -610,36 +627,21 @@ impl StaticSolver {
     /// the increment only through its geometry and stress, by about that fraction, so Newton
     /// keeps its quadratic convergence to residuals far below the tolerance.
     fn refresh_tangents(&self, du: &[[f64; 2]], trial: &[QuadState], cache: &mut TangentCache) {
-        let quads = self.model.quads.len();
-        let first = cache.blocks.is_empty();
-        if first {
-            cache.size = (0..quads)
-                .map(|e| characteristic_length(&self.element_nodes(e, du).0))
-                .collect();
-        }
-        let stale: Vec<usize> = (0..quads)
+        let stale: Vec<usize> = (0..self.model.quads.len())
             .filter(|&e| {
-                if first || cache.plastic[e] || trial[e].plastic_work != self.states[e].plastic_work
-                {
-                    return true;
-                }
                 let now = self.element_nodes(e, du).1;
-                let drift = (0..4)
-                    .flat_map(|k| (0..2).map(move |c| (k, c)))
-                    .map(|(k, c)| (now[k][c] - cache.taken_at[e][k][c]).abs())
+                let drift = (0..8)
+                    .map(|i| (now[i / 2][i % 2] - cache.taken_at[e][i / 2][i % 2]).abs())
                     .fold(0.0f64, f64::max);
-                drift > TANGENT_DRIFT * cache.size[e]
+                cache.plastic[e]
+                    || trial[e].plastic_work != self.states[e].plastic_work
+                    || drift > TANGENT_DRIFT * cache.size[e]
             })
             .collect();
         let fresh: Vec<([[f64; 8]; 8], bool)> = stale
             .par_iter()
-            .map(|&e| self.on_quad(e, du, increment_tangent_and_flow))
+            .map(|&e| self.on_quad(e, du, increment_tangent))
             .collect();
-        if first {
-            (cache.blocks, cache.plastic) = fresh.into_iter().unzip();
-            cache.taken_at = (0..quads).map(|e| self.element_nodes(e, du).1).collect();
-            return;
-        }
         for (&e, (k, flowed)) in stale.iter().zip(fresh) {
             cache.blocks[e] = k;
             cache.plastic[e] = flowed;
