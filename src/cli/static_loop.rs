@@ -43,7 +43,8 @@ pub struct StaticArgs {
     /// Levels of the ladder behind the error bars (2 or 3, the finest --level).
     #[arg(long, default_value_t = 2)]
     pub levels: u32,
-    /// Increments of loading (and of unloading) at level 0; each level doubles them.
+    /// Increments of loading at level 0 (unloading takes half as many); each level doubles
+    /// them.
     #[arg(long, default_value_t = DEFAULT_INCREMENTS)]
     pub increments: usize,
     /// Split the surface rings at the contact edge SPLIT-fold on every level (the edge read

@@ -6,8 +6,10 @@
 //! - [`system`]: the sparse tangent and its solve (faer: LDLᵀ of the symmetric part,
 //!   refined);
 //! - [`plane`]: the rigid frictionless plane, enforced exactly by an active set;
+//! - [`contact_edge`]: where the surface leaves the plane, between the mesh's nodes;
 //! - [`static_solver`]: Newton-Raphson with line search, increment by increment.
 
+pub mod contact_edge;
 pub mod element_tangent;
 pub mod plane;
 pub mod static_solver;

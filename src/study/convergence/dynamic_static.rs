@@ -102,7 +102,7 @@ pub struct DynamicStatic {
 pub struct SameMesh {
     /// Quads of the mesh.
     pub quads: usize,
-    /// Increments of loading (and of unloading) of each loop, coarse to fine.
+    /// Increments of loading of each loop, coarse to fine (unloading takes half as many).
     pub increments: Vec<usize>,
     /// The quasi-static e over the increments.
     pub e_static: Estimate,
