@@ -8,7 +8,8 @@
 
 use super::quasi_static::max_approach;
 use super::thornton::{
-    enlarged_radius, enlarged_unloading, hertz_max_approach, hertzian_rebound, yielding_loading,
+    enlarged_radius, enlarged_unloading, hertz_max_approach, hertzian_rebound, thornton_curves,
+    yielding_loading,
 };
 use super::{ClosedForm, ContactPair, NormalLaw, NormalSpec, ParamSpec, Params, Turn};
 use std::f64::consts::PI;
@@ -57,27 +58,15 @@ impl TaborHardening {
         };
         flat(a, b.min(sh)) + rising(a.max(sh), b)
     }
+
+    /// Force gained since yield at approach `delta` (m): π R* ∫_δy^δ p_lim, N.
+    fn plastic_gain(&self, dy: f64, delta: f64) -> f64 {
+        PI * self.radius * self.pressure_integral(dy, delta)
+    }
 }
 
 impl NormalLaw for TaborHardening {
-    fn loading(&self, delta: f64, _rate: f64, _speed: f64) -> f64 {
-        let plastic = |dy: f64| PI * self.radius * self.pressure_integral(dy, delta);
-        yielding_loading(
-            self.modulus,
-            self.radius,
-            self.yield_approach(),
-            delta,
-            plastic,
-        )
-    }
-
-    fn unloading(&self, delta: f64, _rate: f64, _speed: f64, turn: &Turn) -> f64 {
-        enlarged_unloading(self.modulus, self.radius, delta, turn)
-    }
-
-    fn residual(&self, delta: f64, force: f64) -> f64 {
-        enlarged_radius(self.modulus, self.radius, delta, force).1
-    }
+    thornton_curves!();
 
     fn thresholds(&self) -> Vec<f64> {
         let (dy, sh) = (self.yield_approach(), self.hardening_approach());

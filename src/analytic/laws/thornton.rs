@@ -26,6 +26,11 @@ impl Thornton {
         self.radius * (PI * self.limit_pressure / (2.0 * self.modulus)).powi(2)
     }
 
+    /// Force gained since yield at approach `delta` (m): π p_y R* (δ − δ_y), N.
+    fn plastic_gain(&self, dy: f64, delta: f64) -> f64 {
+        PI * self.limit_pressure * self.radius * (delta - dy)
+    }
+
     fn hertz(&self, delta: f64) -> f64 {
         hertz_force(self.modulus, self.radius, delta)
     }
@@ -77,25 +82,36 @@ pub fn enlarged_unloading(modulus: f64, radius: f64, delta: f64, turn: &Turn) ->
     hertz_force(modulus, rp, delta - dp)
 }
 
+/// The loading, unloading and residual of a Thornton-type law, as items of its
+/// `impl NormalLaw`: [`yielding_loading`] with the law's plastic force gain, then the
+/// enlarged-radius Hertz unloading ([`enlarged_unloading`], [`enlarged_radius`]). The law has
+/// the fields `modulus` (E*, Pa) and `radius` (R*, m) and the methods `yield_approach()`
+/// (δ_y, m) and `plastic_gain(dy, delta)` (the force gained since yield at `delta`, N).
+macro_rules! thornton_curves {
+    () => {
+        fn loading(&self, delta: f64, _rate: f64, _speed: f64) -> f64 {
+            yielding_loading(
+                self.modulus,
+                self.radius,
+                self.yield_approach(),
+                delta,
+                |dy: f64| self.plastic_gain(dy, delta),
+            )
+        }
+
+        fn unloading(&self, delta: f64, _rate: f64, _speed: f64, turn: &Turn) -> f64 {
+            enlarged_unloading(self.modulus, self.radius, delta, turn)
+        }
+
+        fn residual(&self, delta: f64, force: f64) -> f64 {
+            enlarged_radius(self.modulus, self.radius, delta, force).1
+        }
+    };
+}
+pub(super) use thornton_curves;
+
 impl NormalLaw for Thornton {
-    fn loading(&self, delta: f64, _rate: f64, _speed: f64) -> f64 {
-        let plastic = |dy: f64| PI * self.limit_pressure * self.radius * (delta - dy);
-        yielding_loading(
-            self.modulus,
-            self.radius,
-            self.yield_approach(),
-            delta,
-            plastic,
-        )
-    }
-
-    fn unloading(&self, delta: f64, _rate: f64, _speed: f64, turn: &Turn) -> f64 {
-        enlarged_unloading(self.modulus, self.radius, delta, turn)
-    }
-
-    fn residual(&self, delta: f64, force: f64) -> f64 {
-        enlarged_radius(self.modulus, self.radius, delta, force).1
-    }
+    thornton_curves!();
 
     fn thresholds(&self) -> Vec<f64> {
         vec![self.yield_approach()]
