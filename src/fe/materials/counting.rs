@@ -6,7 +6,6 @@
 //! [`crate::material::hardening::Counting`], re-exported here.
 
 use super::hardening::Hardening;
-use crate::fe::simd::Lanes;
 pub use crate::material::hardening::Counting;
 
 impl Hardening for Counting {
@@ -24,25 +23,6 @@ impl Hardening for Counting {
     #[inline(always)]
     fn plastic_increment(&self, q: f64, sy: f64, eps_p: f64, shear: f64, dt: f64) -> (f64, f64) {
         self.0.plastic_increment(q, sy, eps_p, shear, dt)
-    }
-
-    #[inline(always)]
-    fn static_yield_lanes<const W: usize>(&self, eps_p: Lanes<W>) -> Lanes<W> {
-        self.0.static_yield_lanes(eps_p)
-    }
-
-    #[inline(always)]
-    fn plastic_increment_lanes<const W: usize>(
-        &self,
-        yields: [bool; W],
-        q: Lanes<W>,
-        sy: Lanes<W>,
-        eps_p: Lanes<W>,
-        shear: f64,
-        dt: f64,
-    ) -> (Lanes<W>, Lanes<W>) {
-        self.0
-            .plastic_increment_lanes(yields, q, sy, eps_p, shear, dt)
     }
 
     fn update_history(&self, history: &mut [f64], _eps_p: f64, dp: f64, dt: f64) {
