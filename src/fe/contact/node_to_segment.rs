@@ -131,24 +131,7 @@ impl SurfacePair {
             .iter()
             .map(|&(s, m)| {
                 let sf = &surfaces[s];
-                let laws = (0..sf.nodes.len())
-                    .map(|i| {
-                        let k = 0.5
-                            * params.penalty.geometric_stiffness(
-                                youngs,
-                                bulk,
-                                sf.area[i],
-                                sf.thickness[i],
-                                sf.volume[i],
-                            );
-                        NodeLaw {
-                            k,
-                            kt: params.tangential_ratio * k,
-                            c: 0.0,
-                            omega_elem: 2.0 * wave[s] / sf.courant_length[i],
-                        }
-                    })
-                    .collect();
+                let laws = sf.node_laws(&params, 0.5, youngs, bulk, wave[s]);
                 Pass {
                     slave: s,
                     master: m,

@@ -71,24 +71,13 @@ impl RigidPlane {
                 "finite coordinates",
             ));
         }
-        let laws = (0..surface.nodes.len())
-            .map(|i| {
-                let k = params.penalty.geometric_stiffness(
-                    material.youngs,
-                    material.bulk_modulus(),
-                    surface.area[i],
-                    surface.thickness[i],
-                    surface.volume[i],
-                );
-                NodeLaw {
-                    k,
-                    kt: params.tangential_ratio * k,
-                    c: 0.0,
-                    omega_elem: 2.0 * material.dilatational_wave_speed()
-                        / surface.courant_length[i],
-                }
-            })
-            .collect();
+        let laws = surface.node_laws(
+            &params,
+            1.0,
+            material.youngs,
+            material.bulk_modulus(),
+            material.dilatational_wave_speed(),
+        );
         let n = surface.nodes.len();
         Ok(RigidPlane {
             name: "rigid-plane contact".into(),

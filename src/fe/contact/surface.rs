@@ -1,6 +1,8 @@
 //! A contact surface: the quads that can touch, their nodes and each node's share of area and
 //! of the solid underneath (what the penalty stiffness is scaled by).
 
+use super::law::NodeLaw;
+use super::params::ContactParams;
 use crate::error::{Error, Result};
 use crate::fe::solver::timestep::characteristic_length;
 use crate::fe::tensor::{quad_area, sub};
@@ -155,6 +157,39 @@ impl ContactSurface {
     /// Total area of the surface, m².
     pub fn total_area(&self) -> f64 {
         self.area.iter().sum()
+    }
+
+    /// The penalty law of each node of `nodes`: `weight` (the pass weight) times the
+    /// geometric stiffness of `params`'s penalty rule over the solid under the node (Young's
+    /// and bulk moduli `youngs`, `bulk`, Pa), stick stiffness `tangential_ratio` times that,
+    /// no dashpot, and the element frequency 2 c / L of the dilatational wave speed `wave`
+    /// (m/s) over the node's Courant length.
+    pub fn node_laws(
+        &self,
+        params: &ContactParams,
+        weight: f64,
+        youngs: f64,
+        bulk: f64,
+        wave: f64,
+    ) -> Vec<NodeLaw> {
+        (0..self.nodes.len())
+            .map(|i| {
+                let k = weight
+                    * params.penalty.geometric_stiffness(
+                        youngs,
+                        bulk,
+                        self.area[i],
+                        self.thickness[i],
+                        self.volume[i],
+                    );
+                NodeLaw {
+                    k,
+                    kt: params.tangential_ratio * k,
+                    c: 0.0,
+                    omega_elem: 2.0 * wave / self.courant_length[i],
+                }
+            })
+            .collect()
     }
 }
 
