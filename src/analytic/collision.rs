@@ -32,12 +32,10 @@ pub struct Collision {
     pub v1_before: [f64; 2],
     /// Velocities before, [normal, tangential], m/s.
     pub v2_before: [f64; 2],
-    /// Velocity of body 1 after, [normal, tangential], m/s (eq. 32 and the Coulomb impulse).
-    pub v1_after: [f64; 2],
-    /// Velocity of body 2 after, [normal, tangential], m/s.
-    pub v2_after: [f64; 2],
-    /// Spins after about n × t, rad/s (body 1, body 2); 0 for a wall.
-    pub spin_after: [f64; 2],
+    /// The state after: velocities [normal, tangential] (m/s; eq. 32 and the Coulomb
+    /// impulse), spins about n × t (rad/s; 0 for a wall) and kinetic energy (translation and
+    /// spin, J). Without impact the velocities before, no spin and `energy_before`.
+    pub after: Exchange,
     /// Energy dissipation factor of the normal impact, eq. 33.
     pub eta: f64,
     /// Revised factor with friction, eq. 43 (the paper's definition).
@@ -49,8 +47,6 @@ pub struct Collision {
     pub zhang_loss: f64,
     /// Kinetic energy before (translation only; no initial spin), J.
     pub energy_before: f64,
-    /// Kinetic energy after (translation and spin), J.
-    pub energy_after: f64,
 }
 
 /// Pair friction coefficient: the mean of the two materials' dynamic μ (a rigid wall takes the
@@ -113,15 +109,17 @@ pub fn collide_with_mu(
             tangential: None,
             v1_before: v1,
             v2_before: v2,
-            v1_after: v1,
-            v2_after: v2,
-            spin_after: [0.0; 2],
+            after: Exchange {
+                v1_after: v1,
+                v2_after: v2,
+                spin_after: [0.0; 2],
+                energy_after: energy_before,
+            },
             eta: 0.0,
             eta_friction: 0.0,
             eta_impulse: 0.0,
             zhang_loss: 0.0,
             energy_before,
-            energy_after: energy_before,
         });
     };
     let e = normal.e;
@@ -130,12 +128,7 @@ pub fn collide_with_mu(
     let jn = (1.0 + e) * pair.mass * vr;
     let tang = tangential_impact(&normal, mu, v1[1] - v2[1]);
     let jt = tang.impulse;
-    let Exchange {
-        v1_after,
-        v2_after,
-        spin_after,
-        energy_after,
-    } = exchange(b1, b2, v1, v2, jn, jt);
+    let after = exchange(b1, b2, v1, v2, jn, jt);
     let two_pi = 2.0 * std::f64::consts::PI;
     let ke_n_before = kinetic(m1, v1[0]) + kinetic(m2, v2[0]);
     let eta = normal_energy_loss(pair.mass, e, vr) / (two_pi * ke_n_before);
@@ -151,14 +144,11 @@ pub fn collide_with_mu(
         tangential: Some(tang),
         v1_before: v1,
         v2_before: v2,
-        v1_after,
-        v2_after,
-        spin_after,
+        after,
         eta,
         eta_friction,
         eta_impulse,
         zhang_loss: zhang_energy_loss(pair.mass, e, mu, vr, v1[1] - v2[1]),
         energy_before,
-        energy_after,
     })
 }

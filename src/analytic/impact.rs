@@ -65,16 +65,12 @@ pub struct LawImpact {
     pub normal_impulse: f64,
     /// Tangential impulse on body 2 along +t, N·s.
     pub tangential_impulse: f64,
-    /// Velocity of body 1 after, [normal, tangential], m/s.
-    pub v1_after: [f64; 2],
-    /// Velocity of body 2 after, [normal, tangential], m/s.
-    pub v2_after: [f64; 2],
-    /// Spins after about n × t, rad/s (0 for a wall).
-    pub spin_after: [f64; 2],
+    /// The state after the exchange of those impulses: velocities [normal, tangential]
+    /// (m/s), spins about n × t (rad/s; 0 for a wall), kinetic energy (translation and spin,
+    /// J).
+    pub after: Exchange,
     /// Kinetic energy before (no initial spin), J.
     pub energy_before: f64,
-    /// Kinetic energy after (translation and spin), J.
-    pub energy_after: f64,
     /// Work taken out of the bodies by the normal force, ∫F δ̇ dt, J.
     pub work_normal: f64,
     /// Work taken out of the bodies by the tangential force, ∫f u dt, J.
@@ -93,7 +89,7 @@ impl LawImpact {
 
     /// (KE before − KE after − W_n − W_t)/KE before: the energy balance's relative residual.
     pub fn energy_residual(&self) -> f64 {
-        (self.energy_before - self.energy_after - self.work_normal - self.work_tangential)
+        (self.energy_before - self.after.energy_after - self.work_normal - self.work_tangential)
             / self.energy_before
     }
 }
@@ -582,12 +578,7 @@ pub fn integrate_spinning(
     let normal_impulse = pair.mass * (speed + rebound);
     let tangential_impulse = tangential_mass * (slip0 - y[4]);
     let energy_before = kinetic_energy(b1, b2, v1, v2, w);
-    let Exchange {
-        v1_after,
-        v2_after,
-        spin_after,
-        energy_after,
-    } = exchange_spinning(b1, b2, v1, v2, w, normal_impulse, tangential_impulse);
+    let after = exchange_spinning(b1, b2, v1, v2, w, normal_impulse, tangential_impulse);
     let peak_force = history.iter().map(|s| s.force).fold(0.0, f64::max);
     Ok(Some(LawImpact {
         pair,
@@ -604,11 +595,8 @@ pub fn integrate_spinning(
         slip_after: y[4],
         normal_impulse,
         tangential_impulse,
-        v1_after,
-        v2_after,
-        spin_after,
+        after,
         energy_before,
-        energy_after,
         work_normal: y[2],
         work_tangential: y[5],
         history,

@@ -5,6 +5,7 @@ use crate::analytic::damping_index::{
     best_reading, candidate_readings, damping_index, reading_score, table1, EtaReading,
     ReadingScore, Table1Row, TABLE1_SPEEDS, ZETA_TABLE_SCALE,
 };
+use crate::analytic::exchange::Exchange;
 use crate::analytic::friction::TangentialExit;
 use crate::analytic::hertz::HertzPair;
 use crate::analytic::parametric::all_figures;
@@ -250,21 +251,22 @@ fn collision_json(c: &Collision, b1: &Body, b2: &Body) -> Value {
         "eta_impulse": num(c.eta_impulse),
         "zhang_loss": num(c.zhang_loss),
         "energy_before": num(c.energy_before),
-        "energy_after": num(c.energy_after),
+        "energy_after": num(c.after.energy_after),
         "tangential_exit": exit,
         "tangential_exit_phase": exit_phase,
         "tangential_exit_time": exit_time,
         "tangential_exit_delta": exit_delta,
     });
-    let out = merged(out, after_json(c.v1_after, c.v2_after, c.spin_after));
+    let out = merged(out, after_json(&c.after));
     let sigma_p = b1.yield_pressure().min(b2.yield_pressure());
     merged(out, pair_json(&c.pair, sigma_p, c.mu, b1, b2))
 }
 
 /// The velocities after impact, as `twoball analytic --json` and `twoball laws run --json`
 /// write them: `v1_after`, `v2_after`, `v1t_after`, `v2t_after` from the `[normal,
-/// tangential]` velocities `v1`, `v2` (m/s), `w1_after`, `w2_after` from the spins (rad/s).
-pub(super) fn after_json(v1: [f64; 2], v2: [f64; 2], spin: [f64; 2]) -> Value {
+/// tangential]` velocities of `after` (m/s), `w1_after`, `w2_after` from its spins (rad/s).
+pub(super) fn after_json(after: &Exchange) -> Value {
+    let (v1, v2, spin) = (after.v1_after, after.v2_after, after.spin_after);
     json!({
         "v1_after": num(v1[0]),
         "v2_after": num(v2[0]),
@@ -273,6 +275,16 @@ pub(super) fn after_json(v1: [f64; 2], v2: [f64; 2], spin: [f64; 2]) -> Value {
         "w1_after": num(spin[0]),
         "w2_after": num(spin[1]),
     })
+}
+
+/// Prints the state after an impact (velocities and spins), as `twoball analytic` and
+/// `twoball laws run` show it.
+pub(super) fn print_after(after: &Exchange) {
+    let (v1, v2, w) = (after.v1_after, after.v2_after, after.spin_after);
+    println!(
+        "after:  v1 = ({:+.6}, {:+.6}) m/s, v2 = ({:+.6}, {:+.6}) m/s, spins = ({:+.4}, {:+.4}) rad/s",
+        v1[0], v1[1], v2[0], v2[1], w[0], w[1]
+    );
 }
 
 /// The pair's keys of both `--json` objects: `e_star` (Pa), `r_star` (m), `m_star` (kg) of
@@ -365,10 +377,7 @@ fn print_table(c: &Collision, b1: &Body, b2: &Body) {
         "  restitution   e = {:.6}   (v_r = {:.6} -> {:.6} m/s)",
         n.e, n.approach_speed, n.rebound_speed
     );
-    println!(
-        "after:  v1 = ({:+.6}, {:+.6}) m/s, v2 = ({:+.6}, {:+.6}) m/s, spins = ({:+.4}, {:+.4}) rad/s",
-        c.v1_after[0], c.v1_after[1], c.v2_after[0], c.v2_after[1], c.spin_after[0], c.spin_after[1]
-    );
+    print_after(&c.after);
     match c.tangential.map(|t| t.exit) {
         Some(TangentialExit::Stick {
             phase,

@@ -2,7 +2,7 @@
 //! tangential law (same ball, speed and JSON flags as `twoball analytic`); `laws fit`: fit a
 //! law's parameters to restitution and maximum-approach data and export them for DEM codes.
 
-use super::analytic::{after_json, bodies, merged, num, pair_json, AnalyticArgs};
+use super::analytic::{after_json, bodies, merged, num, pair_json, print_after, AnalyticArgs};
 use super::law_params::parse_params;
 use crate::analytic::collision::pair_friction;
 use crate::analytic::friction::{normal_energy_loss, revised_eta, zhang_energy_loss};
@@ -299,10 +299,10 @@ pub fn run_json(a: &LawRunArgs, r: &LawRun) -> Value {
         "peak_force": num(i.peak_force),
         "eta": num(normal_energy_loss(m, i.e, vr) / (two_pi * ke_n)),
         "eta_friction": num(revised_eta(b1.mass(), b2.mass(), v1, v2, i.e, r.mu)),
-        "eta_impulse": num((i.energy_before - i.energy_after) / (two_pi * i.energy_before)),
+        "eta_impulse": num((i.energy_before - i.after.energy_after) / (two_pi * i.energy_before)),
         "zhang_loss": num(zhang_energy_loss(m, i.e, r.mu, vr, v1[1] - v2[1])),
         "energy_before": num(i.energy_before),
-        "energy_after": num(i.energy_after),
+        "energy_after": num(i.after.energy_after),
         "delta_max": num(i.delta_max),
         "contact_duration": num(i.contact_duration),
         "work_normal": num(i.work_normal),
@@ -313,7 +313,7 @@ pub fn run_json(a: &LawRunArgs, r: &LawRun) -> Value {
         "tangential_impulse": num(i.tangential_impulse),
         "steps": i.steps,
     });
-    let out = merged(out, after_json(i.v1_after, i.v2_after, i.spin_after));
+    let out = merged(out, after_json(&i.after));
     merged(out, extra)
 }
 
@@ -349,16 +349,13 @@ fn print_run(a: &LawRunArgs, r: &LawRun) {
         i.phase_times.len(),
         i.steps
     );
-    println!(
-        "after:  v1 = ({:+.6}, {:+.6}) m/s, v2 = ({:+.6}, {:+.6}) m/s, spins = ({:+.4}, {:+.4}) rad/s",
-        i.v1_after[0], i.v1_after[1], i.v2_after[0], i.v2_after[1], i.spin_after[0], i.spin_after[1]
-    );
+    print_after(&i.after);
     if let Some(et) = i.tangential_restitution() {
         println!("tangential restitution of the contact points = {et:.6}");
     }
     println!(
         "energy: before {:.6e} J, after {:.6e} J, normal work {:.6e} J, tangential work {:.6e} J, residual {:.1e}",
-        i.energy_before, i.energy_after, i.work_normal, i.work_tangential, i.energy_residual()
+        i.energy_before, i.after.energy_after, i.work_normal, i.work_tangential, i.energy_residual()
     );
 }
 

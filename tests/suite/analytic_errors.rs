@@ -81,10 +81,10 @@ proptest! {
         let (m1, m2) = (b1.mass(), b2.mass());
         for k in 0..2 {
             let p0 = m1 * c.v1_before[k] + m2 * c.v2_before[k];
-            let p1 = m1 * c.v1_after[k] + m2 * c.v2_after[k];
+            let p1 = m1 * c.after.v1_after[k] + m2 * c.after.v2_after[k];
             prop_assert!((p0 - p1).abs() <= 1e-12 * (m1 + m2) * 10.0);
         }
-        prop_assert!(c.energy_after <= c.energy_before * (1.0 + 1e-12));
+        prop_assert!(c.after.energy_after <= c.energy_before * (1.0 + 1e-12));
         prop_assert!(c.eta >= 0.0 && c.eta_friction >= 0.0 && c.eta_impulse >= 0.0);
         prop_assert!(c.eta <= 1.0 / (2.0 * std::f64::consts::PI) + 1e-12);
         if let Some(n) = c.normal {

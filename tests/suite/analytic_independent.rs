@@ -116,8 +116,8 @@ fn library_agrees_with_the_printed_integrals() {
             n.t1,
             n.t2,
             n.t3,
-            c.v1_after[0],
-            c.v2_after[0],
+            c.after.v1_after[0],
+            c.after.v2_after[0],
             c.eta,
         ];
         for (k, (g, w)) in got.iter().zip(want).enumerate() {

@@ -308,9 +308,9 @@ fn a_spin_acts_through_the_slip_it_gives_the_contact_point() {
         );
         assert!((spinning.slip_before - slip).abs() < 1e-12, "{}", tang.name);
         // The spin after is the spin before less R J_t / I.
-        let d_spin = sliding.spin_after[0];
+        let d_spin = sliding.after.spin_after[0];
         assert!(
-            (spinning.spin_after[0] - (w + d_spin)).abs() <= 1e-9 * w,
+            (spinning.after.spin_after[0] - (w + d_spin)).abs() <= 1e-9 * w,
             "{}",
             tang.name
         );

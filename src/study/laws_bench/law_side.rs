@@ -196,8 +196,8 @@ pub fn tangential_laws_on_point(
                 normal_law: normal.to_string(),
                 e: i.e,
                 tangential_restitution: i.tangential_restitution().unwrap_or(f64::NAN),
-                spin: i.spin_after[0],
-                v1t_after: i.v1_after[1],
+                spin: i.after.spin_after[0],
+                v1t_after: i.after.v1_after[1],
             })
         })
         .collect()

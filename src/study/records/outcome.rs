@@ -172,15 +172,16 @@ pub fn analytic_outcome(scene: &Scene, touch: &Touch) -> Result<(Outcome, Collis
         Some(n) => (n.e, n.delta2, n.t3),
         None => (1.0, 0.0, 0.0),
     };
+    let (v1, v2, spin) = (c.after.v1_after, c.after.v2_after, c.after.spin_after);
     let answer = FrameAnswer {
         e,
         v: [
-            [c.v1_after[0], shift(c.v1_after[1], -spin_slip), a[2]],
-            [c.v2_after[0], c.v2_after[1], b[2]],
+            [v1[0], shift(v1[1], -spin_slip), a[2]],
+            [v2[0], v2[1], b[2]],
         ],
         w: [
-            [wa[0], wa[1], wa[2] + c.spin_after[0]],
-            [wb[0], wb[1], wb[2] + c.spin_after[1]],
+            [wa[0], wa[1], wa[2] + spin[0]],
+            [wb[0], wb[1], wb[2] + spin[1]],
         ],
         delta_max,
         contact_duration,

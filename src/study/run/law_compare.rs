@@ -145,7 +145,7 @@ pub fn tangential_laws(scene: &Scene, touch: &Touch) -> Result<Vec<TangentialLaw
             Ok(TangentialLawOutcome {
                 law: spec.name.to_string(),
                 restitution: i.tangential_restitution().unwrap_or(f64::NAN),
-                spin1_after: i.spin_after[0],
+                spin1_after: i.after.spin_after[0],
             })
         })
         .collect()
