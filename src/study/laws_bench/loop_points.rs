@@ -21,7 +21,8 @@ use serde::{Deserialize, Serialize};
 
 /// The FE model of the loops, as their cache files name it.
 pub const LOOP_MODEL: &str = "section static loop: free ball, banded ladder levels 0 and 1 \
-                              (band 5), 20 increments at level 0";
+                              (band 5 over 0.6-1.15 contact edges), 20 loading increments at \
+                              level 0 and half as many unloading";
 
 /// One loop of the matrix: the head-on point whose ball it loads.
 #[derive(Debug, Clone, PartialEq)]
