@@ -4,10 +4,10 @@
 //!
 //! Past its edge a the gap of a contact opens as g = C (r − a)^p: p = 3/2 at an elastic
 //! edge (Hertz's gap, whose pressure falls as √(a − r) inside), towards 1 where plastic
-//! flattening leaves the surface a corner at the edge (the default copper ball at 1 m/s
-//! fits p = 1.14-1.17 on two levels of its mesh). Three gaps fix C, p and a. The outermost
-//! node on the plane alone places the edge only within one node spacing, a sawtooth over the
-//! mesh (levels 0 and 1 of `twoball static` differ by 1 % in it; by 0.03 % in this edge).
+//! flattening leaves the surface a corner at the edge. Three gaps fix C, p and a. The
+//! outermost node on the plane alone places the edge only within one node spacing, a sawtooth
+//! over the mesh (levels 0 and 1 of `twoball static` differ by 1 % in it; by 0.02 % in this
+//! edge).
 
 /// A surface node past the contact: its radius r (m) and its gap to the plane g (m).
 #[derive(Debug, Clone, Copy, PartialEq)]

@@ -340,19 +340,13 @@ impl Rig {
     /// contact.
     fn contact_edge(&self) -> f64 {
         let s = &self.solver;
-        let (Some(plane), x, active) = (s.plane(), s.positions(), s.active()) else {
+        let (Some(plane), x) = (s.plane(), s.positions()) else {
             return 0.0;
         };
-        let on = |i: &&u32| active[**i as usize];
-        let Some(r_on) = self
-            .surface
-            .iter()
-            .filter(on)
-            .map(|&i| x[i as usize][0])
-            .reduce(f64::max)
-        else {
+        if !s.active().contains(&true) {
             return 0.0;
-        };
+        }
+        let r_on = s.contact_radius();
         let mut past: Vec<GapPoint> = self
             .surface
             .iter()
@@ -367,11 +361,6 @@ impl Rig {
             [p1, p2, p3, ..] => contact_edge(r_on, [p1, p2, p3]),
             _ => r_on,
         }
-    }
-
-    /// The radius of the outermost surface node on the plane, m (0 out of contact).
-    fn outermost_ring(&self) -> f64 {
-        self.solver.contact_radius()
     }
 }
 
@@ -502,7 +491,7 @@ pub fn peak_of(case: &StaticCase) -> Result<LoadedPeak> {
     let (rig, loading) = load_to_target(case)?;
     Ok(LoadedPeak {
         point: *loading.last().expect("the peak"),
-        outermost_ring: rig.outermost_ring(),
+        outermost_ring: rig.solver.contact_radius(),
         quads: rig.solver.states().len(),
         iterations: rig.iterations,
     })
