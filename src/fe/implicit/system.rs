@@ -15,7 +15,10 @@
 //!
 //! The sparsity pattern (every element block and the diagonal) is fixed by the mesh, so both
 //! orderings and symbolic factorisations ([`Pattern`]) are computed once per solver; a
-//! constraint only changes values. Both factorisations are supernodal (dense blocks for the
+//! constraint only changes values. A solve asked to a modest tolerance (Newton's last
+//! iterations, whose tangents have settled) first refines on the last numeric LDLᵀ where it
+//! was of the same constraints, and factorises afresh only when a sweep on it does not gain
+//! a tenth: on the default loop a third of the solves need no factorisation. Both factorisations are supernodal (dense blocks for the
 //! separators a 2D mesh's elimination creates) and sequential, so a loop's numbers do not
 //! depend on the thread count.
 
@@ -23,7 +26,8 @@ use crate::error::{Error, Result};
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::linalg::cholesky::ldlt::factor::LdltRegularization;
 use faer::sparse::linalg::cholesky::{
-    factorize_symbolic_cholesky, CholeskySymbolicParams, SymbolicCholesky, SymmetricOrdering,
+    factorize_symbolic_cholesky, CholeskySymbolicParams, LdltRef, SymbolicCholesky,
+    SymmetricOrdering,
 };
 use faer::sparse::linalg::lu::{factorize_symbolic_lu, LuSymbolicParams, NumericLu, SymbolicLu};
 use faer::sparse::linalg::SupernodalThreshold;
@@ -66,6 +70,9 @@ struct Workspace {
     /// The symmetric part's values and its LDLᵀ factor's.
     symmetric: Vec<f64>,
     factor: Vec<f64>,
+    /// The constrained degrees of freedom of the matrix `factor` holds the LDLᵀ of (`None`:
+    /// it holds none that can be used).
+    factored_for: Option<Vec<bool>>,
 }
 
 /// The degree of freedom of entry `i` (0..8: node i / 2, component i % 2) of quad `q`.
@@ -138,6 +145,7 @@ impl Pattern {
             values: vec![0.0; row_idx.len()],
             symmetric: vec![0.0; row_idx.len()],
             factor: vec![0.0; ldlt.len_val()],
+            factored_for: None,
         };
         Ok(Pattern {
             dofs: n,
@@ -157,8 +165,9 @@ impl Pattern {
         self.dofs
     }
 
-    /// Numeric factorisations so far (one LDLᵀ per [`Pattern::solve`], and an LU where
-    /// refinement on it failed; including those of increments later cut or solved again).
+    /// Numeric factorisations so far (an LDLᵀ per [`Pattern::solve`] that the last one does
+    /// not serve, and an LU where refinement on it failed; including those of increments
+    /// later cut or solved again).
     pub fn factorisations(&self) -> u64 {
         self.factorisations.load(Ordering::Relaxed)
     }
@@ -166,15 +175,17 @@ impl Pattern {
     /// Solves K d = `rhs` for the element tangents `blocks` (N/m, one 8 × 8 block per quad,
     /// in mesh order) with the rows of the `constrained` degrees of freedom replaced by the
     /// identity; `rhs` holds the free rows' residual forces (N) and the constrained rows'
-    /// prescribed corrections (m). Returns d (m). Fails with a numerical error when the
-    /// matrix is singular (a body free to move rigidly).
+    /// prescribed corrections (m). Returns d (m), its residual at most `tol` (clamped to
+    /// [`REFINE_TOL`]..=1e-2) of the right-hand side's largest entry. Fails with a numerical
+    /// error when the matrix is singular (a body free to move rigidly).
     pub fn solve(
         &self,
         blocks: &[[[f64; 8]; 8]],
         constrained: &[bool],
         rhs: &[f64],
+        tol: f64,
     ) -> Result<Vec<f64>> {
-        let mut d = self.solve_columns(blocks, constrained, &[rhs])?;
+        let mut d = self.solve_columns(blocks, constrained, &[rhs], tol)?;
         Ok(d.swap_remove(0))
     }
 
@@ -185,7 +196,9 @@ impl Pattern {
         blocks: &[[[f64; 8]; 8]],
         constrained: &[bool],
         columns: &[&[f64]],
+        tol: f64,
     ) -> Result<Vec<Vec<f64>>> {
+        let tol = tol.clamp(REFINE_TOL, 1e-2);
         let n = self.dofs;
         if columns.is_empty() || columns.len() > MAX_COLUMNS {
             return Err(Error::invalid(
@@ -201,6 +214,7 @@ impl Pattern {
             values,
             symmetric,
             factor,
+            factored_for,
         } = &mut *work;
         // The constrained rows and columns become the identity; the columns' known
         // corrections move to the right-hand sides, so the free block keeps the tangent's
@@ -244,26 +258,45 @@ impl Pattern {
                  put it in contact"
             ))
         };
-        self.factorisations.fetch_add(1, Ordering::Relaxed);
         let a = SparseColMatRef::new(self.symbolic.as_ref(), values);
         let stack = MemStack::new(scratch);
-        for (k, s) in symmetric.iter_mut().enumerate() {
-            *s = 0.5 * (a.val()[k] + a.val()[self.transpose[k]]);
-        }
-        let sym = SparseColMatRef::new(self.symbolic.as_ref(), symmetric);
-        let solved = match self.ldlt.factorize_numeric_ldlt(
-            factor,
-            sym,
-            Side::Lower,
-            LdltRegularization::default(),
-            Par::Seq,
-            stack,
-            Default::default(),
-        ) {
-            Ok(ldlt) => refine(a, &b, |m| {
-                ldlt.solve_in_place_with_conj(Conj::No, m, Par::Seq, stack)
-            }),
-            Err(_) => None,
+        // The last factorisation, where it was of the same constraints, often still solves
+        // the new tangent (an increment's later iterations change few quads' tangents): it
+        // is kept when every refinement sweep on it gains REUSE_GAIN.
+        let reused = match factored_for {
+            Some(held) if tol <= REUSE_BELOW && held.as_slice() == constrained => {
+                let ldlt = LdltRef::new(&self.ldlt, factor);
+                refine(a, &b, tol, REUSE_GAIN, |m| {
+                    ldlt.solve_in_place_with_conj(Conj::No, m, Par::Seq, stack)
+                })
+            }
+            _ => None,
+        };
+        let solved = match reused {
+            Some(x) => Some(x),
+            None => {
+                self.factorisations.fetch_add(1, Ordering::Relaxed);
+                *factored_for = None;
+                for (k, s) in symmetric.iter_mut().enumerate() {
+                    *s = 0.5 * (a.val()[k] + a.val()[self.transpose[k]]);
+                }
+                let sym = SparseColMatRef::new(self.symbolic.as_ref(), symmetric);
+                match self.ldlt.factorize_numeric_ldlt(
+                    factor,
+                    sym,
+                    Side::Lower,
+                    LdltRegularization::default(),
+                    Par::Seq,
+                    stack,
+                    Default::default(),
+                ) {
+                    Ok(ldlt) => refine(a, &b, tol, FRESH_GAIN, |m| {
+                        ldlt.solve_in_place_with_conj(Conj::No, m, Par::Seq, stack)
+                    }),
+                    Err(_) => None,
+                }
+                .inspect(|_| *factored_for = Some(constrained.to_vec()))
+            }
         };
         let x = match solved {
             Some(x) => x,
@@ -313,18 +346,35 @@ fn largest(v: &[f64]) -> f64 {
 /// Most refinement sweeps of [`refine`] before it gives up.
 const MAX_SWEEPS: usize = 40;
 
-/// The residual each column of [`refine`] is solved to, relative to its right-hand side's
-/// largest entry: an inexact Newton step whose forcing term (1e-10) lies far below the
-/// relative residuals Newton converges to (1e-8), so its quadratic convergence is kept.
-const REFINE_TOL: f64 = 1e-10;
+/// The least gain of each refinement sweep on a fresh factorisation of the tangent's
+/// symmetric part (it must halve the residual).
+const FRESH_GAIN: f64 = 0.5;
+
+/// The least gain of each refinement sweep on an earlier factorisation: a tenth, so that a
+/// kept factor reaches [`REFINE_TOL`] in at most ten sweeps, each about a tenth of the cost
+/// of the factorisation it saves.
+const REUSE_GAIN: f64 = 0.1;
+
+/// The tolerance at or below which a solve tries the last factorisation first: those asked
+/// of Newton's last iterations (relative residual 1e-2 or less), whose tangents have
+/// settled; earlier ones change too many quads' tangents for it to hold.
+const REUSE_BELOW: f64 = 1e-3;
+
+/// The least residual a column is solved to, relative to its right-hand side's largest
+/// entry: an inexact Newton step's forcing term far below the relative residuals Newton
+/// converges to (1e-8).
+pub const REFINE_TOL: f64 = 1e-10;
 
 /// Solves `a` x = `b` (n × n, n × columns) by iterative refinement with `precondition`, an
 /// exact solve in place with a nearby matrix M: x ← x + M⁻¹(b − a x), until every column's
-/// residual is below [`REFINE_TOL`] of its right-hand side. `None` when a sweep does not
-/// halve the worst column's relative residual (M too far from `a`) or after [`MAX_SWEEPS`].
+/// residual is below `tol` of its right-hand side. `None` when a sweep does not
+/// bring the worst column's relative residual below `gain` times the last sweep's (M too
+/// far from `a`) or after [`MAX_SWEEPS`].
 fn refine(
     a: SparseColMatRef<'_, usize, f64>,
     b: &Mat<f64>,
+    tol: f64,
+    gain: f64,
     mut precondition: impl FnMut(MatMut<'_, f64>),
 ) -> Option<Mat<f64>> {
     let scale: Vec<f64> = (0..b.ncols())
@@ -342,11 +392,11 @@ fn refine(
             .map(|c| largest(r.col_as_slice(c)) / scale[c])
             .collect();
         let worst = largest(&ratios);
-        if worst <= REFINE_TOL {
+        if worst <= tol {
             return Some(x);
         }
-        // Not halved, or not a number (a zero pivot): M is too far from `a`.
-        if worst.is_nan() || worst >= 0.5 * last {
+        // Not gained, or not a number (a zero pivot): M is too far from `a`.
+        if worst.is_nan() || worst >= gain * last {
             return None;
         }
         last = worst;
@@ -442,7 +492,7 @@ mod tests {
             })
             .collect();
         let p = Pattern::new(nodes, &quads).unwrap();
-        let x = p.solve(&k, &c, &r).unwrap();
+        let x = p.solve(&k, &c, &r, REFINE_TOL).unwrap();
         let want = dense(nodes, &quads, &k, &c, &r);
         let size = want.iter().fold(0.0f64, |m, v| m.max(v.abs()));
         for (d, (a, b)) in x.iter().zip(&want).enumerate() {
