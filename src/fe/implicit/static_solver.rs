@@ -143,7 +143,7 @@ type QuadOp<T> = fn(QuadFormulation, &J2Material, &Quad, &Quad, &QuadState) -> T
 
 /// The element tangents the solver keeps from one Newton iteration, active set and increment
 /// to the next, where each was taken and whether any of its evaluations flowed plastically.
-#[derive(Clone)]
+#[derive(Clone, Default)]
 struct TangentCache {
     blocks: Vec<[[f64; 8]; 8]>,
     plastic: Vec<bool>,
@@ -303,7 +303,7 @@ impl StaticSolver {
     }
 
     fn solve_once(&mut self, target: &Target) -> Result<Increment> {
-        let mut tangents = std::mem::replace(&mut self.tangents, TangentCache::empty(0));
+        let mut tangents = std::mem::take(&mut self.tangents);
         let done = self.solve_with(target, &mut tangents);
         self.tangents = tangents;
         done
@@ -724,8 +724,7 @@ impl StaticSolver {
     /// increment lands is then held from the first iteration, instead of found across after
     /// Newton has converged without it (a second solve from zero), and the first iteration
     /// starts from a state that meets the contact (a node the last increment landed would
-    /// else be carried through the plane by its own landing; on the default loop this saves
-    /// a tenth of the iterations).
+    /// else be carried through the plane by its own landing).
     fn land_predicted(&self, plane: ExactPlane, active: &mut [bool], du: &mut [[f64; 2]]) {
         for (i, a) in active.iter_mut().enumerate() {
             if !*a && plane.gap(self.x[i][1] + du[i][1]) < -self.gap_tol {
