@@ -306,9 +306,9 @@ fn free_elastic_ball_meets_the_finite_ball_reference() {
     assert!((excess - reference).abs() < 3e-3, "{excess} vs {reference}");
 }
 
-/// The free ball on ladder levels 0-2 at a/R = 0.01, 0.02, 0.04, 0.08 and 0.1 (under a minute): each level's
-/// excess over Hertz, its gap to the reference, and the Richardson extrapolation of the
-/// last two levels (order 2).
+/// The free ball on ladder levels 0-2 at a/R = 0.01, 0.02, 0.04, 0.08 and 0.1 (under a
+/// minute): each level's excess over Hertz, its gap to the reference, and the Richardson
+/// extrapolation of the last two levels (order 2).
 #[test]
 #[ignore]
 fn free_ball_ladder() {
