@@ -236,9 +236,12 @@ pub fn run_law(a: &LawRunArgs, registry: &Registry) -> Result<LawRun> {
         ));
     }
     let pair = ContactPair::between(&b1, &b2, mu);
-    let (normal, np) = registry.build_normal(&a.law, &parse_params("--param", &a.param)?, &pair)?;
-    let (tang, tp) =
-        registry.build_tangential(&a.tangential, &parse_params("--tparam", &a.tparam)?, &pair)?;
+    let (normal, np) = registry
+        .normal(&a.law)?
+        .build_with(&parse_params("--param", &a.param)?, &pair)?;
+    let (tang, tp) = registry
+        .tangential(&a.tangential)?
+        .build_with(&parse_params("--tparam", &a.tparam)?, &pair)?;
     let v1 = [a.ball.v1, a.ball.v1t];
     let v2 = [v2n, a.ball.v2t];
     let impact = integrate(

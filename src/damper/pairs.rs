@@ -46,10 +46,12 @@ fn build(
     mu: f64,
 ) -> Result<PairLaws> {
     let pair = ContactPair::between(a, b, mu);
-    let (normal, _) =
-        registry.build_normal(&scene.laws.normal, &scene.laws.normal_params, &pair)?;
-    let (tangential, _) =
-        registry.build_tangential(&scene.laws.tangential, &scene.laws.tangential_params, &pair)?;
+    let (normal, _) = registry
+        .normal(&scene.laws.normal)?
+        .build_with(&scene.laws.normal_params, &pair)?;
+    let (tangential, _) = registry
+        .tangential(&scene.laws.tangential)?
+        .build_with(&scene.laws.tangential_params, &pair)?;
     Ok(PairLaws {
         normal,
         tangential,

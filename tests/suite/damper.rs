@@ -117,7 +117,11 @@ fn rebound(
     let wall = Body::HalfSpace { material: steel() };
     let pair = ContactPair::between(&b, &wall, 0.1);
     let overrides: Vec<(String, f64)> = scene.laws.normal_params.clone();
-    let (normal, _) = registry.build_normal(law, &overrides, &pair).unwrap();
+    let (normal, _) = registry
+        .normal(law)
+        .unwrap()
+        .build_with(&overrides, &pair)
+        .unwrap();
     let expected = normal
         .closed_form(v_in, b.mass())
         .expect("a law with a closed form")

@@ -24,8 +24,12 @@ fn run(
     over: &[(String, f64)],
 ) -> LawImpact {
     let pair = ContactPair::between(&b.0, &b.1, 0.3);
-    let (n, _) = reg.build_normal(normal, over, &pair).unwrap();
-    let (t, _) = reg.build_tangential(tangential, &[], &pair).unwrap();
+    let (n, _) = reg.normal(normal).unwrap().build_with(over, &pair).unwrap();
+    let (t, _) = reg
+        .tangential(tangential)
+        .unwrap()
+        .build_with(&[], &pair)
+        .unwrap();
     integrate(
         &b.0,
         &b.1,
@@ -49,7 +53,11 @@ fn integrator_matches_every_closed_form() {
         let b = balls(preset, d);
         let pair = ContactPair::between(&b.0, &b.1, 0.3);
         for spec in &reg.normal {
-            let (law, _) = reg.build_normal(spec.name, &[], &pair).unwrap();
+            let (law, _) = reg
+                .normal(spec.name)
+                .unwrap()
+                .build_with(&[], &pair)
+                .unwrap();
             for &v in &SPEEDS {
                 let Some(cf) = law.closed_form(v, pair.hertz.mass) else {
                     continue;
@@ -159,7 +167,11 @@ fn thornton_restitution_is_thorntons_published_formula() {
     let reg = Registry::builtin();
     let b = balls("copper-fe", 0.02);
     let pair = ContactPair::between(&b.0, &b.1, 0.3);
-    let (law, _) = reg.build_normal("thornton", &[], &pair).unwrap();
+    let (law, _) = reg
+        .normal("thornton")
+        .unwrap()
+        .build_with(&[], &pair)
+        .unwrap();
     let h = pair.hertz;
     let dy = h.radius * (std::f64::consts::PI * pair.yield_pressure / (2.0 * h.modulus)).powi(2);
     let vy = (2.0 * h.energy(dy) / h.mass).sqrt();
@@ -242,9 +254,17 @@ fn mindlin_coulomb_gives_tangential_rebound_and_tends_to_no_slip() {
     // μ = 100: the same as the no-slip spring, but for the last instants of the contact, where
     // μF → 0 faster than the spring force and the cap binds (a relative 1e-6 effect).
     let pair = ContactPair::between(&b.0, &b.1, 100.0);
-    let (n, _) = reg.build_normal("hertz", &[], &pair).unwrap();
-    let (t1, _) = reg.build_tangential("mindlin-coulomb", &[], &pair).unwrap();
-    let (t2, _) = reg.build_tangential("mindlin", &[], &pair).unwrap();
+    let (n, _) = reg.normal("hertz").unwrap().build_with(&[], &pair).unwrap();
+    let (t1, _) = reg
+        .tangential("mindlin-coulomb")
+        .unwrap()
+        .build_with(&[], &pair)
+        .unwrap();
+    let (t2, _) = reg
+        .tangential("mindlin")
+        .unwrap()
+        .build_with(&[], &pair)
+        .unwrap();
     let go = |t: &dyn twoball::analytic::laws::TangentialLaw| {
         integrate(
             &b.0,
@@ -271,11 +291,15 @@ fn a_spin_acts_through_the_slip_it_gives_the_contact_point() {
     let reg = Registry::builtin();
     let b = balls("copper-fe", 0.02);
     let pair = ContactPair::between(&b.0, &b.1, 0.3);
-    let (n, _) = reg.build_normal("hertz", &[], &pair).unwrap();
+    let (n, _) = reg.normal("hertz").unwrap().build_with(&[], &pair).unwrap();
     let (v, slip) = (1.0, 0.4);
     let w = slip / 0.01;
     for tang in &reg.tangential {
-        let (t, _) = reg.build_tangential(tang.name, &[], &pair).unwrap();
+        let (t, _) = reg
+            .tangential(tang.name)
+            .unwrap()
+            .build_with(&[], &pair)
+            .unwrap();
         let sliding = integrate(
             &b.0,
             &b.1,

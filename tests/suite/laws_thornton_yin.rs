@@ -25,7 +25,9 @@ fn law(name: &str, mu: f64) -> (Box<dyn TangentialLaw>, ContactPair) {
     let pair = ContactPair::between(&b.0, &b.1, mu);
     (
         Registry::builtin()
-            .build_tangential(name, &[], &pair)
+            .tangential(name)
+            .unwrap()
+            .build_with(&[], &pair)
             .unwrap()
             .0,
         pair,
@@ -37,8 +39,12 @@ fn impact(tangential: &str, mu: f64, vn: f64, vt: f64) -> LawImpact {
     let b = balls();
     let pair = ContactPair::between(&b.0, &b.1, mu);
     let reg = Registry::builtin();
-    let (n, _) = reg.build_normal("hertz", &[], &pair).unwrap();
-    let (t, _) = reg.build_tangential(tangential, &[], &pair).unwrap();
+    let (n, _) = reg.normal("hertz").unwrap().build_with(&[], &pair).unwrap();
+    let (t, _) = reg
+        .tangential(tangential)
+        .unwrap()
+        .build_with(&[], &pair)
+        .unwrap();
     integrate(
         &b.0,
         &b.1,
@@ -170,7 +176,9 @@ fn no_slip_limit_is_mindlin() {
     let b = balls();
     let pair = ContactPair::between(&b.0, &b.1, 0.3);
     let (n, _) = Registry::builtin()
-        .build_normal("hertz", &[], &pair)
+        .normal("hertz")
+        .unwrap()
+        .build_with(&[], &pair)
         .unwrap();
     let go = |t: &dyn TangentialLaw| {
         integrate(

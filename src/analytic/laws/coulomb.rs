@@ -36,6 +36,7 @@ pub const SPEC: TangentialSpec = TangentialSpec {
     title: "rigid Coulomb impulse: slip at mu F_n until the contact points roll",
     source: "Li, Yang & Shi 2019, sec. 2.2 (friction revision), read as a rigid-body impulse; Stronge, Impact Mechanics (2000) ch. 5",
     dem_codes: "every DEM code's friction cap; as a pure impulse: none",
+    validity: (),
     params: &[FRICTION],
     build: |_pair: &ContactPair, p: &Params| Box::new(Coulomb { mu: p.get("mu") }),
 };

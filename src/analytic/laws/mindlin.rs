@@ -54,6 +54,7 @@ pub const SPEC: TangentialSpec = TangentialSpec {
     title: "Mindlin no-slip tangential spring, k_t = 8 G* sqrt(R* delta)",
     source: "R. D. Mindlin, J. Appl. Mech. 16 (1949) 259-268",
     dem_codes: "EDEM (Hertz-Mindlin no slip, with the Coulomb cap), LIGGGHTS (tangential history stiffness)",
+    validity: (),
     params: &[SHEAR_MODULUS],
     build: |pair: &ContactPair, p: &Params| Box::new(Mindlin::from_params(pair, p)),
 };

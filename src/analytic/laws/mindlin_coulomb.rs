@@ -33,6 +33,7 @@ pub const SPEC: TangentialSpec = TangentialSpec {
     title: "Mindlin spring with Coulomb truncation (stick-slip history), as DEM codes use Mindlin-Deresiewicz",
     source: "R. D. Mindlin, H. Deresiewicz, J. Appl. Mech. 20 (1953) 327-344; DEM simplification as in LIGGGHTS tangential history",
     dem_codes: "LIGGGHTS (tangential history), EDEM (Hertz-Mindlin), Yade (HertzMindlin), MercuryDPM (sliding friction spring)",
+    validity: (),
     params: &[SHEAR_MODULUS, FRICTION],
     build: |pair: &ContactPair, p: &Params| {
         Box::new(MindlinCoulomb {

@@ -7,10 +7,11 @@ use super::validity::Validity;
 use super::{NormalLaw, TangentialLaw};
 use crate::error::{Error, Result};
 
-/// Description and constructor of a normal law.
-#[derive(Clone, Copy)]
-pub struct NormalSpec {
-    /// Name used by `--law`, e.g. `thornton`.
+/// Description and constructor of a contact law: `L` the law's trait object, `V` what the
+/// spec says of where the law holds ([`Validity`] for a normal law, nothing for a tangential
+/// one).
+pub struct LawSpec<L: ?Sized, V> {
+    /// Name used by `--law` or `--tangential`, e.g. `thornton`, `mindlin`.
     pub name: &'static str,
     /// One-line description.
     pub title: &'static str,
@@ -19,29 +20,38 @@ pub struct NormalSpec {
     /// DEM codes that ship the law (as documented by them), or `none`.
     pub dem_codes: &'static str,
     /// Where the law holds (range, material class, source) and its check.
-    pub validity: Validity,
+    pub validity: V,
     /// Parameters with units, ranges and defaults.
     pub params: &'static [ParamSpec],
     /// Builds the law for a pair from resolved parameters.
-    pub build: fn(&ContactPair, &Params) -> Box<dyn NormalLaw>,
+    pub build: fn(&ContactPair, &Params) -> Box<L>,
 }
 
-/// Description and constructor of a tangential law.
-#[derive(Clone, Copy)]
-pub struct TangentialSpec {
-    /// Name used by `--tangential`, e.g. `mindlin`.
-    pub name: &'static str,
-    /// One-line description.
-    pub title: &'static str,
-    /// Original source.
-    pub source: &'static str,
-    /// DEM codes that ship the law, or `none`.
-    pub dem_codes: &'static str,
-    /// Parameters with units, ranges and defaults.
-    pub params: &'static [ParamSpec],
-    /// Builds the law for a pair from resolved parameters.
-    pub build: fn(&ContactPair, &Params) -> Box<dyn TangentialLaw>,
+impl<L: ?Sized, V: Copy> Clone for LawSpec<L, V> {
+    fn clone(&self) -> Self {
+        *self
+    }
 }
+
+impl<L: ?Sized, V: Copy> Copy for LawSpec<L, V> {}
+
+impl<L: ?Sized, V> LawSpec<L, V> {
+    /// Builds the law for `pair` with parameter `overrides` (key, value) on its defaults.
+    pub fn build_with(
+        &self,
+        overrides: &[(String, f64)],
+        pair: &ContactPair,
+    ) -> Result<(Box<L>, Params)> {
+        let params = Params::resolve(self.name, self.params, overrides, pair)?;
+        Ok(((self.build)(pair, &params), params))
+    }
+}
+
+/// Description and constructor of a normal law.
+pub type NormalSpec = LawSpec<dyn NormalLaw, Validity>;
+
+/// Description and constructor of a tangential law (no validity range).
+pub type TangentialSpec = LawSpec<dyn TangentialLaw, ()>;
 
 /// The laws known to a run: the built-in ones plus any a program adds.
 #[derive(Clone)]
@@ -93,30 +103,6 @@ impl Registry {
     /// The tangential law called `name`; the error lists the known names.
     pub fn tangential(&self, name: &str) -> Result<&TangentialSpec> {
         by_name(&self.tangential, name, "--tangential", |s| s.name)
-    }
-
-    /// Builds normal law `name` for `pair` with parameter `overrides` (key, value).
-    pub fn build_normal(
-        &self,
-        name: &str,
-        overrides: &[(String, f64)],
-        pair: &ContactPair,
-    ) -> Result<(Box<dyn NormalLaw>, Params)> {
-        let spec = self.normal(name)?;
-        let params = Params::resolve(spec.name, spec.params, overrides, pair)?;
-        Ok(((spec.build)(pair, &params), params))
-    }
-
-    /// Builds tangential law `name` for `pair` with parameter `overrides` (key, value).
-    pub fn build_tangential(
-        &self,
-        name: &str,
-        overrides: &[(String, f64)],
-        pair: &ContactPair,
-    ) -> Result<(Box<dyn TangentialLaw>, Params)> {
-        let spec = self.tangential(name)?;
-        let params = Params::resolve(spec.name, spec.params, overrides, pair)?;
-        Ok(((spec.build)(pair, &params), params))
     }
 }
 

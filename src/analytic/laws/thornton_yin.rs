@@ -94,6 +94,7 @@ pub const SPEC: TangentialSpec = TangentialSpec {
     title: "Mindlin-Deresiewicz partial slip, Thornton-Yin stiffness 8 G* a (1 - f/(mu F))^(1/3), loading/unloading/reloading with turning points",
     source: "Mindlin & Deresiewicz, J. Appl. Mech. 20 (1953) 327-344; Thornton & Yin, Powder Technol. 65 (1991) 153-166; Thornton, Cummins & Cleary, Powder Technol. 210 (2011) 189-197",
     dem_codes: "Yade (Law2_ScGeom_MindlinPhys_MindlinDeresiewitz, documented as Thornton 1991 partial slip); not LIGGGHTS-PUBLIC; LAMMPS mindlin_rescale/force is a capped Mindlin spring without the reduction",
+    validity: (),
     params: &[SHEAR_MODULUS, FRICTION],
     build: |pair: &ContactPair, p: &Params| {
         Box::new(ThorntonYin {

@@ -121,7 +121,7 @@ pub fn head_on_law_with(
     speed: f64,
 ) -> Result<LawImpact> {
     let (b, pair) = pair_of(p.material, p.diameter)?;
-    let (n, _) = registry.build_normal(law, overrides, &pair)?;
+    let (n, _) = registry.normal(law)?.build_with(overrides, &pair)?;
     integrate(
         &b,
         &b,
@@ -178,8 +178,8 @@ pub fn tangential_laws_on_point(
         .tangential
         .iter()
         .map(|s| {
-            let (n, _) = registry.build_normal(normal, &[], &pair)?;
-            let (t, _) = registry.build_tangential(s.name, &[], &pair)?;
+            let (n, _) = registry.normal(normal)?.build_with(&[], &pair)?;
+            let (t, _) = registry.tangential(s.name)?.build_with(&[], &pair)?;
             let i = integrate(
                 &b,
                 &b,

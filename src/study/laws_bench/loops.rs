@@ -78,7 +78,7 @@ pub fn laws_on_loop(
         .normal
         .iter()
         .map(|spec| {
-            let (law, _) = registry.build_normal(spec.name, &[], &contact)?;
+            let (law, _) = registry.normal(spec.name)?.build_with(&[], &contact)?;
             Ok(on_loop(spec.name, law.as_ref(), l, speed, share))
         })
         .collect()

@@ -87,7 +87,8 @@ pub fn compare_laws(scene: &Scene, touch: &Touch) -> Result<Vec<LawOutcome>> {
     let registry = Registry::builtin();
     let tangential = &scene.laws.tangential;
     let (t, _) = registry
-        .build_tangential(tangential, &[], pair)
+        .tangential(tangential)
+        .and_then(|s| s.build_with(&[], pair))
         .map_err(|e| e.map_field(|f| format!("laws.tangential ({f})")))?;
     scene
         .laws
@@ -95,7 +96,8 @@ pub fn compare_laws(scene: &Scene, touch: &Touch) -> Result<Vec<LawOutcome>> {
         .iter()
         .map(|l| {
             let (n, p) = registry
-                .build_normal(&l.name, &l.params, pair)
+                .normal(&l.name)
+                .and_then(|s| s.build_with(&l.params, pair))
                 .map_err(|e| e.map_field(|f| format!("laws.params.{f}")))?;
             let i = impact(&bodies, n.as_ref(), t.as_ref(), &l.name)?;
             let spec = registry.normal(&l.name)?;
@@ -135,12 +137,12 @@ pub fn tangential_laws(scene: &Scene, touch: &Touch) -> Result<Vec<TangentialLaw
     let bodies = bodies(scene, touch)?;
     let pair = &bodies.pair;
     let registry = Registry::builtin();
-    let (n, _) = registry.build_normal("hertz", &[], pair)?;
+    let (n, _) = registry.normal("hertz")?.build_with(&[], pair)?;
     registry
         .tangential
         .iter()
         .map(|spec| {
-            let (t, _) = registry.build_tangential(spec.name, &[], pair)?;
+            let (t, _) = spec.build_with(&[], pair)?;
             let i = impact(&bodies, n.as_ref(), t.as_ref(), spec.name)?;
             Ok(TangentialLawOutcome {
                 law: spec.name.to_string(),
