@@ -9,6 +9,7 @@
 //! ([`super::element::RingElement::update`]), which stays the reference; the test in
 //! [`super::formulation`] checks it for every registered element.
 
+pub(super) use super::shape::{mean_gradient, mean_of};
 use super::shape::{radius_and_jacobian, GAUSS_SHAPE};
 use super::state::{PointState, QuadOutput, QuadState};
 use crate::fe::materials::{
@@ -22,15 +23,7 @@ use std::f64::consts::{PI, SQRT_2};
 pub type Nodes<const W: usize> = [[Lanes<W>; 2]; 4];
 
 /// The volume-averaged operator of W quads (see [`super::shape::Gradient`]).
-#[derive(Clone, Copy)]
-pub(super) struct Gradient<const W: usize> {
-    /// ∂N_I/∂r, ∂N_I/∂z, 1/m.
-    pub(super) b: [[Lanes<W>; 2]; 4],
-    /// N_I / r averaged, 1/m.
-    pub(super) hoop: [Lanes<W>; 4],
-    /// Ring volume, m³.
-    pub(super) volume: Lanes<W>,
-}
+pub(super) type Gradient<const W: usize> = super::shape::Gradient<Lanes<W>>;
 
 /// The state of W quads, lane-wise (the scalar [`QuadState`]; the one-point form uses the
 /// first point only).
@@ -128,35 +121,6 @@ impl<const W: usize> RingLaneOutput<W> {
     }
 }
 
-/// [`super::shape::mean_gradient`] of W quads: the operator and the smallest Jacobian.
-#[inline(always)]
-pub(super) fn mean_gradient<const W: usize>(x: &Nodes<W>) -> (Gradient<W>, Lanes<W>) {
-    let z = x[0][0].splat_like(0.0);
-    let mut b = [[z; 2]; 4];
-    let mut hoop = [z; 4];
-    let mut sum = z;
-    let mut min_j = z.splat_like(f64::INFINITY);
-    for (n, d) in &GAUSS_SHAPE {
-        let (r, jac) = radius_and_jacobian(x, n, d, z);
-        let det_j = jac[0][0] * jac[1][1] - jac[0][1] * jac[1][0];
-        min_j = min_j.min(det_j);
-        sum += r * det_j;
-        for i in 0..4 {
-            b[i][0] += r * (d[i][0] * jac[1][1] - d[i][1] * jac[1][0]);
-            b[i][1] += r * (d[i][1] * jac[0][0] - d[i][0] * jac[0][1]);
-            hoop[i] += det_j * n[i];
-        }
-    }
-    let inv = sum.recip();
-    for i in 0..4 {
-        b[i][0] = b[i][0] * inv;
-        b[i][1] = b[i][1] * inv;
-        hoop[i] = hoop[i] * inv;
-    }
-    let volume = 2.0 * PI * sum;
-    (Gradient { b, hoop, volume }, min_j)
-}
-
 /// The mid-step nodes x^{n+1/2} = x^{n+1} − Δt/2 v^{n+1/2} of W quads (m), from `x1` (m),
 /// `v` (m/s) and `dt` (s).
 #[inline(always)]
@@ -198,12 +162,9 @@ pub(super) fn rotation<const W: usize>(l: &[Lanes<W>; 5], dt: f64) -> [Lanes<W>;
     [diag, f * (zero - a), f * a, diag]
 }
 
-/// One 2x2 Gauss point of W quads: its operator (ring-volume weight 2π r det J) and det J.
-#[derive(Clone, Copy)]
-pub(super) struct Point<const W: usize> {
-    pub(super) grad: Gradient<W>,
-    pub(super) det_j: Lanes<W>,
-}
+/// One 2x2 Gauss point of W quads: its operator (ring-volume weight 2π r det J), radius and
+/// det J (see [`super::shape::Point`]).
+pub(super) type Point<const W: usize> = super::shape::Point<Lanes<W>>;
 
 /// [`super::shape::gauss_points`] of W quads.
 #[inline(always)]
@@ -215,6 +176,7 @@ pub(super) fn gauss_points<const W: usize>(x: &Nodes<W>) -> [Point<W>; 4] {
             hoop: [z; 4],
             volume: z,
         },
+        r: z,
         det_j: z,
     }; 4];
     for (p, (n, d)) in pts.iter_mut().zip(&GAUSS_SHAPE) {
@@ -229,39 +191,10 @@ pub(super) fn gauss_points<const W: usize>(x: &Nodes<W>) -> [Point<W>; 4] {
             p.grad.hoop[i] = r.splat_like(n[i]) / r;
         }
         p.grad.volume = 2.0 * PI * r * det_j * 1.0;
+        p.r = r;
         p.det_j = det_j;
     }
     pts
-}
-
-/// [`super::shape::mean_of`] of W quads: the volume-weighted mean operator and the smallest
-/// Jacobian.
-#[inline(always)]
-pub(super) fn mean_of<const W: usize>(pts: &[Point<W>; 4]) -> (Gradient<W>, Lanes<W>) {
-    let z = pts[0].det_j.splat_like(0.0);
-    let mut g = Gradient {
-        b: [[z; 2]; 4],
-        hoop: [z; 4],
-        volume: z,
-    };
-    let mut min_j = z.splat_like(f64::INFINITY);
-    for p in pts {
-        let w = p.grad.volume;
-        g.volume += w;
-        min_j = min_j.min(p.det_j);
-        for i in 0..4 {
-            g.b[i][0] += w * p.grad.b[i][0];
-            g.b[i][1] += w * p.grad.b[i][1];
-            g.hoop[i] += w * p.grad.hoop[i];
-        }
-    }
-    let inv = g.volume.recip();
-    for i in 0..4 {
-        g.b[i][0] = g.b[i][0] * inv;
-        g.b[i][1] = g.b[i][1] * inv;
-        g.hoop[i] = g.hoop[i] * inv;
-    }
-    (g, min_j)
 }
 
 /// The strain increment D Δt (Voigt [rr, zz, θθ, rz, 0, 0]) of the velocity gradient `l`

@@ -5,8 +5,9 @@
 //! Coordinates map onto the 3D tensor slots as r → x, z → y, θ → z, so a stress or strain
 //! rate is the 3D [`Sym`](crate::fe::tensor::Sym) [rr, zz, θθ, rz, 0, 0].
 
+use crate::fe::simd::Lanes;
 use std::f64::consts::PI;
-use std::ops::{AddAssign, Mul};
+use std::ops::{AddAssign, Mul, Sub};
 
 /// Natural coordinates (ξ, η) of the four nodes, counter-clockwise.
 pub const NODE_XI: [[f64; 2]; 4] = [[-1.0, -1.0], [1.0, -1.0], [1.0, 1.0], [-1.0, 1.0]];
@@ -20,28 +21,76 @@ pub const GAUSS_2X2: [[f64; 2]; 4] = {
 /// The hourglass base vector h = ξη at the nodes.
 pub const HOURGLASS_BASE: [f64; 4] = [1.0, -1.0, 1.0, -1.0];
 
-/// The gradient operator of one integration point or of the whole element: for node I the
-/// radial and axial derivatives b_I (1/m) and the hoop factor N_I/r (1/m), and the ring
-/// volume `volume` (m³) it weights.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Gradient {
-    /// ∂N_I/∂r, ∂N_I/∂z per node, 1/m.
-    pub b: [[f64; 2]; 4],
-    /// N_I / r per node, 1/m (the hoop strain rate is Σ v_rI N_I / r).
-    pub hoop: [f64; 4],
-    /// Ring volume the operator stands for, m³ (2π r J w for a point; V for the element).
-    pub volume: f64,
+/// The numbers the ring geometry is computed in: `f64` for one quad, [`Lanes`] for W quads
+/// side by side (each lane the scalar's operations in the scalar's order).
+pub trait Real:
+    Copy + AddAssign + Mul<Output = Self> + Mul<f64, Output = Self> + Sub<Output = Self>
+{
+    /// Every lane equal to `v` (the value `v` itself for `f64`).
+    fn splat_like(self, v: f64) -> Self;
+    /// The smaller of the two, lane-wise (the `f64::min` rule).
+    fn min(self, o: Self) -> Self;
+    /// The reciprocal 1/x, lane-wise.
+    fn recip(self) -> Self;
 }
 
-/// One integration point of the element: its gradient and its radius.
+impl Real for f64 {
+    #[inline(always)]
+    fn splat_like(self, v: f64) -> f64 {
+        v
+    }
+
+    #[inline(always)]
+    fn min(self, o: f64) -> f64 {
+        f64::min(self, o)
+    }
+
+    #[inline(always)]
+    fn recip(self) -> f64 {
+        1.0 / self
+    }
+}
+
+impl<const W: usize> Real for Lanes<W> {
+    #[inline(always)]
+    fn splat_like(self, v: f64) -> Self {
+        Lanes::splat_like(self, v)
+    }
+
+    #[inline(always)]
+    fn min(self, o: Self) -> Self {
+        Lanes::min(self, o)
+    }
+
+    #[inline(always)]
+    fn recip(self) -> Self {
+        Lanes::recip(self)
+    }
+}
+
+/// The gradient operator of one integration point or of the whole element: for node I the
+/// radial and axial derivatives b_I (1/m) and the hoop factor N_I/r (1/m), and the ring
+/// volume `volume` (m³) it weights; of one quad (`f64`) or of W quads ([`Lanes`]).
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Point {
+pub struct Gradient<T = f64> {
+    /// ∂N_I/∂r, ∂N_I/∂z per node, 1/m.
+    pub b: [[T; 2]; 4],
+    /// N_I / r per node, 1/m (the hoop strain rate is Σ v_rI N_I / r).
+    pub hoop: [T; 4],
+    /// Ring volume the operator stands for, m³ (2π r J w for a point; V for the element).
+    pub volume: T,
+}
+
+/// One integration point of the element: its gradient and its radius (of one quad, `f64`,
+/// or of W quads, [`Lanes`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Point<T = f64> {
     /// Gradient operator and the point's ring-volume weight 2π r det J (m³).
-    pub grad: Gradient,
+    pub grad: Gradient<T>,
     /// Radius of the point, m.
-    pub r: f64,
+    pub r: T,
     /// Jacobian determinant det ∂(r, z)/∂(ξ, η), m² (≤ 0: inverted element).
-    pub det_j: f64,
+    pub det_j: T,
 }
 
 /// Shape functions N_I at (ξ, η) and their natural derivatives ∂N_I/∂ξ, ∂N_I/∂η.
@@ -166,14 +215,18 @@ pub fn gauss_points(x: &[[f64; 2]; 4]) -> [Point; 4] {
 ///
 /// Computed directly: with w = 2π r det J at each point, w ∂N/∂x = 2π r cof(J)ᵀ∂N/∂ξ and
 /// w N/r = 2π det J N, so no point needs its own inverse Jacobian.
-#[inline]
-pub fn mean_gradient(x: &[[f64; 2]; 4]) -> (Gradient, f64) {
-    let mut b = [[0.0; 2]; 4];
-    let mut hoop = [0.0; 4];
-    let mut sum = 0.0;
-    let mut min_j = f64::INFINITY;
+#[inline(always)]
+pub fn mean_gradient<T: Real>(x: &[[T; 2]; 4]) -> (Gradient<T>, T)
+where
+    f64: Mul<T, Output = T>,
+{
+    let z = x[0][0].splat_like(0.0);
+    let mut b = [[z; 2]; 4];
+    let mut hoop = [z; 4];
+    let mut sum = z;
+    let mut min_j = z.splat_like(f64::INFINITY);
     for (n, d) in &GAUSS_SHAPE {
-        let (r, jac) = radius_and_jacobian(x, n, d, 0.0);
+        let (r, jac) = radius_and_jacobian(x, n, d, z);
         let det_j = jac[0][0] * jac[1][1] - jac[0][1] * jac[1][0];
         min_j = min_j.min(det_j);
         sum += r * det_j;
@@ -183,31 +236,35 @@ pub fn mean_gradient(x: &[[f64; 2]; 4]) -> (Gradient, f64) {
             hoop[i] += det_j * n[i];
         }
     }
-    let inv = 1.0 / sum;
+    let inv = sum.recip();
     for i in 0..4 {
-        b[i][0] *= inv;
-        b[i][1] *= inv;
-        hoop[i] *= inv;
+        b[i][0] = b[i][0] * inv;
+        b[i][1] = b[i][1] * inv;
+        hoop[i] = hoop[i] * inv;
     }
+    // 2π as a constant (the bound on f64 × T would claim the product 2.0 × π): the same bits.
+    const TWO_PI: f64 = 2.0 * PI;
     (
         Gradient {
             b,
             hoop,
-            volume: 2.0 * PI * sum,
+            volume: TWO_PI * sum,
         },
         min_j,
     )
 }
 
-/// [`mean_gradient`] from already evaluated Gauss points.
-#[inline]
-pub fn mean_of(pts: &[Point; 4]) -> (Gradient, f64) {
+/// [`mean_gradient`] from already evaluated Gauss points: the volume-weighted mean operator
+/// and the smallest Jacobian (m²).
+#[inline(always)]
+pub fn mean_of<T: Real>(pts: &[Point<T>; 4]) -> (Gradient<T>, T) {
+    let z = pts[0].det_j.splat_like(0.0);
     let mut g = Gradient {
-        b: [[0.0; 2]; 4],
-        hoop: [0.0; 4],
-        volume: 0.0,
+        b: [[z; 2]; 4],
+        hoop: [z; 4],
+        volume: z,
     };
-    let mut min_j = f64::INFINITY;
+    let mut min_j = z.splat_like(f64::INFINITY);
     for p in pts {
         let w = p.grad.volume;
         g.volume += w;
@@ -218,11 +275,11 @@ pub fn mean_of(pts: &[Point; 4]) -> (Gradient, f64) {
             g.hoop[i] += w * p.grad.hoop[i];
         }
     }
-    let inv = 1.0 / g.volume;
+    let inv = g.volume.recip();
     for i in 0..4 {
-        g.b[i][0] *= inv;
-        g.b[i][1] *= inv;
-        g.hoop[i] *= inv;
+        g.b[i][0] = g.b[i][0] * inv;
+        g.b[i][1] = g.b[i][1] * inv;
+        g.hoop[i] = g.hoop[i] * inv;
     }
     (g, min_j)
 }
