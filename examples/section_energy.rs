@@ -147,11 +147,11 @@ fn split(s: &SectionSolver) -> [f64; 5] {
     let (p, m) = s.axial_momentum(0..n);
     let en = s.energy();
     [
-        en.kinetic,
+        en.solid.kinetic,
         0.5 * p * p / m,
-        en.internal - en.plastic,
-        en.plastic,
-        en.hourglass,
+        en.solid.internal - en.solid.plastic,
+        en.solid.plastic,
+        en.solid.hourglass,
     ]
 }
 

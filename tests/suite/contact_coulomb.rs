@@ -102,7 +102,7 @@ fn sliding_block_decelerates_at_mu_g_and_dissipates_its_kinetic_energy() {
     let (vc, _) = s.part_motion(0).unwrap();
     assert!(vc[0].abs() < 1e-3 * v0, "still moving at {vc:?}");
     let e = s.energy();
-    let lost = ke0 - e.kinetic;
+    let lost = ke0 - e.solid.kinetic;
     let fric = probe.last().friction_energy;
     let derr = (fric - lost).abs() / lost;
     println!("friction dissipation {fric:.6e} J vs lost KE {lost:.6e} J: error {derr:.3e}; energy ratio {:.6}", e.energy_ratio);

@@ -57,10 +57,13 @@ fn run(
         if s.step_count().is_multiple_of(100) {
             let e = s.energy();
             worst_total = worst_total.max((e.mechanical() - e0.total).abs() / e0.total);
-            let alt = e.kinetic_central + e.elastic_from_stress + e.plastic + e.hourglass;
+            let alt = e.solid.kinetic_central
+                + e.solid.elastic_from_stress
+                + e.solid.plastic
+                + e.solid.hourglass;
             worst_stress_based = worst_stress_based.max((alt - e0.total).abs() / e0.total);
-            if e.internal > 0.05 * e0.total {
-                worst_hg_ratio = worst_hg_ratio.max(e.hourglass / e.internal);
+            if e.solid.internal > 0.05 * e0.total {
+                worst_hg_ratio = worst_hg_ratio.max(e.solid.hourglass / e.solid.internal);
             }
         }
     }
@@ -69,14 +72,14 @@ fn run(
         "{formulation:?} amplitude {amplitude} m/s: drift {worst_total:.3e}, hourglass/internal {worst_hg_ratio:.3e}, \
          stress-based drift {worst_stress_based:.3e}, balance {:.3e}, plastic/E0 {:.3e}, elastic-from-stress/elastic {:.6}",
         e.max_balance_error,
-        e.plastic / e0.total,
-        e.elastic_from_stress / e.elastic
+        e.solid.plastic / e0.total,
+        e.solid.elastic_from_stress / e.solid.elastic
     );
     (
         worst_total,
         worst_hg_ratio,
         e.max_balance_error,
-        e.plastic / e0.total,
+        e.solid.plastic / e0.total,
         worst_stress_based,
     )
 }

@@ -693,7 +693,7 @@ fn linear_geometry_subcycled_follows_large_geometry() {
         while s.step_count() < 400 {
             s.step().unwrap();
         }
-        (s.energy().internal, s.subcycling().initial_levels)
+        (s.energy().solid.internal, s.subcycling().initial_levels)
     };
     let (single_lin, _) = run(Subcycling::Off, true);
     let (single, _) = run(Subcycling::Off, false);

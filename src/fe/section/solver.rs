@@ -17,7 +17,7 @@ use crate::fe::materials::J2Material;
 use crate::fe::materials::{Hardening, LawDispatch, LawVisitor};
 use crate::fe::simd::{build, Kernel, KernelPath, LaneIsa, LaneKernel};
 use crate::fe::solver::central_difference::{self, CentralDifference};
-use crate::fe::solver::energy::EnergyReport;
+use crate::fe::solver::energy::{EnergyReport, SolidEnergy};
 
 /// The meridian model: nodes, quads with their materials, initial velocities, supports and
 /// loads. Nodes with r = 0 are on the axis and get v_r = 0.
@@ -576,19 +576,24 @@ impl SectionSolver {
         let mut e = EnergyReport {
             time: self.time,
             step: self.steps,
-            kinetic: self.kinetic(),
-            kinetic_central: self.kinetic_central,
+            solid: SolidEnergy {
+                kinetic: self.kinetic(),
+                kinetic_central: self.kinetic_central,
+                ..Default::default()
+            },
             load_work: self.external_work,
             interaction_stored: self.contact.iter().map(|c| c.stored).sum(),
             ..Default::default()
         };
         for s in &self.states {
-            e.internal += s.internal_energy;
-            e.plastic += s.plastic_work;
-            e.hourglass += s.hourglass_energy;
+            e.solid.internal += s.internal_energy;
+            e.solid.plastic += s.plastic_work;
+            e.solid.hourglass += s.hourglass_energy;
         }
-        e.elastic = e.internal - e.plastic;
-        e.total = e.kinetic_central + e.internal + e.hourglass + e.interaction_stored - e.load_work;
+        e.solid.elastic = e.solid.internal - e.solid.plastic;
+        e.total =
+            e.solid.kinetic_central + e.solid.internal + e.solid.hourglass + e.interaction_stored
+                - e.load_work;
         e.initial_total = self.initial_total.unwrap_or(e.total);
         e.energy_ratio = if e.initial_total > 0.0 {
             e.total / e.initial_total
@@ -883,7 +888,7 @@ mod tests {
                 .zip(s.masses())
                 .map(|(v, m)| 0.5 * m * (v[0] * v[0] + v[1] * v[1]))
                 .sum();
-            assert!((e0.kinetic / kinetic - 1.0).abs() < 1e-12, "{e0:?}");
+            assert!((e0.solid.kinetic / kinetic - 1.0).abs() < 1e-12, "{e0:?}");
             assert_eq!((e0.initial_total, e0.energy_ratio), (e0.total, 1.0));
             let mut worst: f64 = 0.0;
             for _ in 0..200 {
@@ -891,14 +896,14 @@ mod tests {
                 worst = worst.max((s.energy().energy_ratio - 1.0).abs());
             }
             let e = s.energy();
-            assert!(e.internal > 1e-6 * e.total, "no strain energy: {e:?}");
+            assert!(e.solid.internal > 1e-6 * e.total, "no strain energy: {e:?}");
             // Central kinetic and internal energy at one instant: the scheme's conserved
             // energy to O(Δt²) (2e-6 here; a kinetic energy half a step behind the internal
             // one left ±1.5 %).
             assert!(worst < 1e-5, "{integration:?}: {worst:e}, {e:?}");
             assert_eq!(e.energy_ratio, e.total / e0.total);
             assert_eq!(e.initial_total, e0.total);
-            assert_eq!(e.elastic, e.internal - e.plastic);
+            assert_eq!(e.solid.elastic, e.solid.internal - e.solid.plastic);
             assert!(e.time > 0.0 && e.step > 0);
         }
     }

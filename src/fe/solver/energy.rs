@@ -5,43 +5,9 @@
 
 use serde::Serialize;
 
-/// Energies of one part, J.
+/// Energies of the solids of one part or of the whole model, J.
 #[derive(Debug, Clone, Default, PartialEq, Serialize)]
-pub struct PartEnergy {
-    /// Part name.
-    pub name: String,
-    /// Kinetic energy ½ Σ m |v^n|², J.
-    pub kinetic: f64,
-    /// Central-difference kinetic energy ½ Σ m v^{n−1/2}·v^{n+1/2}, J.
-    pub kinetic_central: f64,
-    /// Internal energy ∫ V σ:D dt, J.
-    pub internal: f64,
-    /// Elastic energy stored = internal − plastic, J.
-    pub elastic: f64,
-    /// Elastic energy evaluated from the current stresses, J (diagnostic).
-    pub elastic_from_stress: f64,
-    /// Plastic work dissipated so far, J.
-    pub plastic: f64,
-    /// Hourglass energy, J.
-    pub hourglass: f64,
-}
-
-/// The energy state of the whole model at time `time`, J.
-///
-/// Two independent balances are reported (the first by the 3D solver only):
-/// - `balance_error`: the Box 6.1 check |W_kin + W_int − W_ext − W_kin⁰| / max(W_kin, W_int,
-///   W_ext), with W_int and W_ext integrated over nodal forces by the trapezoidal rule
-///   (W_int includes hourglass forces);
-/// - `energy_ratio`: GLSTAT's total / initial total, where total = kinetic_central + internal
-///   (elastic + plastic) + hourglass + interaction energy (stored + dissipated, as reported by
-///   the interactions themselves, which are treated as part of the closed system), less the
-///   work of the model's own loads and damping (`load_work`).
-#[derive(Debug, Clone, Default, PartialEq, Serialize)]
-pub struct EnergyReport {
-    /// Time, s.
-    pub time: f64,
-    /// Step number.
-    pub step: u64,
+pub struct SolidEnergy {
     /// Kinetic energy ½ v^n·M v^n from full-step velocities, J.
     pub kinetic: f64,
     /// Central-difference kinetic energy ½ v^{n−1/2}·M v^{n+1/2}, J: the kinetic energy the
@@ -62,6 +28,50 @@ pub struct EnergyReport {
     pub plastic: f64,
     /// Hourglass energy, J.
     pub hourglass: f64,
+}
+
+impl SolidEnergy {
+    /// Adds the energies of `other` (another part's, J) to these, field by field.
+    pub fn add(&mut self, other: &SolidEnergy) {
+        self.kinetic += other.kinetic;
+        self.kinetic_central += other.kinetic_central;
+        self.elastic += other.elastic;
+        self.elastic_from_stress += other.elastic_from_stress;
+        self.internal += other.internal;
+        self.plastic += other.plastic;
+        self.hourglass += other.hourglass;
+    }
+}
+
+/// Energies of one part, J.
+#[derive(Debug, Clone, Default, PartialEq, Serialize)]
+pub struct PartEnergy {
+    /// Part name.
+    pub name: String,
+    /// The part's solid energies, J.
+    #[serde(flatten)]
+    pub energy: SolidEnergy,
+}
+
+/// The energy state of the whole model at time `time`, J.
+///
+/// Two independent balances are reported (the first by the 3D solver only):
+/// - `balance_error`: the Box 6.1 check |W_kin + W_int − W_ext − W_kin⁰| / max(W_kin, W_int,
+///   W_ext), with W_int and W_ext integrated over nodal forces by the trapezoidal rule
+///   (W_int includes hourglass forces);
+/// - `energy_ratio`: GLSTAT's total / initial total, where total = kinetic_central + internal
+///   (elastic + plastic) + hourglass + interaction energy (stored + dissipated, as reported by
+///   the interactions themselves, which are treated as part of the closed system), less the
+///   work of the model's own loads and damping (`load_work`).
+#[derive(Debug, Clone, Default, PartialEq, Serialize)]
+pub struct EnergyReport {
+    /// Time, s.
+    pub time: f64,
+    /// Step number.
+    pub step: u64,
+    /// Energies of the solids (the sums over the parts in the 3D solver), J.
+    #[serde(flatten)]
+    pub solid: SolidEnergy,
     /// Work of the internal nodal forces (trapezoidal), J (3D solver; 0 on the section).
     pub internal_work: f64,
     /// Work of the interaction (external) nodal forces on the solid (trapezoidal), J (3D
@@ -95,6 +105,6 @@ pub struct EnergyReport {
 impl EnergyReport {
     /// Kinetic (central) + elastic + plastic + hourglass: the mechanical energy of the solids, J.
     pub fn mechanical(&self) -> f64 {
-        self.kinetic_central + self.internal + self.hourglass
+        self.solid.kinetic_central + self.solid.internal + self.solid.hourglass
     }
 }

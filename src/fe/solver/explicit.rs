@@ -1002,37 +1002,37 @@ impl Solver {
                 let (v, a) = (self.v[n], self.a[n]);
                 let vv = v[0] * v[0] + v[1] * v[1] + v[2] * v[2];
                 let aa = a[0] * a[0] + a[1] * a[1] + a[2] * a[2];
-                pe.kinetic_central += 0.5 * self.mass[n] * (vv - c * aa);
-                pe.kinetic += 0.5 * self.mass[n] * vv;
+                pe.energy.kinetic_central += 0.5 * self.mass[n] * (vv - c * aa);
+                pe.energy.kinetic += 0.5 * self.mass[n] * vv;
             }
             if self.sub.is_some() && self.dt_prev > 0.0 {
                 // Subcycling: the closing and opening kicks differ where an element changed
                 // level, so v^{n∓1/2} = v^n ∓ (Δt^{n∓1/2}/2) a_close/open, each exactly.
-                pe.kinetic_central = 0.0;
+                pe.energy.kinetic_central = 0.0;
                 let (hm, hp) = (0.5 * self.dt_prev, 0.5 * self.dt_next);
                 for n in part.nodes.clone() {
                     let (v, ao, ac) = (self.v[n], self.a[n], self.a_close[n]);
                     let vm = [0, 1, 2].map(|d| v[d] - hm * ac[d]);
                     let vp = [0, 1, 2].map(|d| v[d] + hp * ao[d]);
-                    pe.kinetic_central +=
+                    pe.energy.kinetic_central +=
                         0.5 * self.mass[n] * (vm[0] * vp[0] + vm[1] * vp[1] + vm[2] * vp[2]);
                 }
             }
             if let Some(sub) = &self.sub {
                 // Elements between their updates: the work done on them since.
-                pe.internal += sub.pending_work(&self.blocks, &self.x, &self.elem_force)[p];
+                pe.energy.internal += sub.pending_work(&self.blocks, &self.x, &self.elem_force)[p];
             }
             let b = &self.blocks[p];
             for k in 0..b.conn.len() {
-                pe.internal += b.internal_energy[k];
-                pe.elastic_from_stress += b.element_elastic_energy(k);
-                pe.plastic += b.plastic_work[k];
+                pe.energy.internal += b.internal_energy[k];
+                pe.energy.elastic_from_stress += b.element_elastic_energy(k);
+                pe.energy.plastic += b.plastic_work[k];
             }
             // Empty for a formulation without hourglass modes.
             for e in &b.hourglass_energy {
-                pe.hourglass += e;
+                pe.energy.hourglass += e;
             }
-            pe.elastic = pe.internal - pe.plastic;
+            pe.energy.elastic = pe.energy.internal - pe.energy.plastic;
             parts.push(pe);
         }
         let mut r = EnergyReport {
@@ -1041,13 +1041,7 @@ impl Solver {
             ..Default::default()
         };
         for pe in &parts {
-            r.kinetic += pe.kinetic;
-            r.kinetic_central += pe.kinetic_central;
-            r.elastic += pe.elastic;
-            r.elastic_from_stress += pe.elastic_from_stress;
-            r.internal += pe.internal;
-            r.plastic += pe.plastic;
-            r.hourglass += pe.hourglass;
+            r.solid.add(&pe.energy);
         }
         for it in &self.interactions {
             let e = it.energy();
@@ -1057,9 +1051,9 @@ impl Solver {
         }
         r.internal_work = self.w_int;
         r.external_work = self.w_ext;
-        r.total = r.kinetic_central
-            + r.internal
-            + r.hourglass
+        r.total = r.solid.kinetic_central
+            + r.solid.internal
+            + r.solid.hourglass
             + r.interaction_stored
             + r.interaction_dissipated;
         r.initial_total = if self.step == 0 && self.e0 == 0.0 {
@@ -1074,12 +1068,13 @@ impl Solver {
         };
         let e0 = r.initial_total;
         let scale = r
+            .solid
             .kinetic
             .max(self.w_int.abs())
             .max(self.w_ext.abs())
             .max(e0);
         r.balance_error = if scale > 0.0 {
-            (r.kinetic_central + self.w_int - self.w_ext - e0).abs() / scale
+            (r.solid.kinetic_central + self.w_int - self.w_ext - e0).abs() / scale
         } else {
             0.0
         };

@@ -86,7 +86,7 @@ pub fn compress(
     ];
     let mut s = Solver::new(model, inter, Settings::default()).unwrap();
     s.run_until(|s| s.time() >= t_load + t_hold).unwrap();
-    let ke = s.energy().kinetic;
+    let ke = s.energy().solid.kinetic;
     let data = probe.get();
     let mut out = finish(
         &data.pressures,
