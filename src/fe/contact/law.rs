@@ -2,7 +2,8 @@
 //! stick spring and return mapping in the tangent plane.
 
 use super::friction::{return_map, stick_energy, CoulombFriction, StickState};
-use super::penalty::normal_force;
+use super::params::ContactParams;
+use super::penalty::{damping_constant, normal_force};
 use crate::fe::tensor::{add, norm, scale, tangential};
 
 /// Constants of one contact node, fixed after the first step.
@@ -16,6 +17,17 @@ pub struct NodeLaw {
     pub c: f64,
     /// Highest element frequency at the node, 2 c / L (wave speed c, Courant length L), rad/s.
     pub omega_elem: f64,
+}
+
+impl NodeLaw {
+    /// Raises the normal stiffness to at least `k_min` (N/m: the time-step rule's, already
+    /// times the pass weight) and sets the tangential stiffness and the dashpot from it as
+    /// `params` say, for the node's effective mass `m` (kg).
+    pub fn stiffen(&mut self, params: &ContactParams, k_min: f64, m: f64) {
+        self.k = self.k.max(k_min);
+        self.kt = params.tangential_ratio * self.k;
+        self.c = damping_constant(params.damping, self.k, m);
+    }
 }
 
 /// What one node did this step.

@@ -12,7 +12,7 @@ use super::law::{respond, stored_energy, NodeKinematics, NodeLaw};
 use super::ledger::ContactLedger;
 use super::output::{ContactOutput, ContactProbe, NodeContact, OutputBuilder, PressureSample};
 use super::params::ContactParams;
-use super::penalty::{damping_constant, effective_mass, stable_step};
+use super::penalty::{effective_mass, stable_step};
 use super::projection::{project, shape, Projection};
 use super::search::{bounding_box, Aabb, BucketSearch};
 use super::step_cache::StepCache;
@@ -211,12 +211,8 @@ impl SurfacePair {
             p.partner_mass = p.partner.iter().map(|&g| ctx.mass[g as usize]).collect();
             for (i, &g) in self.surfaces[p.slave].nodes.iter().enumerate() {
                 let m = effective_mass(ctx.mass[g as usize], p.partner_mass[i]);
-                let law = &mut p.laws[i];
-                law.k = law
-                    .k
-                    .max(p.weight * self.params.penalty.time_step_stiffness(m, ctx.dt));
-                law.kt = self.params.tangential_ratio * law.k;
-                law.c = damping_constant(self.params.damping, law.k, m);
+                let k_min = p.weight * self.params.penalty.time_step_stiffness(m, ctx.dt);
+                p.laws[i].stiffen(&self.params, k_min, m);
             }
         }
         self.ready = true;

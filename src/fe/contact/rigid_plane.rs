@@ -6,7 +6,7 @@ use super::law::{respond, stored_energy, NodeKinematics, NodeLaw};
 use super::ledger::ContactLedger;
 use super::output::{ContactOutput, ContactProbe, NodeContact, OutputBuilder, PressureSample};
 use super::params::ContactParams;
-use super::penalty::{damping_constant, stable_step};
+use super::penalty::stable_step;
 use super::step_cache::StepCache;
 use super::surface::ContactSurface;
 use crate::error::{Error, Result};
@@ -158,12 +158,8 @@ impl RigidPlane {
     fn prepare(&mut self, ctx: &StepContext<'_>) {
         for (i, &g) in self.surface.nodes.iter().enumerate() {
             let m = ctx.mass[g as usize];
-            let law = &mut self.laws[i];
-            law.k = law
-                .k
-                .max(self.params.penalty.time_step_stiffness(m, ctx.dt));
-            law.kt = self.params.tangential_ratio * law.k;
-            law.c = damping_constant(self.params.damping, law.k, m);
+            let k_min = self.params.penalty.time_step_stiffness(m, ctx.dt);
+            self.laws[i].stiffen(&self.params, k_min, m);
         }
         self.ready = true;
         self.dt_cache.clear();
