@@ -2,14 +2,15 @@
 //! `--tolerance`) on small meshes, and the honesty study (docs/design.md, "Error estimates").
 //!
 //! Print the figures with `cargo test --release --test suite error_estimate:: -- --nocapture`; the
-//! honesty table with `cargo test --release --test suite error_estimate::honesty -- --ignored
-//! --nocapture`.
+//! honesty tables with `cargo test --release --test suite error_estimate::honesty -- --ignored
+//! --nocapture` (head-on) and `error_estimate::oblique_honesty` (oblique, on a wall).
 
 use std::path::Path;
 use twoball::scene::pole::hertz_contact_radius;
 use twoball::scene::{MeshSettings, Override, Scene, DEFAULT_SCENE};
 use twoball::study::convergence::honesty::{
-    check_honesty, honesty_cases, honesty_table, HONESTY_MATERIALS, HONESTY_SPEEDS,
+    check_honesty, honesty_cases, honesty_table, oblique_cases, oblique_honesty_table,
+    HONESTY_MATERIALS, HONESTY_SPEEDS,
 };
 use twoball::study::convergence::ladder::LadderPlan;
 use twoball::study::convergence::scene_estimate::{run_level, run_scene_with_estimate};
@@ -178,4 +179,55 @@ fn honesty() {
     )
     .unwrap();
     println!("{}", honesty_table(&rows));
+}
+
+/// The honesty study of oblique impacts in 3D: Chung & Ooi's test 4 (a D = 5 mm ball on a
+/// rigid wall at 3.9 m/s, μ = 0.092; verification/dem-benchmarks/test4-alumina.toml) at ten
+/// angles of incidence from stick through micro-slip to gross sliding, for the elastic
+/// alumina ball and for a copper-fe one (plastic), on small meshes as the head-on study
+/// (bulk D/5, pole a/2): estimate from levels −1 and 0, true error against level +2 (the
+/// half model, pole and bulk halved twice), for e_t, the rebound angle, the spin after and e.
+#[test]
+#[ignore = "a study: about 90 minutes on 2 cores"]
+fn oblique_honesty() {
+    let materials = [
+        (
+            "alumina",
+            "{ E = 3.8e11, nu = 0.23, rho = 4000.0, yield = 1e11, mu = 0.092 }",
+        ),
+        ("copper-fe", "{ preset = \"copper-fe\", mu = 0.092 }"),
+    ];
+    let angles = [2.0, 4.0, 6.0, 8.0, 10.0, 13.0, 16.0, 20.0, 30.0, 45.0];
+    let base = Path::new("verification/dem-benchmarks/test4-alumina.toml");
+    let mut cases = oblique_cases(base, &materials, 3.9, &angles, &[]).unwrap();
+    for c in &mut cases {
+        let d = c.scene.ball1.diameter;
+        // The wall's image closes at twice ball 1's normal speed.
+        let closing = 2.0 * c.scene.ball1.velocity[0];
+        let a = hertz_contact_radius(&c.scene.ball1, &c.scene.ball2, closing);
+        let mesh = MeshSettings::Builtin {
+            size: d / 5.0,
+            pole_size: (a / 2.0).clamp(d / 2000.0, d / 100.0),
+        };
+        c.scene.ball1.mesh = mesh.clone();
+        c.scene.ball2.mesh = mesh;
+    }
+    let rows = check_honesty(
+        &cases,
+        |s, level| Ok(run_level(s, level, &opts())?.0),
+        |r| {
+            let t = r.tangential.and_then(|t| t.restitution);
+            eprintln!(
+                "{} {}°: e_t {:.5}, estimate {:.2e}, true error {:.2e}; {:.1} s",
+                r.material,
+                r.incidence_deg,
+                t.map_or(f64::NAN, |c| c.value),
+                t.map_or(f64::NAN, |c| c.estimate),
+                t.map_or(f64::NAN, |c| c.true_error),
+                r.wall_time_s
+            )
+        },
+    )
+    .unwrap();
+    println!("{}", oblique_honesty_table(&rows));
 }
