@@ -9,7 +9,7 @@ use std::path::Path;
 use twoball::scene::pole::hertz_contact_radius;
 use twoball::scene::{MeshSettings, Override, Scene, DEFAULT_SCENE};
 use twoball::study::convergence::honesty::{
-    check_honesty, honesty_cases, honesty_table, oblique_cases, oblique_honesty_table,
+    check_honesty, honesty_cases, honesty_table, oblique_cases, oblique_honesty_table, HonestyCase,
     HONESTY_MATERIALS, HONESTY_SPEEDS,
 };
 use twoball::study::convergence::ladder::LadderPlan;
@@ -148,6 +148,21 @@ fn a_ladder_without_a_coarser_mesh_is_a_clear_error() {
     assert!(err.contains("ball1.mesh.size at mesh level -2"), "{err}");
 }
 
+/// The honesty studies' small meshes on both balls of case `c`: bulk D/5 and pole a/2, a the
+/// Hertz contact radius at twice ball 1's normal speed (its partner's or its wall image's
+/// closing speed), clamped to D/2000..D/100.
+fn small_meshes(c: &mut HonestyCase) {
+    let d = c.scene.ball1.diameter;
+    let closing = 2.0 * c.scene.ball1.velocity[0];
+    let a = hertz_contact_radius(&c.scene.ball1, &c.scene.ball2, closing);
+    let mesh = MeshSettings::Builtin {
+        size: d / 5.0,
+        pole_size: (a / 2.0).clamp(d / 2000.0, d / 100.0),
+    };
+    c.scene.ball1.mesh = mesh.clone();
+    c.scene.ball2.mesh = mesh;
+}
+
 /// The honesty study in 3D on small meshes: 21 head-on cases (copper-fe, steel, aluminum at
 /// 0.01-10 m/s per ball), each with bulk D/5 and pole a/2 (a the Hertz contact radius,
 /// clamped to D/2000..D/100), estimate from levels −1 and 0, true error against level +2.
@@ -157,16 +172,7 @@ fn honesty() {
     let mut cases = honesty_cases(&HONESTY_MATERIALS, &HONESTY_SPEEDS, &|_, _| Vec::new()).unwrap();
     // Fastest (cheapest) cases first, so that an interrupted study has the most rows.
     cases.sort_by(|a, b| b.speed.total_cmp(&a.speed));
-    for c in &mut cases {
-        let d = c.scene.ball1.diameter;
-        let a = hertz_contact_radius(&c.scene.ball1, &c.scene.ball2, 2.0 * c.speed);
-        let mesh = MeshSettings::Builtin {
-            size: d / 5.0,
-            pole_size: (a / 2.0).clamp(d / 2000.0, d / 100.0),
-        };
-        c.scene.ball1.mesh = mesh.clone();
-        c.scene.ball2.mesh = mesh;
-    }
+    cases.iter_mut().for_each(small_meshes);
     let rows = check_honesty(
         &cases,
         |s, level| Ok(run_level(s, level, &opts())?.0),
@@ -200,18 +206,7 @@ fn oblique_honesty() {
     let angles = [2.0, 4.0, 6.0, 8.0, 10.0, 13.0, 16.0, 20.0, 30.0, 45.0];
     let base = Path::new("verification/dem-benchmarks/test4-alumina.toml");
     let mut cases = oblique_cases(base, &materials, 3.9, &angles, &[]).unwrap();
-    for c in &mut cases {
-        let d = c.scene.ball1.diameter;
-        // The wall's image closes at twice ball 1's normal speed.
-        let closing = 2.0 * c.scene.ball1.velocity[0];
-        let a = hertz_contact_radius(&c.scene.ball1, &c.scene.ball2, closing);
-        let mesh = MeshSettings::Builtin {
-            size: d / 5.0,
-            pole_size: (a / 2.0).clamp(d / 2000.0, d / 100.0),
-        };
-        c.scene.ball1.mesh = mesh.clone();
-        c.scene.ball2.mesh = mesh;
-    }
+    cases.iter_mut().for_each(small_meshes);
     let rows = check_honesty(
         &cases,
         |s, level| Ok(run_level(s, level, &opts())?.0),
