@@ -78,10 +78,6 @@ pub fn oblique_cases(
     angles_deg: &[f64],
     extra: &[String],
 ) -> Result<Vec<HonestyCase>> {
-    let text = std::fs::read_to_string(base).map_err(|e| {
-        crate::error::Error::Parse(format!("honesty base scene {}: {e}", base.display()))
-    })?;
-    let dir = base.parent().unwrap_or(Path::new("."));
     let mut cases = Vec::new();
     for &(name, material) in materials {
         for &deg in angles_deg {
@@ -101,7 +97,7 @@ pub fn oblique_cases(
                 material: name.to_string(),
                 speed,
                 incidence_deg: deg,
-                scene: Scene::from_toml(&text, dir, &sets)?,
+                scene: Scene::from_file(base, &sets)?,
             });
         }
     }
