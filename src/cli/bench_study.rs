@@ -3,7 +3,7 @@
 
 use crate::error::{Error, Result};
 use crate::scene::{Formulation, DEFAULT_SCENE};
-use crate::study::bench::{run_ladder, write_outputs, Ladder};
+use crate::study::bench::{run_settings, write_outputs, Ladder};
 use clap::Args;
 use std::path::{Path, PathBuf};
 
@@ -60,7 +60,7 @@ pub fn run(a: StudyArgs) -> Result<()> {
         None => (DEFAULT_SCENE.to_string(), PathBuf::from(".")),
     };
     println!("# twoball bench study: {} runs", ladder.settings().len());
-    let runs = run_ladder(&toml, &dir, &ladder, &a.out, |m, reused| {
+    let runs = run_settings(&toml, &dir, &ladder, &a.out, |m, reused| {
         println!(
             "{:<28} {:>7} elements {:>8.2} s  e = {:.6}{}",
             m.setting.label(),

@@ -5,11 +5,12 @@
 //!
 //! The mesh ladder refines the scene's graded mesh uniformly: level m has bulk size D/(10 m)
 //! and pole size D/(100 m) (the default mesh is m = 1), so the grading ratio stays 10 and
-//! h ∝ 1/m. With three ladder levels in constant ratio r (h₁ = r h₂ = r² h₃), the observed
-//! order and the extrapolated value of a quantity q are (Roache 1998, ch. 5)
-//!   p = ln((q₁ − q₂)/(q₂ − q₃)) / ln r,   q* = q₃ + (q₃ − q₂)/(r^p − 1).
-//! When the differences change sign (not yet in the asymptotic range) or p falls outside
-//! [0.5, 4], no extrapolation is made: the finest value is the reference, marked as such.
+//! h ∝ 1/m. The three finest ladder levels in constant ratio r give each quantity's observed
+//! order and extrapolated value by the project's one estimate
+//! ([`crate::study::records::estimate`], Roache 1998, ch. 5). When the differences change
+//! sign (not yet in the asymptotic range) or the order falls outside
+//! [`ORDER_RANGE`](crate::study::records::estimate::ORDER_RANGE), no extrapolation is made:
+//! the finest value is the reference, marked as such.
 //!
 //! Because the contact patch is resolved only by the pole elements, the error in e is
 //! governed mostly by the pole size; extra "pole refinement" runs (pole size D/(100 m k) at
@@ -26,6 +27,7 @@ use crate::error::{Error, Result};
 use crate::scene::{Formulation, Override, Scene};
 use crate::study::common::plots::{Chart, Series, Style};
 use crate::study::records::case_cache::{CaseCache, Layout};
+use crate::study::records::estimate::{estimate, Estimate};
 use crate::study::run::scene::run_scene;
 use serde::{Deserialize, Serialize};
 use std::fmt::Write as _;
@@ -119,52 +121,6 @@ pub struct Measured {
     pub contact_duration: f64,
     /// Energy error (relative).
     pub energy_error: f64,
-}
-
-/// A Richardson-extrapolated reference of one quantity.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
-pub struct Extrapolated {
-    /// The extrapolated value q*.
-    pub value: f64,
-    /// The observed order p (NaN when the differences change sign).
-    pub order: f64,
-    /// Whether the three values were monotone with 0.5 ≤ p ≤ 4 (asymptotic range); if not,
-    /// `value` is the finest mesh's value.
-    pub asymptotic: bool,
-}
-
-/// Richardson extrapolation from three values on meshes h₁ = r h₂ = r² h₃ (coarse to fine).
-/// Returns the finest value with order NaN when the three are equal to round-off.
-pub fn richardson(q: [f64; 3], r: f64) -> Extrapolated {
-    let (d12, d23) = (q[0] - q[1], q[1] - q[2]);
-    if d23.abs() <= 1e-14 * q[2].abs().max(1e-300) {
-        return Extrapolated {
-            value: q[2],
-            order: f64::NAN,
-            asymptotic: true,
-        };
-    }
-    let ratio = d12 / d23;
-    let raw = if ratio > 0.0 {
-        ratio.ln() / r.ln()
-    } else {
-        f64::NAN
-    };
-    if raw.is_finite() && (0.5..=4.0).contains(&raw) {
-        Extrapolated {
-            value: q[2] + (q[2] - q[1]) / (r.powf(raw) - 1.0),
-            order: raw,
-            asymptotic: true,
-        }
-    } else {
-        // Not in the asymptotic range: extrapolating with an assumed order would invent
-        // digits; the finest value is the reference and the table says so.
-        Extrapolated {
-            value: q[2],
-            order: raw,
-            asymptotic: false,
-        }
-    }
 }
 
 #[derive(Debug, Clone, PartialEq)]
@@ -321,7 +277,7 @@ pub fn scene_for(base: &Scene, toml: &str, dir: &Path, s: &Setting) -> Result<Sc
 /// stored atomically, so an interrupted bench resumes where it stopped.
 ///
 /// Errors: scene errors, FE failures (naming the setting), I/O errors.
-pub fn run_ladder(
+pub fn run_settings(
     toml: &str,
     scene_dir: &Path,
     ladder: &Ladder,
@@ -375,17 +331,23 @@ pub struct References {
     pub element: Formulation,
     /// Refinement ratio r of the three finest meshes.
     pub ratio: f64,
-    /// Coefficient of restitution.
-    pub e: Extrapolated,
+    /// Coefficient of restitution (its `extrapolated` value is the reference).
+    pub e: Estimate,
     /// Largest approach, m.
-    pub delta_max: Extrapolated,
+    pub delta_max: Estimate,
     /// Contact duration, s.
-    pub contact_duration: Extrapolated,
+    pub contact_duration: Estimate,
+}
+
+/// Whether a reference is extrapolated (a monotone ladder within the trusted orders, or one
+/// already settled); otherwise it is the finest mesh's value.
+fn reference_is_extrapolated(x: &Estimate) -> bool {
+    x.behaviour.is_asymptotic()
 }
 
 /// Richardson references from the ladder runs of formulation `element` at base factor.
 ///
-/// Errors: fewer than three such runs.
+/// Errors: fewer than three such runs, or a quantity of theirs that is not finite.
 pub fn references(runs: &[Measured], ladder: &Ladder, element: Formulation) -> Result<References> {
     let mut l: Vec<&Measured> = runs
         .iter()
@@ -405,13 +367,19 @@ pub fn references(runs: &[Measured], ladder: &Ladder, element: Formulation) -> R
     }
     let t = &l[l.len() - 3..];
     let ratio = t[2].setting.density / t[1].setting.density;
-    let q = |f: fn(&Measured) -> f64| richardson([f(t[0]), f(t[1]), f(t[2])], ratio);
+    let q = |f: fn(&Measured) -> f64, what: &str| {
+        estimate(&[f(t[0]), f(t[1]), f(t[2])], ratio).ok_or_else(|| {
+            Error::Numerical(format!(
+                "bench study: {what} of the three finest meshes is not finite"
+            ))
+        })
+    };
     Ok(References {
         element,
         ratio,
-        e: q(|m| m.e),
-        delta_max: q(|m| m.delta_max),
-        contact_duration: q(|m| m.contact_duration),
+        e: q(|m| m.e, "e")?,
+        delta_max: q(|m| m.delta_max, "delta_max")?,
+        contact_duration: q(|m| m.contact_duration, "contact duration")?,
     })
 }
 
@@ -441,9 +409,9 @@ pub fn csv(runs: &[Measured], r: &References) -> String {
             m.delta_max,
             m.contact_duration,
             m.energy_error,
-            rel(m.e, r.e.value),
-            rel(m.delta_max, r.delta_max.value),
-            rel(m.contact_duration, r.contact_duration.value),
+            rel(m.e, r.e.extrapolated),
+            rel(m.delta_max, r.delta_max.extrapolated),
+            rel(m.contact_duration, r.contact_duration.extrapolated),
         );
     }
     s
@@ -452,7 +420,7 @@ pub fn csv(runs: &[Measured], r: &References) -> String {
 /// The fastest run whose error in e is at most `tol` (relative), if any.
 pub fn fastest_within<'a>(runs: &'a [Measured], r: &References, tol: f64) -> Option<&'a Measured> {
     runs.iter()
-        .filter(|m| rel(m.e, r.e.value) <= tol)
+        .filter(|m| rel(m.e, r.e.extrapolated) <= tol)
         .min_by(|a, b| a.wall_time_s.total_cmp(&b.wall_time_s))
 }
 
@@ -460,12 +428,12 @@ pub fn fastest_within<'a>(runs: &'a [Measured], r: &References, tol: f64) -> Opt
 pub fn markdown(runs: &[Measured], refs: &[References]) -> String {
     let r = &refs[0];
     let mut s = String::new();
-    let ext = |name: &str, x: &Extrapolated, unit: &str| {
+    let ext = |name: &str, x: &Estimate, unit: &str| {
         format!(
             "| {name} | {:.6e} {unit} | {:.2} | {} |\n",
-            x.value,
-            x.order,
-            if x.asymptotic {
+            x.extrapolated,
+            x.observed_order.unwrap_or(f64::NAN),
+            if reference_is_extrapolated(x) {
                 "yes"
             } else {
                 "no: reference = finest mesh"
@@ -507,9 +475,9 @@ pub fn markdown(runs: &[Measured], refs: &[References]) -> String {
             m.element_cycles as f64,
             m.wall_time_s,
             m.e,
-            100.0 * rel(m.e, r.e.value),
-            100.0 * rel(m.delta_max, r.delta_max.value),
-            100.0 * rel(m.contact_duration, r.contact_duration.value),
+            100.0 * rel(m.e, r.e.extrapolated),
+            100.0 * rel(m.delta_max, r.delta_max.extrapolated),
+            100.0 * rel(m.contact_duration, r.contact_duration.extrapolated),
             m.energy_error
         );
     }
@@ -521,7 +489,7 @@ pub fn markdown(runs: &[Measured], refs: &[References]) -> String {
                 m.setting.label(),
                 m.elements,
                 m.wall_time_s,
-                100.0 * rel(m.e, r.e.value)
+                100.0 * rel(m.e, r.e.extrapolated)
             );
         }
         None => s.push_str("\nNo setting of this ladder reaches 1 % in e.\n"),
@@ -556,9 +524,9 @@ pub fn chart(runs: &[Measured], r: &References) -> Result<String> {
                 })
                 .map(|m| {
                     let err = if q == 0 {
-                        rel(m.e, r.e.value)
+                        rel(m.e, r.e.extrapolated)
                     } else {
-                        rel(m.delta_max, r.delta_max.value)
+                        rel(m.delta_max, r.delta_max.extrapolated)
                     };
                     (m.wall_time_s.max(1e-3).log10(), err.max(1e-6).log10())
                 })
@@ -610,21 +578,20 @@ mod tests {
     use super::*;
 
     #[test]
-    fn richardson_recovers_a_known_second_order_limit() {
+    fn a_second_order_ladder_gives_an_extrapolated_reference() {
         // q(h) = 2 + 3 h² on h = 1, 1/2, 1/4.
-        let q = [5.0, 2.75, 2.1875];
-        let x = richardson(q, 2.0);
-        assert!((x.order - 2.0).abs() < 1e-12);
-        assert!((x.value - 2.0).abs() < 1e-12);
-        assert!(x.asymptotic);
+        let x = estimate(&[5.0, 2.75, 2.1875], 2.0).unwrap();
+        assert!((x.observed_order.unwrap() - 2.0).abs() < 1e-12);
+        assert!((x.extrapolated - 2.0).abs() < 1e-12);
+        assert!(reference_is_extrapolated(&x));
     }
 
     #[test]
-    fn richardson_flags_oscillating_sequences() {
-        let x = richardson([1.0, 1.2, 1.1], 2.0);
-        assert!(!x.asymptotic);
-        assert!(x.order.is_nan());
-        assert_eq!(x.value, 1.1);
+    fn an_oscillating_ladder_gives_the_finest_value() {
+        let x = estimate(&[1.0, 1.2, 1.1], 2.0).unwrap();
+        assert!(!reference_is_extrapolated(&x));
+        assert!(x.observed_order.is_none());
+        assert_eq!(x.extrapolated, 1.1);
     }
 
     #[test]
