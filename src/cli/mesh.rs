@@ -32,7 +32,8 @@ struct BallArgs {
     /// Far-field element size, m (element edges stay below about 0.6 x size).
     #[arg(long)]
     size: f64,
-    /// Element size at the contact pole, m (default: no pole refinement).
+    /// Element size at the contact pole, m (default: no pole refinement; one above about
+    /// size/4.7 gets about size/4.7, the coarsest pole refinement the mesher builds).
     #[arg(long)]
     pole_size: Option<f64>,
     /// full, half (z >= 0) or quarter (y >= 0, z >= 0).

@@ -60,6 +60,8 @@ pub struct BallSpec {
     /// h = R / 5).
     pub size: f64,
     /// Element size at the contact pole, m; `None` meshes the ball uniformly (pole size = h).
+    /// A pole size above about a fifth of `size` (and below the surface facet) gets the finest
+    /// pole core that fits ([`CORE_REACH`]), about `size` / 4.7.
     pub pole_size: Option<f64>,
     /// Full ball or a symmetric part.
     pub cut: Cut,
@@ -191,13 +193,19 @@ impl Plan {
         Plan::with_core(r, n, cell * n as f64 / (2.0 * spacing_slope0()))
     }
 
-    /// Half-ball refined at the pole: the shortest core edge is `h_pole` (m).
+    /// Half-ball refined at the pole: the shortest core edge is `h_pole` (m), or shorter
+    /// when a core that large would reach the dome ([`CORE_REACH`]; a pole size within a
+    /// factor of about 4 of the bulk size): then the largest core that fits.
     pub(super) fn refined(r: f64, n: usize, h_pole: f64) -> Plan {
         // Edges scale with a while the core is small against R: a few fixed-point steps on
-        // the shortest edge of the mapped core give a = the requested pole size.
+        // the shortest edge of the mapped core give a = the requested pole size. For a large
+        // core the steps diverge (the inversion shrinks its deep cells).
         let mut a = h_pole * n as f64 / (2.0 * spacing_slope0());
         for _ in 0..4 {
             a *= h_pole / shortest_core_edge(r, n, a, 2.0 * r);
+        }
+        if !(a.is_finite() && core_reach(a, r) <= CORE_REACH * 2.0 * r) {
+            a = largest_core(r);
         }
         let mut plan = Plan::with_core(r, n, a);
         plan.deepen = 2.0 * r;
@@ -378,6 +386,36 @@ pub(super) fn core_point(i: usize, j: usize, k: usize, n: usize, a: f64, deepen:
     t.map(|x| x * f * g)
 }
 
+/// Largest distance of a refined core's nodes from the pole before the inversion, as a
+/// share of the dome radius 2R, that leaves room for the spherical layers: beyond about 0.6
+/// the layers on the core's corner rays grow thinner than half the pole cells (a smaller
+/// stable step), and a core reaching the dome folds them over it (inverted hexes). Pole
+/// sizes down to about a fifth of the bulk size need no more than 0.6.
+pub const CORE_REACH: f64 = 0.6;
+
+/// Distance (m) of the farthest node of a refined core of half-width `a` (m) from the pole,
+/// before the inversion, on a ball of radius `r` (m): its deep corners, t = (1, ±1, ±1)
+/// pushed out by (1 + a / 2R)² ([`core_point`]).
+fn core_reach(a: f64, r: f64) -> f64 {
+    a * (1.0 + a / (2.0 * r)).powi(2) * 3f64.sqrt()
+}
+
+/// The half-width (m) of the refined core whose reach is [`CORE_REACH`] of the dome radius,
+/// on a ball of radius `r` (m) (bisection; the reach grows with the half-width).
+fn largest_core(r: f64) -> f64 {
+    let target = CORE_REACH * 2.0 * r;
+    let (mut lo, mut hi) = (0.0, 2.0 * r);
+    for _ in 0..100 {
+        let mid = 0.5 * (lo + hi);
+        if core_reach(mid, r) <= target {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    lo
+}
+
 /// Shortest edge (m) of the core of half-width `a` after mapping onto the ball.
 fn shortest_core_edge(r: f64, n: usize, a: f64, deepen: f64) -> f64 {
     let m = n / 2;
@@ -519,6 +557,29 @@ mod tests {
         let l = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
         let x = invert(d.map(|c| c / l * 2.0 * r), r);
         assert!(x[0].abs() < 1e-15, "{x:?}");
+    }
+
+    #[test]
+    fn a_pole_size_near_the_bulk_size_gives_a_valid_mesh() {
+        // Pole sizes from 1/2.1 to 1/6 of the bulk size: the fixed point of the core size
+        // diverges above about 1/4 and a core reaching the dome folds the layers (scaled
+        // Jacobian -1); one nearly reaching it leaves sliver layers on its corner rays.
+        for d_over_size in [5.0, 6.0, 10.0, 28.0] {
+            for ratio in [2.1, 2.5, 3.0, 3.5, 3.8, 4.0, 4.5, 6.0] {
+                let size = 0.005 / d_over_size;
+                let spec = BallSpec {
+                    diameter: 0.005,
+                    size,
+                    pole_size: Some(size / ratio),
+                    cut: Cut::Half,
+                };
+                let q = crate::mesh::quality::summary(&ball(&spec).unwrap());
+                let at = format!("D/{d_over_size}, size/pole {ratio}");
+                assert!(q.min_scaled_jacobian > 0.3, "{at}: {q:?}");
+                assert!(q.min_edge <= 1.01 * size / ratio, "{at}: {q:?}");
+                assert!(q.min_edge >= size / 12.0, "{at}: a sliver layer, {q:?}");
+            }
+        }
     }
 
     #[test]
