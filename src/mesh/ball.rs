@@ -204,8 +204,8 @@ impl Plan {
         for _ in 0..4 {
             a *= h_pole / shortest_core_edge(r, n, a, 2.0 * r);
         }
-        if !(a.is_finite() && core_reach(a, r) <= CORE_REACH * 2.0 * r) {
-            a = largest_core(r);
+        if !(a.is_finite() && core_reach(a, r, n) <= CORE_REACH * 2.0 * r) {
+            a = largest_core(r, n);
         }
         let mut plan = Plan::with_core(r, n, a);
         plan.deepen = 2.0 * r;
@@ -393,21 +393,23 @@ pub(super) fn core_point(i: usize, j: usize, k: usize, n: usize, a: f64, deepen:
 /// sizes down to about a fifth of the bulk size need no more than 0.6.
 pub const CORE_REACH: f64 = 0.6;
 
-/// Distance (m) of the farthest node of a refined core of half-width `a` (m) from the pole,
-/// before the inversion, on a ball of radius `r` (m): its deep corners, t = (1, ±1, ±1)
-/// pushed out by (1 + a / 2R)² ([`core_point`]).
-fn core_reach(a: f64, r: f64) -> f64 {
-    a * (1.0 + a / (2.0 * r)).powi(2) * 3f64.sqrt()
+/// Distance (m) from the pole, before the inversion, of the farthest node of a refined core
+/// of half-width `a` (m) with `n` cells along an edge on a ball of radius `r` (m): a deep
+/// corner ([`core_point`] at i = n/2, j = k = 0).
+fn core_reach(a: f64, r: f64, n: usize) -> f64 {
+    let p = core_point(n / 2, 0, 0, n, a, 2.0 * r);
+    (p[0] * p[0] + p[1] * p[1] + p[2] * p[2]).sqrt()
 }
 
 /// The half-width (m) of the refined core whose reach is [`CORE_REACH`] of the dome radius,
-/// on a ball of radius `r` (m) (bisection; the reach grows with the half-width).
-fn largest_core(r: f64) -> f64 {
+/// with `n` cells along an edge on a ball of radius `r` (m) (bisection; the reach grows with
+/// the half-width).
+fn largest_core(r: f64, n: usize) -> f64 {
     let target = CORE_REACH * 2.0 * r;
     let (mut lo, mut hi) = (0.0, 2.0 * r);
     for _ in 0..100 {
         let mid = 0.5 * (lo + hi);
-        if core_reach(mid, r) <= target {
+        if core_reach(mid, r, n) <= target {
             lo = mid;
         } else {
             hi = mid;
