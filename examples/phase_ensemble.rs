@@ -17,7 +17,7 @@
 //! default 2 (`twoball run --tolerance` runs its family with K = 3).
 
 use twoball::fe::elements::ring::QuadFormulation;
-use twoball::fe::section::subcycle::Integration;
+use twoball::fe::subcycle::Integration;
 use twoball::material::Material;
 use twoball::study::convergence::phase_ensemble::{
     converged_head_on, ensemble_at, ensemble_at_radius, HeadOnCase, HeadOnTarget, PhaseEnsemble,

@@ -22,7 +22,7 @@
 
 use twoball::fe::elements::ring::QuadFormulation;
 use twoball::fe::section::solver::SectionSolver;
-use twoball::fe::section::subcycle::Integration;
+use twoball::fe::subcycle::Integration;
 use twoball::material::Material;
 use twoball::mesh::section::{
     ball, ladder_ball, ladder_ball_banded, EdgeBand, SectionMesh, SectionSpec,

@@ -7,7 +7,7 @@
 //! subcycled).
 
 use twoball::fe::elements::ring::QuadFormulation;
-use twoball::fe::section::subcycle::Integration;
+use twoball::fe::subcycle::Integration;
 use twoball::material::Material;
 use twoball::mesh::section::{ball, SectionSpec};
 use twoball::study::run::section_impact::{HeadOn, Target};

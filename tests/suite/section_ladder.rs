@@ -467,7 +467,7 @@ fn phase_honesty() {
             formulation: formulation(),
             plane: plane_contact(),
             mass_scaling: 0.0,
-            integration: twoball::fe::section::subcycle::Integration::subcycled(),
+            integration: twoball::fe::subcycle::Integration::subcycled(),
         };
         let family = level - 1;
         let meshes = if level > 0 { truth_meshes } else { 8 };
@@ -534,7 +534,7 @@ fn plastic_b_bar_ladder_is_monotone() {
         formulation: QuadFormulation::SelectiveReduced,
         plane: PlaneContact::Kinematic,
         mass_scaling: 0.0,
-        integration: twoball::fe::section::subcycle::Integration::subcycled(),
+        integration: twoball::fe::subcycle::Integration::subcycled(),
     };
     let mut rows: Vec<[f64; 3]> = Vec::new();
     for level in -1..=top {

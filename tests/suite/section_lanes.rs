@@ -5,8 +5,8 @@
 //! subcycled.
 
 use twoball::fe::elements::ring::QuadFormulation;
-use twoball::fe::section::subcycle::Integration;
 use twoball::fe::simd::KernelPath;
+use twoball::fe::subcycle::Integration;
 use twoball::material::Material;
 use twoball::mesh::section::{ball, SectionMesh, SectionSpec};
 use twoball::study::run::section_impact::{HeadOn, ImpactResult, OtherBall, Target};

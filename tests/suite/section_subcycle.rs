@@ -7,7 +7,7 @@ use twoball::fe::contact::section::plane_nodal::{NodalPlane, Side};
 use twoball::fe::interaction::Interaction;
 use twoball::fe::materials::J2Material;
 use twoball::fe::section::solver::{SectionModel, SectionSolver};
-use twoball::fe::section::subcycle::Integration;
+use twoball::fe::subcycle::Integration;
 use twoball::material::Material;
 use twoball::mesh::section::{ball, ladder_ball, SectionMesh, SectionSpec};
 use twoball::study::run::section_impact::{HeadOn, ImpactResult, PlaneContact, Target};

@@ -73,6 +73,36 @@ pub struct SurfacePair {
 }
 
 impl SurfacePair {
+    /// Every slave node (global number, per pass) with the stable step (s) of its full
+    /// (both-pass) spring on the lumped masses `mass` (kg): `penalty::stable_step` with the
+    /// element frequency under the slave and m* pairing the slave with its reference partner
+    /// or the lightest master node it has touched since. This assumes the two surfaces have
+    /// similar element sizes where they meet (as the graded balls do); the penetration guard
+    /// in `add_forces` catches a violation.
+    fn spring_steps<'a>(&'a self, mass: &'a [f64]) -> impl Iterator<Item = (usize, f64)> + 'a {
+        self.passes.iter().flat_map(move |p| {
+            self.surfaces[p.slave]
+                .nodes
+                .iter()
+                .zip(&p.laws)
+                .enumerate()
+                .map(move |(i, (&g, l))| {
+                    let mp = p
+                        .partner_mass
+                        .get(i)
+                        .copied()
+                        .unwrap_or(mass[p.partner[i] as usize]);
+                    // Both passes can load a node pair: take the full (unweighted) spring.
+                    let dt = stable_step(
+                        l.k / p.weight * self.params.coupling(),
+                        effective_mass(mass[g as usize], mp),
+                        l.omega_elem,
+                    );
+                    (g as usize, dt)
+                })
+        })
+    }
+
     /// Contact between the quads `faces_a` (body A, `mat_a`) and `faces_b` (body B, `mat_b`) of
     /// the hexahedra `hexes` over reference coordinates `nodes` (m; both bodies in one global
     /// numbering), symmetric two-pass.
@@ -422,36 +452,17 @@ impl Interaction for SurfacePair {
         Ok(())
     }
 
-    /// Per slave node: `penalty::stable_step` of the full (both-pass) spring, the element
-    /// frequency under the slave, and m* pairing the slave with its reference partner or the lightest master node it has touched since. This
-    /// assumes the two surfaces have similar element sizes where they meet (as the graded
-    /// balls do); the penetration guard in `add_forces` catches a violation.
+    /// The smallest of the slave nodes' spring steps ([`SurfacePair::spring_steps`]).
     fn stable_time_step(&self, mass: &[f64], _omega: &[f64]) -> Option<f64> {
         self.dt_cache.get_or(mass, || {
-            self.passes
-                .iter()
-                .flat_map(|p| {
-                    self.surfaces[p.slave]
-                        .nodes
-                        .iter()
-                        .zip(&p.laws)
-                        .enumerate()
-                        .map(move |(i, (&g, l))| {
-                            let mp = p
-                                .partner_mass
-                                .get(i)
-                                .copied()
-                                .unwrap_or(mass[p.partner[i] as usize]);
-                            // Both passes can load a node pair: take the full (unweighted) spring.
-                            stable_step(
-                                l.k / p.weight * self.params.coupling(),
-                                effective_mass(mass[g as usize], mp),
-                                l.omega_elem,
-                            )
-                        })
-                })
+            self.spring_steps(mass)
+                .map(|(_, dt)| dt)
                 .min_by(f64::total_cmp)
         })
+    }
+
+    fn node_limits(&self, mass: &[f64], _omega: &[f64]) -> Vec<(usize, f64)> {
+        self.spring_steps(mass).collect()
     }
 
     fn energy(&self) -> InteractionEnergy {

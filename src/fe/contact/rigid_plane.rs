@@ -145,14 +145,21 @@ impl RigidPlane {
     /// The smallest `penalty::stable_step` of the node springs as the laws are now, for nodal
     /// masses `mass` (kg): s, `None` for an empty surface.
     fn smallest_spring_step(&self, mass: &[f64]) -> Option<f64> {
-        self.surface
-            .nodes
-            .iter()
-            .zip(&self.laws)
-            .map(|(&g, l)| {
-                stable_step(l.k * self.params.coupling(), mass[g as usize], l.omega_elem)
-            })
+        self.spring_steps(mass)
+            .map(|(_, dt)| dt)
             .min_by(f64::total_cmp)
+    }
+
+    /// Each surface node (global number) with the stable step (s) of its spring on the
+    /// lumped masses `mass` (kg).
+    fn spring_steps<'a>(&'a self, mass: &'a [f64]) -> impl Iterator<Item = (usize, f64)> + 'a {
+        self.surface.nodes.iter().zip(&self.laws).map(|(&g, l)| {
+            let g = g as usize;
+            (
+                g,
+                stable_step(l.k * self.params.coupling(), mass[g], l.omega_elem),
+            )
+        })
     }
 
     fn prepare(&mut self, ctx: &StepContext<'_>) {
@@ -252,6 +259,10 @@ impl Interaction for RigidPlane {
 
     fn active_nodes(&self) -> Option<&[u32]> {
         Some(&self.surface.nodes)
+    }
+
+    fn node_limits(&self, mass: &[f64], _omega: &[f64]) -> Vec<(usize, f64)> {
+        self.spring_steps(mass).collect()
     }
 }
 

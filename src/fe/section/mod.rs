@@ -4,13 +4,13 @@
 //!
 //! - [`solver`]: the model and its phases of the explicit step (Box 6.1, run by
 //!   [`crate::fe::solver::central_difference::step`]), with energy accounting;
-//! - [`subcycle`]: multi-time-step integration (power-of-two step classes, nodal partition);
+//! - [`fine_step`]: its phases of a subcycled fine step (the scheme of [`crate::fe::subcycle`]);
 //! - [`mass_scaling`]: raised densities of the smallest quads within an added-mass budget.
 //!
 //! Its ring elements live with the elements ([`crate::fe::elements::ring`]: geometry, ring
 //! masses, the formulations behind one seam, on the lane paths of [`crate::fe::simd`]); its
 //! contacts ([`crate::fe::contact::section`]) are scalar.
 
+pub mod fine_step;
 pub mod mass_scaling;
 pub mod solver;
-pub mod subcycle;

@@ -4,7 +4,6 @@
 //! [`Interaction`]s ([`crate::fe::contact::section`]), and the
 //! energy balance (kinetic, internal, plastic, hourglass, contact) checked every step.
 
-use super::subcycle::{Integration, Schedule};
 use crate::error::{Error, Result};
 use crate::fe::elements::ring::{
     element::{LaneStep, RingElement, RingVisitor, Step},
@@ -18,6 +17,7 @@ use crate::fe::materials::{Hardening, LawDispatch, LawVisitor};
 use crate::fe::simd::{build, Kernel, KernelPath, LaneIsa, LaneKernel};
 use crate::fe::solver::central_difference::{self, CentralDifference};
 use crate::fe::solver::energy::{EnergyReport, SolidEnergy};
+use crate::fe::subcycle::{Integration, Schedule};
 
 /// The meridian model: nodes, quads with their materials, initial velocities, supports and
 /// loads. Nodes with r = 0 are on the axis and get v_r = 0.
@@ -453,7 +453,7 @@ impl SectionSolver {
     /// Advances one step ([`central_difference::step`]). Single rate: Box 6.1,
     /// v^{n+1/2} = v^n + Δt/2 a^n, x^{n+1} = x^n + Δt v^{n+1/2}, forces at t^{n+1},
     /// v^{n+1} = v^{n+1/2} + Δt/2 a^{n+1}, with the stable step of the current configuration.
-    /// Subcycled: one fine step (see [`super::subcycle`]); positions, velocities, internal
+    /// Subcycled: one fine step (see [`super::fine_step`]); positions, velocities, internal
     /// forces and energies are those of the whole model at synchronisations
     /// ([`SectionSolver::synchronised`]).
     pub fn step(&mut self) -> Result<()> {
@@ -676,10 +676,10 @@ impl SectionSolver {
 pub(crate) struct StepCarry {
     pub(super) ext: f64,
     pub(super) next: f64,
-    pub(super) fine: Option<super::subcycle::FineStep>,
+    pub(super) fine: Option<super::fine_step::FineStep>,
 }
 
-/// The section's phases: single rate here, subcycled by node levels in [`super::subcycle`].
+/// The section's phases: single rate here, subcycled by node levels in [`super::fine_step`].
 impl CentralDifference for SectionSolver {
     type Carry = StepCarry;
 

@@ -449,10 +449,12 @@ impl Solver {
                 pinned[i as usize] = true;
             }
         }
+        let contact_dt = self.contact_limits();
         let mut sub = Subcycler::new(
             &self.blocks,
             &self.x,
             &pinned,
+            &contact_dt,
             self.settings.time_step_factor,
             self.dt_next,
             self.settings.subcycle_max_level,
@@ -565,6 +567,7 @@ impl Solver {
             self.settings.time_step_factor,
             dt,
             interaction_limit,
+            || self.contact_limits(),
             |h_taken| self.next_step(h_taken, stable_dt),
         );
         self.dt_next = h;
@@ -763,6 +766,18 @@ impl Solver {
             }
         }
         stable
+    }
+
+    /// Each node's contact limit (s): the smallest stable step the interactions' springs allow
+    /// it ([`Interaction::node_limits`]); ∞ where none acts.
+    fn contact_limits(&self) -> Vec<f64> {
+        let mut dt = vec![f64::INFINITY; self.x.len()];
+        for it in &self.interactions {
+            for (i, d) in it.node_limits(&self.mass, &[]) {
+                dt[i] = dt[i].min(d);
+            }
+        }
+        dt
     }
 
     /// The step to take after `dt` given the stable step `stable` (s): the fixed step, or

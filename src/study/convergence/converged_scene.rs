@@ -18,7 +18,7 @@
 //! estimate says why ([`EstimateMethod::SceneLadder`]).
 
 use crate::error::{Error, Result};
-use crate::fe::section::subcycle::Integration;
+use crate::fe::subcycle::Integration;
 use crate::fe::subcycle::Subcycling;
 use crate::mesh::section::SectionMesh;
 use crate::scene::{approach, Approach, PlaneEnforcement, Scene, Switch, WallKind};
@@ -48,7 +48,7 @@ pub const MESHES: usize = 2;
 pub const MAX_MASS_SCALING: f64 = 1e-4;
 
 /// The highest subcycling level of the family's runs: one above the section's default
-/// ([`crate::fe::section::subcycle::DEFAULT_MAX_LEVEL`]). Mass scaling has lifted the step of
+/// ([`crate::fe::subcycle::DEFAULT_MAX_LEVEL`]). Mass scaling has lifted the step of
 /// the smallest quads, so the levels' pseudo-energy stays small: on levels 0 and 1 of the
 /// default scene, steel at 1 m/s, aluminum at 10 m/s and copper-fe at 0.2 m/s the energy
 /// error is 2e-5 to 6e-5 of KE₀ (3e-6 to 1.3e-5 at the default cap), e moves by at most

@@ -21,7 +21,7 @@
 use crate::analytic::hertz::HertzPair;
 use crate::error::{Error, Result};
 use crate::fe::elements::ring::QuadFormulation;
-use crate::fe::section::subcycle::Integration;
+use crate::fe::subcycle::Integration;
 use crate::material::Material;
 use crate::mesh::section::{ladder_ball, SectionMesh};
 use crate::study::convergence::ladder::refine;

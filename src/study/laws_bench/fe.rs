@@ -292,7 +292,7 @@ pub fn head_on_case(point: &HeadOnPoint) -> HeadOnCase {
         formulation: QuadFormulation::default(),
         plane: PlaneContact::Kinematic,
         mass_scaling: 0.0,
-        integration: crate::fe::section::subcycle::Integration::subcycled(),
+        integration: crate::fe::subcycle::Integration::subcycled(),
     }
 }
 

@@ -8,8 +8,8 @@
 
 use crate::error::{Error, Result};
 use crate::fe::elements::ring::QuadFormulation;
-use crate::fe::section::subcycle::Integration;
 use crate::fe::solver::subcycle::{SubcycleReport, Subcycling};
+use crate::fe::subcycle::Integration;
 use crate::fe::Formulation;
 use crate::mesh::section::{ball, block, BlockSpec, SectionMesh, SectionSpec};
 use crate::scene::{BallScene, MeshSettings, PlaneEnforcement, Scene, Switch, Touch};

@@ -1,123 +1,35 @@
-//! Multi-time-step explicit integration (subcycling) by nodal partition (Belytschko, Yen &
-//! Mullen 1979; stability: Smolinski, Sleith & Belytschko 1996), with LS-DYNA's power-of-two
-//! step classes.
+//! The subcycling scheme ([`super`]) on the 3D model's element blocks: the levels of the
+//! synchronisations, the element runs of each level, the mean nodal velocities over a
+//! level's interval, and the level-weighted half-kick forces of the due nodes.
 //!
-//! - Fine step h: the single-step solver's step (time_step_factor × smallest element Courant limit, or
-//!   an interaction's limit, with the same growth hysteresis).
-//! - Node level L_i: the node is integrated with its own step 2^{L_i} h, the largest that
-//!   every element around it allows (2^L h ≤ time_step_factor × its Courant limit) up to a cap; nodes an
-//!   interaction may act on ([`crate::fe::solver::interaction::Interaction::active_nodes`]) have level 0.
-//! - Element update level u_e = min of its nodes' levels: an element is updated whenever one
-//!   of its nodes is due, with its own step 2^{u_e} h, from its nodes' synchronised
-//!   positions; a coarser node of it has not been kicked since its last update, so it drifted
-//!   at constant velocity: BYM's linear interpolation of the coarse nodes. No element force is
-//!   ever held or extrapolated for a finer node, so no force lags.
-//! - Every node drifts every fine step (x += h v; a coarse node's velocity is constant between
-//!   its kicks, so this is its own step exactly) and receives interaction forces every fine
-//!   step. A due node gets the Box 6.1 half-kicks with the sum of its (all fresh) element
-//!   forces weighted by its own step: closing 2^{L_old}, opening 2^{L_new}.
-//! - The element sees its nodes' mean velocity over its own step, v̄ = (x^n − x^{n−2^u})/H
-//!   (positions kept per level at the last multiple of 2^u).
-//! - Levels are aligned (level-k nodes and elements are due at multiples of 2^k), so all are
-//!   due together every 2^top fine steps (a synchronisation): only there may h change and a
-//!   node climb (by [`CLIMB_MARGIN`]). Between synchronisations a due node whose elements no
-//!   longer allow its step drops level(s) (its elements are all being updated, so the new
-//!   level starts aligned); if a due node or an interaction needs less than h, h drops at
-//!   once, as the single-step solver's step does. A node then in mid-interval closes it with
-//!   its actual length A instead of the planned P and adds ½ (A − P) g_open, so its impulse
-//!   stays the trapezoid ½ A (g_open + g_close). A node not due runs at most one of its own
-//!   steps on the limit measured at its start, as the single-step solver does with its step.
-//!
-//! Energy: the Box 6.1 balance of the kicks stays exact; the element-side internal energy of
-//! an element with coarser nodes differs from the nodal work by O(H ḟ·v) (BYM conserves a
-//! pseudo-energy), a reversible difference of ~0.2 % of the peak strain energy in an impact.
-//! The resonance instability of impulse (r-RESPA-type) schemes, where a coarse element kicks a
-//! fine node once per coarse step, is absent because a fine node only ever sees fresh forces.
+//! The 3D loop kicks its due nodes inside the single-step Box 6.1 step, with the fine step and
+//! their element forces weighted by their own steps: closing 2^{L_old}, opening 2^{L_new}. An
+//! element sees its nodes' mean velocity over its own step, v̄ = (x^n − x^{n−2^u})/H
+//! (positions kept per level at the last multiple of 2^u). The interactions act every fine
+//! step, on nodes held at level 0; levels follow [`LevelRule::HEXAHEDRA`]. Between
+//! synchronisations a guard acts: a due node whose elements no longer allow its step drops
+//! level(s), and if a due element or an interaction needs less than h, h drops at once; a node
+//! then in mid-interval closes it with its actual length A instead of the planned P and adds
+//! ½ (A − P) g_open, so its impulse stays the trapezoid ½ A (g_open + g_close).
 
+use super::levels::LevelRule;
+use super::{predicted_saving, Schedule, SubcycleReport};
 use crate::fe::elements::{ElementBlock, ElementFailure};
-use serde::{Deserialize, Serialize};
 use std::ops::Range;
-
-/// Whether element groups advance with their own time steps.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
-#[serde(rename_all = "snake_case")]
-pub enum Subcycling {
-    /// One step for every element (the single-step Box 6.1 loop).
-    #[default]
-    Off,
-    /// On when the predicted saving is at least [`AUTO_MIN_SAVING`].
-    Auto,
-    /// Always on.
-    On,
-}
-
-/// Smallest predicted saving (single-step element updates / subcycled ones) at which
-/// [`Subcycling::Auto`] switches subcycling on: below it the extra node work and the
-/// synchronisation bookkeeping eat most of the gain.
-pub const AUTO_MIN_SAVING: f64 = 1.5;
-
-/// Relative margin by which an element's stable step must exceed its next level's step
-/// before it climbs there: room for the element to deform for a whole interval, and a
-/// hysteresis so that levels do not flip with every vibration.
-pub const CLIMB_MARGIN: f64 = 0.1;
-
-/// What subcycling did over a run, for results.json.
-#[derive(Debug, Clone, Default, PartialEq, Serialize)]
-pub struct SubcycleReport {
-    /// Subcycling in use.
-    pub used: bool,
-    /// Why it is (not) used.
-    pub reason: String,
-    /// Predicted saving at the start: elements / Σ_e 2^{−k_e}.
-    pub predicted_saving: f64,
-    /// Highest level allowed.
-    pub max_level: u32,
-    /// Elements per level at the start (index = level).
-    pub initial_levels: Vec<usize>,
-    /// Element updates taken, all levels.
-    pub element_updates: u64,
-    /// Times a node dropped level(s) because an element's limit fell.
-    pub level_drops: u64,
-    /// Times the fine step dropped between synchronisations (a limit fell below it).
-    pub fine_step_drops: u64,
-    /// Synchronisations (all elements updated together; h and climbs decided there).
-    pub synchronisations: u64,
-}
-
-/// The level of an element whose stable step (time_step_factor included) is `limit` (s) for the fine
-/// step `h` (s): the largest k ≤ `cap` with 2^k h (1 + `margin`) ≤ `limit`, or 0 if none.
-pub fn level_for(limit: f64, h: f64, margin: f64, cap: u32) -> u32 {
-    let mut k = 0;
-    while k < cap && (1u64 << (k + 1)) as f64 * h * (1.0 + margin) <= limit {
-        k += 1;
-    }
-    k
-}
-
-/// Predicted saving of a level assignment: elements / Σ_e 2^{−k_e} (1 = none).
-pub fn predicted_saving(levels: &[u8]) -> f64 {
-    let cost: f64 = levels.iter().map(|&k| 0.5f64.powi(k as i32)).sum();
-    if cost > 0.0 {
-        levels.len() as f64 / cost
-    } else {
-        1.0
-    }
-}
 
 /// The level bookkeeping of a subcycled run.
 #[derive(Debug, Clone)]
 pub struct Subcycler {
     cap: u32,
-    /// Level of each node (its own step 2^L h), in units of the current fine step.
-    node_level: Vec<u8>,
-    /// Update level of each global element: the smallest level of its nodes.
-    elem_level: Vec<u8>,
+    /// The cycle's step classes: each node's level (its own step 2^L h, in units of the
+    /// current fine step), each global element's (the smallest of its nodes'), the nodes
+    /// ordered by level (mesh order within a level: the nodes due at a fine step are a prefix),
+    /// and the highest level in use (everything is updated together every 2^top fine steps).
+    sched: Schedule,
     /// Nodes held at level 0 (an interaction may act on them).
     pinned: Vec<bool>,
     /// (block, local index) of every global element.
     locate: Vec<(usize, usize)>,
-    /// Highest level in use: everything is updated together every 2^top fine steps.
-    top: u32,
     /// Fine steps since the last synchronisation.
     j: u64,
     /// Per level: maximal runs (block, local element range) of elements of that level.
@@ -141,11 +53,6 @@ pub struct Subcycler {
     h_changed: Vec<bool>,
     /// Levels due at the current step (all: `u32::MAX`).
     thr: u32,
-    /// Every node, ordered by level (mesh order within a level): the nodes due at a fine
-    /// step are a prefix of it.
-    node_order: Vec<u32>,
-    /// Per level k: how many nodes have level ≤ k (the due prefix of `node_order`).
-    level_end: Vec<usize>,
     /// Per level k ≥ 1: the nodes of its elements, ascending: the only nodes whose snapshot
     /// `snap[k]` and mean velocity over the level's interval are ever read.
     level_nodes: Vec<Vec<u32>>,
@@ -157,15 +64,16 @@ pub struct Subcycler {
 
 impl Subcycler {
     /// Levels for elements whose current Courant limits are in `blocks[..].dt_crit` (all
-    /// evaluated at the same instant), stable-step time-step factor `time_step_factor`, fine step `h` (s),
-    /// highest level `cap`; `pinned_nodes[i]` marks nodes an interaction may act on (held at
-    /// level 0). The state
+    /// evaluated at the same instant), nodal contact limits `contact_dt` (s, one per node; ∞
+    /// for none), step factor `time_step_factor`, fine step `h` (s), highest level `cap`;
+    /// `pinned_nodes[i]` marks nodes an interaction may act on (held at level 0). The state
     /// is a synchronisation: every node and element counts as just updated.
     #[allow(clippy::too_many_arguments)]
     pub fn new(
         blocks: &[ElementBlock],
         x: &[[f64; 3]],
         pinned_nodes: &[bool],
+        contact_dt: &[f64],
         time_step_factor: f64,
         h: f64,
         cap: u32,
@@ -174,11 +82,13 @@ impl Subcycler {
         let n = x.len();
         let mut s = Subcycler {
             cap,
-            node_level: vec![0; n],
-            elem_level: vec![0; ne],
+            sched: Schedule {
+                node_level: vec![0; n],
+                element_level: vec![0; ne],
+                ..Schedule::default()
+            },
             pinned: pinned_nodes.to_vec(),
             locate: element_locations(blocks),
-            top: 0,
             j: 0,
             runs: Vec::new(),
             snap: Vec::new(),
@@ -191,8 +101,6 @@ impl Subcycler {
             planned: Vec::new(),
             h_changed: Vec::new(),
             thr: u32::MAX,
-            node_order: Vec::new(),
-            level_end: Vec::new(),
             level_nodes: Vec::new(),
             level_min: None,
             report: SubcycleReport {
@@ -201,14 +109,13 @@ impl Subcycler {
                 ..Default::default()
             },
         };
-        // The first levels need no climbing margin: nothing has moved yet.
-        s.synchronise(blocks, time_step_factor, h, 0.0);
+        s.synchronise(blocks, time_step_factor, h, contact_dt);
         s.open_intervals(x, h, h);
-        for (w, &k) in s.w_open.iter_mut().zip(&s.node_level) {
+        for (w, &k) in s.w_open.iter_mut().zip(&s.sched.node_level) {
             *w = (1u64 << k) as f64;
         }
         s.report.initial_levels = s.histogram();
-        s.report.predicted_saving = predicted_saving(&s.elem_level);
+        s.report.predicted_saving = predicted_saving(&s.sched.element_level);
         s
     }
 
@@ -219,33 +126,34 @@ impl Subcycler {
 
     /// Update level of global element `e`.
     pub fn element_level(&self, e: usize) -> u32 {
-        self.elem_level[e] as u32
+        self.sched.element_level[e] as u32
     }
 
     /// Level of node `i`.
     pub fn node_level(&self, i: usize) -> u32 {
-        self.node_level[i] as u32
+        self.sched.node_level[i] as u32
     }
 
     /// The nodes due at the current fine step (every node at a synchronisation), finest level
     /// first: the only nodes whose element forces act now.
     pub fn due_nodes(&self) -> &[u32] {
         if self.thr == u32::MAX {
-            &self.node_order
+            &self.sched.nodes
         } else {
-            &self.node_order[..self.level_end[self.thr.min(self.top) as usize]]
+            &self.sched.nodes
+                [..self.sched.node_end[self.thr.min(u32::from(self.sched.top)) as usize]]
         }
     }
 
     /// Whether node `i` is due at the current fine step.
     fn due(&self, i: usize) -> bool {
-        self.thr == u32::MAX || self.node_level[i] as u32 <= self.thr
+        self.thr == u32::MAX || self.sched.node_level[i] as u32 <= self.thr
     }
 
     /// Elements per update level now (index = level).
     pub fn histogram(&self) -> Vec<usize> {
-        let mut h = vec![0; self.top as usize + 1];
-        for &k in &self.elem_level {
+        let mut h = vec![0; self.sched.top as usize + 1];
+        for &k in &self.sched.element_level {
             h[k as usize] += 1;
         }
         h
@@ -259,7 +167,7 @@ impl Subcycler {
             *s += h_taken;
         }
         self.j += 1;
-        self.thr = if self.j.is_multiple_of(1u64 << self.top) {
+        self.thr = if self.j.is_multiple_of(1u64 << self.sched.top) {
             u32::MAX
         } else {
             self.j.trailing_zeros()
@@ -287,7 +195,7 @@ impl Subcycler {
         elem_force: &mut [[[f64; 3]; 8]],
     ) -> Result<u64, (usize, ElementFailure)> {
         let mut count = 0;
-        let last = self.top.min(self.thr);
+        let last = u32::from(self.sched.top).min(self.thr);
         for k in 0..=last as usize {
             if self.runs[k].is_empty() {
                 continue;
@@ -341,12 +249,12 @@ impl Subcycler {
 
     /// Chooses the levels for the coming intervals and the fine step, after the due
     /// elements were updated: at a synchronisation h = `choose_h(h_taken)` and every node
-    /// takes its level afresh (climbing only with [`CLIMB_MARGIN`]); otherwise h stays unless
-    /// a due node's elements or `interaction_limit` (s, time_step_factor included) need less (then h
-    /// drops to that, as the single-step solver's step does), and due nodes whose elements'
-    /// limits fell drop level(s). Sets the closing (actual interval, plus the trapezoid
-    /// correction if h changed during it) and opening (new level) weights of the due nodes
-    /// and opens the intervals of the levels due. Returns the fine step to take (s).
+    /// takes its level afresh by the scheme's rule, with the nodal contact limits
+    /// `contact_dt()` (s); otherwise the levels stay, and h stays unless a due element or
+    /// `interaction_limit` (s, time_step_factor included) needs less (then h drops to that,
+    /// as the single-step solver's step does). Sets the closing (actual interval, plus the
+    /// trapezoid correction if h changed during it) and opening (new level) weights of the
+    /// due nodes and opens the intervals of the levels due. Returns the fine step to take (s).
     #[allow(clippy::too_many_arguments)]
     pub fn choose_levels(
         &mut self,
@@ -355,13 +263,14 @@ impl Subcycler {
         time_step_factor: f64,
         h_taken: f64,
         interaction_limit: f64,
+        contact_dt: impl FnOnce() -> Vec<f64>,
         choose_h: impl FnOnce(f64) -> f64,
     ) -> f64 {
         // Weights of the due nodes only (`gather_kicks` never reads the others').
         let n_due = self.due_nodes().len();
         for idx in 0..n_due {
-            let i = self.node_order[idx] as usize;
-            let l = self.node_level[i] as usize;
+            let i = self.sched.nodes[idx] as usize;
+            let l = self.sched.node_level[i] as usize;
             (self.w_close[i], self.w_corr[i]) = if self.h_changed[l] {
                 // Impulse ½ A (g_open + g_now) over the actual interval A: the opening kick
                 // gave ½ P g_open, so the closing one adds ½ (A − P) g_open.
@@ -375,17 +284,16 @@ impl Subcycler {
         }
         let h = if self.synchronising() {
             let h = choose_h(h_taken);
-            self.synchronise(blocks, time_step_factor, h, CLIMB_MARGIN);
+            self.synchronise(blocks, time_step_factor, h, &contact_dt());
             self.report.synchronisations += 1;
             h
         } else {
-            self.drop_levels(blocks, time_step_factor, h_taken, interaction_limit)
+            self.due_step(blocks, time_step_factor, h_taken, interaction_limit)
         };
-        // The due set is unchanged by level drops (only due nodes drop, and stay due); its
-        // order may have changed.
+        // The due set is unchanged between synchronisations; at one, every node is due.
         for idx in 0..n_due {
-            let i = self.node_order[idx] as usize;
-            self.w_open[i] = (1u64 << self.node_level[i]) as f64;
+            let i = self.sched.nodes[idx] as usize;
+            self.w_open[i] = (1u64 << self.sched.node_level[i]) as f64;
         }
         self.open_intervals(x, h_taken, h);
         h
@@ -394,7 +302,7 @@ impl Subcycler {
     /// Opens the interval of every level due now (snapshot, span, planned length) and marks
     /// the others if the fine step changed from `h_taken` to `h`.
     fn open_intervals(&mut self, x: &[[f64; 3]], h_taken: f64, h: f64) {
-        let levels = self.top as usize + 1;
+        let levels = self.sched.top as usize + 1;
         self.span.resize(levels, 0.0);
         self.planned.resize(levels, 0.0);
         self.h_changed.resize(levels, false);
@@ -412,54 +320,36 @@ impl Subcycler {
         }
     }
 
-    /// Per node, the smallest over its elements of the largest k with 2^k h (1 + `margin`)
-    /// within the element's limit (time_step_factor `time_step_factor`, fine step `h`), and the same without the
-    /// margin; 0 if pinned. One pass over the elements (each evaluates its two levels once)
-    /// instead of a walk per node.
-    fn fitting_levels(
-        &self,
+    /// All node levels afresh for fine step `h` (s) by the scheme's rule
+    /// ([`super::levels`]: the elements' Courant limits, the nodal contact limits
+    /// `contact_dt` (s), the neighbour cap), pinned nodes at level 0; counter reset.
+    fn synchronise(
+        &mut self,
         blocks: &[ElementBlock],
         time_step_factor: f64,
         h: f64,
-        margin: f64,
-    ) -> (Vec<u32>, Vec<u32>) {
-        let n = self.node_level.len();
-        let (mut climb, mut fit) = (vec![self.cap; n], vec![self.cap; n]);
-        for b in blocks {
-            for (c, &d) in b.conn.iter().zip(&b.dt_crit) {
-                let kc = level_for(time_step_factor * d, h, margin, self.cap);
-                let kf = level_for(time_step_factor * d, h, 0.0, self.cap);
-                for &i in c {
-                    let i = i as usize;
-                    climb[i] = climb[i].min(kc);
-                    fit[i] = fit[i].min(kf);
-                }
-            }
-        }
-        for (i, &p) in self.pinned.iter().enumerate() {
-            if p {
-                (climb[i], fit[i]) = (0, 0);
-            }
-        }
-        (climb, fit)
-    }
-
-    /// All node levels afresh for fine step `h` (climbing only with `margin`); counter reset.
-    fn synchronise(&mut self, blocks: &[ElementBlock], time_step_factor: f64, h: f64, margin: f64) {
-        let (climb, fit) = self.fitting_levels(blocks, time_step_factor, h, margin);
-        let mut changed = self.runs.is_empty();
-        for i in 0..self.node_level.len() {
-            let cur = (self.node_level[i] as u32).min(self.cap);
-            let new = if climb[i] > cur {
-                climb[i]
+        contact_dt: &[f64],
+    ) {
+        let elements = blocks
+            .iter()
+            .flat_map(|b| b.conn.iter().zip(b.dt_crit.iter().copied()));
+        let rule = LevelRule::HEXAHEDRA;
+        let limits = rule.node_limits(elements, contact_dt);
+        let cap = self.cap.min(u32::from(u8::MAX)) as u8;
+        let first = self.runs.is_empty();
+        let mut changed = first;
+        for (i, &limit) in limits.iter().enumerate() {
+            let current = (!first).then_some(self.sched.node_level[i]);
+            let new = if self.pinned[i] {
+                0
             } else {
-                if fit[i] < cur {
-                    self.report.level_drops += 1;
-                }
-                cur.min(fit[i])
-            } as u8;
-            changed |= new != self.node_level[i];
-            self.node_level[i] = new;
+                rule.next_level(limit, h, time_step_factor, cap, current)
+            };
+            if new < self.sched.node_level[i] {
+                self.report.level_drops += 1;
+            }
+            changed |= new != self.sched.node_level[i];
+            self.sched.node_level[i] = new;
         }
         self.j = 0;
         self.thr = u32::MAX;
@@ -470,20 +360,23 @@ impl Subcycler {
         }
     }
 
-    /// Between synchronisations: h drops if a due node's elements or an interaction need it;
-    /// due nodes whose elements no longer allow their step drop. Returns the fine step.
+    /// Between synchronisations, the 3D model's guard: h drops if a due element or an
+    /// interaction needs it, and due nodes whose elements no longer allow their step drop
+    /// level(s) (their elements are all being updated, so the new level starts aligned).
+    /// Returns the fine step.
     ///
     /// The elements of the due nodes are exactly the elements updated now (an element is
     /// updated when its finest node is due), so both checks run over the due runs: no
     /// node-incidence walk.
-    fn drop_levels(
+    fn due_step(
         &mut self,
         blocks: &[ElementBlock],
         time_step_factor: f64,
         h_taken: f64,
         interaction_limit: f64,
     ) -> f64 {
-        let last = self.top.min(self.thr) as usize;
+        let top = u32::from(self.sched.top);
+        let last = top.min(self.thr) as usize;
         let mut need = interaction_limit;
         for runs in &self.runs[..=last] {
             for (b, r) in runs {
@@ -498,13 +391,10 @@ impl Subcycler {
         } else {
             h_taken
         };
-        // A due node takes the smallest level its elements allow (the same as
-        // `fitting_level` over its elements, without the incidence walk). Due nodes have
-        // levels ≤ `cut`, so only an element that fits less than 2^cut h can drop one; since
-        // 2^k h grows with k, it fits at least that when 2^cut h is within its limit (the
-        // comparison `level_for` makes at its step k = cut − 1, where its factor 1 + 0 is
-        // exact), and most elements are settled by that one comparison.
-        let cut = self.thr.min(self.top);
+        // A due node takes the largest level its elements allow. Due nodes have levels ≤
+        // `cut`, so only an element that fits less than 2^cut h can drop one, and most
+        // elements are settled by that one comparison.
+        let cut = self.thr.min(top);
         let mut changed = false;
         for runs in &self.runs[..=last] {
             for (b, r) in runs {
@@ -514,14 +404,14 @@ impl Subcycler {
                     if cut == 0 || (1u64 << cut) as f64 * h <= limit {
                         continue;
                     }
-                    let fit = level_for(limit, h, 0.0, self.cap);
-                    if fit >= self.top {
+                    let fit = fitting_level(limit, h, self.cap);
+                    if fit >= top {
                         continue;
                     }
                     for &i in &blk.conn[k] {
                         let i = i as usize;
-                        if self.due(i) && (self.node_level[i] as u32) > fit {
-                            self.node_level[i] = fit as u8;
+                        if self.due(i) && u32::from(self.sched.node_level[i]) > fit {
+                            self.sched.node_level[i] = fit as u8;
                             self.report.level_drops += 1;
                             changed = true;
                         }
@@ -538,37 +428,9 @@ impl Subcycler {
     /// Element update levels (smallest of their nodes'), runs, the highest level and the
     /// snapshot arrays after node levels changed.
     fn levels_changed(&mut self, blocks: &[ElementBlock]) {
-        for b in blocks {
-            for (k, c) in b.conn.iter().enumerate() {
-                self.elem_level[b.first + k] = c
-                    .iter()
-                    .map(|&i| self.node_level[i as usize])
-                    .min()
-                    .unwrap_or(0);
-            }
-        }
-        self.top = self.node_level.iter().copied().max().unwrap_or(0) as u32;
-        let levels = self.top as usize + 1;
-        // Counting sort of the nodes by level.
-        self.level_end = vec![0; levels];
-        for &l in &self.node_level {
-            self.level_end[l as usize] += 1;
-        }
-        let mut next: Vec<usize> = std::iter::once(0)
-            .chain(self.level_end.iter().scan(0, |acc, &c| {
-                *acc += c;
-                Some(*acc)
-            }))
-            .take(levels)
-            .collect();
-        for k in 1..levels {
-            self.level_end[k] += self.level_end[k - 1];
-        }
-        self.node_order.resize(self.node_level.len(), 0);
-        for (i, &l) in self.node_level.iter().enumerate() {
-            self.node_order[next[l as usize]] = i as u32;
-            next[l as usize] += 1;
-        }
+        let node_level = std::mem::take(&mut self.sched.node_level);
+        self.sched = Schedule::new(blocks.iter().flat_map(|b| b.conn.iter()), node_level);
+        let levels = self.sched.top as usize + 1;
         let n = self.vbar.len();
         if self.snap.len() < levels {
             self.snap.resize(levels, Vec::new());
@@ -582,7 +444,7 @@ impl Subcycler {
         self.level_nodes = vec![Vec::new(); levels];
         for b in blocks {
             for (k, c) in b.conn.iter().enumerate() {
-                let l = self.elem_level[b.first + k] as usize;
+                let l = self.sched.element_level[b.first + k] as usize;
                 if l > 0 {
                     self.level_nodes[l].extend_from_slice(c);
                 }
@@ -598,9 +460,10 @@ impl Subcycler {
             let mut start = 0;
             for k in 1..=b.conn.len() {
                 let end_run = k == b.conn.len()
-                    || self.elem_level[b.first + k] != self.elem_level[b.first + start];
+                    || self.sched.element_level[b.first + k]
+                        != self.sched.element_level[b.first + start];
                 if end_run {
-                    let l = self.elem_level[b.first + start] as usize;
+                    let l = self.sched.element_level[b.first + start] as usize;
                     self.runs[l].push((bi, start..k));
                     start = k;
                 }
@@ -657,7 +520,7 @@ impl Subcycler {
         h: f64,
     ) -> f64 {
         let mut worst: f64 = 0.0;
-        for (i, &l) in self.node_level.iter().enumerate() {
+        for (i, &l) in self.sched.node_level.iter().enumerate() {
             for &slot in &inc[inc_ptr[i]..inc_ptr[i + 1]] {
                 let (b, k) = self.locate[slot as usize / 8];
                 worst = worst.max((1u64 << l) as f64 * h / blocks[b].dt_crit[k]);
@@ -682,7 +545,7 @@ impl Subcycler {
                 let mut w = 0.0;
                 for (k, c) in b.conn.iter().enumerate() {
                     let e = b.first + k;
-                    let l = self.elem_level[e] as usize;
+                    let l = self.sched.element_level[e] as usize;
                     if l == 0 || self.j.is_multiple_of(1u64 << l) {
                         continue;
                     }
@@ -698,6 +561,16 @@ impl Subcycler {
             })
             .collect()
     }
+}
+
+/// The largest k ≤ `cap` with 2^k h ≤ `limit` (s; fine step `h`, s): the level a step
+/// exactly within an element's limit allows (the guard's, without the rule's margins).
+fn fitting_level(limit: f64, h: f64, cap: u32) -> u32 {
+    let mut k = 0;
+    while k < cap && (1u64 << (k + 1)) as f64 * h <= limit {
+        k += 1;
+    }
+    k
 }
 
 /// Σ of node `n`'s element force blocks (N), in element order (the incidence `inc_ptr`/`inc`
@@ -763,30 +636,4 @@ fn smallest_limit(blocks: &[ElementBlock], runs: &[(usize, Range<usize>)]) -> (f
         }
     }
     best
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn level_is_the_largest_power_of_two_that_fits() {
-        let h = 1.0;
-        assert_eq!(level_for(0.99, h, 0.0, 5), 0);
-        assert_eq!(level_for(1.0, h, 0.0, 5), 0);
-        assert_eq!(level_for(2.0, h, 0.0, 5), 1);
-        assert_eq!(level_for(7.9, h, 0.0, 5), 2);
-        assert_eq!(level_for(8.0, h, 0.0, 5), 3);
-        assert_eq!(level_for(1000.0, h, 0.0, 5), 5);
-        // The climb margin: 2^k h (1 + m) must fit.
-        assert_eq!(level_for(2.1, h, 0.1, 5), 0);
-        assert_eq!(level_for(2.2, h, 0.1, 5), 1);
-    }
-
-    #[test]
-    fn predicted_saving_counts_updates_per_fine_step() {
-        assert_eq!(predicted_saving(&[0, 0, 0, 0]), 1.0);
-        // One element every step, three every 4th: 4 / (1 + 3/4).
-        assert!((predicted_saving(&[0, 2, 2, 2]) - 4.0 / 1.75).abs() < 1e-12);
-    }
 }
