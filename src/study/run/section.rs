@@ -299,7 +299,7 @@ pub(super) fn simulate_section(run: SectionRun<'_>, opts: &RunOptions) -> Result
             subcycling: SubcycleReport {
                 used: subcycled,
                 reason: if subcycled {
-                    "the section model's power-of-two step classes (fe::section::subcycle)".into()
+                    "the section model's power-of-two step classes (fe::subcycle, LevelRule::SECTION)".into()
                 } else {
                     "single rate: solver.subcycling = off, or two meshed balls under auto".into()
                 },
