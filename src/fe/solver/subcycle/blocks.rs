@@ -13,7 +13,8 @@
 //! ½ (A − P) g_open, so its impulse stays the trapezoid ½ A (g_open + g_close).
 
 use super::levels::LevelRule;
-use super::{predicted_saving, Schedule, SubcycleReport};
+use super::report::{predicted_saving, SubcycleReport};
+use super::schedule::Schedule;
 use crate::fe::elements::{ElementBlock, ElementFailure};
 use std::ops::Range;
 
