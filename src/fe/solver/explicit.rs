@@ -18,7 +18,10 @@ use crate::fe::{
     solver::interaction::{Interaction, StepContext},
     solver::mass::element_lumped_mass,
     solver::profile::{Profile, StepPhase},
-    solver::subcycle::{node_force_sum, SubcycleReport, Subcycler, Subcycling, AUTO_MIN_SAVING},
+    solver::subcycle::{
+        levels::LevelRule, node_force_sum, with_element_neighbours, SubcycleReport, Subcycler,
+        Subcycling, AUTO_MIN_SAVING,
+    },
     solver::timestep::StableStep,
     tensor::{cross, dot, inverse, Sym},
 };
@@ -56,6 +59,14 @@ pub struct Settings {
     pub subcycling: Subcycling,
     /// Highest subcycling level: an element steps at most 2^level fine steps (1..=8; default 4).
     pub subcycle_max_level: u32,
+    /// The subcycling's level rule (default [`LevelRule::HEXAHEDRA`]; others are for studies
+    /// of the rule, docs/design.md §4).
+    #[serde(skip)]
+    pub level_rule: LevelRule,
+    /// Subcycling: also hold at level 0 every node that shares an element with a node an
+    /// interaction acts on (default false; for studies of the rule).
+    #[serde(skip)]
+    pub hold_contact_neighbours: bool,
     /// Geometrically linear (small-displacement) elements: gradients, volumes and forces are
     /// taken on the reference configuration instead of the current one (default false: large
     /// displacements and rotations). For verification against linear-elastic closed forms such
@@ -92,6 +103,8 @@ impl Default for Settings {
             energy_growth: 0.5,
             subcycling: Subcycling::Off,
             subcycle_max_level: 4,
+            level_rule: LevelRule::HEXAHEDRA,
+            hold_contact_neighbours: false,
             linear_geometry: false,
             kernel_cap: KernelPath::Avx512,
             profile: false,
@@ -449,12 +462,16 @@ impl Solver {
                 pinned[i as usize] = true;
             }
         }
+        if self.settings.hold_contact_neighbours {
+            pinned = with_element_neighbours(&self.blocks, &pinned);
+        }
         let contact_dt = self.contact_limits();
         let mut sub = Subcycler::new(
             &self.blocks,
             &self.x,
             &pinned,
             &contact_dt,
+            self.settings.level_rule,
             self.settings.time_step_factor,
             self.dt_next,
             self.settings.subcycle_max_level,

@@ -457,13 +457,17 @@ pub fn simulate(
     let wall = scene.wall.is_some();
     let elements = model.hexes.len();
     let nodes = model.nodes.len();
-    let settings = Settings {
+    let mut settings = Settings {
         time_step_factor: scene.solver.time_step_factor,
         subcycling: scene.solver.subcycling,
         profile: opts.profile,
         mass_scaling: scene.solver.mass_scaling,
         ..Settings::default()
     };
+    if let Some((rule, hold)) = opts.level_rule {
+        settings.level_rule = rule;
+        settings.hold_contact_neighbours = hold;
+    }
     let run = move |mut solver: Solver| -> Result<Simulation> {
         let dt0 = solver.dt();
 

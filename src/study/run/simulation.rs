@@ -95,6 +95,9 @@ pub struct RunOptions {
     pub snapshot_dir: Option<std::path::PathBuf>,
     /// Time the solver's phases (`fe::profile`; the totals are [`Simulation::phases`]).
     pub profile: bool,
+    /// The 3D model's subcycling level rule and whether it holds the contact nodes' element
+    /// neighbours at level 0 (`None`: the model's own; for studies of the rule).
+    pub level_rule: Option<(crate::fe::subcycle::levels::LevelRule, bool)>,
 }
 
 /// A solver error in the scene's terms: the energy-growth stop gets the scene keys that

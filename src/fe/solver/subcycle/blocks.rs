@@ -22,6 +22,8 @@ use std::ops::Range;
 #[derive(Debug, Clone)]
 pub struct Subcycler {
     cap: u32,
+    /// The level rule's constants.
+    rule: LevelRule,
     /// The cycle's step classes: each node's level (its own step 2^L h, in units of the
     /// current fine step), each global element's (the smallest of its nodes'), the nodes
     /// ordered by level (mesh order within a level: the nodes due at a fine step are a prefix),
@@ -66,7 +68,8 @@ pub struct Subcycler {
 impl Subcycler {
     /// Levels for elements whose current Courant limits are in `blocks[..].dt_crit` (all
     /// evaluated at the same instant), nodal contact limits `contact_dt` (s, one per node; ∞
-    /// for none), step factor `time_step_factor`, fine step `h` (s), highest level `cap`;
+    /// for none), the level rule `rule`, step factor `time_step_factor`, fine step `h` (s),
+    /// highest level `cap`;
     /// `pinned_nodes[i]` marks nodes an interaction may act on (held at level 0). The state
     /// is a synchronisation: every node and element counts as just updated.
     #[allow(clippy::too_many_arguments)]
@@ -75,6 +78,7 @@ impl Subcycler {
         x: &[[f64; 3]],
         pinned_nodes: &[bool],
         contact_dt: &[f64],
+        rule: LevelRule,
         time_step_factor: f64,
         h: f64,
         cap: u32,
@@ -83,6 +87,7 @@ impl Subcycler {
         let n = x.len();
         let mut s = Subcycler {
             cap,
+            rule,
             sched: Schedule {
                 node_level: vec![0; n],
                 element_level: vec![0; ne],
@@ -334,7 +339,7 @@ impl Subcycler {
         let elements = blocks
             .iter()
             .flat_map(|b| b.conn.iter().zip(b.dt_crit.iter().copied()));
-        let rule = LevelRule::HEXAHEDRA;
+        let rule = self.rule;
         let limits = rule.node_limits(elements, contact_dt);
         let cap = self.cap.min(u32::from(u8::MAX)) as u8;
         let first = self.runs.is_empty();
@@ -562,6 +567,19 @@ impl Subcycler {
             })
             .collect()
     }
+}
+
+/// `held` with every node that shares an element of `blocks` with a held node.
+pub fn with_element_neighbours(blocks: &[ElementBlock], held: &[bool]) -> Vec<bool> {
+    let mut out = held.to_vec();
+    for c in blocks.iter().flat_map(|b| &b.conn) {
+        if c.iter().any(|&i| held[i as usize]) {
+            for &i in c {
+                out[i as usize] = true;
+            }
+        }
+    }
+    out
 }
 
 /// The largest k ≤ `cap` with 2^k h ≤ `limit` (s; fine step `h`, s): the level a step

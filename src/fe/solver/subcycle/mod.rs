@@ -41,7 +41,7 @@ pub mod levels;
 pub mod report;
 pub mod schedule;
 
-pub use blocks::{node_force_sum, Subcycler};
+pub use blocks::{node_force_sum, with_element_neighbours, Subcycler};
 pub use levels::MAX_LEVEL;
 pub use report::{predicted_saving, SubcycleReport};
 pub use schedule::Schedule;
