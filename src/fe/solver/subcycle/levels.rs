@@ -33,8 +33,9 @@ impl LevelRule {
         neighbour_ratio: 2.0,
     };
 
-    /// The 3D model's: no margin (its guard drops a level between synchronisations), climbs
-    /// by 10 %, no neighbour cap (the nodes its interactions act on are held at level 0).
+    /// The 3D model's: no margin (its guard drops a level between synchronisations; a 2 %
+    /// margin makes energy in 3D, `fe_subcycle::level_rules_on_the_elastic_impact`), climbs by
+    /// 10 %, no neighbour cap (the nodes its interactions act on are held at level 0).
     pub const HEXAHEDRA: LevelRule = LevelRule {
         margin: 1.0,
         climb: 1.1,
