@@ -746,7 +746,12 @@ fn level_rules_on_the_elastic_impact() {
             ..RunOptions::default()
         };
         let sim = simulate(s, &t, an.contact_duration, &opts).unwrap();
-        (sim.outcome.e, sim.energy_error, sim.element_cycles)
+        (
+            sim.outcome.e,
+            sim.energy_error,
+            sim.element_cycles,
+            sim.force.noise,
+        )
     };
     let with = |margin: f64, climb: f64, neighbour_ratio: f64| LevelRule {
         margin,
@@ -775,11 +780,12 @@ fn level_rules_on_the_elastic_impact() {
     let mut own = None;
     let mut section = None;
     for (name, rule, hold) in rules {
-        let (e, err, cycles) = run(&d10, rule, hold);
-        let (e0, err0, cycles0) = run(&default, rule, hold);
+        let (e, err, cycles, noise) = run(&d10, rule, hold);
+        let (e0, err0, cycles0, _) = run(&default, rule, hold);
         eprintln!(
-            "{name}: D/10 elastic e {e:.5}, energy error {err:.2e}, {cycles} element cycles; \
-             default e {e0:.7}, energy error {err0:.2e}, {cycles0} element cycles"
+            "{name}: D/10 elastic e {e:.5}, energy error {err:.2e}, {cycles} element cycles, \
+             contact force noise {noise:.3}; default e {e0:.7}, energy error {err0:.2e}, \
+             {cycles0} element cycles"
         );
         if name.starts_with("3D (") {
             own = Some(e);

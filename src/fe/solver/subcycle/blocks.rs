@@ -290,7 +290,14 @@ impl Subcycler {
         }
         let h = if self.synchronising() {
             let h = choose_h(h_taken);
-            self.synchronise(blocks, time_step_factor, h, &contact_dt());
+            // The nodes a contact limits are held at level 0, so without a neighbour cap its
+            // limits change no level and are not computed.
+            let contact_dt = if self.rule.neighbour_ratio.is_finite() {
+                contact_dt()
+            } else {
+                vec![f64::INFINITY; self.vbar.len()]
+            };
+            self.synchronise(blocks, time_step_factor, h, &contact_dt);
             self.report.synchronisations += 1;
             h
         } else {
@@ -401,6 +408,13 @@ impl Subcycler {
         // `cut`, so only an element that fits less than 2^cut h can drop one, and most
         // elements are settled by that one comparison.
         let cut = self.thr.min(top);
+        // The guard's fit is exact: the rule's level without its margin (the limit carries
+        // the step factor already).
+        let exact = LevelRule {
+            margin: 1.0,
+            ..self.rule
+        };
+        let cap = self.cap.min(u32::from(u8::MAX)) as u8;
         let mut changed = false;
         for runs in &self.runs[..=last] {
             for (b, r) in runs {
@@ -410,7 +424,7 @@ impl Subcycler {
                     if cut == 0 || (1u64 << cut) as f64 * h <= limit {
                         continue;
                     }
-                    let fit = fitting_level(limit, h, self.cap);
+                    let fit = u32::from(exact.level(limit, h, 1.0, cap));
                     if fit >= top {
                         continue;
                     }
@@ -580,16 +594,6 @@ pub fn with_element_neighbours(blocks: &[ElementBlock], held: &[bool]) -> Vec<bo
         }
     }
     out
-}
-
-/// The largest k ≤ `cap` with 2^k h ≤ `limit` (s; fine step `h`, s): the level a step
-/// exactly within an element's limit allows (the guard's, without the rule's margins).
-fn fitting_level(limit: f64, h: f64, cap: u32) -> u32 {
-    let mut k = 0;
-    while k < cap && (1u64 << (k + 1)) as f64 * h <= limit {
-        k += 1;
-    }
-    k
 }
 
 /// Σ of node `n`'s element force blocks (N), in element order (the incidence `inc_ptr`/`inc`

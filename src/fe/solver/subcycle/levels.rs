@@ -67,7 +67,7 @@ impl LevelRule {
     ) -> u8 {
         let fit = self.level(limit, h, factor, max_level);
         match current {
-            Some(cur) if self.climb != 1.0 => {
+            Some(cur) => {
                 let climb = self.level(limit / self.climb, h, factor, max_level);
                 if climb > cur {
                     climb
@@ -75,7 +75,7 @@ impl LevelRule {
                     cur.min(fit)
                 }
             }
-            _ => fit,
+            None => fit,
         }
     }
 
