@@ -315,6 +315,7 @@ mod tests {
                     incidence_angle: 0.5,
                     rebound_angle: f(0.4, -0.05),
                     spin1_after: f(-500.0, 0.02),
+                    spin1_before: 0.0,
                 }),
             })
         }
@@ -345,7 +346,16 @@ mod tests {
             table.contains("e_t 2 of 2, rebound angle 2 of 2"),
             "{table}"
         );
+        // The tangential bars assume order 1 (3 |d₂₁|), which covers any order above 0
+        // against level +2; e's assume 2 and miss an order of 0.5. A ladder drifting away on
+        // refinement (as past a knee) is missed by both.
         let rows = check_honesty(&cases, model(0.5), |_| ()).unwrap();
+        let table = oblique_honesty_table(&rows);
+        assert!(
+            table.contains("e_t 2 of 2") && table.contains("e 0 of 2"),
+            "{table}"
+        );
+        let rows = check_honesty(&cases, model(-0.5), |_| ()).unwrap();
         assert!(oblique_honesty_table(&rows).contains("e_t 0 of 2"));
         let missing = oblique_cases(Path::new("no/such.toml"), &materials, 3.9, &[10.0], &[]);
         assert!(missing.unwrap_err().to_string().contains("no/such.toml"));

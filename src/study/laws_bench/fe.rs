@@ -267,10 +267,11 @@ pub const FE_MODEL: &str =
     "section phase ensemble with error bars, kinematic symmetry plane, smoothed peak force";
 
 /// The FE model of the oblique points: the 3D half model on the default graded meshes (level
-/// 0) and on meshes twice as coarse (level −1) for the error bars ([`oblique_fe`]), whatever
-/// the head-on plan (its cache files are not tied to it).
+/// 0) and on meshes twice as coarse (level −1) for the error bars ([`oblique_fe`]; the
+/// tangential figures' bars assume order 1), whatever the head-on plan (its cache files are
+/// not tied to it).
 pub const OBLIQUE_MODEL: &str =
-    "3D half model, default graded meshes, two-level error bars (levels -1 and 0)";
+    "3D half model, default graded meshes, two-level error bars (levels -1 and 0; tangential order 1)";
 
 /// Hertz's contact radius a = √(R*δ_max) (m) of the point's pair at its speed.
 ///

@@ -111,9 +111,11 @@ pub fn oblique_section(s: &mut String, r: &BenchResults) {
          before. ψ₁ = κ v_t/(μ v_n) is Maw, Barber & Fawcett's normalised angle of incidence \
          (κ = 4G*/E*, μ the metal's friction coefficient). FE: the 3D half model on the default \
          graded meshes (level 0), each figure with its two-level error bar from meshes twice as \
-         coarse (level −1). These bars are indicative: against the next level finer they held in \
-         6 of 12 checks on four copper points (docs/contact-laws.md, \"The oblique bars \
-         understate\"), so a law within about 0.01 of the FE e_t cannot be told from it. e_t = −u⁺/u⁻ is the tangential restitution of the contact points, ω the \
+         coarse (level −1); the tangential figures' bars assume order 1 (three times the \
+         step) and the spin's carries at least the impulse's share of e_t's (docs/design.md, \
+         \"Error estimates\"). Against the next level finer on four copper points the \
+         tangential bars held in 8 of 8 checks and e's in 2 of 4 (docs/contact-laws.md, \"The \
+         oblique bars\"). e_t = −u⁺/u⁻ is the tangential restitution of the contact points, ω the \
          spin of ball 1 after (rad/s, about n × t). The elastic twin is the metal with a yield \
          strength of 100 GPa. Each tangential law is paired with Hertz on the elastic twin and \
          with the metal's best-ranked normal law otherwise (named). Theory: Maw, Barber & \

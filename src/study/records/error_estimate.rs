@@ -3,7 +3,7 @@
 //! [`crate::study::convergence::ladder`]), the levels that ran and how the estimate was obtained.
 
 use crate::error::{Error, Result};
-use crate::study::records::estimate::{estimate, Estimate};
+use crate::study::records::estimate::{estimate, estimate_assuming, Estimate};
 use crate::study::records::tangential::Tangential;
 use serde::Serialize;
 
@@ -96,18 +96,46 @@ pub struct TangentialEstimate {
 
 impl TangentialEstimate {
     /// The bars from the levels' tangential figures (coarse to fine); `None` unless every
-    /// level has them and at least two do.
+    /// level has them and at least two do. Two levels assume
+    /// [`TANGENTIAL_ASSUMED_ORDER`]; the spin's bar is at least the share of the
+    /// restitution's bar ([`spin_bar_from_restitution`]).
     pub fn from_levels(levels: &[Option<Tangential>]) -> Option<TangentialEstimate> {
         let t: Vec<Tangential> = levels.iter().copied().collect::<Option<_>>()?;
-        let of = |f: fn(&Tangential) -> f64| {
-            estimate(&t.iter().map(f).collect::<Vec<_>>(), LADDER_RATIO)
-        };
+        let ladder = |v: Vec<f64>| estimate_assuming(&v, LADDER_RATIO, TANGENTIAL_ASSUMED_ORDER);
+        let of = |f: fn(&Tangential) -> f64| ladder(t.iter().map(f).collect());
         let restitution: Option<Vec<f64>> = t.iter().map(|x| x.restitution).collect();
+        let restitution = restitution.and_then(ladder);
+        let mut spin1_after = of(|x| x.spin1_after)?;
+        if let (Some(r), Some(last)) = (&restitution, t.last()) {
+            let floor = spin_bar_from_restitution(last.spin1_after - last.spin1_before, r);
+            spin1_after = spin1_after.with_error(spin1_after.error.max(floor));
+        }
         Some(TangentialEstimate {
-            restitution: restitution.and_then(|r| estimate(&r, LADDER_RATIO)),
+            restitution,
             rebound_angle: of(|x| x.rebound_angle)?,
-            spin1_after: of(|x| x.spin1_after)?,
+            spin1_after,
         })
+    }
+}
+
+/// The order a two-level ladder assumes for the tangential figures: 1. The stick-slip
+/// boundary (and on a plastic ball the contact edge) is resolved node by node, so the
+/// tangential impulse converges at first order in the pole size, not at the linear
+/// elements' second: the two-level bar is 3 |d₂₁| (docs/design.md, "Error estimates").
+pub const TANGENTIAL_ASSUMED_ORDER: f64 = 1.0;
+
+/// The bar the tangential restitution's bar `restitution` puts on the spin change `dspin`
+/// (rad/s, after minus before): both are the one tangential impulse J_t seen through the
+/// balls' masses and inertias, and the slip after is u⁺ = u⁻ − J_t (1/m + R²/I + …), so
+/// Δω ∝ J_t ∝ 1 + e_t and a bar b on e_t is a bar |Δω| b/|1 + e_t| on Δω (rad/s). A spin
+/// ladder alone can miss it when the lumped inertia's change between levels cancels the
+/// impulse's. 0 when 1 + e_t vanishes (no impulse to scale).
+pub fn spin_bar_from_restitution(dspin: f64, restitution: &Estimate) -> f64 {
+    let one_plus = (1.0 + restitution.finest).abs();
+    if one_plus > 1e-9 {
+        dspin.abs() * restitution.error / one_plus
+    } else {
+        0.0
     }
 }
 
@@ -253,4 +281,54 @@ pub enum EstimateMethod {
 /// True when the relative estimate of `e` is at most `tolerance`.
 fn meets(e: &Estimate, tolerance: f64) -> bool {
     e.relative_error.is_some_and(|r| r <= tolerance)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A ball on a wall without spin before (I = 0.4 m R²): slip u, restitution e_t, spin
+    /// after −u (1 + e_t)/(R (1 + 0.4)) scaled by `inertia_error` (the lumped ball's).
+    fn wall(e_t: f64, inertia_error: f64) -> Tangential {
+        let (u, r) = (1.0, 0.01);
+        Tangential {
+            restitution: Some(e_t),
+            incidence_angle: 0.3,
+            rebound_angle: 0.3 * e_t,
+            spin1_after: -u * (1.0 + e_t) / (r * 1.4) / (1.0 + inertia_error),
+            spin1_before: 0.0,
+        }
+    }
+
+    #[test]
+    fn two_tangential_levels_assume_order_one() {
+        let t = TangentialEstimate::from_levels(&[Some(wall(0.50, 0.0)), Some(wall(0.52, 0.0))])
+            .unwrap();
+        let r = t.restitution.unwrap();
+        assert_eq!(r.order_used, Some(TANGENTIAL_ASSUMED_ORDER));
+        assert!((r.error - 3.0 * 0.02).abs() < 1e-12, "{r:?}");
+        assert!((t.rebound_angle.error - 3.0 * 0.006).abs() < 1e-12);
+        assert_eq!(
+            TangentialEstimate::from_levels(&[Some(wall(0.5, 0.0)), None]),
+            None
+        );
+    }
+
+    #[test]
+    fn a_spin_ladder_cancelled_by_the_inertia_keeps_the_impulses_bar() {
+        // The coarse level's impulse is 2 % high and its inertia 2 % high: equal spins.
+        let coarse = wall(0.53, (1.53 / 1.52) - 1.0);
+        let fine = wall(0.52, 0.0);
+        assert!((coarse.spin1_after - fine.spin1_after).abs() < 1e-9);
+        let t = TangentialEstimate::from_levels(&[Some(coarse), Some(fine)]).unwrap();
+        let want = fine.spin1_after.abs() * 3.0 * 0.01 / 1.52;
+        assert!(
+            (t.spin1_after.error - want).abs() < 1e-9 * want,
+            "{:?}",
+            t.spin1_after
+        );
+        // No impulse to scale when the slip is kept whole (e_t = −1).
+        let kept = Estimate::recorded(-1.0, 0.1);
+        assert_eq!(spin_bar_from_restitution(5.0, &kept), 0.0);
+    }
 }

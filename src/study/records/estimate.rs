@@ -139,6 +139,17 @@ impl Estimate {
 /// refinement ratio `ratio` (> 1). Uses the three finest values. None for fewer than two
 /// values, a non-finite value or a ratio not above 1.
 pub fn estimate(values: &[f64], ratio: f64) -> Option<Estimate> {
+    estimate_assuming(values, ratio, ASSUMED_ORDER)
+}
+
+/// [`estimate`] with `assumed_order` (> 0) in place of [`ASSUMED_ORDER`] when only two levels
+/// ran: 1 for a quantity known to converge at first order (a two-level bar of 3 |d₂₁| at
+/// r = 2). Three levels use the observed order as [`estimate`] does. None as [`estimate`], or
+/// for an assumed order not above 0.
+pub fn estimate_assuming(values: &[f64], ratio: f64, assumed_order: f64) -> Option<Estimate> {
+    if !(assumed_order.is_finite() && assumed_order > 0.0) {
+        return None;
+    }
     let ok = values.len() >= 2 && values.iter().all(|v| v.is_finite());
     if !(ok && ratio.is_finite() && ratio > 1.0) {
         return None;
@@ -148,24 +159,24 @@ pub fn estimate(values: &[f64], ratio: f64) -> Option<Estimate> {
     let f2 = values[n - 2];
     let d21 = f1 - f2;
     if n == 2 {
-        return Some(two_level(f1, d21, ratio));
+        return Some(two_level(f1, d21, ratio, assumed_order));
     }
     let d32 = f2 - values[n - 3];
     Some(three_level(f1, d21, d32, ratio))
 }
 
-/// Two levels: the order assumed, safety factor 3.
-fn two_level(f1: f64, d21: f64, ratio: f64) -> Estimate {
+/// Two levels: the order `order` assumed, safety factor 3.
+fn two_level(f1: f64, d21: f64, ratio: f64, order: f64) -> Estimate {
     if d21 == 0.0 {
         return settled(f1);
     }
-    let gain = ratio.powf(ASSUMED_ORDER) - 1.0;
+    let gain = ratio.powf(order) - 1.0;
     let extrapolated = f1 + d21 / gain;
     finish(
         f1,
         extrapolated,
         None,
-        Some(ASSUMED_ORDER),
+        Some(order),
         SAFETY_ASSUMED * d21.abs() / gain,
         Behaviour::TwoLevels,
     )
@@ -315,6 +326,27 @@ mod tests {
         let v = manufactured(0.5, 0.2, 0.6, 0.1, 2.0, 2);
         let e = estimate(&v, 2.0).unwrap();
         assert!(e.error < (e.finest - 0.5).abs());
+    }
+
+    #[test]
+    fn two_levels_at_an_assumed_order_of_one_bound_orders_from_log2_of_four_thirds() {
+        for &p in &[0.42, 0.5, 1.0, 2.0] {
+            let v = manufactured(0.5, 0.2, p, 0.1, 2.0, 2);
+            let e = estimate_assuming(&v, 2.0, 1.0).unwrap();
+            assert_eq!(e.order_used, Some(1.0));
+            // 3 |d₂₁|/(2 − 1): three times the order-2 bar.
+            assert!(close(e.error, 3.0 * (v[1] - v[0]).abs(), 1e-12), "{e:?}");
+            assert!(e.error >= (e.finest - 0.5).abs(), "p = {p}: {e:?}");
+        }
+        // The error is |d₂₁|/(2^p − 1): above 3 |d₂₁| once p < log₂(4/3) = 0.415.
+        let v = manufactured(0.5, 0.2, 0.4, 0.1, 2.0, 2);
+        let e = estimate_assuming(&v, 2.0, 1.0).unwrap();
+        assert!(e.error < (e.finest - 0.5).abs());
+        // Three levels ignore the assumption; a bad assumed order gives none.
+        let v = manufactured(0.5, 0.2, 1.5, 0.1, 2.0, 3);
+        assert_eq!(estimate_assuming(&v, 2.0, 1.0), estimate(&v, 2.0));
+        assert_eq!(estimate_assuming(&v, 2.0, 0.0), None);
+        assert_eq!(estimate_assuming(&v, 2.0, f64::NAN), None);
     }
 
     #[test]

@@ -22,6 +22,8 @@ pub struct Tangential {
     /// Ball 1's spin about the contact frame's z axis (normal to the normal and the slip)
     /// after the impact, rad/s.
     pub spin1_after: f64,
+    /// The same spin at touch, rad/s.
+    pub spin1_before: f64,
 }
 
 /// FE and analytical tangential figures of an oblique or spinning impact (results.json
@@ -75,5 +77,6 @@ pub fn tangential(scene: &Scene, touch: &Touch, out: &Outcome) -> Tangential {
         incidence_angle: g0[1].hypot(g0[2]).atan2(g0[0]),
         rebound_angle: g1[1].hypot(g1[2]).atan2(-g1[0]),
         spin1_after: w1[2],
+        spin1_before: touch.w[0][2],
     }
 }
