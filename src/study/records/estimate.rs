@@ -15,7 +15,8 @@
 //! the two-level estimate 3 |d₂₁|/(2² − 1) = |d₂₁| is the full coarse-to-fine difference, which
 //! bounds the finest value's error whenever the true order is at least 1 (|f₁ − f₀| =
 //! |d₂₁|/(r^p − 1) ≤ |d₂₁| for p ≥ 1): a contact problem that converges slower than linear
-//! elements do still gets an honest bar.
+//! elements do still gets an honest bar. A quantity known to converge at first order takes
+//! its own assumed order ([`estimate_assuming`]; the tangential figures of an oblique impact).
 //!
 //! Ladders that do not converge monotonically get no extrapolation and a flag
 //! ([`Behaviour`]): oscillatory (d₃₂ and d₂₁ of opposite sign) or an observed order outside
@@ -84,7 +85,8 @@ pub struct Estimate {
     pub extrapolated: f64,
     /// The observed order p (None with two levels or a non-monotone ladder).
     pub observed_order: Option<f64>,
-    /// The order the estimate used (observed, or [`ASSUMED_ORDER`]; None when not used).
+    /// The order the estimate used (observed, or the assumed one: [`ASSUMED_ORDER`] unless
+    /// [`estimate_assuming`] set another; None when not used).
     pub order_used: Option<f64>,
     /// Estimate of |f₁ − f_exact|: the GCI in the quantity's unit, ≥ 0.
     pub error: f64,

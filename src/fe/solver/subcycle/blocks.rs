@@ -180,6 +180,11 @@ impl Subcycler {
         };
     }
 
+    /// The highest level as the level rule takes it (at most 255).
+    fn level_cap(&self) -> u8 {
+        self.cap.min(u32::from(u8::MAX)) as u8
+    }
+
     /// True when every node and element is due at the current fine step.
     pub fn synchronising(&self) -> bool {
         self.thr == u32::MAX
@@ -348,7 +353,7 @@ impl Subcycler {
             .flat_map(|b| b.conn.iter().zip(b.dt_crit.iter().copied()));
         let rule = self.rule;
         let limits = rule.node_limits(elements, contact_dt);
-        let cap = self.cap.min(u32::from(u8::MAX)) as u8;
+        let cap = self.level_cap();
         let first = self.runs.is_empty();
         let mut changed = first;
         for (i, &limit) in limits.iter().enumerate() {
@@ -414,7 +419,7 @@ impl Subcycler {
             margin: 1.0,
             ..self.rule
         };
-        let cap = self.cap.min(u32::from(u8::MAX)) as u8;
+        let cap = self.level_cap();
         let mut changed = false;
         for runs in &self.runs[..=last] {
             for (b, r) in runs {
