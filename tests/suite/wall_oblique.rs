@@ -240,7 +240,8 @@ fn the_whole_ball_agrees_with_the_half_ball_on_a_planar_impact() {
 
 /// A ball spinning without tangential speed onto a wall (Chung & Ooi's spin test) slides
 /// throughout: the wall's tangential impulse is μ times the normal one (within 0.2 %), the ball
-/// leaves with the rigid-body Coulomb velocity −μ(1 + e)v_n, and the analytical model gives
+/// leaves with the rigid-body Coulomb velocity −μ(1 + e)v_n, its spin change is the angular
+/// impulse of a deformable ball through the mesh's inertia, and the analytical model gives
 /// the rigid-body Coulomb answer exactly. The spin is imposed about the mesh's centre of mass:
 /// about the sphere's centre, a graded mesh's momentum would carry ω times the microns between
 /// them (0.7 % of J_t here).
@@ -260,10 +261,21 @@ fn a_spinning_ball_slides_with_the_rigid_body_coulomb_impulse() {
         o.w1_after[2], o.e
     );
     assert!((ratio / mu - 1.0).abs() < 2e-3, "J_t/J_n = {ratio}");
-    // The spin falls by 5 Δv_t/(2R) for a solid sphere; the mesh's lumped masses put more of
-    // it at the surface (measured: 1.1 % less spin lost on this mesh).
+    // The spin falls by the angular impulse over the mesh's own inertia I = κ m R² (its
+    // lumped surface nodes put κ a little above a solid sphere's 0.4). The angular impulse
+    // of a deformable ball falls short of J_t R by its lever arm, R − δ (0.82 δ_max/R
+    // weighted by the force), and by the normal pressure's moment, which the normal-tangential
+    // coupling (Dundurs' β) shifts against the friction's (0.37 β a/R, measured).
     let lost = w0 - o.w1_after[2];
-    assert!((lost / (-2.5 * dvt / r_ball) - 1.0).abs() < 0.03, "{lost}");
+    let kappa = r.tangential.unwrap().fe.spin1_inertia_ratio.unwrap();
+    assert!(kappa > 0.4 && kappa < 0.41, "I/(m R²) = {kappa}");
+    let arm = lost * kappa * r_ball / -dvt;
+    let nu = r.scene.ball1.material.nu;
+    let beta = (1.0 - 2.0 * nu) / (2.0 * (1.0 - nu));
+    let depth = o.delta_max / r_ball;
+    let want = 1.0 - 0.82 * depth - 0.37 * beta * depth.sqrt();
+    println!("angular impulse / (J_t R) = {arm:.5}, deformable ball {want:.5}, κ {kappa:.5}");
+    assert!((arm - want).abs() < 1e-3, "{arm} against {want}");
     let a = r.analytic.unwrap();
     let vt = -mu * (1.0 + a.e) * 1.0;
     assert!((a.v1_after[1] - vt).abs() < 1e-9, "{:?}", a.v1_after);

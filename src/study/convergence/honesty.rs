@@ -316,6 +316,7 @@ mod tests {
                     rebound_angle: f(0.4, -0.05),
                     spin1_after: f(-500.0, 0.02),
                     spin1_before: 0.0,
+                    spin1_inertia_ratio: None,
                 }),
             })
         }

@@ -24,6 +24,20 @@ pub struct Tangential {
     pub spin1_after: f64,
     /// The same spin at touch, rad/s.
     pub spin1_before: f64,
+    /// Ball 1's rotational inertia about that axis over m R², -: the FE mesh's (absent for
+    /// the analytical models' solid sphere, 0.4).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub spin1_inertia_ratio: Option<f64>,
+}
+
+impl Tangential {
+    /// The same figures with ball 1's rotational inertia over m R² (-) of the model behind them.
+    pub fn with_spin1_inertia_ratio(self, ratio: Option<f64>) -> Tangential {
+        Tangential {
+            spin1_inertia_ratio: ratio,
+            ..self
+        }
+    }
 }
 
 /// FE and analytical tangential figures of an oblique or spinning impact (results.json
@@ -78,5 +92,6 @@ pub fn tangential(scene: &Scene, touch: &Touch, out: &Outcome) -> Tangential {
         rebound_angle: g1[1].hypot(g1[2]).atan2(-g1[0]),
         spin1_after: w1[2],
         spin1_before: touch.w[0][2],
+        spin1_inertia_ratio: None,
     }
 }

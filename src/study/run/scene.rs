@@ -177,7 +177,7 @@ pub fn run_scene(scene: &Scene, opts: &RunOptions) -> Result<RunReport> {
         element_cycles: sim.element_cycles,
         relative_difference: Some(Differences::between(&fe, &an, touch.frame.axes[0])),
         tangential: oblique.then(|| TangentialPair {
-            fe: tangential(scene, &touch, &fe),
+            fe: tangential(scene, &touch, &fe).with_spin1_inertia_ratio(sim.spin1_inertia_ratio),
             analytic: tangential(scene, &touch, &an),
             theory: theory.map(|t| tangential(scene, &touch, &t)),
         }),

@@ -319,6 +319,7 @@ pub(super) fn simulate_section(run: SectionRun<'_>, opts: &RunOptions) -> Result
         wall_time_s: start.elapsed().as_secs_f64(),
         max_penetration: r.max_penetration,
         contact_radius: Some(r.contact_radius_max),
+        spin1_inertia_ratio: None,
         force,
         history,
         phases: None,

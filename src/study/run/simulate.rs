@@ -186,6 +186,19 @@ fn half_spin_z(solver: &Solver, range: std::ops::Range<usize>, r: &Rigid) -> f64
     }
 }
 
+/// Part `p`'s rotational inertia about the z axis through its centre of mass over m R² (-,
+/// `radius` R in m): 0.4 for a solid sphere; a lumped mesh's surface nodes carry mass out to
+/// R, so a ball mesh's is a little larger. Errors: no part `p`.
+fn spin_inertia_ratio(solver: &Solver, p: usize, radius: f64) -> Result<f64> {
+    let range = solver.model().part(p)?.nodes.clone();
+    let r = rigid(solver, range.clone());
+    let (x, m) = (solver.x(), solver.mass());
+    let izz: f64 = range
+        .map(|n| m[n] * ((x[n][0] - r.com[0]).powi(2) + (x[n][1] - r.com[1]).powi(2)))
+        .sum();
+    Ok(izz / (r.mass * radius * radius))
+}
+
 /// Rigid state (contact frame, CoM frame of the pair) of both balls: velocities, spins,
 /// centre positions (x only is used for δ).
 /// Velocities (m/s) and spins (rad/s) of both balls, and the distance of their centres (m).
@@ -495,6 +508,12 @@ pub fn simulate(
             frame.to_global([v[0] + add[0], v[1] + add[1], v[2] + add[2]])
         };
         let (_, _, d_start) = ball_states(&solver, red, wall)?;
+        let spin1_inertia_ratio = match red {
+            Reduction::Half | Reduction::Full => {
+                Some(spin_inertia_ratio(&solver, 0, scene.ball1.diameter / 2.0)?)
+            }
+            Reduction::Quarter | Reduction::Axisymmetric => None,
+        };
         let approach_rate = kin.u[0][0] - kin.u[1][0];
         let d_touch = d_start - approach_rate * pre;
 
@@ -673,6 +692,7 @@ pub fn simulate(
             wall_time_s: start.elapsed().as_secs_f64(),
             max_penetration,
             contact_radius: None,
+            spin1_inertia_ratio,
             force,
             history,
             phases: opts.profile.then(|| solver.profile().totals()),

@@ -70,6 +70,11 @@ pub struct Simulation {
     /// Largest contact radius over the run, m (the section model; None for the 3D models).
     #[serde(skip)]
     pub contact_radius: Option<f64>,
+    /// Ball 1's rotational inertia about the contact frame's z axis through its centre of
+    /// mass, over m R² (-): the lumped mesh's, on the half and full models (None otherwise;
+    /// a solid sphere's is 0.4).
+    #[serde(skip)]
+    pub spin1_inertia_ratio: Option<f64>,
     /// The contact force: raw and smoothed peaks, residual noise, the filter
     /// (results.json `fe.force`).
     pub force: ForceSummary,
