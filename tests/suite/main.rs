@@ -87,4 +87,5 @@ mod sweep_paper_like;
 mod sweep_similarity;
 mod tolerance_honesty;
 mod vtu_binary;
+mod wall_elastic_3d;
 mod wall_oblique;

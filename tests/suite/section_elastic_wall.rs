@@ -10,7 +10,7 @@ use twoball::mesh::section::{block, BlockSpec};
 use twoball::scene::{approach, Approach, Override, Scene, WALL_SCENE};
 use twoball::study::records::outcome::ball_inertia;
 use twoball::study::run::scene::{run_scene, RunReport};
-use twoball::study::run::simulate::{choose_reduction, RunOptions};
+use twoball::study::run::simulate::{choose_reduction, Reduction, RunOptions};
 
 /// Ball 1 (copper-fe, D = 20 mm, elastic: yield out of reach) against an elastic wall of
 /// the same elastic copper.
@@ -285,8 +285,21 @@ fn bad_elastic_walls_get_one_line_errors_naming_the_field() {
         assert!(e.contains(want), "{e}");
         assert!(!e.contains('\n'), "more than one line: {e}");
     };
-    // The 3D models have a rigid wall only.
-    for m in ["auto-3d", "quarter", "half", "off"] {
+    // Head-on, the wall is the section's or the quarter's: the half and whole ball are for
+    // oblique or spinning impacts.
+    for m in ["auto-3d", "quarter"] {
+        let sym = format!("reduction.symmetry=\"{m}\"");
+        let s = parse(ELASTIC_WALL, &[&sym]).unwrap();
+        let Approach::Impact(t) = approach(&s).unwrap() else {
+            panic!("no impact")
+        };
+        assert_eq!(
+            choose_reduction(&s, &t).unwrap().0,
+            Reduction::Quarter,
+            "{m}"
+        );
+    }
+    for m in ["half", "off"] {
         let sym = format!("reduction.symmetry=\"{m}\"");
         let s = parse(ELASTIC_WALL, &[&sym]).unwrap();
         let Approach::Impact(t) = approach(&s).unwrap() else {

@@ -36,7 +36,7 @@ pub struct BlockSpec {
 /// Node coordinates (m) of a line from 0 to `length` (m): cells of `pole` (m) up to `core`
 /// (m), then growing by [`GROWTH`] up to `size` (m), the graded part scaled to end at
 /// `length`.
-fn graded_line(length: f64, size: f64, pole: f64, core: f64) -> Vec<f64> {
+pub(crate) fn graded_line(length: f64, size: f64, pole: f64, core: f64) -> Vec<f64> {
     let mut x = vec![0.0];
     let mut h = pole;
     let mut last = 0.0;

@@ -178,8 +178,9 @@ fn resolve_auto(scene: &Scene, section: bool) -> Symmetry {
 }
 
 /// The reduction of a ball against a wall. Head-on: the quarter ball against the rigid wall
-/// plane (`auto-3d`, `quarter`) or the ball's meridian section against it (`auto`,
-/// `axisymmetric`; an elastic wall only so); oblique or spinning: [`oblique_wall_reduction`].
+/// plane or the elastic wall's quarter block (`auto-3d`, `quarter`), or the ball's meridian
+/// section against either (`auto`, `axisymmetric`); oblique or spinning:
+/// [`oblique_wall_reduction`].
 fn wall_reduction(scene: &Scene, ok: Allowed) -> Result<(Reduction, String)> {
     let refuse = |what: &str, needs: &str| {
         Err(Error::invalid(
@@ -201,14 +202,6 @@ fn wall_reduction(scene: &Scene, ok: Allowed) -> Result<(Reduction, String)> {
     let symmetry = scene.reduction.symmetry;
     if !ok.head_on {
         return oblique_wall_reduction(scene, ok, elastic);
-    }
-    if elastic && !matches!(symmetry, Symmetry::Axisymmetric | Symmetry::Auto) {
-        return Err(Error::invalid(
-            "reduction.symmetry",
-            format!("\"{}\"", symmetry_name(symmetry)),
-            "\"auto\" or \"axisymmetric\" for an elastic wall (the 3D models have a rigid wall \
-             only)",
-        ));
     }
     let start_at_touch = scene.reduction.start_at_touch != Switch::Off;
     // An elastic wall has the section only: with start_at_touch = "off" its `auto` is
@@ -250,6 +243,12 @@ fn wall_reduction(scene: &Scene, ok: Allowed) -> Result<(Reduction, String)> {
                 }
             ),
         )),
+        Symmetry::Auto | Symmetry::Auto3d | Symmetry::Quarter if elastic => Ok((
+            Reduction::Quarter,
+            "ball head-on against an elastic wall: quarter ball against the quarter of the \
+             meshed block (node-to-segment penalty)"
+                .into(),
+        )),
         Symmetry::Auto | Symmetry::Auto3d | Symmetry::Quarter => Ok((
             Reduction::Quarter,
             "ball head-on against a rigid wall: quarter ball against the rigid wall plane \
@@ -259,40 +258,37 @@ fn wall_reduction(scene: &Scene, ok: Allowed) -> Result<(Reduction, String)> {
     }
 }
 
-/// The scene word of `s`.
 /// The model of an oblique or spinning ball on a wall: the half ball when the motion is
 /// planar (tangential velocity in one plane, spin normal to it), else the whole ball, on the
-/// rigid wall plane with friction. Errors: an elastic wall (its block is meshed on the section
-/// only), and a symmetry that needs a head-on impact.
+/// rigid wall plane or the elastic wall's block (cut alike) with friction. Errors: a symmetry
+/// that needs a head-on impact.
 fn oblique_wall_reduction(
     scene: &Scene,
     ok: Allowed,
     elastic: bool,
 ) -> Result<(Reduction, String)> {
     let symmetry = scene.reduction.symmetry;
-    if elastic {
-        return Err(Error::invalid(
-            "wall.kind",
-            "\"elastic\"",
-            "\"rigid\" for an oblique or spinning ball (the elastic wall's block is meshed on \
-             the head-on section only)",
-        ));
-    }
+    let (wall, against) = if elastic {
+        (
+            "an elastic wall",
+            "the frictional face of the meshed block (node-to-segment penalty)",
+        )
+    } else {
+        (
+            "a rigid wall",
+            "the frictional wall plane (penalty of the ball's own stiffness)",
+        )
+    };
     let half = || {
         (
             Reduction::Half,
-            "ball on a rigid wall, motion in one plane: half ball against the frictional wall \
-             plane (penalty of the ball's own stiffness)"
-                .to_string(),
+            format!("ball on {wall}, motion in one plane: half ball against {against}"),
         )
     };
     let full = |why: &str| {
         (
             Reduction::Full,
-            format!(
-                "ball on a rigid wall, {why}: whole ball against the frictional wall plane \
-                 (penalty of the ball's own stiffness)"
-            ),
+            format!("ball on {wall}, {why}: whole ball against {against}"),
         )
     };
     match symmetry {
@@ -312,6 +308,7 @@ fn oblique_wall_reduction(
     }
 }
 
+/// The scene word of `s`.
 fn symmetry_name(s: Symmetry) -> &'static str {
     match s {
         Symmetry::Auto => "auto",

@@ -16,6 +16,7 @@ use crate::fe::interaction::Interaction;
 use crate::fe::model::Model;
 use crate::fe::subcycle::SubcycleReport;
 use crate::mesh::ball::{ball, BallSpec, Cut};
+use crate::mesh::block::{wall_block, WallBlockSpec};
 use crate::mesh::Mesh;
 use crate::scene::{BallScene, MeshSettings, Scene, Switch, Touch};
 use crate::study::records::outcome::{ball_inertia, dissipation_factor, Outcome};
@@ -371,6 +372,14 @@ fn build(
     };
     match red {
         Reduction::Axisymmetric => Err(not_3d()),
+        Reduction::Quarter if elastic_wall(scene).is_some() => {
+            let m1 = ball_mesh("ball1", b1, Cut::Quarter)?;
+            let p1 = moving(&mut model, 0, m1)?;
+            model.fix_set(p1, "sym_y", 1)?;
+            model.fix_set(p1, "sym_z", 2)?;
+            params.friction = None;
+            block_face(model, scene, p1, Cut::Quarter, params)
+        }
         Reduction::Quarter => {
             let m1 = ball_mesh("ball1", b1, Cut::Quarter)?
                 .translated([-r1, 0.0, 0.0])
@@ -393,6 +402,14 @@ fn build(
             }
             // A rigid wall is the plane itself: the 3D rule on the ball's own stiffness, once.
             plane_x0(model, p1, &b1.material, params)
+        }
+        Reduction::Half | Reduction::Full if elastic_wall(scene).is_some() => {
+            // An oblique or spinning ball on an elastic wall: the ball against the block's
+            // face, both cut alike, with friction.
+            let m1 = ball_mesh("ball1", b1, cut_of(red))?;
+            let p1 = moving(&mut model, 0, m1)?;
+            params.friction = (mu > 0.0).then(|| CoulombFriction::new(mu));
+            block_face(model, scene, p1, cut_of(red), params)
         }
         Reduction::Half | Reduction::Full if scene.wall.is_some() => {
             // An oblique or spinning ball on a rigid wall: the half ball (motion in its
@@ -423,6 +440,72 @@ fn build(
             Ok((model, vec![Box::new(pair)], probe))
         }
     }
+}
+
+/// The scene's elastic wall: its block's material and its size [W, H] (m), or `None`.
+fn elastic_wall(scene: &Scene) -> Option<(crate::material::Material, [f64; 2])> {
+    let w = scene.wall?;
+    Some((w.material?, w.size?))
+}
+
+/// Pole cells of an elastic wall's block across its uniformly meshed core, as on the section.
+const BLOCK_CORE_CELLS: f64 = 10.0;
+/// Cells of the block's far-field size across its smaller side, as on the section.
+const BLOCK_CELLS_PER_SIDE: f64 = 10.0;
+
+/// Adds the elastic wall's block under the contact point (face x = 0, body in x > 0, base
+/// fixed, cut as the ball `cut`; meshed with ball 1's pole size over a core of
+/// [`BLOCK_CORE_CELLS`] cells, growing to [`BLOCK_CELLS_PER_SIDE`] cells across its smaller
+/// side) and the node-to-segment pair of ball part `p1`'s contact faces against its face:
+/// the model and its one interaction. Errors: no elastic wall, or a block the mesher refuses
+/// (named from `wall`).
+fn block_face(
+    mut model: Model,
+    scene: &Scene,
+    p1: usize,
+    cut: Cut,
+    params: ContactParams,
+) -> Result<Built> {
+    let (material, [width, depth]) = elastic_wall(scene)
+        .ok_or_else(|| Error::Numerical("an elastic wall's block without its wall".into()))?;
+    let b1 = &scene.ball1;
+    let pole = match &b1.mesh {
+        MeshSettings::Builtin { pole_size, .. } => *pole_size,
+        MeshSettings::File { .. } => b1.diameter / 100.0,
+    };
+    let size = width.min(depth) / BLOCK_CELLS_PER_SIDE;
+    let mesh = wall_block(&WallBlockSpec {
+        width,
+        depth,
+        size,
+        pole_size: pole.min(size),
+        core: BLOCK_CORE_CELLS * pole,
+        contact_radius: width.min(b1.diameter / 2.0),
+        cut,
+    })
+    .map_err(|e| e.within("wall"))?;
+    let p2 = model.add_part("wall", &mesh, material, scene.solver.element)?;
+    for axis in 0..3 {
+        model.fix_set(p2, "base", axis)?;
+    }
+    if cut == Cut::Quarter {
+        model.fix_set(p2, "sym_y", 1)?;
+    }
+    if cut != Cut::Full {
+        model.fix_set(p2, "sym_z", 2)?;
+    }
+    let (f1, f2) = (contact_faces(&model, p1)?, contact_faces(&model, p2)?);
+    let pair = SurfacePair::new(
+        &model.nodes,
+        &model.hexes,
+        &f1,
+        &b1.material,
+        &f2,
+        &material,
+        params,
+    )?;
+    let probe = pair.probe();
+    Ok((model, vec![Box::new(pair)], probe))
 }
 
 /// The contact law's default penalty factor FKN (scaled by `contact.penalty_factor`).
