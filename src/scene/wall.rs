@@ -6,7 +6,7 @@
 //! diameter = 0.02
 //! velocity = [1.0, 0.0, 0.0]   # towards the wall, along its normal
 //! [wall]
-//! kind = "rigid"               # or "elastic" (a meshed block, axisymmetric model only)
+//! kind = "rigid"               # or "elastic" (a meshed block)
 //! position = [0.0, 0.0, 0.0]   # a point of the wall's face, m (default: the origin)
 //! normal = [-1.0, 0.0, 0.0]    # out of the wall, towards ball 1 (default: -x)
 //! # kind = "elastic" only:
@@ -14,9 +14,9 @@
 //! # size = [0.1, 0.1]          # block radius W and depth H, m (default: 5 D each)
 //! ```
 //!
-//! An elastic wall is a cylindrical block of radius W and depth H under the contact point,
-//! its base fixed, its rim free: a finite stand-in for the analytical model's elastic
-//! half-space (design.md §6).
+//! An elastic wall is a block of depth H under the contact point, its base fixed, its rim
+//! free: a cylinder of radius W on the section, a box of half-width W on the 3D models; a
+//! finite stand-in for the analytical model's elastic half-space (design.md §6).
 //!
 //! A rigid frictionless wall acts on a ball exactly as the ball's mirror image in the wall
 //! would (method of images): the scene's `ball2` is that image, which gives the touch, the

@@ -71,10 +71,10 @@ pub fn section_spec(name: &str, b: &BallScene) -> Result<SectionSpec> {
 
 /// Pole cells of an elastic wall's block across its uniformly meshed core (about 1.7
 /// contact radii at the ladder's six pole cells per contact radius).
-const BLOCK_CORE_CELLS: f64 = 10.0;
+pub(crate) const BLOCK_CORE_CELLS: f64 = 10.0;
 
 /// Cells of the block's far-field size across its smaller side.
-const BLOCK_CELLS_PER_SIDE: f64 = 10.0;
+pub(crate) const BLOCK_CELLS_PER_SIDE: f64 = 10.0;
 
 /// The block of an elastic `[wall]` (`None` for a rigid wall or two balls): its section
 /// meshed with ball 1's pole size at the contact point over [`BLOCK_CORE_CELLS`] cells,

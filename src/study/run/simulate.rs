@@ -20,7 +20,9 @@ use crate::mesh::block::{wall_block, WallBlockSpec};
 use crate::mesh::Mesh;
 use crate::scene::{BallScene, MeshSettings, Scene, Switch, Touch};
 use crate::study::records::outcome::{ball_inertia, dissipation_factor, Outcome};
-use crate::study::run::section::{simulate_section, SectionRun};
+use crate::study::run::section::{
+    simulate_section, SectionRun, BLOCK_CELLS_PER_SIDE, BLOCK_CORE_CELLS,
+};
 use crate::study::run::smoothed_force::smooth_history;
 use crate::study::run::snapshots::Snapshots;
 use std::time::Instant;
@@ -448,14 +450,9 @@ fn elastic_wall(scene: &Scene) -> Option<(crate::material::Material, [f64; 2])> 
     Some((w.material?, w.size?))
 }
 
-/// Pole cells of an elastic wall's block across its uniformly meshed core, as on the section.
-const BLOCK_CORE_CELLS: f64 = 10.0;
-/// Cells of the block's far-field size across its smaller side, as on the section.
-const BLOCK_CELLS_PER_SIDE: f64 = 10.0;
-
 /// Adds the elastic wall's block under the contact point (face x = 0, body in x > 0, base
-/// fixed, cut as the ball `cut`; meshed with ball 1's pole size over a core of
-/// [`BLOCK_CORE_CELLS`] cells, growing to [`BLOCK_CELLS_PER_SIDE`] cells across its smaller
+/// fixed, cut as the ball `cut`; meshed as the section's block: ball 1's pole size over a core
+/// of [`BLOCK_CORE_CELLS`] cells, growing to [`BLOCK_CELLS_PER_SIDE`] cells across its smaller
 /// side) and the node-to-segment pair of ball part `p1`'s contact faces against its face:
 /// the model and its one interaction. Errors: no elastic wall, or a block the mesher refuses
 /// (named from `wall`).
@@ -469,10 +466,14 @@ fn block_face(
     let (material, [width, depth]) = elastic_wall(scene)
         .ok_or_else(|| Error::Numerical("an elastic wall's block without its wall".into()))?;
     let b1 = &scene.ball1;
-    let pole = match &b1.mesh {
-        MeshSettings::Builtin { pole_size, .. } => *pole_size,
-        MeshSettings::File { .. } => b1.diameter / 100.0,
+    let MeshSettings::Builtin { pole_size, .. } = &b1.mesh else {
+        return Err(Error::invalid(
+            "ball1.mesh.file",
+            "a mesh file",
+            "the built-in mesher for a ball on a wall",
+        ));
     };
+    let pole = *pole_size;
     let size = width.min(depth) / BLOCK_CELLS_PER_SIDE;
     let mesh = wall_block(&WallBlockSpec {
         width,
