@@ -49,6 +49,11 @@ pub fn block(lengths: [f64; 3], counts: [usize; 3]) -> Mesh {
     mesh
 }
 
+/// Growth of the cell size from one cell to the next outside a wall block's core: faster than
+/// the section's (1.25), since a tensor-product block carries every line's cells out to its
+/// rim (half the hexahedra at 1.5).
+pub const WALL_BLOCK_GROWTH: f64 = 1.5;
+
 /// Most hexahedra a graded wall block may have.
 pub const MAX_WALL_BLOCK_ELEMENTS: usize = 1_000_000;
 
@@ -75,7 +80,13 @@ pub struct WallBlockSpec {
 /// Node coordinates of a graded line mirrored about 0 (from −length to length), or the
 /// line from 0 alone when `half`.
 fn mirrored_line(length: f64, spec: &WallBlockSpec, half: bool) -> Vec<f64> {
-    let up = graded_line(length, spec.size, spec.pole_size, spec.core);
+    let up = graded_line(
+        length,
+        spec.size,
+        spec.pole_size,
+        spec.core,
+        WALL_BLOCK_GROWTH,
+    );
     if half {
         return up;
     }
@@ -118,7 +129,13 @@ pub fn wall_block(spec: &WallBlockSpec) -> Result<Mesh> {
             ),
         ));
     }
-    let xs = graded_line(spec.depth, spec.size, spec.pole_size, spec.core.max(0.0));
+    let xs = graded_line(
+        spec.depth,
+        spec.size,
+        spec.pole_size,
+        spec.core.max(0.0),
+        WALL_BLOCK_GROWTH,
+    );
     let ys = mirrored_line(spec.width, spec, spec.cut == Cut::Quarter);
     let zs = mirrored_line(spec.width, spec, spec.cut != Cut::Full);
     let cells = [xs.len() - 1, ys.len() - 1, zs.len() - 1];

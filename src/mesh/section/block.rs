@@ -34,15 +34,15 @@ pub struct BlockSpec {
 }
 
 /// Node coordinates (m) of a line from 0 to `length` (m): cells of `pole` (m) up to `core`
-/// (m), then growing by [`GROWTH`] up to `size` (m), the graded part scaled to end at
-/// `length`.
-pub(crate) fn graded_line(length: f64, size: f64, pole: f64, core: f64) -> Vec<f64> {
+/// (m), then growing by `growth` (> 1; the section's [`GROWTH`]) up to `size` (m), the
+/// graded part scaled to end at `length`.
+pub(crate) fn graded_line(length: f64, size: f64, pole: f64, core: f64, growth: f64) -> Vec<f64> {
     let mut x = vec![0.0];
     let mut h = pole;
     let mut last = 0.0;
     while last < length * (1.0 - 1e-12) {
         if last >= core - 1e-12 * length {
-            h = (h * GROWTH).min(size);
+            h = (h * growth).min(size);
         }
         last += h;
         x.push(last);
@@ -115,8 +115,8 @@ fn check(spec: &BlockSpec) -> Result<()> {
 /// smaller side, a negative core, or more than [`MAX_BLOCK_ELEMENTS`] quads.
 pub fn block(spec: &BlockSpec) -> Result<SectionMesh> {
     check(spec)?;
-    let rs = graded_line(spec.width, spec.size, spec.pole_size, spec.core);
-    let ds = graded_line(spec.height, spec.size, spec.pole_size, spec.core);
+    let rs = graded_line(spec.width, spec.size, spec.pole_size, spec.core, GROWTH);
+    let ds = graded_line(spec.height, spec.size, spec.pole_size, spec.core, GROWTH);
     let (nr, nz) = (rs.len(), ds.len());
     let quads = (nr - 1) * (nz - 1);
     if quads > MAX_BLOCK_ELEMENTS {
@@ -178,7 +178,7 @@ mod tests {
 
     #[test]
     fn a_graded_line_starts_at_the_pole_size_and_ends_on_the_edge() {
-        let x = graded_line(0.1, 0.005, 1e-4, 5e-4);
+        let x = graded_line(0.1, 0.005, 1e-4, 5e-4, GROWTH);
         assert_eq!(x[0], 0.0);
         assert!((x[1] - 1e-4).abs() < 1e-15);
         assert_eq!(*x.last().unwrap(), 0.1);
