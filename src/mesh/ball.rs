@@ -27,28 +27,7 @@ pub const CONTACT_HALF_ANGLE_DEG: f64 = 30.0;
 /// Largest element count the mesher will build (a guard against typing 1e-6 for the size).
 pub const MAX_ELEMENTS: usize = 4_000_000;
 
-/// Which part of the ball to mesh, for solvers that exploit symmetry of a collision along x.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Cut {
-    /// The whole ball.
-    Full,
-    /// z >= 0: the plane z = 0 contains the impact axis x and the tangential direction y.
-    Half,
-    /// y >= 0 and z >= 0: two orthogonal planes through the impact axis.
-    Quarter,
-}
-
-impl std::str::FromStr for Cut {
-    type Err = Error;
-    fn from_str(s: &str) -> Result<Cut> {
-        match s {
-            "full" => Ok(Cut::Full),
-            "half" => Ok(Cut::Half),
-            "quarter" => Ok(Cut::Quarter),
-            _ => Err(Error::invalid("cut", s, "one of full, half, quarter")),
-        }
-    }
-}
+pub use super::cut::Cut;
 
 /// What to mesh. Lengths in metres.
 #[derive(Debug, Clone, PartialEq)]

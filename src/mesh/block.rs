@@ -1,10 +1,33 @@
 //! Structured block meshes: bars and cubes for element, wave and material tests, and the
 //! graded block of an elastic wall.
 
-use super::ball::Cut;
+use super::cut::Cut;
 use super::section::block::graded_line;
 use super::{topology::boundary_faces, Mesh};
 use crate::error::{Error, Result};
+
+/// The hexahedra of the tensor product of three increasing node lines (m): nodes ordered x
+/// fastest, then y, then z; every hexahedron a right-handed box; boundary faces outward.
+fn tensor_mesh([xs, ys, zs]: [&[f64]; 3]) -> Mesh {
+    let (nx, ny) = (xs.len(), ys.len());
+    let id = |i: usize, j: usize, k: usize| (i + nx * (j + ny * k)) as u32;
+    let mut nodes = Vec::with_capacity(nx * ny * zs.len());
+    for &z in zs {
+        for &y in ys {
+            for &x in xs {
+                nodes.push([x, y, z]);
+            }
+        }
+    }
+    let hexes = super::structured_hexes([nx - 1, ny - 1, zs.len() - 1], id);
+    let boundary = boundary_faces(&hexes);
+    Mesh {
+        nodes,
+        hexes,
+        boundary,
+        ..Default::default()
+    }
+}
 
 /// A box [0, lx] x [0, ly] x [0, lz] (m) cut into nx x ny x nz equal hexahedra.
 ///
@@ -16,27 +39,10 @@ pub fn block(lengths: [f64; 3], counts: [usize; 3]) -> Mesh {
         nx > 0 && ny > 0 && nz > 0,
         "block needs at least one element per direction"
     );
-    let id = |i: usize, j: usize, k: usize| (i + (nx + 1) * (j + (ny + 1) * k)) as u32;
-    let mut nodes = Vec::with_capacity((nx + 1) * (ny + 1) * (nz + 1));
-    for k in 0..=nz {
-        for j in 0..=ny {
-            for i in 0..=nx {
-                nodes.push([
-                    lengths[0] * i as f64 / nx as f64,
-                    lengths[1] * j as f64 / ny as f64,
-                    lengths[2] * k as f64 / nz as f64,
-                ]);
-            }
-        }
-    }
-    let hexes = super::structured_hexes([nx, ny, nz], id);
-    let boundary = boundary_faces(&hexes);
-    let mut mesh = Mesh {
-        nodes,
-        hexes,
-        boundary,
-        ..Default::default()
+    let line = |a: usize, n: usize| -> Vec<f64> {
+        (0..=n).map(|i| lengths[a] * i as f64 / n as f64).collect()
     };
+    let mut mesh = tensor_mesh([&line(0, nx), &line(1, ny), &line(2, nz)]);
     let tol = 1e-12 * lengths.iter().cloned().fold(0.0, f64::max);
     for (axis, name) in ["x", "y", "z"].iter().enumerate() {
         for (end, suffix) in [(0.0, "0"), (lengths[axis], "1")] {
@@ -147,24 +153,7 @@ pub fn wall_block(spec: &WallBlockSpec) -> Result<Mesh> {
             format!("at most {MAX_WALL_BLOCK_ELEMENTS} (a smaller block, or a coarser ball pole)"),
         ));
     }
-    let (nx, ny) = (xs.len(), ys.len());
-    let id = |i: usize, j: usize, k: usize| (i + nx * (j + ny * k)) as u32;
-    let mut nodes = Vec::with_capacity(nx * ny * zs.len());
-    for &z in &zs {
-        for &y in &ys {
-            for &x in &xs {
-                nodes.push([x, y, z]);
-            }
-        }
-    }
-    let hexes = super::structured_hexes(cells, id);
-    let boundary = boundary_faces(&hexes);
-    let mut mesh = Mesh {
-        nodes,
-        hexes,
-        boundary,
-        ..Default::default()
-    };
+    let mut mesh = tensor_mesh([&xs, &ys, &zs]);
     let select = |f: &dyn Fn([f64; 3]) -> bool| -> Vec<u32> {
         (0..mesh.nodes.len() as u32)
             .filter(|&n| f(mesh.nodes[n as usize]))

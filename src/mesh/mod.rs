@@ -6,6 +6,7 @@
 
 pub mod ball;
 pub mod block;
+pub mod cut;
 pub mod gmsh;
 pub mod msh;
 pub mod points_vtu;

@@ -428,18 +428,7 @@ fn build(
             let p1 = moving(&mut model, 0, m1)?;
             let p2 = moving(&mut model, 1, m2)?;
             params.friction = (mu > 0.0).then(|| CoulombFriction::new(mu));
-            let (f1, f2) = (contact_faces(&model, p1)?, contact_faces(&model, p2)?);
-            let pair = SurfacePair::new(
-                &model.nodes,
-                &model.hexes,
-                &f1,
-                &b1.material,
-                &f2,
-                &b2.material,
-                params,
-            )?;
-            let probe = pair.probe();
-            Ok((model, vec![Box::new(pair)], probe))
+            surface_pair(model, (p1, &b1.material), (p2, &b2.material), params)
         }
     }
 }
@@ -495,16 +484,20 @@ fn block_face(
     if cut != Cut::Full {
         model.fix_set(p2, "sym_z", 2)?;
     }
+    surface_pair(model, (p1, &b1.material), (p2, &material), params)
+}
+
+/// The node-to-segment pair of two parts' contact faces, each with its material's penalty
+/// (`params`): the model and its one interaction. Errors: no part `p1` or `p2`, or faces
+/// [`SurfacePair::new`] refuses.
+fn surface_pair(
+    model: Model,
+    (p1, m1): (usize, &crate::material::Material),
+    (p2, m2): (usize, &crate::material::Material),
+    params: ContactParams,
+) -> Result<Built> {
     let (f1, f2) = (contact_faces(&model, p1)?, contact_faces(&model, p2)?);
-    let pair = SurfacePair::new(
-        &model.nodes,
-        &model.hexes,
-        &f1,
-        &b1.material,
-        &f2,
-        &material,
-        params,
-    )?;
+    let pair = SurfacePair::new(&model.nodes, &model.hexes, &f1, m1, &f2, m2, params)?;
     let probe = pair.probe();
     Ok((model, vec![Box::new(pair)], probe))
 }
