@@ -71,10 +71,32 @@ pub fn section_spec(name: &str, b: &BallScene) -> Result<SectionSpec> {
 
 /// Pole cells of an elastic wall's block across its uniformly meshed core (about 1.7
 /// contact radii at the ladder's six pole cells per contact radius).
-pub(crate) const BLOCK_CORE_CELLS: f64 = 10.0;
+const BLOCK_CORE_CELLS: f64 = 10.0;
 
 /// Cells of the block's far-field size across its smaller side.
-pub(crate) const BLOCK_CELLS_PER_SIDE: f64 = 10.0;
+const BLOCK_CELLS_PER_SIDE: f64 = 10.0;
+
+/// An elastic wall's block grading, m: far-field size, pole size, core.
+pub(crate) struct BlockGrading {
+    /// Far-field element size, m.
+    pub size: f64,
+    /// Cell size at the contact point, m.
+    pub pole_size: f64,
+    /// Distance from the contact point over which cells keep the pole size, m.
+    pub core: f64,
+}
+
+/// The grading of a block of sides `sides` = [W, H] (m) under a ball of pole size `pole` (m):
+/// the pole size over [`BLOCK_CORE_CELLS`] cells, growing to a [`BLOCK_CELLS_PER_SIDE`]th of
+/// the smaller side (the section's block and the 3D models' alike).
+pub(crate) fn block_grading(pole: f64, [width, height]: [f64; 2]) -> BlockGrading {
+    let size = width.min(height) / BLOCK_CELLS_PER_SIDE;
+    BlockGrading {
+        size,
+        pole_size: pole.min(size),
+        core: BLOCK_CORE_CELLS * pole,
+    }
+}
 
 /// The block of an elastic `[wall]` (`None` for a rigid wall or two balls): its section
 /// meshed with ball 1's pole size at the contact point over [`BLOCK_CORE_CELLS`] cells,
@@ -96,13 +118,13 @@ pub fn wall_block(scene: &Scene) -> Result<Option<WallBlock>> {
             ))
         }
     };
-    let size = width.min(height) / BLOCK_CELLS_PER_SIDE;
+    let g = block_grading(pole, [width, height]);
     let mesh = block(&BlockSpec {
         width,
         height,
-        size,
-        pole_size: pole.min(size),
-        core: BLOCK_CORE_CELLS * pole,
+        size: g.size,
+        pole_size: g.pole_size,
+        core: g.core,
     })
     .map_err(|e| e.within("wall"))?;
     Ok(Some(WallBlock {

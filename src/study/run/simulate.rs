@@ -20,9 +20,7 @@ use crate::mesh::block::{wall_block, WallBlockSpec};
 use crate::mesh::Mesh;
 use crate::scene::{BallScene, MeshSettings, Scene, Switch, Touch};
 use crate::study::records::outcome::{ball_inertia, dissipation_factor, Outcome};
-use crate::study::run::section::{
-    simulate_section, SectionRun, BLOCK_CELLS_PER_SIDE, BLOCK_CORE_CELLS,
-};
+use crate::study::run::section::{block_grading, simulate_section, SectionRun};
 use crate::study::run::smoothed_force::smooth_history;
 use crate::study::run::snapshots::Snapshots;
 use std::time::Instant;
@@ -440,11 +438,10 @@ fn elastic_wall(scene: &Scene) -> Option<(crate::material::Material, [f64; 2])> 
 }
 
 /// Adds the elastic wall's block under the contact point (face x = 0, body in x > 0, base
-/// fixed, cut as the ball `cut`; meshed as the section's block: ball 1's pole size over a core
-/// of [`BLOCK_CORE_CELLS`] cells, growing to [`BLOCK_CELLS_PER_SIDE`] cells across its smaller
-/// side) and the node-to-segment pair of ball part `p1`'s contact faces against its face:
-/// the model and its one interaction. Errors: no elastic wall, or a block the mesher refuses
-/// (named from `wall`).
+/// fixed, cut as the ball `cut`, graded as the section's block by [`block_grading`]) and the
+/// node-to-segment pair of ball part `p1`'s contact faces against its face: the model and its
+/// one interaction. Errors: no elastic wall, a mesh file for ball 1, or a block the mesher
+/// refuses (named from `wall`).
 fn block_face(
     mut model: Model,
     scene: &Scene,
@@ -462,14 +459,13 @@ fn block_face(
             "the built-in mesher for a ball on a wall",
         ));
     };
-    let pole = *pole_size;
-    let size = width.min(depth) / BLOCK_CELLS_PER_SIDE;
+    let g = block_grading(*pole_size, [width, depth]);
     let mesh = wall_block(&WallBlockSpec {
         width,
         depth,
-        size,
-        pole_size: pole.min(size),
-        core: BLOCK_CORE_CELLS * pole,
+        size: g.size,
+        pole_size: g.pole_size,
+        core: g.core,
         contact_radius: width.min(b1.diameter / 2.0),
         cut,
     })
