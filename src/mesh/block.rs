@@ -2,7 +2,7 @@
 //! graded block of an elastic wall.
 
 use super::cut::Cut;
-use super::section::block::graded_line;
+use super::section::block::{check, graded_line, BlockSpec};
 use super::{topology::boundary_faces, Mesh};
 use crate::error::{Error, Result};
 
@@ -64,19 +64,12 @@ pub const WALL_BLOCK_GROWTH: f64 = 1.5;
 pub const MAX_WALL_BLOCK_ELEMENTS: usize = 1_000_000;
 
 /// What to mesh: an elastic wall's block under the contact point at the origin, its face on
-/// x = 0 and its body in x > 0. Lengths in metres.
+/// x = 0 and its body in x > 0.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct WallBlockSpec {
-    /// Half-width W of the square face (y and z in [−W, W]), m.
-    pub width: f64,
-    /// Depth H below the face (x in [0, H]), m.
-    pub depth: f64,
-    /// Far-field element size, m: an upper bound on every cell edge.
-    pub size: f64,
-    /// Cell size at the contact point, m (≤ `size`).
-    pub pole_size: f64,
-    /// Distance from the contact point over which cells keep the pole size, m (≥ 0).
-    pub core: f64,
+    /// The section block's lengths and grading, m: `width` the half-width W of the square face
+    /// (y and z in [−W, W]), `height` the depth H below it (x in [0, H]).
+    pub block: BlockSpec,
     /// Radius of the face set `contact` about the origin, m (> 0).
     pub contact_radius: f64,
     /// The ball's cut: the block keeps the same side of the planes y = 0 and z = 0.
@@ -85,7 +78,7 @@ pub struct WallBlockSpec {
 
 /// Node coordinates of a graded line mirrored about 0 (from −length to length), or the
 /// line from 0 alone when `half`.
-fn mirrored_line(length: f64, spec: &WallBlockSpec, half: bool) -> Vec<f64> {
+fn mirrored_line(length: f64, spec: &BlockSpec, half: bool) -> Vec<f64> {
     let up = graded_line(
         length,
         spec.size,
@@ -110,40 +103,19 @@ fn mirrored_line(length: f64, spec: &WallBlockSpec, half: bool) -> Vec<f64> {
 /// planes; empty without them), face and node sets `contact` (face quads on x = 0 whose nodes
 /// all lie within `contact_radius` of the origin).
 ///
-/// Errors: non-finite or non-positive lengths, `pole_size` above `size`, `size` above the
-/// smaller of W and H, or more than [`MAX_WALL_BLOCK_ELEMENTS`] hexahedra.
+/// Errors: those of the section's block ([`check`]: non-finite or non-positive lengths,
+/// `pole_size` above `size`, `size` above the smaller of W and H, a negative core), a
+/// non-positive `contact_radius`, or more than [`MAX_WALL_BLOCK_ELEMENTS`] hexahedra.
 pub fn wall_block(spec: &WallBlockSpec) -> Result<Mesh> {
-    for (name, v) in [
-        ("width", spec.width),
-        ("depth", spec.depth),
-        ("mesh.size", spec.size),
-        ("mesh.pole_size", spec.pole_size),
-        ("contact_radius", spec.contact_radius),
-    ] {
-        if !(v.is_finite() && v > 0.0) {
-            return Err(Error::invalid(name, v, "> 0 m, finite"));
-        }
+    let b = &spec.block;
+    check(b)?;
+    let r = spec.contact_radius;
+    if !(r.is_finite() && r > 0.0) {
+        return Err(Error::invalid("contact_radius", r, "> 0 m, finite"));
     }
-    if spec.pole_size > spec.size || spec.size > spec.width.min(spec.depth) {
-        return Err(Error::invalid(
-            "mesh.size",
-            spec.size,
-            format!(
-                "between the pole size {} m and the block's smaller side {} m",
-                spec.pole_size,
-                spec.width.min(spec.depth)
-            ),
-        ));
-    }
-    let xs = graded_line(
-        spec.depth,
-        spec.size,
-        spec.pole_size,
-        spec.core.max(0.0),
-        WALL_BLOCK_GROWTH,
-    );
-    let ys = mirrored_line(spec.width, spec, spec.cut == Cut::Quarter);
-    let zs = mirrored_line(spec.width, spec, spec.cut != Cut::Full);
+    let xs = graded_line(b.height, b.size, b.pole_size, b.core, WALL_BLOCK_GROWTH);
+    let ys = mirrored_line(b.width, b, spec.cut == Cut::Quarter);
+    let zs = mirrored_line(b.width, b, spec.cut != Cut::Full);
     let cells = [xs.len() - 1, ys.len() - 1, zs.len() - 1];
     let count = cells.iter().product::<usize>();
     if count > MAX_WALL_BLOCK_ELEMENTS {
@@ -159,7 +131,7 @@ pub fn wall_block(spec: &WallBlockSpec) -> Result<Mesh> {
             .filter(|&n| f(mesh.nodes[n as usize]))
             .collect()
     };
-    let base = select(&|p| p[0] == spec.depth);
+    let base = select(&|p| p[0] == b.height);
     let sym_y = if spec.cut == Cut::Quarter {
         select(&|p| p[1] == 0.0)
     } else {
@@ -228,11 +200,13 @@ mod tests {
 
     fn spec(cut: Cut) -> WallBlockSpec {
         WallBlockSpec {
-            width: 0.02,
-            depth: 0.01,
-            size: 0.002,
-            pole_size: 2e-4,
-            core: 1e-3,
+            block: BlockSpec {
+                width: 0.02,
+                height: 0.01,
+                size: 0.002,
+                pole_size: 2e-4,
+                core: 1e-3,
+            },
             contact_radius: 0.005,
             cut,
         }
@@ -290,7 +264,7 @@ mod tests {
     #[test]
     fn a_wall_block_refuses_a_far_field_size_above_its_side() {
         let mut s = spec(Cut::Full);
-        s.size = 0.05;
+        s.block.size = 0.05;
         let e = wall_block(&s).unwrap_err().to_string();
         assert!(e.contains("mesh.size"), "{e}");
     }

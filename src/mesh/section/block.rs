@@ -67,8 +67,9 @@ pub(crate) fn graded_line(length: f64, size: f64, pole: f64, core: f64, growth: 
     x
 }
 
-/// Checks `spec` (one-line errors naming the field).
-fn check(spec: &BlockSpec) -> Result<()> {
+/// Checks `spec` (one-line errors naming the field): the section's block and the 3D wall
+/// block ([`crate::mesh::block::wall_block`]) alike.
+pub(crate) fn check(spec: &BlockSpec) -> Result<()> {
     let pos = |name: &str, v: f64| -> Result<()> {
         if v.is_finite() && v > 0.0 {
             Ok(())

@@ -76,22 +76,14 @@ const BLOCK_CORE_CELLS: f64 = 10.0;
 /// Cells of the block's far-field size across its smaller side.
 const BLOCK_CELLS_PER_SIDE: f64 = 10.0;
 
-/// An elastic wall's block grading, m: far-field size, pole size, core.
-pub(crate) struct BlockGrading {
-    /// Far-field element size, m.
-    pub size: f64,
-    /// Cell size at the contact point, m.
-    pub pole_size: f64,
-    /// Distance from the contact point over which cells keep the pole size, m.
-    pub core: f64,
-}
-
-/// The grading of a block of sides `sides` = [W, H] (m) under a ball of pole size `pole` (m):
-/// the pole size over [`BLOCK_CORE_CELLS`] cells, growing to a [`BLOCK_CELLS_PER_SIDE`]th of
-/// the smaller side (the section's block and the 3D models' alike).
-pub(crate) fn block_grading(pole: f64, [width, height]: [f64; 2]) -> BlockGrading {
+/// The block of sides `sides` = [W, H] (m) under a ball of pole size `pole` (m): the pole size
+/// over [`BLOCK_CORE_CELLS`] cells, growing to a [`BLOCK_CELLS_PER_SIDE`]th of the smaller side
+/// (the section's block and the 3D models' alike).
+pub(crate) fn block_grading(pole: f64, [width, height]: [f64; 2]) -> BlockSpec {
     let size = width.min(height) / BLOCK_CELLS_PER_SIDE;
-    BlockGrading {
+    BlockSpec {
+        width,
+        height,
         size,
         pole_size: pole.min(size),
         core: BLOCK_CORE_CELLS * pole,
@@ -118,15 +110,7 @@ pub fn wall_block(scene: &Scene) -> Result<Option<WallBlock>> {
             ))
         }
     };
-    let g = block_grading(pole, [width, height]);
-    let mesh = block(&BlockSpec {
-        width,
-        height,
-        size: g.size,
-        pole_size: g.pole_size,
-        core: g.core,
-    })
-    .map_err(|e| e.within("wall"))?;
+    let mesh = block(&block_grading(pole, [width, height])).map_err(|e| e.within("wall"))?;
     Ok(Some(WallBlock {
         mesh,
         material,

@@ -459,13 +459,8 @@ fn block_face(
             "the built-in mesher for a ball on a wall",
         ));
     };
-    let g = block_grading(*pole_size, [width, depth]);
     let mesh = wall_block(&WallBlockSpec {
-        width,
-        depth,
-        size: g.size,
-        pole_size: g.pole_size,
-        core: g.core,
+        block: block_grading(*pole_size, [width, depth]),
         contact_radius: width.min(b1.diameter / 2.0),
         cut,
     })
