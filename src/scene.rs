@@ -393,6 +393,7 @@ impl Scene {
                         .into(),
                 )),
                 Some(w) => {
+                    w.check_block_reach(ball1.material, ball1.diameter, ball1.velocity)?;
                     let ball1 = place_against(w, ball1)?;
                     let image = wall_image(w, &ball1);
                     (ball1, image, pole1_given)

@@ -161,6 +161,49 @@ impl WallScene {
         Ok(self)
     }
 
+    /// Checks that ball 1 (`material`, `diameter` m, `velocity` m/s) keeps its contact on an
+    /// elastic block's face: the centre's tangential speed times the Hertz contact time at
+    /// its normal speed, plus the Hertz contact radius, within the half-width W (a ball that
+    /// slides off the face would press past its edge and never separate). A rigid wall, or a
+    /// ball not approaching the face, passes.
+    ///
+    /// Errors: `wall.size[0]` below that reach, with the reach named.
+    pub fn check_block_reach(
+        &self,
+        material: Material,
+        diameter: f64,
+        velocity: [f64; 3],
+    ) -> Result<()> {
+        let (Some(block), Some([width, _])) = (self.material, self.size) else {
+            return Ok(());
+        };
+        let v_n = -dot(velocity, self.normal);
+        if v_n <= 0.0 {
+            return Ok(());
+        }
+        let v_t = norm([0, 1, 2].map(|k| velocity[k] + v_n * self.normal[k]));
+        let pair = crate::analytic::HertzPair::between(
+            &crate::analytic::Body::Ball { material, diameter },
+            &crate::analytic::Body::HalfSpace { material: block },
+        );
+        let (t_c, delta) = (pair.contact_duration(v_n), pair.max_approach(v_n));
+        let reach = v_t * t_c + pair.contact_radius(delta);
+        if width < reach {
+            return Err(Error::invalid(
+                "wall.size[0]",
+                width,
+                format!(
+                    ">= {reach:.4e} m: ball 1 slides {:.4e} m along the block's face (tangential \
+                     speed {v_t:.4e} m/s times the Hertz contact time {t_c:.4e} s) and its contact \
+                     reaches {:.4e} m further; a narrower block lets it slide off the face",
+                    v_t * t_c,
+                    reach - v_t * t_c
+                ),
+            ));
+        }
+        Ok(())
+    }
+
     /// Signed distance (m) of point `p` in front of the wall's face.
     pub fn distance(&self, p: [f64; 3]) -> f64 {
         dot([0, 1, 2].map(|k| p[k] - self.position[k]), self.normal)

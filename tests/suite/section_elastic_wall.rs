@@ -331,4 +331,20 @@ fn bad_elastic_walls_get_one_line_errors_naming_the_field() {
         .unwrap_err()
         .to_string();
     one_line(e, "wall.size[0]");
+    // A ball sliding off a rubber block's face: 10 m/s along it for the Hertz contact time
+    // of 1 m/s into it (3.25 ms) is 32.5 mm, beyond the 20 mm half-width; 1 m/s stays on it.
+    let slide = |vt: &str| {
+        let v = format!("ball1.velocity=[1,{vt},0]");
+        let sets = [
+            "wall.material=rubber",
+            "wall.size=[0.02,0.02]",
+            "reduction.symmetry=\"auto\"",
+            v.as_str(),
+        ];
+        parse(ELASTIC_WALL, &sets)
+    };
+    let e = slide("10").unwrap_err().to_string();
+    assert!(e.contains("slides 3.25"), "{e}");
+    one_line(e, "wall.size[0]");
+    assert!(slide("1").is_ok());
 }

@@ -100,7 +100,20 @@ fn classifier_catches_silent_failures() {
     assert_eq!(c(Some(0), false, "", &spun), Class::Flagged);
     let made = dir_with(&oblique("1.0"));
     assert_eq!(c(Some(0), false, "", &made), Class::Silent);
-    for d in [ok, flag, nan, gain, spun, made] {
+    // A ball twisting about the normal has no slip at touch (no `tangential`) but spins: the
+    // same e = 1.04 with its spin down from 100 to 50 rad/s and the kinetic energy down is
+    // flagged too.
+    let twist = results("1.04", "-1.04", "0.001")
+        .replace(r#""v2_after": [1.0, 0, 0]"#, r#""v2_after": [0.5, 0, 0]"#)
+        .replace(r#""w1_after": [0, 0, 0]"#, r#""w1_after": [50, 0, 0]"#)
+        .replacen(
+            r#""angular_velocity": [0, 0, 0]"#,
+            r#""angular_velocity": [100, 0, 0]"#,
+            1,
+        );
+    let twisted = dir_with(&twist);
+    assert_eq!(c(Some(0), false, "", &twisted), Class::Flagged);
+    for d in [ok, flag, nan, gain, spun, made, twisted] {
         let _ = std::fs::remove_dir_all(d);
     }
 }

@@ -514,10 +514,16 @@ pub fn classify(
     let err = r.energy_error.unwrap_or(f64::NAN);
     let allowed = tol.max(err);
     // e above 1 is impossible where the normal motion carries all the kinetic energy (a
-    // head-on impact); an oblique or spinning one (results.json `tangential`) may pass energy
-    // of its sliding or spin into the rebound (its run warns), so there only the kinetic
-    // energy is bounded, and e above 1 flags the case.
-    let head_on = v["tangential"].is_null();
+    // head-on impact without spin); an oblique one (results.json `tangential`) or a spinning
+    // one (a twist about the normal has no `tangential`) may pass energy of its sliding or
+    // spin into the rebound (its run warns), so there only the kinetic energy is bounded, and
+    // e above 1 flags the case.
+    let spins = |ball: &str| {
+        v["scene"][ball]["angular_velocity"]
+            .as_array()
+            .is_some_and(|w| w.iter().any(|c| c.as_f64().is_some_and(|c| c != 0.0)))
+    };
+    let head_on = v["tangential"].is_null() && !spins("ball1") && !spins("ball2");
     let e_above = r.e.is_some_and(|e| e > 1.0 + allowed);
     let impossible = (head_on && e_above) || r.kinetic_ratio.is_some_and(|k| k > 1.0 + allowed);
     r.class = if r.non_finite || !err.is_finite() || r.e.is_none() || r.kinetic_ratio.is_none() {

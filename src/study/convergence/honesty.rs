@@ -190,6 +190,8 @@ pub fn check_honesty(
         let base = run(&c.scene, 0)?;
         let fine = run(&c.scene, 2)?;
         let est = ErrorEstimate::from_runs(vec![coarse, base], None)?;
+        let three_d = crate::study::convergence::bulk_share::runs_in_3d(&c.scene)?;
+        let est = crate::study::convergence::bulk_share::with_bulk_share(&c.scene, three_d, est)?;
         let row = HonestyRow {
             material: c.material.clone(),
             speed: c.speed,

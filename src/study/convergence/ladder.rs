@@ -37,21 +37,32 @@ pub enum LadderPlan {
 /// finest. Errors of `run` pass through (with the level named).
 pub fn run_ladder(
     plan: LadderPlan,
+    run: impl FnMut(i32) -> Result<LevelOutcome>,
+) -> Result<ErrorEstimate> {
+    run_ladder_with(plan, run, Ok)
+}
+
+/// [`run_ladder`] with every estimate passed through `adjust` (a model's floor on a bar)
+/// before it is reported or checked against a tolerance.
+///
+/// Errors: those of `run` (with the level named) and of `adjust`.
+pub fn run_ladder_with(
+    plan: LadderPlan,
     mut run: impl FnMut(i32) -> Result<LevelOutcome>,
+    adjust: impl Fn(ErrorEstimate) -> Result<ErrorEstimate>,
 ) -> Result<ErrorEstimate> {
     let mut at = |level: i32| run(level).map_err(|e| at_level(e, level));
+    let of =
+        |runs: Vec<LevelOutcome>, tolerance| adjust(ErrorEstimate::from_runs(runs, tolerance)?);
     match plan {
-        LadderPlan::TwoLevels => ErrorEstimate::from_runs(vec![at(-1)?, at(0)?], None),
-        LadderPlan::ThreeLevels => ErrorEstimate::from_runs(vec![at(-2)?, at(-1)?, at(0)?], None),
+        LadderPlan::TwoLevels => of(vec![at(-1)?, at(0)?], None),
+        LadderPlan::ThreeLevels => of(vec![at(-2)?, at(-1)?, at(0)?], None),
         LadderPlan::Tolerance {
             tolerance,
             max_refinements,
         } => {
             let met = |runs: &Vec<LevelOutcome>| {
-                Ok(
-                    ErrorEstimate::from_runs(runs.clone(), Some(tolerance))?.tolerance_met
-                        == Some(true),
-                )
+                Ok(of(runs.clone(), Some(tolerance))?.tolerance_met == Some(true))
             };
             let start = vec![at(-1)?, at(0)?];
             let finer = |mut runs: Vec<LevelOutcome>| {
@@ -60,7 +71,7 @@ pub fn run_ladder(
                 Ok(runs)
             };
             let (runs, _) = refine(start, max_refinements, met, finer)?;
-            ErrorEstimate::from_runs(runs, Some(tolerance))
+            of(runs, Some(tolerance))
         }
     }
 }

@@ -6,9 +6,10 @@
 use crate::error::{Error, Result};
 use crate::fe::materials;
 use crate::scene::{approach, Approach, MeshSettings, Scene};
+use crate::study::convergence::bulk_share::{finest_share, runs_in_3d, with_bulk_share};
 use crate::study::convergence::converged_scene::{converge_report, family_case};
 use crate::study::convergence::ladder::{
-    at_level, mesh_sizes, run_ladder, scene_at_level, LadderPlan,
+    at_level, mesh_sizes, run_ladder_with, scene_at_level, LadderPlan,
 };
 use crate::study::convergence::phase_ensemble::{ring_ratio, HeadOnCase, PhaseMean};
 use crate::study::records::error_estimate::{
@@ -136,9 +137,10 @@ pub fn run_scene_with_estimate(
             Err(why) => why_not_banded = Some(why),
         }
     }
+    let three_d = runs_in_3d(scene)?;
     let (estimate, report) = if matches!(plan, LadderPlan::TwoLevels) {
         match two_levels(scene, opts) {
-            Ok(levels) => levels,
+            Ok((estimate, report)) => (with_bulk_share(scene, three_d, estimate)?, report),
             // The levels' phase ensembles need the contact's edge inside their refined
             // surface; a harder impact (about ±70 m/s on copper) reaches beyond it.
             Err(Error::Invalid { field, value, .. }) if field == "contact_radius" => {
@@ -153,15 +155,24 @@ pub fn run_scene_with_estimate(
         }
     } else {
         let mut finest: Option<RunReport> = None;
-        let estimate = run_ladder(plan, |level| {
-            let (out, report) = run_level(scene, level, opts)?;
-            finest = Some(report);
-            Ok(out)
-        })?;
+        let estimate = run_ladder_with(
+            plan,
+            |level| {
+                let (out, report) = run_level(scene, level, opts)?;
+                finest = Some(report);
+                Ok(out)
+            },
+            |est| with_bulk_share(scene, three_d, est),
+        )?;
         let report = finest
             .ok_or_else(|| Error::Numerical("error estimate: the ladder ran no mesh".into()))?;
         (estimate, report)
     };
+    // Whether the bulk's share set e's bar (the floor equals the bar when it did).
+    let raised = finest_share(scene, three_d, &estimate)?.filter(|(share, _)| {
+        let floor = share * (1.0 - estimate.e.finest).max(0.0);
+        floor > 0.0 && estimate.e.error <= floor
+    });
     let mut report = with_estimate(
         report,
         ErrorEstimate {
@@ -169,6 +180,13 @@ pub fn run_scene_with_estimate(
             ..estimate
         },
     )?;
+    if let Some((share, per_d)) = raised {
+        report
+            .warnings
+            .push(crate::study::records::warnings::bulk_share_bar(
+                share, per_d,
+            ));
+    }
     if matches!(plan, LadderPlan::TwoLevels) && !rate_independent(scene) {
         // The default levels' bar on a rate-dependent metal understated their error in 3 of
         // 13 cases: it is at least the floor, and the run says so.

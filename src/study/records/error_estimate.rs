@@ -195,6 +195,17 @@ impl ErrorEstimate {
         })
     }
 
+    /// The same estimate with e's bar raised to at least `floor` (absolute, -) and whether it
+    /// meets its tolerance decided again.
+    pub fn with_e_floor(self, floor: f64) -> ErrorEstimate {
+        let e = self.e.with_error(self.e.error.max(floor));
+        ErrorEstimate {
+            tolerance_met: self.tolerance.map(|t| meets(&e, t)),
+            e,
+            ..self
+        }
+    }
+
     /// Two lines for the terminal: the bar of each quantity of the table (and the meshes it
     /// comes from), then the values extrapolated to zero element size.
     pub fn summary(&self) -> String {

@@ -51,6 +51,8 @@ pub enum Check {
     /// The default error bar of a head-on run on a rate-dependent (Johnson-Cook) metal, which
     /// has missed its error.
     RateDependentBar,
+    /// A 3D bar on e raised to the share of its bulk, coarser than e's knee.
+    BulkShareBar,
 }
 
 /// One warning: the check and its one-line message (values with units).
@@ -195,6 +197,18 @@ pub fn rate_dependent_bar(floor: f64) -> Warning {
         message: format!(
             "the default error bar on e is at least {:.0} % on a rate-dependent (Johnson-Cook) metal: its mesh levels' own bar missed their error in 3 of 13 cases (2.5 % under 1.7 % on ofhc-copper at ±5 m/s); twoball run --tolerance 0.5% gives a bar that held in all 13",
             100.0 * floor
+        ),
+    }
+}
+
+/// The note of a 3D run whose bar on e was raised to its bulk's share: `share` of 1 − e
+/// (-) for a bulk of `per_d` elements per diameter (docs/design.md, "Error estimates").
+pub fn bulk_share_bar(share: f64, per_d: f64) -> Warning {
+    Warning {
+        check: Check::BulkShareBar,
+        message: format!(
+            "the error bar on e is at least {:.2} % of 1 - e: a 3D bulk of D/{per_d:.1} is coarser than D/8, where its mesh levels can agree while both are off (bulk D/5 moved e by 0.9 % of 1 - e on the default scene); a finer ball1.mesh.size removes the share",
+            100.0 * share
         ),
     }
 }
