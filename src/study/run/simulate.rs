@@ -461,7 +461,8 @@ fn block_face(
     };
     let mesh = wall_block(&WallBlockSpec {
         block: block_grading(*pole_size, [width, depth]),
-        contact_radius: width.min(b1.diameter / 2.0),
+        // The whole face: a ball sliding along it keeps meeting it (check_block_reach).
+        contact_radius: width,
         cut,
     })
     .map_err(|e| e.within("wall"))?;
