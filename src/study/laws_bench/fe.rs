@@ -271,7 +271,7 @@ pub const FE_MODEL: &str =
 /// tangential figures' bars assume order 1), whatever the head-on plan (its cache files are
 /// not tied to it).
 pub const OBLIQUE_MODEL: &str =
-    "3D half model, default graded meshes, two-level error bars (levels -1 and 0; tangential order 1; spin with the mesh's inertia share)";
+    "3D half model, default graded meshes, two-level error bars (levels -1 and 0; tangential order 1; spin with the mesh's inertia share; e with the bulk's share)";
 
 /// Hertz's contact radius a = √(R*δ_max) (m) of the point's pair at its speed.
 ///
