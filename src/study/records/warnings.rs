@@ -53,6 +53,8 @@ pub enum Check {
     RateDependentBar,
     /// A 3D bar on e raised to the share of its bulk, coarser than e's knee.
     BulkShareBar,
+    /// A 3D ball's contact patch, turned by its spin, may reach beyond its contact faces.
+    ContactCap,
 }
 
 /// One warning: the check and its one-line message (values with units).
@@ -213,6 +215,35 @@ pub fn bulk_share_bar(share: f64, per_d: f64) -> Warning {
     }
 }
 
+/// The polar angle (rad, from the pole) a 3D ball's contact patch reaches during an impact:
+/// its half-angle asin(a/R), a = √(R* δ_max) (Hertz geometry; `radius` R, `r_star` R* and
+/// `delta_max` in m), plus the turn of the ball while in contact, the mean of its spin
+/// magnitudes before and after (rad/s) times the contact duration (s). A twist about the
+/// normal counts too, so the angle is an upper bound.
+pub fn patch_reach(
+    radius: f64,
+    r_star: f64,
+    delta_max: f64,
+    spins: [[f64; 3]; 2],
+    duration: f64,
+) -> f64 {
+    let a = (r_star * delta_max.max(0.0)).sqrt();
+    let mag = |w: [f64; 3]| (w[0] * w[0] + w[1] * w[1] + w[2] * w[2]).sqrt();
+    (a / radius).min(1.0).asin() + 0.5 * (mag(spins[0]) + mag(spins[1])) * duration
+}
+
+/// The note of ball `ball` whose contact patch reaches `reach_deg` degrees from its pole,
+/// beyond the `cap_deg` half-angle of its contact faces: a patch outside them is not seen
+/// by the contact.
+pub fn contact_cap(ball: &str, reach_deg: f64, cap_deg: f64) -> Warning {
+    Warning {
+        check: Check::ContactCap,
+        message: format!(
+            "{ball}'s contact patch may reach {reach_deg:.1} degrees from its pole (the patch's half-angle plus the ball's turn while in contact), beyond its contact faces' {cap_deg:.0} degrees: the contact may miss part of it; lower the speed or spin, or use a stiffer wall"
+        ),
+    }
+}
+
 /// The analytical model's range check: maximum approach `delta2` (m) against the effective
 /// radius `r_star` (m).
 pub fn analytic_warnings(delta2: f64, r_star: f64) -> Vec<Warning> {
@@ -245,6 +276,15 @@ pub fn print(warnings: &[Warning]) {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_patch_reaches_its_half_angle_plus_the_balls_turn() {
+        // a = √(R* δ) = 5 mm on R = 10 mm: 30°; a mean spin of 100 rad/s for 1 ms adds 0.1 rad.
+        let still = patch_reach(0.01, 0.01, 2.5e-3, [[0.0; 3]; 2], 1e-3);
+        assert!((still.to_degrees() - 30.0).abs() < 1e-9);
+        let turned = patch_reach(0.01, 0.01, 2.5e-3, [[0.0, 0.0, 200.0], [0.0; 3]], 1e-3);
+        assert!((turned - still - 0.1).abs() < 1e-12);
+    }
 
     fn clean() -> FeFigures {
         FeFigures {

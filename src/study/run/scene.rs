@@ -156,6 +156,9 @@ pub fn run_scene(scene: &Scene, opts: &RunOptions) -> Result<RunReport> {
     let r_star = collision.pair.radius;
     let mut warnings = analytic_warnings(an.delta_max, r_star);
     warnings.extend(fe_warnings(&fe_figures(scene, &sim, r_star, oblique)));
+    if sim.savings.reduction != crate::study::run::simulate::Reduction::Axisymmetric {
+        warnings.extend(contact_caps(scene, &fe, r_star));
+    }
     warnings.extend(super::ignored::ignored_settings(
         scene,
         sim.savings.reduction,
@@ -456,3 +459,34 @@ pub fn side_by_side(r: &RunReport) -> String {
 /// Why FE and analytical δ_max and contact duration differ, printed under every plastic
 /// impact's table.
 pub const DELTA_MAX_NOTE: &str = "note: the FE delta_max and contact duration are about 40 % below the analytical ones by design: the model's phase-2 contact (Hertz area, pressure capped at 2.57 yield) is softer than a resolved elastic-plastic contact, so it reaches deeper and lasts longer; see verification/NOTES.md";
+
+/// The contact-cap warnings of a 3D run's balls ([`crate::study::records::warnings::patch_reach`]
+/// against [`crate::mesh::ball::CONTACT_HALF_ANGLE_DEG`]); a wall's image ball is not meshed.
+fn contact_caps(
+    scene: &Scene,
+    fe: &crate::study::records::outcome::Outcome,
+    r_star: f64,
+) -> Vec<Warning> {
+    use crate::study::records::warnings::{contact_cap, patch_reach};
+    let cap = crate::mesh::ball::CONTACT_HALF_ANGLE_DEG;
+    let balls = [
+        ("ball1", &scene.ball1, fe.w1_after),
+        ("ball2", &scene.ball2, fe.w2_after),
+    ];
+    let meshed = if scene.wall.is_some() { 1 } else { 2 };
+    balls[..meshed]
+        .iter()
+        .filter_map(|(name, b, after)| {
+            let spins = [b.angular_velocity, *after];
+            let reach = patch_reach(
+                b.diameter / 2.0,
+                r_star,
+                fe.delta_max,
+                spins,
+                fe.contact_duration,
+            )
+            .to_degrees();
+            (reach > cap).then(|| contact_cap(name, reach, cap))
+        })
+        .collect()
+}
