@@ -11,11 +11,14 @@ model and its next-coarser mesh), and the gap to the theory (results.json
 `tangential.theory`) is extrapolated linearly in a/R to a/R = 0 (least squares over the
 three speeds).
 
-With --ladder the 10-degree case instead runs a pole ladder at bulk D/8 (pole a/2.2, a/4.5,
-a/9, a/18 at each speed, `--no-error-estimate`) and reports the Richardson value from the
-three finest poles with its grid convergence index (observed order).
+With --ladder the 10-degree case (or those of --angles) instead runs a pole ladder at bulk
+D/8 (pole a/2.2, a/4.5, a/9, a/18 at each speed, `--no-error-estimate`) and reports the
+Richardson value from the three finest poles with its grid convergence index (observed
+order; outside 0.5-6, 1.25 times the larger step and no extrapolation, as twoball's
+ladders). Runs whose results.json is in DIR are read, not rerun.
 
-Usage: python3 scripts/mbf_limit.py [--twoball target/release/twoball] [--out DIR] [--ladder]
+Usage: python3 scripts/mbf_limit.py [--twoball target/release/twoball] [--out DIR]
+                                    [--ladder [--angles 10 20 ...]]
 Python 3 standard library only.
 """
 
@@ -39,8 +42,12 @@ LADDER_BULK = 0.000625
 
 
 def run(twoball, out, name, angle, speed, extra):
-    """Runs one case; returns results.json as a dict."""
+    """Runs one case (or reads the results.json an earlier run left); returns it as a dict."""
     d = os.path.join(out, name)
+    done = os.path.join(d, "results.json")
+    if os.path.exists(done):
+        with open(done) as f:
+            return json.load(f)
     t = math.radians(angle)
     v = f"ball1.velocity=[{speed * math.cos(t)!r}, {speed * math.sin(t)!r}, 0]"
     cmd = [twoball, "run", SCENE, "--out", d, "--set", v, "--set", f"ball1.material.nu={NU}"]
@@ -88,12 +95,13 @@ def limits(twoball, out):
               f"{theory['rebound_angle']:.5f} | {g_rb:+.5f} |", flush=True)
 
 
-def ladder(twoball, out):
-    print("| v (m/s) | a/R | e_t at the poles | Richardson e_t ± GCI | theory | gap "
+def ladder(twoball, out, angles):
+    print("| θ (°) | v (m/s) | a/R | e_t at the poles | Richardson e_t ± GCI | theory | gap "
           "| rebound at the poles | Richardson ± GCI | theory | gap |")
-    print("|---|---|---|---|---|---|---|---|---|---|")
-    for speed in SPEEDS:
-        runs = [run(twoball, out, f"ladder-{speed}-{p}", 10, speed,
+    print("|---|---|---|---|---|---|---|---|---|---|---|")
+    for angle, speed in [(a, v) for a in angles for v in SPEEDS]:
+        tag = f"ladder-{speed}-{{}}" if angle == 10 else f"ladder-{angle}-{speed}-{{}}"
+        runs = [run(twoball, out, tag.format(p), angle, speed,
                     ["--no-error-estimate", "--set",
                      f"ball1.mesh={{size={LADDER_BULK},pole_size={p}}}"])
                 for p in LADDER[speed]]
@@ -102,13 +110,17 @@ def ladder(twoball, out):
         for key in ["restitution", "rebound_angle"]:
             v = [r["tangential"]["fe"][key] for r in runs]
             d1, d2 = v[-2] - v[-3], v[-1] - v[-2]
-            p = math.log(abs(d1 / d2)) / math.log(2)
-            ext = v[-1] + d2 / (2 ** p - 1)
-            gci = 1.25 * abs(d2) / (2 ** p - 1)
+            p = math.log(abs(d1 / d2)) / math.log(2) if d1 * d2 > 0 else math.nan
+            if 0.5 <= p <= 6:
+                ext = v[-1] + d2 / (2 ** p - 1)
+                gci = 1.25 * abs(d2) / (2 ** p - 1)
+            else:
+                # Outside the trusted orders, as twoball's ladders: 1.25 x the larger step.
+                ext, gci = v[-1], 1.25 * max(abs(d1), abs(d2))
             theory = runs[-1]["tangential"]["theory"][key]
             cells.append(f"{', '.join(f'{x:.5f}' for x in v)} | {ext:.5f} ± {gci:.5f} (p {p:.2f})"
                          f" | {theory:.5f} | {ext - theory:+.5f}")
-        print(f"| {speed} | {a:.4f} | " + " | ".join(cells) + " |", flush=True)
+        print(f"| {angle} | {speed} | {a:.4f} | " + " | ".join(cells) + " |", flush=True)
 
 
 def main():
@@ -116,10 +128,14 @@ def main():
     ap.add_argument("--twoball", default="target/release/twoball")
     ap.add_argument("--out", default="mbf-limit")
     ap.add_argument("--ladder", action="store_true")
+    ap.add_argument("--angles", type=float, nargs="+", default=[10])
     args = ap.parse_args()
     os.makedirs(args.out, exist_ok=True)
     try:
-        (ladder if args.ladder else limits)(args.twoball, args.out)
+        if args.ladder:
+            ladder(args.twoball, args.out, [a if a % 1 else int(a) for a in args.angles])
+        else:
+            limits(args.twoball, args.out)
     except subprocess.CalledProcessError as e:
         sys.exit(f"error: a twoball run failed: {' '.join(e.cmd)}")
 
