@@ -287,3 +287,48 @@ fn a_spinning_ball_slides_with_the_rigid_body_coulomb_impulse() {
     let spin = w0 + 2.5 * vt / r_ball;
     assert!((a.w1_after[2] - spin).abs() < 1e-9 * w0, "{:?}", a.w1_after);
 }
+
+/// `--tolerance` on an oblique 3D scene runs the pole ladder: every level keeps the bulk at
+/// D/8 and halves the pole, three levels at least, and the tolerance is met only when the
+/// tangential restitution's bar is within it too. Chung & Ooi's test 4 (alumina, D = 5 mm) at
+/// 20°, 2 %, one refinement: levels −1, 0, +1 give e_t 0.43261, 0.43338, 0.42959 (level +2:
+/// 0.42928, `twoball run verification/dem-benchmarks/test4-alumina.toml --set
+/// 'ball1.velocity=[3.66480, 1.33386, 0]' --tolerance 0.01% --max-refinements 2`); the
+/// oscillating ladder's bar (1.25 times the larger step) holds level +2.
+#[test]
+fn tolerance_on_an_oblique_scene_refines_the_pole_at_a_fixed_bulk() {
+    use twoball::study::convergence::ladder::LadderPlan;
+    use twoball::study::convergence::scene_estimate::run_scene_with_estimate;
+    use twoball::study::records::error_estimate::EstimateMethod;
+    let file = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("verification/dem-benchmarks/test4-alumina.toml");
+    let text = std::fs::read_to_string(file).unwrap();
+    let t = 20f64.to_radians();
+    let v = format!("ball1.velocity=[{}, {}, 0]", 3.9 * t.cos(), 3.9 * t.sin());
+    let sets = [Override::parse(&v).unwrap()];
+    let s = Scene::from_toml(&text, Path::new("."), &sets).unwrap();
+    let plan = LadderPlan::Tolerance {
+        tolerance: 0.02,
+        max_refinements: 1,
+    };
+    let r = run_scene_with_estimate(&s, &RunOptions::default(), plan).unwrap();
+    let est = r.error_estimate.unwrap();
+    assert!(matches!(est.method, EstimateMethod::PoleLadder { .. }));
+    let d = s.ball1.diameter;
+    assert_eq!(est.meshes.len(), 3);
+    for m in &est.meshes {
+        assert!((m.size - d / 8.0).abs() < 1e-12 * d, "bulk {}", m.size);
+    }
+    for w in est.meshes.windows(2) {
+        assert!((w[0].pole_size / w[1].pole_size - 2.0).abs() < 1e-9);
+    }
+    let et = est.tangential.as_ref().unwrap().restitution.unwrap();
+    println!(
+        "e_t {:.5} ± {:.5}, met {:?}",
+        et.finest, et.error, est.tolerance_met
+    );
+    let rel = et.relative_error.unwrap();
+    let met = rel <= 0.02 && est.e.relative_error.unwrap() <= 0.02;
+    assert_eq!(est.tolerance_met, Some(met));
+    assert!((et.finest - 0.42928).abs() <= et.error, "{et:?}");
+}

@@ -140,6 +140,33 @@ pub fn scene_at_level(scene: &Scene, level: i32) -> Result<Scene> {
     Ok(s)
 }
 
+/// Bulk elements per diameter, at least, on every level of a pole ladder: past the knee of e
+/// and e_t in the bulk (verification/design-measurements.md, "Error estimates").
+pub const POLE_LADDER_BULK_PER_D: f64 = 8.0;
+
+/// The scene on level `level` of its pole ladder: every built-in mesh's pole size times
+/// 2^−level, its bulk size at most D/[`POLE_LADDER_BULK_PER_D`] on every level. Fails for a
+/// mesh read from a file.
+pub fn scene_at_pole_level(scene: &Scene, level: i32) -> Result<Scene> {
+    let scale = LADDER_RATIO.powi(-level);
+    let mut s = scene.clone();
+    for (name, ball) in [("ball1", &mut s.ball1), ("ball2", &mut s.ball2)] {
+        let d = ball.diameter;
+        match &mut ball.mesh {
+            MeshSettings::File { .. } => {
+                return Err(Error::Parse(format!(
+                    "{name}.mesh.file is set: a pole ladder needs the built-in mesher"
+                )))
+            }
+            MeshSettings::Builtin { size, pole_size } => {
+                *size = size.min(d / POLE_LADDER_BULK_PER_D);
+                *pole_size *= scale;
+            }
+        }
+    }
+    Ok(s)
+}
+
 /// Ball 1's (pole, bulk) sizes of a scene's built-in mesh, m (zeros for a mesh file).
 pub fn mesh_sizes(scene: &Scene) -> (f64, f64) {
     match scene.ball1.mesh {

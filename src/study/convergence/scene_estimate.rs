@@ -9,7 +9,7 @@ use crate::scene::{approach, Approach, MeshSettings, Scene};
 use crate::study::convergence::bulk_share::{finest_share, runs_in_3d, with_bulk_share};
 use crate::study::convergence::converged_scene::{converge_report, family_case};
 use crate::study::convergence::ladder::{
-    at_level, mesh_sizes, run_ladder_with, scene_at_level, LadderPlan,
+    at_level, mesh_sizes, run_ladder_with, scene_at_level, scene_at_pole_level, LadderPlan,
 };
 use crate::study::convergence::phase_ensemble::{ring_ratio, HeadOnCase, PhaseMean};
 use crate::study::records::error_estimate::{
@@ -138,6 +138,11 @@ pub fn run_scene_with_estimate(
         }
     }
     let three_d = runs_in_3d(scene)?;
+    if let (LadderPlan::Tolerance { .. }, true) = (plan, three_d && tangential_scene(scene)?) {
+        let mut report = run_pole_ladder(scene, opts, plan)?;
+        report.wall_time_s = start.elapsed().as_secs_f64();
+        return Ok(report);
+    }
     let (estimate, report) = if matches!(plan, LadderPlan::TwoLevels) {
         match two_levels(scene, opts) {
             Ok((estimate, report)) => (with_bulk_share(scene, three_d, estimate)?, report),
@@ -201,6 +206,67 @@ pub fn run_scene_with_estimate(
     }
     report.wall_time_s = start.elapsed().as_secs_f64();
     Ok(report)
+}
+
+/// True when `scene` is an oblique or spinning impact (its contact points slide at touch,
+/// or a ball spins): the tangential figures a pole ladder converges.
+///
+/// Errors: as [`approach`].
+fn tangential_scene(scene: &Scene) -> Result<bool> {
+    let Approach::Impact(touch) = approach(scene)? else {
+        return Ok(false);
+    };
+    let spins = [scene.ball1.angular_velocity, scene.ball2.angular_velocity]
+        .iter()
+        .any(|w| w.iter().any(|c| *c != 0.0));
+    Ok(spins || crate::study::records::tangential::is_oblique(scene, &touch))
+}
+
+/// `--tolerance` (`plan`) on an oblique or spinning 3D scene: the pole ladder
+/// ([`scene_at_pole_level`]: pole halved per level, bulk at most D/8 on all), levels −1, 0,
+/// +1, then finer until e's and the tangential restitution's relative bars (observed order)
+/// are both within the tolerance or the refinements run out. The report is the finest
+/// level's.
+///
+/// Errors: those of the runs, naming the level.
+fn run_pole_ladder(scene: &Scene, opts: &RunOptions, plan: LadderPlan) -> Result<RunReport> {
+    let mut finest: Option<RunReport> = None;
+    let estimate = run_ladder_with(
+        plan,
+        |level| {
+            let (out, report) = run_leveled(scene_at_pole_level(scene, level)?, level, opts)?;
+            finest = Some(report);
+            Ok(out)
+        },
+        |est| Ok(with_tangential_tolerance(est)),
+    )?;
+    let report =
+        finest.ok_or_else(|| Error::Numerical("error estimate: the ladder ran no mesh".into()))?;
+    let bulk_size_m = mesh_sizes(&scene_at_pole_level(scene, 0)?).1;
+    with_estimate(
+        report,
+        ErrorEstimate {
+            method: EstimateMethod::PoleLadder { bulk_size_m },
+            ..estimate
+        },
+    )
+}
+
+/// `est` with its tolerance met only from three levels on (the observed order: the coarsest
+/// pole, a/2 of the contact radius, lies before e_t's knee, so two levels can agree by
+/// chance) and when the tangential restitution's relative bar is within it too (an impact
+/// without slip at touch has none and passes).
+fn with_tangential_tolerance(est: ErrorEstimate) -> ErrorEstimate {
+    let Some(t) = est.tolerance else {
+        return est;
+    };
+    let restitution = est.tangential.as_ref().and_then(|x| x.restitution.as_ref());
+    let tangential_met = restitution.is_none_or(|r| r.relative_error.is_some_and(|x| x <= t));
+    let observed = est.meshes.len() >= 3;
+    ErrorEstimate {
+        tolerance_met: est.tolerance_met.map(|m| m && tangential_met && observed),
+        ..est
+    }
 }
 
 /// `--tolerance` on a head-on section scene whose banded family is `case`, cheapest first:
@@ -350,7 +416,13 @@ pub fn run_level(
     level: i32,
     opts: &RunOptions,
 ) -> Result<(LevelOutcome, RunReport)> {
-    let s = scene_at_level(scene, level)?;
+    run_leveled(scene_at_level(scene, level)?, level, opts)
+}
+
+/// Runs `s`, a scene already on ladder level `level` (of either ladder): the level's figures
+/// and the full report, a section level as its phase ensemble. Fails for a scene without
+/// impact.
+fn run_leveled(s: Scene, level: i32, opts: &RunOptions) -> Result<(LevelOutcome, RunReport)> {
     let mut report = run_scene(&s, opts)?;
     let (pole_size, size) = mesh_sizes(&s);
     let e = report

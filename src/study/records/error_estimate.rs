@@ -223,6 +223,10 @@ impl ErrorEstimate {
                 "meshes at levels {} (0: the scene's mesh; each level down doubles the element sizes)",
                 levels.join(", ")
             ),
+            EstimateMethod::PoleLadder { bulk_size_m } => format!(
+                "the pole ladder at levels {} (each level down doubles the pole size; bulk {bulk_size_m:.3e} m on all)",
+                levels.join(", ")
+            ),
             EstimateMethod::BandedFamily {
                 band_split,
                 band_edge_m,
@@ -252,8 +256,12 @@ impl ErrorEstimate {
             ));
         }
         if let (Some(t), Some(met)) = (self.tolerance, self.tolerance_met) {
+            let on = match self.method {
+                EstimateMethod::PoleLadder { .. } => "e and the tangential restitution",
+                _ => "e",
+            };
             s.push_str(&format!(
-                "; tolerance {:.3} % on e {}",
+                "; tolerance {:.3} % on {on} {}",
                 100.0 * t,
                 if met { "met" } else { "NOT met" }
             ));
@@ -290,6 +298,14 @@ pub enum EstimateMethod {
         /// looser; None when it was not asked for.
         #[serde(skip_serializing_if = "Option::is_none")]
         why_not_banded: Option<String>,
+    },
+    /// `--tolerance` on an oblique or spinning 3D scene: a ladder whose levels halve the pole
+    /// size only, the bulk held at or below D/8 on every level (past e's and e_t's knee in
+    /// the bulk), met when e's and the tangential restitution's bars are both within the
+    /// tolerance.
+    PoleLadder {
+        /// The bulk size of every level, m.
+        bulk_size_m: f64,
     },
     /// The banded, mass-scaled family of [`crate::study::convergence::phase_ensemble::converged_head_on`], sized
     /// from the physics.
