@@ -293,8 +293,9 @@ fn a_spinning_ball_slides_with_the_rigid_body_coulomb_impulse() {
 /// tangential restitution's bar is within it too. Chung & Ooi's test 4 (alumina, D = 5 mm) at
 /// 20°, 2 %, one refinement: levels −1, 0, +1 give e_t 0.43261, 0.43338, 0.42959 (level +2:
 /// 0.42928, `twoball run verification/dem-benchmarks/test4-alumina.toml --set
-/// 'ball1.velocity=[3.66480, 1.33386, 0]' --tolerance 0.01% --max-refinements 2`); the
-/// oscillating ladder's bar (1.25 times the larger step) holds level +2.
+/// 'ball1.velocity=[3.664801221065043, 1.3338785589701079, 0]' --tolerance 0.01%
+/// --max-refinements 2`); the oscillating ladder's bar (1.25 times the larger step) holds
+/// level +2.
 #[test]
 fn tolerance_on_an_oblique_scene_refines_the_pole_at_a_fixed_bulk() {
     use twoball::study::convergence::ladder::LadderPlan;

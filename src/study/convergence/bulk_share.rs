@@ -10,7 +10,7 @@
 //! "Convergence of the graded mesh"). An elastic ball (e → 1) gets no share.
 
 use crate::error::Result;
-use crate::scene::{approach, Approach, MeshSettings, Scene};
+use crate::scene::{approach, Approach, MeshSettings, Scene, Touch};
 use crate::study::convergence::ladder::scene_at_level;
 use crate::study::records::error_estimate::ErrorEstimate;
 use crate::study::run::simulate::{choose_reduction, Reduction};
@@ -44,42 +44,50 @@ fn bulk_per_d(scene: &Scene) -> Option<f64> {
         .try_fold(f64::INFINITY, |acc, n| n.map(|n| acc.min(n)))
 }
 
-/// True when `scene` runs on a 3D model (not the meridian section).
+/// True when `scene`, meeting at `touch`, runs on a 3D model (not the meridian section).
+///
+/// Errors: as [`choose_reduction`].
+pub fn in_3d(scene: &Scene, touch: &Touch) -> Result<bool> {
+    Ok(choose_reduction(scene, touch)?.0 != Reduction::Axisymmetric)
+}
+
+/// True when `scene` runs on a 3D model; false without impact.
 ///
 /// Errors: as [`approach`] and [`choose_reduction`].
 pub fn runs_in_3d(scene: &Scene) -> Result<bool> {
-    let Approach::Impact(touch) = approach(scene)? else {
-        return Ok(false);
-    };
-    Ok(choose_reduction(scene, &touch)?.0 != Reduction::Axisymmetric)
+    match approach(scene)? {
+        Approach::Impact(touch) => in_3d(scene, &touch),
+        Approach::NoImpact { .. } => Ok(false),
+    }
 }
 
-/// The bulk share ([`bulk_share`], -) and elements per diameter of the finest level of
-/// `est` (a ladder of `scene`) when `three_d` and that share is not zero.
+/// The bulk's floor on e's bar of `est` (a ladder of `scene`) when `three_d`: the share
+/// ([`bulk_share`], -) of the finest level's bulk (its elements per diameter, -) times
+/// 1 − e (the finest e), as (floor, share, per_d); None when the share is zero.
 ///
 /// Errors: as [`scene_at_level`].
-pub fn finest_share(
+pub fn bulk_floor(
     scene: &Scene,
     three_d: bool,
     est: &ErrorEstimate,
-) -> Result<Option<(f64, f64)>> {
+) -> Result<Option<(f64, f64, f64)>> {
     let Some(finest) = est.meshes.last().filter(|_| three_d) else {
         return Ok(None);
     };
     let per_d = bulk_per_d(&scene_at_level(scene, finest.level)?);
-    Ok(per_d.map(|n| (bulk_share(n), n)).filter(|(s, _)| *s > 0.0))
+    let one_minus_e = (1.0 - est.e.finest).max(0.0);
+    Ok(per_d
+        .map(|n| (bulk_share(n) * one_minus_e, bulk_share(n), n))
+        .filter(|(_, share, _)| *share > 0.0))
 }
 
-/// `est` (a ladder of `scene`) with e's bar raised to the bulk share of its finest level
-/// ([`bulk_share`] of 1 − e, the finest e) when `three_d`; unchanged otherwise.
+/// `est` (a ladder of `scene`) with e's bar raised to its [`bulk_floor`] when `three_d`;
+/// unchanged otherwise.
 ///
 /// Errors: as [`scene_at_level`].
 pub fn with_bulk_share(scene: &Scene, three_d: bool, est: ErrorEstimate) -> Result<ErrorEstimate> {
-    Ok(match finest_share(scene, three_d, &est)? {
-        Some((share, _)) => {
-            let floor = share * (1.0 - est.e.finest).max(0.0);
-            est.with_e_floor(floor)
-        }
+    Ok(match bulk_floor(scene, three_d, &est)? {
+        Some((floor, _, _)) => est.with_e_floor(floor),
         None => est,
     })
 }

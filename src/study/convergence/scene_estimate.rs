@@ -6,7 +6,7 @@
 use crate::error::{Error, Result};
 use crate::fe::materials;
 use crate::scene::{approach, Approach, MeshSettings, Scene};
-use crate::study::convergence::bulk_share::{finest_share, runs_in_3d, with_bulk_share};
+use crate::study::convergence::bulk_share::{bulk_floor, in_3d, with_bulk_share};
 use crate::study::convergence::converged_scene::{converge_report, family_case};
 use crate::study::convergence::ladder::{
     at_level, mesh_sizes, run_ladder_with, scene_at_level, scene_at_pole_level, LadderPlan,
@@ -118,9 +118,9 @@ pub fn run_scene_with_estimate(
     opts: &RunOptions,
     plan: LadderPlan,
 ) -> Result<RunReport> {
-    if let Approach::NoImpact { .. } = approach(scene)? {
+    let Approach::Impact(touch) = approach(scene)? else {
         return run_scene(scene, opts);
-    }
+    };
     let start = Instant::now();
     let mut why_not_banded = None;
     if let LadderPlan::Tolerance {
@@ -137,8 +137,9 @@ pub fn run_scene_with_estimate(
             Err(why) => why_not_banded = Some(why),
         }
     }
-    let three_d = runs_in_3d(scene)?;
-    if let (LadderPlan::Tolerance { .. }, true) = (plan, three_d && tangential_scene(scene)?) {
+    let three_d = in_3d(scene, &touch)?;
+    let oblique = crate::study::records::tangential::is_oblique(scene, &touch);
+    if let (LadderPlan::Tolerance { .. }, true) = (plan, three_d && oblique) {
         let mut report = run_pole_ladder(scene, opts, plan)?;
         report.wall_time_s = start.elapsed().as_secs_f64();
         return Ok(report);
@@ -174,10 +175,8 @@ pub fn run_scene_with_estimate(
         (estimate, report)
     };
     // Whether the bulk's share set e's bar (the floor equals the bar when it did).
-    let raised = finest_share(scene, three_d, &estimate)?.filter(|(share, _)| {
-        let floor = share * (1.0 - estimate.e.finest).max(0.0);
-        floor > 0.0 && estimate.e.error <= floor
-    });
+    let raised = bulk_floor(scene, three_d, &estimate)?
+        .filter(|(floor, _, _)| *floor > 0.0 && estimate.e.error <= *floor);
     let mut report = with_estimate(
         report,
         ErrorEstimate {
@@ -185,7 +184,7 @@ pub fn run_scene_with_estimate(
             ..estimate
         },
     )?;
-    if let Some((share, per_d)) = raised {
+    if let Some((_, share, per_d)) = raised {
         report
             .warnings
             .push(crate::study::records::warnings::bulk_share_bar(
@@ -208,21 +207,9 @@ pub fn run_scene_with_estimate(
     Ok(report)
 }
 
-/// True when `scene` is an oblique or spinning impact (its contact points slide at touch,
-/// or a ball spins): the tangential figures a pole ladder converges.
-///
-/// Errors: as [`approach`].
-fn tangential_scene(scene: &Scene) -> Result<bool> {
-    let Approach::Impact(touch) = approach(scene)? else {
-        return Ok(false);
-    };
-    let spins = [scene.ball1.angular_velocity, scene.ball2.angular_velocity]
-        .iter()
-        .any(|w| w.iter().any(|c| *c != 0.0));
-    Ok(spins || crate::study::records::tangential::is_oblique(scene, &touch))
-}
-
-/// `--tolerance` (`plan`) on an oblique or spinning 3D scene: the pole ladder
+/// `--tolerance` (`plan`) on an oblique 3D scene (its contact points slide at touch, or its
+/// centres move apart tangentially: [`crate::study::records::tangential::is_oblique`]): the
+/// pole ladder
 /// ([`scene_at_pole_level`]: pole halved per level, bulk at most D/8 on all), levels −1, 0,
 /// +1, then finer until e's and the tangential restitution's relative bars (observed order)
 /// are both within the tolerance or the refinements run out. The report is the finest

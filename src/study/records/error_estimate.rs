@@ -299,10 +299,10 @@ pub enum EstimateMethod {
         #[serde(skip_serializing_if = "Option::is_none")]
         why_not_banded: Option<String>,
     },
-    /// `--tolerance` on an oblique or spinning 3D scene: a ladder whose levels halve the pole
-    /// size only, the bulk held at or below D/8 on every level (past e's and e_t's knee in
-    /// the bulk), met when e's and the tangential restitution's bars are both within the
-    /// tolerance.
+    /// `--tolerance` on an oblique 3D scene (sliding contact points at touch, spin included): a
+    /// ladder whose levels halve the pole size only, the bulk held at or below D/8 on every
+    /// level (past e's and e_t's knee in the bulk), met when e's and the tangential
+    /// restitution's bars are both within the tolerance.
     PoleLadder {
         /// The bulk size of every level, m.
         bulk_size_m: f64,

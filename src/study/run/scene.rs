@@ -14,7 +14,7 @@ use crate::study::records::tangential::{is_oblique, tangential, TangentialPair};
 use crate::study::records::warnings::{analytic_warnings, fe_warnings, FeFigures, Warning};
 use crate::study::run::force_curve::ForceCurve;
 use crate::study::run::law_compare::{compare_laws, law_table, LawOutcome};
-use crate::study::run::simulate::{simulate, RunOptions, Simulation, HISTORY_HEADER};
+use crate::study::run::simulate::{simulate, Reduction, RunOptions, Simulation, HISTORY_HEADER};
 use serde::Serialize;
 use std::path::Path;
 use std::time::Instant;
@@ -156,7 +156,7 @@ pub fn run_scene(scene: &Scene, opts: &RunOptions) -> Result<RunReport> {
     let r_star = collision.pair.radius;
     let mut warnings = analytic_warnings(an.delta_max, r_star);
     warnings.extend(fe_warnings(&fe_figures(scene, &sim, r_star, oblique)));
-    if sim.savings.reduction != crate::study::run::simulate::Reduction::Axisymmetric {
+    if sim.savings.reduction != Reduction::Axisymmetric {
         warnings.extend(contact_caps(scene, &fe, r_star));
     }
     warnings.extend(super::ignored::ignored_settings(
