@@ -40,6 +40,11 @@ pub struct DemArgs {
     /// test6-aluminium@w3).
     #[arg(long, num_args = 1..)]
     pub only: Vec<String>,
+    /// Relative tolerance on e and the tangential restitution of the oblique and spinning
+    /// cases, each run on its pole ladder (the pole halved per level, the bulk at most D/8),
+    /// e.g. 1% or 0.01. The normal cases converge to 0.5 %.
+    #[arg(long, value_name = "FRACTION|PERCENT%", default_value = "1%")]
+    pub tolerance: String,
 }
 
 /// Arguments of `twoball bench kernel`.
@@ -145,6 +150,9 @@ pub fn run(a: BenchArgs) -> Result<()> {
             crate::study::bench::machine::machine(m.repeats, &mut std::io::stdout().lock())
         }
         BenchKind::Study(s) => super::bench_study::run(s),
-        BenchKind::Dem(d) => crate::study::bench::dem::bench(&d.only, d.out.as_deref()).map(|_| ()),
+        BenchKind::Dem(d) => {
+            let tolerance = super::run::parse_tolerance(&d.tolerance)?;
+            crate::study::bench::dem::bench(&d.only, tolerance, d.out.as_deref()).map(|_| ())
+        }
     }
 }

@@ -83,7 +83,7 @@ fn ladder_plan(a: &RunArgs, scene: &Scene) -> Result<Option<LadderPlan>> {
 }
 
 /// A relative tolerance: `0.1%` (a percentage) or `0.001` (a fraction), in (0, 1).
-fn parse_tolerance(text: &str) -> Result<f64> {
+pub(crate) fn parse_tolerance(text: &str) -> Result<f64> {
     let t = text.trim();
     let value = match t.strip_suffix('%') {
         Some(p) => p.trim().parse::<f64>().map(|x| x / 100.0),

@@ -2,12 +2,12 @@
 //! elastic glass spheres at ±10 m/s, a/R = 0.12) runs end to end; the continuum balls are
 //! stiffer than Hertz's half-spaces, so the converged FE approaches less and parts sooner.
 
-use twoball::study::bench::dem::bench;
+use twoball::study::bench::dem::{bench, OBLIQUE_TOLERANCE};
 
 #[test]
 fn test1_glass_runs_elastic_and_stiffer_than_hertz() {
     let dir = std::env::temp_dir().join(format!("twoball-dem-{}", std::process::id()));
-    let rows = bench(&["test1-glass".into()], Some(&dir)).unwrap();
+    let rows = bench(&["test1-glass".into()], OBLIQUE_TOLERANCE, Some(&dir)).unwrap();
     assert_eq!(rows.len(), 1);
     let r = &rows[0];
     // Elastic: e = 1 within its bar and 0.1 %.

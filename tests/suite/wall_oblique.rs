@@ -332,4 +332,43 @@ fn tolerance_on_an_oblique_scene_refines_the_pole_at_a_fixed_bulk() {
     let met = rel <= 0.02 && est.e.relative_error.unwrap() <= 0.02;
     assert_eq!(est.tolerance_met, Some(met));
     assert!((et.finest - 0.42928).abs() <= et.error, "{et:?}");
+    // The held bulk's share: μ × 6 % of 1 + e_t at D/8.
+    use twoball::study::convergence::bulk_share::POLE_BULK_EXCHANGE;
+    assert!(et.error >= POLE_BULK_EXCHANGE * 0.092 * (1.0 + et.finest) * (1.0 - 1e-12));
+}
+
+/// Test 4 at 40° (gross sliding) to 1 %: the pole levels −1, 0, +1 agree within 0.01 % of
+/// e_t (−0.24337, −0.24223, −0.24216), but the bulk held at D/8 keeps e_t's bar at μ × 6 % of
+/// 1 + e_t, 1.7 % (a bulk of D/16 moves e_t by 0.0013, `scripts/pole_ladder_honesty.py`):
+/// the tolerance is not met, no finer pole is run, and the run says why.
+#[test]
+fn a_pole_ladder_met_in_the_pole_but_not_with_its_bulk_says_so() {
+    use twoball::study::convergence::ladder::LadderPlan;
+    use twoball::study::convergence::scene_estimate::run_scene_with_estimate;
+    use twoball::study::records::warnings::Check;
+    let file = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("verification/dem-benchmarks/test4-alumina.toml");
+    let text = std::fs::read_to_string(file).unwrap();
+    let t = 40f64.to_radians();
+    let v = format!("ball1.velocity=[{}, {}, 0]", 3.9 * t.cos(), 3.9 * t.sin());
+    let s = Scene::from_toml(&text, Path::new("."), &[Override::parse(&v).unwrap()]).unwrap();
+    let plan = LadderPlan::Tolerance {
+        tolerance: 0.01,
+        max_refinements: 2,
+    };
+    let r = run_scene_with_estimate(&s, &RunOptions::default(), plan).unwrap();
+    let est = r.error_estimate.as_ref().unwrap();
+    assert_eq!(
+        est.meshes.len(),
+        3,
+        "a finer pole cannot lower the bulk's share"
+    );
+    assert_eq!(est.tolerance_met, Some(false));
+    let et = est.tangential.as_ref().unwrap().restitution.unwrap();
+    assert!(et.relative_error.unwrap() > 0.01, "{et:?}");
+    assert!(
+        r.warnings.iter().any(|w| w.check == Check::PoleBulkShare),
+        "{:?}",
+        r.warnings
+    );
 }

@@ -6,10 +6,13 @@
 use crate::error::{Error, Result};
 use crate::fe::materials;
 use crate::scene::{approach, Approach, MeshSettings, Scene};
-use crate::study::convergence::bulk_share::{bulk_floor, in_3d, with_bulk_share};
+use crate::study::convergence::bulk_share::{
+    bulk_floor, bulk_per_d, in_3d, pole_bulk_breaks, with_bulk_share, with_pole_bulk_floor,
+};
 use crate::study::convergence::converged_scene::{converge_report, family_case};
 use crate::study::convergence::ladder::{
-    at_level, mesh_sizes, run_ladder_with, scene_at_level, scene_at_pole_level, LadderPlan,
+    at_level, mesh_sizes, refine, run_ladder_with, scene_at_level, scene_at_pole_level, LadderPlan,
+    POLE_LADDER_BULK_PER_D,
 };
 use crate::study::convergence::phase_ensemble::{ring_ratio, HeadOnCase, PhaseMean};
 use crate::study::records::error_estimate::{
@@ -139,8 +142,15 @@ pub fn run_scene_with_estimate(
     }
     let three_d = in_3d(scene, &touch)?;
     let oblique = crate::study::records::tangential::is_oblique(scene, &touch);
-    if let (LadderPlan::Tolerance { .. }, true) = (plan, three_d && oblique) {
-        let mut report = run_pole_ladder(scene, opts, plan)?;
+    if let (
+        LadderPlan::Tolerance {
+            tolerance,
+            max_refinements,
+        },
+        true,
+    ) = (plan, three_d && oblique)
+    {
+        let mut report = run_pole_ladder(scene, opts, tolerance, max_refinements)?;
         report.wall_time_s = start.elapsed().as_secs_f64();
         return Ok(report);
     }
@@ -207,36 +217,80 @@ pub fn run_scene_with_estimate(
     Ok(report)
 }
 
-/// `--tolerance` (`plan`) on an oblique 3D scene (its contact points slide at touch, or its
-/// centres move apart tangentially: [`crate::study::records::tangential::is_oblique`]): the
-/// pole ladder
+/// `--tolerance` (`tolerance`, -; at most `max_refinements` levels beyond 0) on an oblique
+/// 3D scene (its contact points slide at touch, or its centres move apart tangentially:
+/// [`crate::study::records::tangential::is_oblique`]): the pole ladder
 /// ([`scene_at_pole_level`]: pole halved per level, bulk at most D/8 on all), levels −1, 0,
-/// +1, then finer until e's and the tangential restitution's relative bars (observed order)
-/// are both within the tolerance or the refinements run out. The report is the finest
-/// level's.
+/// +1, then finer while e's or the tangential restitution's relative bar (observed order)
+/// exceeds the tolerance, unless the bulk's share alone does ([`pole_bulk_breaks`]: a finer
+/// pole does not lower it). The bars then carry that share ([`with_pole_bulk_floor`]); when
+/// it breaks the tolerance the run says so.
+/// The report is the finest level's.
 ///
 /// Errors: those of the runs, naming the level.
-fn run_pole_ladder(scene: &Scene, opts: &RunOptions, plan: LadderPlan) -> Result<RunReport> {
+fn run_pole_ladder(
+    scene: &Scene,
+    opts: &RunOptions,
+    tolerance: f64,
+    max_refinements: u32,
+) -> Result<RunReport> {
     let mut finest: Option<RunReport> = None;
-    let estimate = run_ladder_with(
-        plan,
-        |level| {
-            let (out, report) = run_leveled(scene_at_pole_level(scene, level)?, level, opts)?;
-            finest = Some(report);
-            Ok(out)
-        },
-        |est| Ok(with_tangential_tolerance(est)),
-    )?;
+    let mut at = |level: i32| -> Result<LevelOutcome> {
+        let (out, report) = run_leveled(scene_at_pole_level(scene, level)?, level, opts)
+            .map_err(|e| at_level(e, level))?;
+        finest = Some(report);
+        Ok(out)
+    };
+    let pole_part = |runs: &[LevelOutcome]| -> Result<ErrorEstimate> {
+        Ok(with_tangential_tolerance(ErrorEstimate::from_runs(
+            runs.to_vec(),
+            Some(tolerance),
+        )?))
+    };
+    let at_zero = scene_at_pole_level(scene, 0)?;
+    let per_d = bulk_per_d(&at_zero).unwrap_or(POLE_LADDER_BULK_PER_D);
+    let (mu, _) = scene.friction_coefficients();
+    // Refine while the pole's part misses the tolerance and the bulk's share alone, which a
+    // finer pole does not lower, does not (three levels at least: the observed order).
+    let done = |runs: &Vec<LevelOutcome>| -> Result<bool> {
+        let est = pole_part(runs)?;
+        let hopeless = runs.len() >= 3 && pole_bulk_breaks(&est, per_d, mu, tolerance);
+        Ok(est.tolerance_met == Some(true) || hopeless)
+    };
+    let start = vec![at(-1)?, at(0)?];
+    let (runs, _) = refine(start, max_refinements, done, |mut runs| {
+        let level = runs.last().map_or(0, |r| r.level) + 1;
+        runs.push(at(level)?);
+        Ok(runs)
+    })?;
+    let pole_part = pole_part(&runs)?;
+    let pole_met = pole_part.tolerance_met == Some(true);
+    let hopeless = pole_bulk_breaks(&pole_part, per_d, mu, tolerance);
+    let estimate = with_tangential_tolerance(with_pole_bulk_floor(
+        ErrorEstimate::from_runs(runs, Some(tolerance))?,
+        per_d,
+        mu,
+    ));
     let report =
         finest.ok_or_else(|| Error::Numerical("error estimate: the ladder ran no mesh".into()))?;
-    let bulk_size_m = mesh_sizes(&scene_at_pole_level(scene, 0)?).1;
-    with_estimate(
+    let bulk_met = estimate.tolerance_met == Some(true);
+    let mut report = with_estimate(
         report,
         ErrorEstimate {
-            method: EstimateMethod::PoleLadder { bulk_size_m },
+            method: EstimateMethod::PoleLadder {
+                bulk_size_m: mesh_sizes(&at_zero).1,
+            },
             ..estimate
         },
-    )
+    )?;
+    if (pole_met || hopeless) && !bulk_met {
+        report
+            .warnings
+            .push(crate::study::records::warnings::pole_bulk_share(
+                tolerance, per_d,
+            ));
+    }
+    Ok(report)
 }
 
 /// `est` with its tolerance met only from three levels on (the observed order: the coarsest

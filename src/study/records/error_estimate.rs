@@ -326,7 +326,7 @@ pub enum EstimateMethod {
 }
 
 /// True when the relative estimate of `e` is at most `tolerance`.
-fn meets(e: &Estimate, tolerance: f64) -> bool {
+pub fn meets(e: &Estimate, tolerance: f64) -> bool {
     e.relative_error.is_some_and(|r| r <= tolerance)
 }
 

@@ -53,6 +53,8 @@ pub enum Check {
     RateDependentBar,
     /// A 3D bar on e raised to the share of its bulk, coarser than e's knee.
     BulkShareBar,
+    /// A pole ladder's bulk share keeps its bars above its tolerance.
+    PoleBulkShare,
     /// A 3D ball's contact patch, turned by its spin, may reach beyond its contact faces.
     ContactCap,
 }
@@ -211,6 +213,19 @@ pub fn bulk_share_bar(share: f64, per_d: f64) -> Warning {
         message: format!(
             "the error bar on e is at least {:.2} % of 1 - e: a 3D bulk of D/{per_d:.1} is coarser than D/8, where its mesh levels can agree while both are off (bulk D/5 moved e by 0.9 % of 1 - e on the default scene); a finer ball1.mesh.size removes the share",
             100.0 * share
+        ),
+    }
+}
+
+/// The note of a pole ladder whose bars its bulk's share (`per_d` elements per diameter, -)
+/// keeps above `tolerance` (-) on e or the tangential restitution: a finer pole cannot lower
+/// them, a finer bulk can.
+pub fn pole_bulk_share(tolerance: f64, per_d: f64) -> Warning {
+    Warning {
+        check: Check::PoleBulkShare,
+        message: format!(
+            "tolerance {:.2} % NOT met and no finer pole run: the bulk's share of the bars (a bulk of D/{per_d:.1}, held on every pole level) exceeds it; a finer ball1.mesh.size lowers the share, a finer pole does not",
+            100.0 * tolerance
         ),
     }
 }

@@ -98,6 +98,14 @@ const TEST5_NORMAL_SPEED: f64 = 5.0;
 /// Relative tolerance on e of the normal tests' converged runs, -.
 const NORMAL_TOLERANCE: f64 = 0.005;
 
+/// The default relative tolerance of the oblique and spinning cases' pole ladders on e and
+/// the tangential restitution, -.
+pub const OBLIQUE_TOLERANCE: f64 = 0.01;
+
+/// The most pole refinements of an oblique case beyond level 0 (levels −1, 0 and +1 always,
+/// +2 while the tolerance is unmet).
+const OBLIQUE_MAX_REFINEMENTS: u32 = 2;
+
 /// One oblique or spinning series: a scene, the values of the quantity it varies and the
 /// `--set`s that put one value in the scene.
 struct Series {
@@ -235,9 +243,11 @@ fn velocity(v: f64, deg: f64) -> String {
     format!("[{:?}, {:?}, 0]", v * t.cos(), v * t.sin())
 }
 
-/// Every case of the suite whose name starts with one of `only` (all when `only` is empty).
-/// Fails only if a committed scene no longer reads (a defect of the build).
-pub fn cases(only: &[String]) -> Result<Vec<DemCase>> {
+/// Every case of the suite whose name starts with one of `only` (all when `only` is empty),
+/// the oblique and spinning ones on the pole ladder to relative tolerance `oblique` (-, on e
+/// and the tangential restitution). Fails only if a committed scene no longer reads (a defect
+/// of the build).
+pub fn cases(only: &[String], oblique: f64) -> Result<Vec<DemCase>> {
     let mut out = Vec::new();
     for (name, damping) in NORMAL {
         let scene = scene(name, &[])?;
@@ -261,7 +271,10 @@ pub fn cases(only: &[String]) -> Result<Vec<DemCase>> {
                 name: format!("{}@{}{v}", s.scene, s.key),
                 touch: touch(&scene)?,
                 scene,
-                plan: LadderPlan::TwoLevels,
+                plan: LadderPlan::Tolerance {
+                    tolerance: oblique,
+                    max_refinements: OBLIQUE_MAX_REFINEMENTS,
+                },
                 oblique: true,
                 angle: s.key.is_empty().then_some(v),
                 damping: false,
@@ -299,7 +312,7 @@ mod tests {
 
     #[test]
     fn the_suite_reads_every_committed_scene_at_its_speeds() {
-        let all = cases(&[]).unwrap();
+        let all = cases(&[], OBLIQUE_TOLERANCE).unwrap();
         let oblique: usize = SERIES.iter().map(|s| s.values.len()).sum();
         assert_eq!(all.len(), NORMAL.len() + oblique);
         // Every scene is run.
@@ -327,11 +340,19 @@ mod tests {
         let t7 = all.iter().find(|c| c.name == "test7-copper@w3").unwrap();
         assert_eq!(t7.scene.ball1.angular_velocity, [0.0, 0.0, 3.0]);
         assert_eq!(t7.scene.ball2.angular_velocity, [0.0, 0.0, 3.0]);
-        assert_eq!(cases(&["test2".into()]).unwrap().len(), 2);
+        assert_eq!(
+            cases(&["test2".into()], OBLIQUE_TOLERANCE).unwrap().len(),
+            2
+        );
         // Only test 3 asks the damped laws for their restitution; every case meets.
         let asks: Vec<_> = all.iter().filter(|c| c.damping).map(|c| &c.name).collect();
         assert_eq!(asks, ["test3-alumina", "test3-cast-iron"]);
         assert!(all.iter().all(|c| c.touch.is_some()));
-        assert_eq!(cases(&["test6-aluminium@w".into()]).unwrap().len(), 6);
+        assert_eq!(
+            cases(&["test6-aluminium@w".into()], OBLIQUE_TOLERANCE)
+                .unwrap()
+                .len(),
+            6
+        );
     }
 }

@@ -66,7 +66,9 @@ mod tests {
     use crate::study::bench::dem::cases::cases;
 
     fn touch(name: &str) -> (Scene, Touch) {
-        let c = cases(&[name.into()]).unwrap().remove(0);
+        let c = cases(&[name.into()], crate::study::bench::dem::OBLIQUE_TOLERANCE)
+            .unwrap()
+            .remove(0);
         (c.scene, c.touch.expect("the balls meet"))
     }
 

@@ -8,14 +8,14 @@
 //! angles of incidence, the same impact between two identical balls; 5: constant normal
 //! speed, varying tangential speed; 6: a spinning sphere on a rigid plane; 7: two identical
 //! spinning spheres; 8: a spinning sphere on a heavy sphere five times its size) run on the
-//! 3D model with the two-level bar and are set beside Maw, Barber & Fawcett's elastic theory
+//! 3D model's pole ladder to `--tolerance` (1 % by default) and are set beside Maw, Barber & Fawcett's elastic theory
 //! and every DEM tangential law.
 
 pub mod cases;
 pub mod laws;
 pub mod report;
 
-pub use cases::{cases, DemCase, PAIR_ANGLES, TEST4_ANGLES};
+pub use cases::{cases, DemCase, OBLIQUE_TOLERANCE, PAIR_ANGLES, TEST4_ANGLES};
 
 use crate::atomic::{ensure_dir, write_atomic};
 use crate::error::{Error, Result};
@@ -52,6 +52,10 @@ pub struct DemRow {
     pub spin_after: (f64, f64, f64),
     /// Rebound angle with its bar and the theory's, rad.
     pub rebound_angle: (f64, f64, f64),
+    /// Meshes of the FE's ladder, -.
+    pub levels: usize,
+    /// Whether the ladder met its tolerance (`None` without one).
+    pub tolerance_met: Option<bool>,
     /// Every normal law at its elastic setting (normal cases; empty oblique).
     pub normal_laws: Vec<LawOutcome>,
     /// Test 3: each damped law's e against the e it was set to, (law, set, out).
@@ -117,6 +121,8 @@ pub fn row(case: &DemCase, r: &RunReport, laws: CaseLaws, wall: f64) -> DemRow {
             bar(t_est.map(|t| &t.rebound_angle)),
             theory.map_or(nan, |t| t.rebound_angle),
         ),
+        levels: est.map_or(1, |e| e.meshes.len()),
+        tolerance_met: est.and_then(|e| e.tolerance_met),
         normal_laws: laws.normal,
         damping: laws.damping,
         laws: laws.tangential,
@@ -188,11 +194,12 @@ pub fn run(cases: &[DemCase]) -> Result<Vec<DemRow>> {
     Ok(rows)
 }
 
-/// Runs the cases named by `only` (all when empty) and writes `report.md` and `cases.csv`
-/// into `out` (each whole: written aside and renamed); prints the report and the wall time.
-/// Fails on a bad `only` (no case matches), a failed case, or an unwritable folder.
-pub fn bench(only: &[String], out: Option<&Path>) -> Result<Vec<DemRow>> {
-    let cases = cases(only)?;
+/// Runs the cases named by `only` (all when empty), the oblique and spinning ones to relative
+/// tolerance `oblique` (-) on their pole ladders, and writes `report.md` and `cases.csv` into
+/// `out` (each whole: written aside and renamed); prints the report and the wall time. Fails
+/// on a bad `only` (no case matches), a failed case, or an unwritable folder.
+pub fn bench(only: &[String], oblique: f64, out: Option<&Path>) -> Result<Vec<DemRow>> {
+    let cases = cases(only, oblique)?;
     if cases.is_empty() {
         return Err(Error::invalid(
             "--only",
@@ -224,7 +231,7 @@ mod tests {
         // Test 4 at 80 degrees slides throughout: the contact point's slip falls by
         // (1 + mR²/I) μ (1 + e) v_n with e = 1 (Hertz), so e_t = −(1 − 7 μ v_n / v_t), and
         // the spin by (5/2) μ (1 + e) v_n / R.
-        let c = &cases(&["test4-alumina@80".into()]).unwrap()[0];
+        let c = &cases(&["test4-alumina@80".into()], OBLIQUE_TOLERANCE).unwrap()[0];
         let laws = case_laws(c).unwrap().tangential;
         let coulomb = laws.iter().find(|l| l.law == "coulomb").unwrap();
         let (vn, vt, mu, r) = (
@@ -257,7 +264,7 @@ mod tests {
         // Test 6 at ω = 14 rad/s: the contact point slips at R ω = 1.4 m/s and slides
         // throughout, so the slip falls by (1 + mR²/I) μ (1 + e) v_n = 0.56 m/s (e = 1,
         // v_n = 0.2 m/s, μ = 0.4): e_t = −0.6, and the spin by (5/2) μ (1 + e) v_n / R = 4.
-        let c = &cases(&["test6-aluminium@w14".into()]).unwrap()[0];
+        let c = &cases(&["test6-aluminium@w14".into()], OBLIQUE_TOLERANCE).unwrap()[0];
         let laws = case_laws(c).unwrap().tangential;
         let coulomb = laws.iter().find(|l| l.law == "coulomb").unwrap();
         assert!((coulomb.restitution + 0.6).abs() < 1e-4, "{coulomb:?}");
@@ -268,18 +275,20 @@ mod tests {
     fn a_spinning_ball_slips_at_r_omega_and_a_spinning_pair_at_twice_that() {
         // Test 6: v_n = 0.2 m/s, R ω = 0.3 m/s, μ = 0.4; test 7: each ball at 0.2 m/s, so
         // the approach is 0.4 m/s and the slip 2 R ω = 0.6 m/s.
-        let six = &cases(&["test6-aluminium@w3".into()]).unwrap()[0];
+        let six = &cases(&["test6-aluminium@w3".into()], OBLIQUE_TOLERANCE).unwrap()[0];
         assert!((slip_ratio(six) - 0.3 / (0.4 * 0.2)).abs() < 1e-9);
-        let seven = &cases(&["test7-aluminium@w3".into()]).unwrap()[0];
+        let seven = &cases(&["test7-aluminium@w3".into()], OBLIQUE_TOLERANCE).unwrap()[0];
         assert!((slip_ratio(seven) - 0.6 / (0.4 * 0.4)).abs() < 1e-9);
         // Head-on cases have none.
-        let one = &cases(&["test1-glass".into()]).unwrap()[0];
+        let one = &cases(&["test1-glass".into()], OBLIQUE_TOLERANCE).unwrap()[0];
         assert!(slip_ratio(one).is_nan());
     }
 
     #[test]
     fn a_prefix_that_names_no_case_is_refused_before_running() {
-        let e = bench(&["test9".into()], None).unwrap_err().to_string();
+        let e = bench(&["test9".into()], OBLIQUE_TOLERANCE, None)
+            .unwrap_err()
+            .to_string();
         assert!(e.contains("--only") && e.contains("test9"), "{e}");
         assert!(e.contains("test6-aluminium@wVALUE"), "{e}");
     }

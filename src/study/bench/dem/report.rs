@@ -161,18 +161,19 @@ fn oblique_table(rows: &[&DemRow]) -> String {
     let mut s = String::from("## Oblique and spinning tests against Maw, Barber & Fawcett\n\n");
     s.push_str(
         "slip/(μ v_n) is the contact points' slip at touch over μ times the normal approach \
-         speed.\n\n",
+         speed; levels, the pole ladder's meshes and whether its tolerance on e and e_t was \
+         met.\n\n",
     );
     s.push_str(
         "| case | slip/(μ v_n) | e_t FE | e_t theory | ω₁ after FE (rad/s) | theory | \
-         rebound FE (rad) | theory |\n",
+         rebound FE (rad) | theory | levels |\n",
     );
-    s.push_str("|---|---|---|---|---|---|---|---|\n");
+    s.push_str("|---|---|---|---|---|---|---|---|---|\n");
     for r in rows {
         let (t, w, a) = (r.tangential_restitution, r.spin_after, r.rebound_angle);
         let _ = writeln!(
             s,
-            "| {} | {} | {} | {} | {} | {} | {} | {} |",
+            "| {} | {} | {} | {} | {} | {} | {} | {} | {} |",
             r.name,
             plain(r.slip_ratio, 3),
             with_bar(t.0, t.1, 4),
@@ -181,10 +182,20 @@ fn oblique_table(rows: &[&DemRow]) -> String {
             plain(w.2, 4),
             with_bar(a.0, a.1, 4),
             plain(a.2, 4),
+            levels(r),
         );
     }
     s.push('\n');
     s
+}
+
+/// The ladder's mesh count and whether it met its tolerance, e.g. "3, met".
+fn levels(r: &DemRow) -> String {
+    match r.tolerance_met {
+        Some(true) => format!("{}, met", r.levels),
+        Some(false) => format!("{}, NOT met", r.levels),
+        None => r.levels.to_string(),
+    }
 }
 
 /// The oblique cases' tangential laws (Hertz along the normal): e_t and ω₁ after (rad/s)
@@ -257,7 +268,8 @@ pub fn csv(rows: &[DemRow]) -> String {
          contact_duration_s,contact_duration_bar_s,contact_duration_hertz_s,\
          tangential_restitution,tangential_restitution_bar,tangential_restitution_theory,\
          spin1_after_rad_per_s,spin1_after_bar_rad_per_s,spin1_after_theory_rad_per_s,\
-         rebound_angle_rad,rebound_angle_bar_rad,rebound_angle_theory_rad,wall_time_s",
+         rebound_angle_rad,rebound_angle_bar_rad,rebound_angle_theory_rad,ladder_levels,\
+         tolerance_met,wall_time_s",
     );
     let registry = Registry::builtin();
     let normal: Vec<&str> = registry.normal.iter().map(|n| n.name).collect();
@@ -297,6 +309,8 @@ pub fn csv(rows: &[DemRow]) -> String {
             r.rebound_angle.0,
             r.rebound_angle.1,
             r.rebound_angle.2,
+            r.levels as f64,
+            r.tolerance_met.map_or(f64::NAN, |m| f64::from(u8::from(m))),
             r.wall_time,
         ];
         let mut line: Vec<String> = cells.iter().map(|&v| f(v)).collect();
