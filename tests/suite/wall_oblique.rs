@@ -288,6 +288,26 @@ fn a_spinning_ball_slides_with_the_rigid_body_coulomb_impulse() {
     assert!((a.w1_after[2] - spin).abs() < 1e-9 * w0, "{:?}", a.w1_after);
 }
 
+/// Chung & Ooi's test 4 (verification/dem-benchmarks/test4-alumina.toml) at `deg` degrees of
+/// incidence and 3.9 m/s, run to `tolerance` with at most `max_refinements`: the scene and
+/// its report.
+fn test4_to_tolerance(deg: f64, tolerance: f64, max_refinements: u32) -> (Scene, RunReport) {
+    use twoball::study::convergence::ladder::LadderPlan;
+    use twoball::study::convergence::scene_estimate::run_scene_with_estimate;
+    let file = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("verification/dem-benchmarks/test4-alumina.toml");
+    let text = std::fs::read_to_string(file).unwrap();
+    let t = deg.to_radians();
+    let v = format!("ball1.velocity=[{}, {}, 0]", 3.9 * t.cos(), 3.9 * t.sin());
+    let s = Scene::from_toml(&text, Path::new("."), &[Override::parse(&v).unwrap()]).unwrap();
+    let plan = LadderPlan::Tolerance {
+        tolerance,
+        max_refinements,
+    };
+    let r = run_scene_with_estimate(&s, &RunOptions::default(), plan).unwrap();
+    (s, r)
+}
+
 /// `--tolerance` on an oblique 3D scene runs the pole ladder: every level keeps the bulk at
 /// D/8 and halves the pole, three levels at least, and the tolerance is met only when the
 /// tangential restitution's bar is within it too. Chung & Ooi's test 4 (alumina, D = 5 mm) at
@@ -298,21 +318,8 @@ fn a_spinning_ball_slides_with_the_rigid_body_coulomb_impulse() {
 /// level +2.
 #[test]
 fn tolerance_on_an_oblique_scene_refines_the_pole_at_a_fixed_bulk() {
-    use twoball::study::convergence::ladder::LadderPlan;
-    use twoball::study::convergence::scene_estimate::run_scene_with_estimate;
     use twoball::study::records::error_estimate::EstimateMethod;
-    let file = Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("verification/dem-benchmarks/test4-alumina.toml");
-    let text = std::fs::read_to_string(file).unwrap();
-    let t = 20f64.to_radians();
-    let v = format!("ball1.velocity=[{}, {}, 0]", 3.9 * t.cos(), 3.9 * t.sin());
-    let sets = [Override::parse(&v).unwrap()];
-    let s = Scene::from_toml(&text, Path::new("."), &sets).unwrap();
-    let plan = LadderPlan::Tolerance {
-        tolerance: 0.02,
-        max_refinements: 1,
-    };
-    let r = run_scene_with_estimate(&s, &RunOptions::default(), plan).unwrap();
+    let (s, r) = test4_to_tolerance(20.0, 0.02, 1);
     let est = r.error_estimate.unwrap();
     assert!(matches!(est.method, EstimateMethod::PoleLadder { .. }));
     let d = s.ball1.diameter;
@@ -343,20 +350,8 @@ fn tolerance_on_an_oblique_scene_refines_the_pole_at_a_fixed_bulk() {
 /// the tolerance is not met, no finer pole is run, and the run says why.
 #[test]
 fn a_pole_ladder_met_in_the_pole_but_not_with_its_bulk_says_so() {
-    use twoball::study::convergence::ladder::LadderPlan;
-    use twoball::study::convergence::scene_estimate::run_scene_with_estimate;
     use twoball::study::records::warnings::Check;
-    let file = Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("verification/dem-benchmarks/test4-alumina.toml");
-    let text = std::fs::read_to_string(file).unwrap();
-    let t = 40f64.to_radians();
-    let v = format!("ball1.velocity=[{}, {}, 0]", 3.9 * t.cos(), 3.9 * t.sin());
-    let s = Scene::from_toml(&text, Path::new("."), &[Override::parse(&v).unwrap()]).unwrap();
-    let plan = LadderPlan::Tolerance {
-        tolerance: 0.01,
-        max_refinements: 2,
-    };
-    let r = run_scene_with_estimate(&s, &RunOptions::default(), plan).unwrap();
+    let (_, r) = test4_to_tolerance(40.0, 0.01, 2);
     let est = r.error_estimate.as_ref().unwrap();
     assert_eq!(
         est.meshes.len(),
