@@ -4,7 +4,7 @@
 `twoball run FILE --tolerance T` on an oblique or spinning 3D scene runs the pole ladder:
 the pole halved per level, the bulk held at D/8 on every level. Its bars carry the pole's
 part (observed order) and the bulk's share (docs/design.md, "Error estimates"). Here each of
-21 oblique and spinning cases of the DEM benchmarks (verification/dem-benchmarks/) runs
+20 oblique and spinning cases of the DEM benchmarks (verification/dem-benchmarks/) runs
 (1) the ladder's three levels −1, 0, +1 (`--tolerance 1% --max-refinements 1`, where most
 cases stop) and (2) its finest pole with a bulk of D/16 (`--no-error-estimate`), and the table sets each figure's bar beside the
 move the finer bulk makes: e, delta_max, the contact duration, the tangential restitution
