@@ -203,6 +203,25 @@ pub fn pole_bulk_breaks(est: &ErrorEstimate, per_d: f64, mu: f64, tolerance: f64
             .is_some_and(|r| over(r, POLE_BULK_EXCHANGE * mu * s * (1.0 + r.finest).abs()))
 }
 
+/// True when a finer pole would lower a bar that misses `tolerance` (-): e's or the
+/// tangential restitution's relative bar, the larger of its pole part (`est`, a pole ladder
+/// with `per_d` elements per diameter in its bulk under friction `mu`) and the bulk's floor
+/// ([`with_pole_bulk_floor`]), is above it while the pole part is above the floor.
+pub fn finer_pole_helps(est: &ErrorEstimate, per_d: f64, mu: f64, tolerance: f64) -> bool {
+    let s = pole_bulk_scale(per_d);
+    let helps = |q: &Estimate, floor: f64| {
+        let missed = q
+            .with_error(q.error.max(floor))
+            .relative_error
+            .is_none_or(|r| r > tolerance);
+        missed && q.error > floor
+    };
+    let restitution = est.tangential.as_ref().and_then(|t| t.restitution.as_ref());
+    helps(&est.e, POLE_BULK_E * mu * s)
+        || restitution
+            .is_some_and(|r| helps(r, POLE_BULK_EXCHANGE * mu * s * (1.0 + r.finest).abs()))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -271,6 +290,48 @@ mod tests {
         assert_eq!(pole_bulk_scale(8.0), 1.0);
         assert_eq!(pole_bulk_scale(16.0), 0.5);
         assert_eq!(pole_bulk_scale(4.0), 1.0);
+    }
+
+    /// A pole ladder of test 4 (alumina on a wall, μ = 0.092, bulk D/8) with e 0.99 ± 9e-5
+    /// and the tangential restitution `e_t` with its pole part's bar `bar`.
+    fn test4_ladder(e_t: f64, bar: f64) -> ErrorEstimate {
+        use crate::study::records::error_estimate::{EstimateMethod, TangentialEstimate};
+        let r = |v: f64, err: f64| Estimate::recorded(v, err);
+        ErrorEstimate {
+            ratio: 2.0,
+            e: r(0.99, 9e-5),
+            delta_max: r(1e-5, 1e-8),
+            contact_duration: r(1e-5, 1e-8),
+            peak_force: r(1e3, 1.0),
+            tangential: Some(TangentialEstimate {
+                restitution: Some(r(e_t, bar)),
+                rebound_angle: r(0.1, 1e-4),
+                spin1_after: r(10.0, 0.01),
+            }),
+            meshes: vec![],
+            tolerance: Some(0.01),
+            tolerance_met: None,
+            method: EstimateMethod::PoleLadder { bulk_size_m: 1e-3 },
+        }
+    }
+
+    #[test]
+    fn a_finer_pole_runs_only_where_it_lowers_a_bar_that_misses() {
+        // Test 4's 1 % pole ladders at level +1 (`twoball bench dem`): at 5° the pole's part
+        // (± 0.052) is six times the bulk's floor (0.092 × 6 % × 1.489 = 0.0082), so a
+        // finer pole lowers the bar; at 30° the floor (0.0059) sets the bar, 8.8 % of e_t,
+        // and no pole lowers it; at 60° the bar meets 1 %.
+        let helps = |e_t, bar| finer_pole_helps(&test4_ladder(e_t, bar), 8.0, 0.092, 0.01);
+        assert!(helps(0.4889, 0.052));
+        assert!(!helps(0.0672, 0.004));
+        assert!(!helps(-0.6310, 0.002));
+        // A bulk twice as fine halves the floor (0.0029 at 30°): the pole's 0.004 then sets it.
+        assert!(finer_pole_helps(
+            &test4_ladder(0.0672, 0.004),
+            16.0,
+            0.092,
+            0.01
+        ));
     }
 
     #[test]

@@ -7,7 +7,8 @@ use crate::error::{Error, Result};
 use crate::fe::materials;
 use crate::scene::{approach, Approach, MeshSettings, Scene};
 use crate::study::convergence::bulk_share::{
-    bulk_floor, bulk_per_d, in_3d, pole_bulk_breaks, with_bulk_share, with_pole_bulk_floor,
+    bulk_floor, bulk_per_d, finer_pole_helps, in_3d, pole_bulk_breaks, with_bulk_share,
+    with_pole_bulk_floor,
 };
 use crate::study::convergence::converged_scene::{converge_report, family_case};
 use crate::study::convergence::ladder::{
@@ -217,14 +218,23 @@ pub fn run_scene_with_estimate(
     Ok(report)
 }
 
+/// The relative tolerance on e and the tangential restitution the benches' oblique and
+/// spinning points run their pole ladders to ([`run_pole_ladder`]), -.
+pub const POLE_LADDER_TOLERANCE: f64 = 0.01;
+
+/// The most pole refinements beyond level 0 of the benches' oblique points (levels −1, 0 and
+/// +1 always, +2 while a finer pole lowers a bar that misses the tolerance).
+pub const POLE_LADDER_MAX_REFINEMENTS: u32 = 2;
+
 /// `--tolerance` (`tolerance`, -; at most `max_refinements` levels beyond 0) on an oblique
 /// 3D scene (its contact points slide at touch, or its centres move apart tangentially:
 /// [`crate::study::records::tangential::is_oblique`]): the pole ladder
 /// ([`scene_at_pole_level`]: pole halved per level, bulk at most D/8 on all), levels −1, 0,
 /// +1, then finer while e's or the tangential restitution's relative bar (observed order)
-/// exceeds the tolerance, unless the bulk's share alone does ([`pole_bulk_breaks`]: a finer
-/// pole does not lower it). The bars then carry that share ([`with_pole_bulk_floor`]); when
-/// it breaks the tolerance the run says so.
+/// exceeds the tolerance by its pole's part ([`finer_pole_helps`]: the bulk's share, which a
+/// finer pole does not lower, below it). The bars then carry that share
+/// ([`with_pole_bulk_floor`]); when it alone breaks the tolerance ([`pole_bulk_breaks`]) the
+/// run says so.
 /// The report is the finest level's.
 ///
 /// Errors: those of the runs, naming the level.
@@ -250,12 +260,10 @@ fn run_pole_ladder(
     let at_zero = scene_at_pole_level(scene, 0)?;
     let per_d = bulk_per_d(&at_zero).unwrap_or(POLE_LADDER_BULK_PER_D);
     let (mu, _) = scene.friction_coefficients();
-    // Refine while the pole's part misses the tolerance and the bulk's share alone, which a
-    // finer pole does not lower, does not (three levels at least: the observed order).
+    // Three levels at least (the observed order), then refine while a bar misses the
+    // tolerance by its pole's part, which a finer pole lowers (the bulk's share it does not).
     let done = |runs: &Vec<LevelOutcome>| -> Result<bool> {
-        let est = pole_part(runs)?;
-        let hopeless = runs.len() >= 3 && pole_bulk_breaks(&est, per_d, mu, tolerance);
-        Ok(est.tolerance_met == Some(true) || hopeless)
+        Ok(runs.len() >= 3 && !finer_pole_helps(&pole_part(runs)?, per_d, mu, tolerance))
     };
     let start = vec![at(-1)?, at(0)?];
     let (runs, _) = refine(start, max_refinements, done, |mut runs| {

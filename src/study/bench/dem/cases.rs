@@ -4,6 +4,9 @@
 use crate::error::{Error, Result};
 use crate::scene::{approach, Approach, Override, Scene, Touch};
 use crate::study::convergence::ladder::LadderPlan;
+use crate::study::convergence::scene_estimate::{
+    POLE_LADDER_MAX_REFINEMENTS, POLE_LADDER_TOLERANCE,
+};
 use std::path::Path;
 
 /// The benchmark scenes, as committed under `verification/dem-benchmarks/`.
@@ -100,11 +103,7 @@ const NORMAL_TOLERANCE: f64 = 0.005;
 
 /// The default relative tolerance of the oblique and spinning cases' pole ladders on e and
 /// the tangential restitution, -.
-pub const OBLIQUE_TOLERANCE: f64 = 0.01;
-
-/// The most pole refinements of an oblique case beyond level 0 (levels −1, 0 and +1 always,
-/// +2 while the tolerance is unmet).
-const OBLIQUE_MAX_REFINEMENTS: u32 = 2;
+pub const OBLIQUE_TOLERANCE: f64 = POLE_LADDER_TOLERANCE;
 
 /// One oblique or spinning series: a scene, the values of the quantity it varies and the
 /// `--set`s that put one value in the scene.
@@ -273,7 +272,7 @@ pub fn cases(only: &[String], oblique: f64) -> Result<Vec<DemCase>> {
                 scene,
                 plan: LadderPlan::Tolerance {
                     tolerance: oblique,
-                    max_refinements: OBLIQUE_MAX_REFINEMENTS,
+                    max_refinements: POLE_LADDER_MAX_REFINEMENTS,
                 },
                 oblique: true,
                 angle: s.key.is_empty().then_some(v),
