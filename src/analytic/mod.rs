@@ -17,6 +17,7 @@ pub mod laws;
 pub mod maw_barber_fawcett;
 pub mod parametric;
 mod quadrature;
+pub mod sliding_arm;
 pub mod three_phase;
 
 pub use body::Body;
